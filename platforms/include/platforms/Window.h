@@ -1,0 +1,47 @@
+// A desktop window (GLFW on X11) with its input events. The native window is made lazily for the
+// graphics API the device picks, because a GL window carries a context and a Vulkan one must not.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+struct GLFWwindow;
+
+namespace lpv::platforms {
+
+enum class WindowApi { OpenGL, Vulkan };
+
+struct WindowDesc {
+    uint32_t width = 1280;
+    uint32_t height = 720;
+    std::string title = "LPV Engine";
+    bool visible = true;
+};
+
+class Window {
+public:
+    // Throws std::runtime_error when no display is available.
+    explicit Window(const WindowDesc& desc);
+    ~Window();
+    Window(const Window&) = delete;
+    Window& operator=(const Window&) = delete;
+
+    // Creates (or re-creates for another API) the native window. For OpenGL it holds a 4.5 core
+    // context; for Vulkan it has none.
+    GLFWwindow* native(WindowApi api, bool glDebug = false);
+    GLFWwindow* native() const { return window_; }
+
+    void framebufferSize(uint32_t& width, uint32_t& height) const;
+    bool shouldClose() const;
+    void pollEvents();
+    static bool displayAvailable();
+
+private:
+    WindowDesc desc_;
+    GLFWwindow* window_ = nullptr;
+    WindowApi api_ = WindowApi::Vulkan;
+};
+
+} // namespace lpv::platforms

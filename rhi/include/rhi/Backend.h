@@ -1,0 +1,58 @@
+// Choosing a backend at startup. One enum, one factory, one fallback rule:
+//   "vulkan", "gl" and "null" name a backend; "auto" tries Vulkan first, then OpenGL.
+//   When the chosen backend cannot start, createDevice() throws BackendUnavailable with the
+//   reason, or - if allowFallback - logs one line naming both backends and the reason, and
+//   continues on the other one (Vulkan <-> OpenGL; null never falls back).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace lpv::platforms {
+class Window;
+}
+
+namespace lpv::rhi {
+
+class Device;
+
+enum class BackendKind : uint8_t { Auto, OpenGL, Vulkan, Null };
+
+// How the OpenGL backend gets its context when there is no window.
+enum class GlHeadless : uint8_t { EglSurfaceless, OSMesa };
+
+std::string_view backendName(BackendKind kind);
+std::optional<BackendKind> parseBackend(std::string_view name);
+// "auto, gl, vulkan, null": for error messages and help text.
+std::string validBackendNames();
+std::optional<GlHeadless> parseGlHeadless(std::string_view name);
+std::string_view glHeadlessName(GlHeadless h);
+
+enum class DebugSeverity : uint8_t { Info, Warning, Error };
+struct DebugMessage {
+    DebugSeverity severity = DebugSeverity::Info;
+    std::string text;
+};
+
+struct DeviceConfig {
+    BackendKind backend = BackendKind::Auto;
+    bool allowFallback = true;
+    GlHeadless glHeadless = GlHeadless::EglSurfaceless;
+    // With a window the device presents to it; without one it runs headless.
+    platforms::Window* window = nullptr;
+    // Vulkan validation layer and GL KHR_debug output. Messages go to onDebugMessage.
+    bool validation = false;
+    std::function<void(const DebugMessage&)> onDebugMessage;
+    uint32_t framesInFlight = 2;
+    // Per-frame ring for CommandList::pushUniforms.
+    uint32_t uniformRingBytes = 4u << 20;
+    uint32_t maxTimestampsPerFrame = 128;
+};
+
+// Throws BackendUnavailable when no allowed backend starts.
+std::unique_ptr<Device> createDevice(const DeviceConfig& config);
+
+} // namespace lpv::rhi

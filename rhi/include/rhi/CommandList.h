@@ -1,0 +1,99 @@
+// Recording of GPU work for one frame. Record, then submit: the Vulkan backend records into a
+// VkCommandBuffer, the GL backend replays the same commands on its context at submit.
+//
+// Barriers are the RHI's job, not the caller's: every texture has a home state derived from its
+// usage, render passes and transfers move it out and back, and writes from compute or from a
+// pass that stores to images are made visible to every later command. The rule is conservative
+// (like glMemoryBarrier(ALL)) but correct, and it keeps the validation layer silent.
+#pragma once
+
+#include "rhi/Handle.h"
+
+#include <array>
+#include <cstdint>
+#include <limits>
+
+namespace lpv::rhi {
+
+enum class LoadOp : uint8_t { Load, Clear, DontCare };
+enum class IndexType : uint8_t { Uint16, Uint32 };
+
+struct ColorAttachment {
+    TextureHandle texture;
+    uint32_t mipLevel = 0;
+    uint32_t layer = 0;  // array layer, or slice of a 3D texture
+    LoadOp load = LoadOp::Clear;
+    std::array<float, 4> clearColor{0.0f, 0.0f, 0.0f, 0.0f};
+};
+
+struct DepthAttachment {
+    TextureHandle texture;
+    uint32_t layer = 0;
+    LoadOp load = LoadOp::Clear;
+    float clearDepth = 1.0f;
+};
+
+struct RenderPassDesc {
+    static constexpr uint32_t kMaxColorTargets = 8;
+    std::array<ColorAttachment, kMaxColorTargets> colors{};
+    uint32_t colorCount = 0;
+    DepthAttachment depth{};  // texture left invalid: no depth
+    const char* debugName = "render pass";
+};
+
+struct Viewport {
+    float x = 0, y = 0, width = 0, height = 0;
+    float minDepth = 0.0f, maxDepth = 1.0f;
+};
+
+inline constexpr uint64_t kWholeSize = std::numeric_limits<uint64_t>::max();
+
+class CommandList {
+public:
+    virtual ~CommandList() = default;
+
+    // Render passes. The viewport and scissor are reset to the full first target on begin.
+    virtual void beginRenderPass(const RenderPassDesc& desc) = 0;
+    virtual void endRenderPass() = 0;
+    virtual void setViewport(const Viewport& vp) = 0;
+    virtual void setScissor(int32_t x, int32_t y, uint32_t width, uint32_t height) = 0;
+
+    virtual void bindPipeline(GraphicsPipelineHandle pipeline) = 0;
+    virtual void bindPipeline(ComputePipelineHandle pipeline) = 0;
+
+    virtual void bindVertexBuffer(uint32_t slot, BufferHandle buffer, uint64_t offset = 0) = 0;
+    virtual void bindIndexBuffer(BufferHandle buffer, IndexType type, uint64_t offset = 0) = 0;
+
+    // Resource bindings by the `binding` number written in the shader. They stay until replaced
+    // or until another pipeline is bound.
+    virtual void bindUniformBuffer(uint32_t binding, BufferHandle buffer, uint64_t offset = 0,
+                                   uint64_t size = kWholeSize) = 0;
+    virtual void bindStorageBuffer(uint32_t binding, BufferHandle buffer, uint64_t offset = 0,
+                                   uint64_t size = kWholeSize) = 0;
+    virtual void bindTexture(uint32_t binding, TextureHandle texture, SamplerHandle sampler) = 0;
+    virtual void bindStorageImage(uint32_t binding, TextureHandle texture, uint32_t mipLevel = 0) = 0;
+    // Small per-draw constants: copied into a ring the backend owns for this frame and bound as a
+    // uniform buffer at `binding`. No allocation: the ring is sized at device creation.
+    virtual void pushUniforms(uint32_t binding, const void* data, uint32_t size) = 0;
+
+    virtual void draw(uint32_t vertexCount, uint32_t instanceCount = 1, uint32_t firstVertex = 0,
+                      uint32_t firstInstance = 0) = 0;
+    virtual void drawIndexed(uint32_t indexCount, uint32_t instanceCount = 1, uint32_t firstIndex = 0,
+                             int32_t vertexOffset = 0, uint32_t firstInstance = 0) = 0;
+    virtual void dispatch(uint32_t groupsX, uint32_t groupsY = 1, uint32_t groupsZ = 1) = 0;
+
+    // Transfers; only outside a render pass.
+    virtual void clearTexture(TextureHandle texture, const std::array<float, 4>& value) = 0;
+    virtual void updateBuffer(BufferHandle buffer, uint64_t offset, const void* data, uint32_t size) = 0;
+    virtual void copyTexture(TextureHandle src, TextureHandle dst) = 0;  // same desc, all of mip 0
+
+    // GPU timestamp `slot` (< Device::caps().maxTimestampsPerFrame) of this frame; read back with
+    // Device::readTimestamps some frames later. See Caps::timestampSource for what it measures.
+    virtual void writeTimestamp(uint32_t slot) = 0;
+
+    // Debug markers (VK_EXT_debug_utils / KHR_debug) so a capture reads like the code.
+    virtual void beginMarker(const char* name) = 0;
+    virtual void endMarker() = 0;
+};
+
+} // namespace lpv::rhi

@@ -1,0 +1,94 @@
+// The device: creates resources and pipelines, runs frames, reads results back. This header,
+// with the ones it includes, is all the rest of the engine sees of a graphics API.
+#pragma once
+
+#include "rhi/AllocationRecord.h"
+#include "rhi/Backend.h"
+#include "rhi/CommandList.h"
+#include "rhi/Handle.h"
+#include "rhi/Pipeline.h"
+#include "rhi/Resources.h"
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+namespace lpv::rhi {
+
+// Where GPU timestamps come from. Consumers must show this next to every figure.
+enum class TimestampSource : uint8_t {
+    None,         // no timing at all
+    GpuQueries,   // device timestamps (Vulkan queries, GL_TIMESTAMP): accurate, no stall
+    CpuFinished,  // fallback: the CPU clock read after waiting for all prior GPU work
+                  // (glFinish). Serializes the GPU at every timestamp, so frame totals grow.
+};
+std::string_view timestampSourceName(TimestampSource s);
+
+struct Caps {
+    std::string deviceName;
+    std::string driverName;
+    TimestampSource timestampSource = TimestampSource::None;
+    uint32_t maxTimestampsPerFrame = 0;
+    uint32_t framesInFlight = 2;
+    uint32_t max3DTextureSize = 0;
+    uint32_t max2DTextureSize = 0;
+    uint32_t maxColorTargets = 0;
+    bool presentation = false;  // a window surface is attached and endFrame() presents
+};
+
+class Device {
+public:
+    virtual ~Device() = default;
+    Device(const Device&) = delete;
+    Device& operator=(const Device&) = delete;
+
+    virtual BackendKind backend() const = 0;
+    virtual const Caps& caps() const = 0;
+
+    virtual BufferHandle createBuffer(const BufferDesc& desc, const void* initialData = nullptr) = 0;
+    virtual TextureHandle createTexture(const TextureDesc& desc) = 0;
+    virtual SamplerHandle createSampler(const SamplerDesc& desc) = 0;
+    virtual GraphicsPipelineHandle createPipeline(const GraphicsPipelineDesc& desc) = 0;
+    virtual ComputePipelineHandle createPipeline(const ComputePipelineDesc& desc) = 0;
+
+    // Destroying waits until no frame in flight can still use the resource.
+    virtual void destroy(BufferHandle h) = 0;
+    virtual void destroy(TextureHandle h) = 0;
+    virtual void destroy(SamplerHandle h) = 0;
+    virtual void destroy(GraphicsPipelineHandle h) = 0;
+    virtual void destroy(ComputePipelineHandle h) = 0;
+
+    virtual const BufferDesc& desc(BufferHandle h) const = 0;
+    virtual const TextureDesc& desc(TextureHandle h) const = 0;
+
+    // Immediate transfers, for load time and tests: they wait for the GPU, so call them outside
+    // beginFrame()/endFrame() and never in a steady-state frame.
+    virtual void uploadBuffer(BufferHandle h, uint64_t offset, const void* data, uint64_t size) = 0;
+    // All layers/slices of one mip level, tightly packed.
+    virtual void uploadTexture(TextureHandle h, uint32_t mipLevel, const void* data, uint64_t size) = 0;
+    virtual void readBuffer(BufferHandle h, uint64_t offset, void* out, uint64_t size) = 0;
+    virtual void readTexture(TextureHandle h, uint32_t mipLevel, void* out, uint64_t size) = 0;
+    // CPU pointer of a MemoryAccess::HostWrite buffer. Writes must not touch data a frame in
+    // flight still reads (keep one region per frame in flight).
+    virtual void* mapped(BufferHandle h) = 0;
+
+    // Frames. beginFrame() waits until the oldest frame in flight has finished on the GPU, then
+    // returns the command list for the new frame. endFrame() submits it and, with a window,
+    // presents `present` (an RGBA8 color-target texture, row 0 at the top) scaled to the window.
+    virtual CommandList& beginFrame() = 0;
+    virtual void endFrame(TextureHandle present = {}) = 0;
+    // Index of the frame last begun (0 before the first beginFrame()).
+    virtual uint64_t frameIndex() const = 0;
+    // Timestamps written in `frame`, in nanoseconds on one clock. Returns false without waiting
+    // when that frame's results are not ready yet or no longer kept (kept for framesInFlight + 1
+    // frames after they are written).
+    virtual bool readTimestamps(uint64_t frame, std::span<uint64_t> nanoseconds) = 0;
+    virtual void waitIdle() = 0;
+
+    virtual const AllocationRecord& allocations() const = 0;
+
+protected:
+    Device() = default;
+};
+
+} // namespace lpv::rhi

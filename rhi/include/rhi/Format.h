@@ -1,0 +1,36 @@
+// Pixel formats, texture kinds and usage flags the engine can ask for, independent of any API.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+
+namespace lpv::rhi {
+
+enum class Format : uint8_t {
+    Undefined,
+    RGBA8Unorm,
+    RGBA8Srgb,
+    RGBA16F,
+    RGBA32F,
+    RG16F,
+    R32F,
+    R32UI,
+    D32F,
+};
+
+enum class TextureKind : uint8_t { Tex2D, Tex2DArray, Tex3D };
+
+// Bit flags: what a texture will be used for. Backends pick layouts and memory from these.
+enum TextureUsage : uint32_t {
+    kTextureSampled = 1u << 0,
+    kTextureStorage = 1u << 1,      // image load/store from shaders
+    kTextureColorTarget = 1u << 2,  // render target; a 3D or array texture renders per slice
+    kTextureDepthTarget = 1u << 3,
+    kTextureTransfer = 1u << 4,     // upload, clear, copy and readback
+};
+
+uint32_t bytesPerPixel(Format f);
+bool isDepthFormat(Format f);
+std::string_view formatName(Format f);
+
+} // namespace lpv::rhi

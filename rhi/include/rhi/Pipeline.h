@@ -1,0 +1,79 @@
+// Whole pipeline states, created once and bound as a unit (no GL-style state machine).
+#pragma once
+
+#include "rhi/Format.h"
+#include "rhi/Resources.h"
+#include "rhi/Shader.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lpv::rhi {
+
+enum class VertexFormat : uint8_t { Float1, Float2, Float3, Float4, UByte4Norm };
+enum class PrimitiveTopology : uint8_t { TriangleList, TriangleStrip, LineList, PointList };
+enum class CullMode : uint8_t { None, Front, Back };
+enum class FrontFace : uint8_t { CounterClockwise, Clockwise };
+enum class BlendFactor : uint8_t { Zero, One, SrcAlpha, OneMinusSrcAlpha, DstAlpha, OneMinusDstAlpha };
+enum class BlendOp : uint8_t { Add, Max };
+
+struct VertexAttribute {
+    uint32_t location = 0;
+    VertexFormat format = VertexFormat::Float3;
+    uint32_t offset = 0;
+    uint32_t bufferSlot = 0;
+};
+
+struct VertexBufferLayout {
+    uint32_t stride = 0;
+    bool perInstance = false;
+};
+
+struct BlendState {
+    bool enabled = false;
+    BlendFactor srcColor = BlendFactor::One;
+    BlendFactor dstColor = BlendFactor::Zero;
+    BlendOp colorOp = BlendOp::Add;
+    BlendFactor srcAlpha = BlendFactor::One;
+    BlendFactor dstAlpha = BlendFactor::Zero;
+    BlendOp alphaOp = BlendOp::Add;
+
+    static BlendState opaque() { return {}; }
+    // dst += src: light accumulation and volume injection.
+    static BlendState additive() {
+        return {true, BlendFactor::One, BlendFactor::One, BlendOp::Add, BlendFactor::One, BlendFactor::One,
+                BlendOp::Add};
+    }
+    static BlendState alpha() {
+        return {true,          BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha, BlendOp::Add,
+                BlendFactor::One, BlendFactor::OneMinusSrcAlpha, BlendOp::Add};
+    }
+};
+
+struct GraphicsPipelineDesc {
+    const ShaderBinary* vertex = nullptr;
+    const ShaderBinary* fragment = nullptr;
+    std::vector<VertexBufferLayout> vertexBuffers;
+    std::vector<VertexAttribute> attributes;
+    PrimitiveTopology topology = PrimitiveTopology::TriangleList;
+    CullMode cull = CullMode::None;
+    FrontFace frontFace = FrontFace::CounterClockwise;
+    bool depthTest = false;
+    bool depthWrite = false;
+    CompareOp depthCompare = CompareOp::LessOrEqual;
+    float depthBiasConstant = 0.0f;  // both zero: no bias
+    float depthBiasSlope = 0.0f;
+    std::vector<Format> colorFormats;
+    // One entry per color target; a single entry applies to all targets.
+    std::vector<BlendState> blend;
+    Format depthFormat = Format::Undefined;
+    std::string debugName;
+};
+
+struct ComputePipelineDesc {
+    const ShaderBinary* compute = nullptr;
+    std::string debugName;
+};
+
+} // namespace lpv::rhi

@@ -1,0 +1,22 @@
+// A shader as the build produced it: GLSL written once (Vulkan dialect), compiled by glslang to
+// SPIR-V at build time, and turned back into GLSL 4.50 by SPIRV-Cross for the OpenGL backend.
+// Binding numbers in the source are the only resource namespace: a pipeline's uniform buffers,
+// textures, storage images and storage buffers each use a distinct `binding`, all in set 0.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+namespace lpv::rhi {
+
+enum class ShaderStage : uint8_t { Vertex, Fragment, Compute };
+
+struct ShaderBinary {
+    std::string_view name;  // source file, for error messages and debug names
+    ShaderStage stage = ShaderStage::Vertex;
+    std::span<const uint32_t> spirv;
+    std::string_view glsl;
+};
+
+} // namespace lpv::rhi

@@ -1,0 +1,219 @@
+// The null backend: no GPU, but the same handle pools, allocation record and argument checks as
+// the real backends. Front-end logic (handle lifetime, memory accounting, frame bookkeeping) is
+// tested against it without a device. Buffers keep their bytes so uploads read back; textures and
+// timestamps have no contents (zeros).
+#include "../src/BackendFactory.h"
+#include "../src/HandlePool.h"
+
+#include "rhi/Error.h"
+
+#include <cstring>
+#include <vector>
+
+namespace lpv::rhi {
+namespace {
+
+struct NullBuffer {
+    BufferDesc desc;
+    std::vector<std::byte> bytes;
+};
+struct NullTexture {
+    TextureDesc desc;
+};
+struct NullSampler {
+    SamplerDesc desc;
+};
+struct NullGraphicsPipeline {
+    std::string name;
+};
+struct NullComputePipeline {
+    std::string name;
+};
+
+class NullDevice;
+
+class NullCommandList final : public CommandList {
+public:
+    explicit NullCommandList(NullDevice& device) : device_(device) {}
+    void beginRenderPass(const RenderPassDesc& desc) override;
+    void endRenderPass() override { inPass_ = false; }
+    void setViewport(const Viewport&) override {}
+    void setScissor(int32_t, int32_t, uint32_t, uint32_t) override {}
+    void bindPipeline(GraphicsPipelineHandle p) override;
+    void bindPipeline(ComputePipelineHandle p) override;
+    void bindVertexBuffer(uint32_t, BufferHandle b, uint64_t) override;
+    void bindIndexBuffer(BufferHandle b, IndexType, uint64_t) override;
+    void bindUniformBuffer(uint32_t, BufferHandle b, uint64_t, uint64_t) override;
+    void bindStorageBuffer(uint32_t, BufferHandle b, uint64_t, uint64_t) override;
+    void bindTexture(uint32_t, TextureHandle t, SamplerHandle s) override;
+    void bindStorageImage(uint32_t, TextureHandle t, uint32_t) override;
+    void pushUniforms(uint32_t, const void*, uint32_t) override {}
+    void draw(uint32_t, uint32_t, uint32_t, uint32_t) override { requirePass(true, "draw"); }
+    void drawIndexed(uint32_t, uint32_t, uint32_t, int32_t, uint32_t) override { requirePass(true, "drawIndexed"); }
+    void dispatch(uint32_t, uint32_t, uint32_t) override { requirePass(false, "dispatch"); }
+    void clearTexture(TextureHandle t, const std::array<float, 4>&) override;
+    void updateBuffer(BufferHandle b, uint64_t offset, const void* data, uint32_t size) override;
+    void copyTexture(TextureHandle src, TextureHandle dst) override;
+    void writeTimestamp(uint32_t) override {}
+    void beginMarker(const char*) override {}
+    void endMarker() override {}
+
+private:
+    void requirePass(bool inside, const char* what) const {
+        if (inPass_ != inside)
+            throw Error(std::string(what) + (inside ? " outside a render pass" : " inside a render pass"));
+    }
+    NullDevice& device_;
+    bool inPass_ = false;
+};
+
+class NullDevice final : public Device {
+public:
+    explicit NullDevice(const DeviceConfig& config) : list_(*this) {
+        caps_.deviceName = "null device";
+        caps_.driverName = "none";
+        caps_.timestampSource = TimestampSource::None;
+        caps_.framesInFlight = config.framesInFlight;
+        caps_.max3DTextureSize = 2048;
+        caps_.max2DTextureSize = 16384;
+        caps_.maxColorTargets = RenderPassDesc::kMaxColorTargets;
+    }
+
+    BackendKind backend() const override { return BackendKind::Null; }
+    const Caps& caps() const override { return caps_; }
+
+    BufferHandle createBuffer(const BufferDesc& desc, const void* initialData) override {
+        if (desc.size == 0) throw Error("buffer '" + desc.debugName + "': size is 0");
+        NullBuffer b{desc, std::vector<std::byte>(desc.size)};
+        if (initialData) std::memcpy(b.bytes.data(), initialData, desc.size);
+        const BufferHandle h = buffers.insert(std::move(b));
+        allocations_.add(ResourceType::Buffer, h.bits, {ResourceType::Buffer, desc.debugName, desc.category, desc.size});
+        return h;
+    }
+    TextureHandle createTexture(const TextureDesc& desc) override {
+        if (desc.width == 0 || desc.height == 0 || desc.depthOrLayers == 0)
+            throw Error("texture '" + desc.debugName + "': zero extent");
+        const TextureHandle h = textures.insert({desc});
+        allocations_.add(ResourceType::Texture, h.bits,
+                         {ResourceType::Texture, desc.debugName, desc.category, textureBytes(desc)});
+        return h;
+    }
+    SamplerHandle createSampler(const SamplerDesc& desc) override { return samplers.insert({desc}); }
+    GraphicsPipelineHandle createPipeline(const GraphicsPipelineDesc& desc) override {
+        if (!desc.vertex) throw Error("graphics pipeline '" + desc.debugName + "': no vertex shader");
+        return graphicsPipelines.insert({desc.debugName});
+    }
+    ComputePipelineHandle createPipeline(const ComputePipelineDesc& desc) override {
+        if (!desc.compute) throw Error("compute pipeline '" + desc.debugName + "': no compute shader");
+        return computePipelines.insert({desc.debugName});
+    }
+
+    void destroy(BufferHandle h) override {
+        buffers.remove(h);
+        allocations_.remove(ResourceType::Buffer, h.bits);
+    }
+    void destroy(TextureHandle h) override {
+        textures.remove(h);
+        allocations_.remove(ResourceType::Texture, h.bits);
+    }
+    void destroy(SamplerHandle h) override { samplers.remove(h); }
+    void destroy(GraphicsPipelineHandle h) override { graphicsPipelines.remove(h); }
+    void destroy(ComputePipelineHandle h) override { computePipelines.remove(h); }
+
+    const BufferDesc& desc(BufferHandle h) const override { return buffers.get(h).desc; }
+    const TextureDesc& desc(TextureHandle h) const override { return textures.get(h).desc; }
+
+    void uploadBuffer(BufferHandle h, uint64_t offset, const void* data, uint64_t size) override {
+        NullBuffer& b = buffers.get(h);
+        checkRange(b, offset, size);
+        std::memcpy(b.bytes.data() + offset, data, size);
+    }
+    void uploadTexture(TextureHandle h, uint32_t, const void*, uint64_t) override { textures.get(h); }
+    void readBuffer(BufferHandle h, uint64_t offset, void* out, uint64_t size) override {
+        NullBuffer& b = buffers.get(h);
+        checkRange(b, offset, size);
+        std::memcpy(out, b.bytes.data() + offset, size);
+    }
+    void readTexture(TextureHandle h, uint32_t, void* out, uint64_t size) override {
+        textures.get(h);
+        std::memset(out, 0, size);
+    }
+    void* mapped(BufferHandle h) override {
+        NullBuffer& b = buffers.get(h);
+        if (b.desc.access != MemoryAccess::HostWrite)
+            throw Error("buffer '" + b.desc.debugName + "' is not MemoryAccess::HostWrite");
+        return b.bytes.data();
+    }
+
+    CommandList& beginFrame() override {
+        if (inFrame_) throw Error("beginFrame() called twice without endFrame()");
+        inFrame_ = true;
+        ++frame_;
+        return list_;
+    }
+    void endFrame(TextureHandle present) override {
+        if (!inFrame_) throw Error("endFrame() without beginFrame()");
+        if (present) textures.get(present);
+        inFrame_ = false;
+    }
+    uint64_t frameIndex() const override { return frame_; }
+    bool readTimestamps(uint64_t, std::span<uint64_t>) override { return false; }
+    void waitIdle() override {}
+    const AllocationRecord& allocations() const override { return allocations_; }
+
+    HandlePool<BufferTag, NullBuffer> buffers;
+    HandlePool<TextureTag, NullTexture> textures;
+    HandlePool<SamplerTag, NullSampler> samplers;
+    HandlePool<GraphicsPipelineTag, NullGraphicsPipeline> graphicsPipelines;
+    HandlePool<ComputePipelineTag, NullComputePipeline> computePipelines;
+
+private:
+    static void checkRange(const NullBuffer& b, uint64_t offset, uint64_t size) {
+        if (offset + size > b.desc.size)
+            throw Error("buffer '" + b.desc.debugName + "': range [" + std::to_string(offset) + ", " +
+                        std::to_string(offset + size) + ") exceeds its size " + std::to_string(b.desc.size));
+    }
+
+    Caps caps_;
+    AllocationRecord allocations_;
+    NullCommandList list_;
+    uint64_t frame_ = 0;
+    bool inFrame_ = false;
+};
+
+void NullCommandList::beginRenderPass(const RenderPassDesc& desc) {
+    requirePass(false, "beginRenderPass");
+    for (uint32_t i = 0; i < desc.colorCount; ++i) device_.textures.get(desc.colors[i].texture);
+    if (desc.depth.texture) device_.textures.get(desc.depth.texture);
+    inPass_ = true;
+}
+void NullCommandList::bindPipeline(GraphicsPipelineHandle p) { device_.graphicsPipelines.get(p); }
+void NullCommandList::bindPipeline(ComputePipelineHandle p) { device_.computePipelines.get(p); }
+void NullCommandList::bindVertexBuffer(uint32_t, BufferHandle b, uint64_t) { device_.buffers.get(b); }
+void NullCommandList::bindIndexBuffer(BufferHandle b, IndexType, uint64_t) { device_.buffers.get(b); }
+void NullCommandList::bindUniformBuffer(uint32_t, BufferHandle b, uint64_t, uint64_t) { device_.buffers.get(b); }
+void NullCommandList::bindStorageBuffer(uint32_t, BufferHandle b, uint64_t, uint64_t) { device_.buffers.get(b); }
+void NullCommandList::bindTexture(uint32_t, TextureHandle t, SamplerHandle s) {
+    device_.textures.get(t);
+    device_.samplers.get(s);
+}
+void NullCommandList::bindStorageImage(uint32_t, TextureHandle t, uint32_t) { device_.textures.get(t); }
+void NullCommandList::clearTexture(TextureHandle t, const std::array<float, 4>&) {
+    requirePass(false, "clearTexture");
+    device_.textures.get(t);
+}
+void NullCommandList::updateBuffer(BufferHandle b, uint64_t offset, const void* data, uint32_t size) {
+    requirePass(false, "updateBuffer");
+    device_.uploadBuffer(b, offset, data, size);
+}
+void NullCommandList::copyTexture(TextureHandle src, TextureHandle dst) {
+    requirePass(false, "copyTexture");
+    device_.textures.get(src);
+    device_.textures.get(dst);
+}
+
+} // namespace
+
+std::unique_ptr<Device> createNullDevice(const DeviceConfig& config) { return std::make_unique<NullDevice>(config); }
+
+} // namespace lpv::rhi
