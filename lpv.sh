@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# The project's entry point for people and CI.
+#   ./lpv.sh run    install missing packages, build, render the default scene to out/ (a PNG)
+#   ./lpv.sh test   install missing packages, build with warnings as errors, run every test (ctest)
+#   ./lpv.sh bench  install missing packages, build, print the benchmark figures per backend
+# Extra arguments after `run` go to the game, e.g. ./lpv.sh run --backend gl
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+cmd=${1:-run}
+shift || true
+build=${LPV_BUILD_DIR:-$root/build}
+
+"$root/scripts/install-deps.sh"
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLPV_WERROR=ON >/dev/null
+cmake --build "$build" --parallel "$(nproc)"
+
+case "$cmd" in
+run)
+  mkdir -p "$root/out"
+  "$build/game/lpv_game" --screenshot "$root/out/screenshot.png" "$@"
+  ;;
+test)
+  cd "$build"
+  ctest --output-on-failure --timeout 900 "$@"
+  ;;
+bench)
+  "$build/bench/lpv_rhi_bench" "$@"
+  ;;
+*)
+  echo "usage: $0 run|test|bench [args...]" >&2
+  exit 2
+  ;;
+esac

@@ -1,0 +1,51 @@
+// The game executable's command line: bad input exits non-zero with a message that helps.
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cstdio>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+
+struct Result {
+    int exitCode = -1;
+    std::string output;
+};
+
+Result runGame(const std::string& args, const std::string& env = "") {
+    const std::string command = env + " " LPV_GAME_EXE " " + args + " 2>&1";
+    Result r;
+    FILE* pipe = popen(command.c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    std::array<char, 512> buffer{};
+    while (fgets(buffer.data(), int(buffer.size()), pipe)) r.output += buffer.data();
+    const int status = pclose(pipe);
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+} // namespace
+
+TEST_CASE("cli: an unknown backend name lists the valid ones and exits non-zero") {
+    const Result r = runGame("--headless --backend d3d9");
+    CHECK(r.exitCode != 0);
+    CHECK(r.output.find("unknown backend 'd3d9'") != std::string::npos);
+    CHECK(r.output.find("auto, gl") != std::string::npos);
+    CHECK(r.output.find("vulkan") != std::string::npos);
+}
+
+TEST_CASE("cli: vulkan without a driver fails clearly when fallback is not allowed") {
+    const Result r = runGame("--headless --backend vulkan --no-fallback", "VK_DRIVER_FILES=/nonexistent/icd.json");
+    CHECK(r.exitCode == 3);
+    CHECK(r.output.find("vulkan") != std::string::npos);
+    CHECK(r.output.find("fallback not allowed") != std::string::npos);
+}
+
+TEST_CASE("cli: vulkan without a driver falls back to gl and renders") {
+    const Result r = runGame("--headless --backend vulkan --width 64 --height 64",
+                             "VK_DRIVER_FILES=/nonexistent/icd.json");
+    CHECK_MESSAGE(r.exitCode == 0, r.output);
+    CHECK(r.output.find("falling back to 'gl'") != std::string::npos);
+    CHECK(r.output.find("running on backend 'gl'") != std::string::npos);
+}

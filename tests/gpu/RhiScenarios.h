@@ -1,0 +1,43 @@
+// Small GPU workloads that every backend must run identically. Each returns what it read back so
+// per-backend tests can check values and the cross-backend test can compare images.
+#pragma once
+
+#include "../support/Image.h"
+
+#include "rhi/Device.h"
+
+#include <glm/vec4.hpp>
+
+namespace lpv::test {
+
+// 64x64: two indexed triangles at different depths into RGBA8 + RGBA16F targets and D32F depth.
+struct MrtImages {
+    Image color;
+    Image second;
+    Image depth;
+};
+MrtImages renderIndexedMrt(rhi::Device& device);
+inline constexpr glm::vec4 kMrtClear{0.0f, 0.0f, 0.2f, 1.0f};
+inline constexpr glm::vec4 kMrtTint{0.25f, 0.5f, 0.75f, 1.0f};
+
+// 32^3 RGBA16F storage image written by a compute shader.
+inline constexpr uint32_t kVolumeSize = 32;
+Image fillVolume(rhi::Device& device);
+glm::vec4 expectedVolumeTexel(uint32_t x, uint32_t y, uint32_t z);
+
+// 16x16 RGBA16F cleared to kBlendClear, then kBlendColor added twice.
+inline constexpr glm::vec4 kBlendClear{0.1f, 0.0f, 0.0f, 0.0f};
+inline constexpr glm::vec4 kBlendColor{0.25f, 0.5f, 0.125f, 0.25f};
+Image additiveBlend(rhi::Device& device);
+
+// 8^3 RGBA16F volume: slice kInjectSlice receives kBlendColor twice (additive) through a render
+// pass, then a compute shader reads the whole volume through a sampler into a storage buffer.
+inline constexpr uint32_t kInjectSize = 8;
+inline constexpr uint32_t kInjectSlice = 3;
+struct InjectionResult {
+    Image readback;                      // readTexture of the volume
+    std::vector<glm::vec4> sampledReads;  // what the compute shader sampled, in the same order
+};
+InjectionResult injectIntoSlice(rhi::Device& device);
+
+} // namespace lpv::test
