@@ -3,7 +3,10 @@
 // engine's renderer, scenes and GI plug in here as they arrive.
 #include "GameShaders.h"
 
+#include "engine/DeviceSettings.h"
 #include "engine/ImageFile.h"
+#include "engine/config/Config.h"
+#include "engine/config/SettingsHelp.h"
 #include "platforms/Clock.h"
 #include "platforms/Log.h"
 #include "platforms/Window.h"
@@ -26,14 +29,11 @@ using namespace lpv;
 namespace {
 
 struct Options {
-    std::string backend = "auto";
-    std::string glPlatform = "egl";
-    bool noFallback = false;
+    std::vector<std::string> configFiles;
+    // (source, key=value): --set and the shorthand flags, in order.
+    std::vector<std::pair<std::string, std::string>> overrides;
     bool headless = false;
-    bool validation = false;
     int frames = -1;  // -1: 1 headless, until closed in a window
-    uint32_t width = 1280;
-    uint32_t height = 720;
     std::string screenshot;
 };
 
@@ -61,30 +61,19 @@ std::vector<Vertex> cubeVertices() {
 }
 
 int run(const Options& opt) {
-    const auto backend = rhi::parseBackend(opt.backend);
-    if (!backend) {
-        std::fprintf(stderr, "error: unknown backend '%s' (valid: %s)\n", opt.backend.c_str(),
-                     rhi::validBackendNames().c_str());
-        return 2;
-    }
-    const auto glPlatform = rhi::parseGlHeadless(opt.glPlatform);
-    if (!glPlatform) {
-        std::fprintf(stderr, "error: unknown GL platform '%s' (valid: egl, osmesa)\n", opt.glPlatform.c_str());
-        return 2;
-    }
+    engine::Config config;
+    for (const std::string& file : opt.configFiles) config.loadFile(file);
+    for (const auto& [source, assignment] : opt.overrides) config.applyOverride(assignment, source);
+    const uint32_t width = engine::renderWidth(config), height = engine::renderHeight(config);
 
     std::unique_ptr<platforms::Window> window;
     if (!opt.headless && platforms::Window::displayAvailable())
-        window = std::make_unique<platforms::Window>(platforms::WindowDesc{opt.width, opt.height, "LPV Engine"});
+        window = std::make_unique<platforms::Window>(platforms::WindowDesc{width, height, "LPV Engine"});
 
-    rhi::DeviceConfig config;
-    config.backend = *backend;
-    config.allowFallback = !opt.noFallback;
-    config.glHeadless = *glPlatform;
-    config.window = window.get();
-    config.validation = opt.validation;
+    rhi::DeviceConfig deviceConfig = engine::deviceConfigFrom(config);
+    deviceConfig.window = window.get();
     const uint64_t t0 = platforms::nowNanoseconds();
-    std::unique_ptr<rhi::Device> device = rhi::createDevice(config);
+    std::unique_ptr<rhi::Device> device = rhi::createDevice(deviceConfig);
     log::info("game: running on backend '" + std::string(rhi::backendName(device->backend())) + "' (" +
               device->caps().deviceName + ", " + std::to_string((platforms::nowNanoseconds() - t0) / 1000000) +
               " ms to create)" + (window ? ", windowed" : ", headless"));
@@ -95,9 +84,9 @@ int run(const Options& opt) {
         {vertices.size() * sizeof(Vertex), kBufferVertex, MemoryAccess::GpuOnly, "cube vertices", "game.mesh"},
         vertices.data());
     const TextureHandle color = device->createTexture(
-        {TextureKind::Tex2D, Format::RGBA8Srgb, opt.width, opt.height, 1, 1,
+        {TextureKind::Tex2D, Format::RGBA8Srgb, width, height, 1, 1,
          kTextureColorTarget | kTextureSampled | kTextureTransfer, "frame color", "game.frame"});
-    const TextureHandle depth = device->createTexture({TextureKind::Tex2D, Format::D32F, opt.width, opt.height, 1,
+    const TextureHandle depth = device->createTexture({TextureKind::Tex2D, Format::D32F, width, height, 1,
                                                        1, kTextureDepthTarget, "frame depth", "game.frame"});
     GraphicsPipelineDesc pd;
     pd.vertex = &game::shaders::cube_vert;
@@ -112,7 +101,7 @@ int run(const Options& opt) {
     const GraphicsPipelineHandle pipeline = device->createPipeline(pd);
 
     const int frames = opt.frames > 0 ? opt.frames : (window ? 0 : 1);
-    glm::mat4 projection = glm::perspective(glm::radians(50.0f), float(opt.width) / float(opt.height), 0.1f, 50.0f);
+    glm::mat4 projection = glm::perspective(glm::radians(50.0f), float(width) / float(height), 0.1f, 50.0f);
     projection[1][1] *= -1.0f;  // image row 0 at the top on every backend
     const glm::mat4 view = glm::lookAt(glm::vec3(1.8f, 1.4f, 2.4f), glm::vec3(0.0f), glm::vec3(0, 1, 0));
     for (int frame = 0; frames == 0 || frame < frames; ++frame) {
@@ -142,9 +131,9 @@ int run(const Options& opt) {
     device->waitIdle();
 
     if (!opt.screenshot.empty()) {
-        std::vector<uint8_t> pixels(size_t(opt.width) * opt.height * 4);
+        std::vector<uint8_t> pixels(size_t(width) * height * 4);
         device->readTexture(color, 0, pixels.data(), pixels.size());
-        engine::writePng(opt.screenshot, opt.width, opt.height, pixels);
+        engine::writePng(opt.screenshot, width, height, pixels);
         log::info("game: wrote " + opt.screenshot + " (backend '" + std::string(rhi::backendName(device->backend())) +
                   "')");
     }
@@ -160,18 +149,43 @@ int run(const Options& opt) {
 int main(int argc, char** argv) {
     CLI::App app{"LPV Engine sample game"};
     Options opt;
-    app.add_option("--backend", opt.backend, "Graphics backend: " + rhi::validBackendNames())->capture_default_str();
-    app.add_option("--gl-platform", opt.glPlatform, "Headless GL context: egl or osmesa")->capture_default_str();
-    app.add_flag("--no-fallback", opt.noFallback, "Fail instead of falling back to the other backend");
+    std::string helpConfig;
+    const auto shorthand = [&](const char* flag, const char* key) {
+        return [&opt, flag, key](const std::string& v) { opt.overrides.emplace_back(flag, std::string(key) + "=" + v); };
+    };
+    app.add_option("--config", opt.configFiles, "TOML config file(s), applied in order");
+    app.add_option_function<std::vector<std::string>>(
+        "--set",
+        [&](const std::vector<std::string>& v) {
+            for (const std::string& a : v) opt.overrides.emplace_back("--set", a);
+        },
+        "Override a setting: --set gi.enabled=true (after the config files)");
+    app.add_option_function<std::string>("--backend", shorthand("--backend", "render.backend"),
+                                         "Graphics backend: auto, gl, vulkan, null (= --set render.backend=...)");
+    app.add_option_function<std::string>("--gl-platform", shorthand("--gl-platform", "render.gl_platform"),
+                                         "Headless GL context: egl or osmesa");
+    app.add_flag_callback("--no-fallback", [&] { opt.overrides.emplace_back("--no-fallback", "render.allow_fallback=false"); },
+                          "Fail instead of falling back to the other backend");
+    app.add_flag_callback("--validation", [&] { opt.overrides.emplace_back("--validation", "render.validation=true"); },
+                          "Vulkan validation layer / GL debug output");
+    app.add_option_function<std::string>("--width", shorthand("--width", "render.width"), "Frame width");
+    app.add_option_function<std::string>("--height", shorthand("--height", "render.height"), "Frame height");
     app.add_flag("--headless", opt.headless, "Never open a window");
-    app.add_flag("--validation", opt.validation, "Vulkan validation layer / GL debug output");
     app.add_option("--frames", opt.frames, "Frames to render (default: 1 headless, until closed in a window)");
-    app.add_option("--width", opt.width, "Frame width")->check(CLI::Range(16u, 8192u));
-    app.add_option("--height", opt.height, "Frame height")->check(CLI::Range(16u, 8192u));
     app.add_option("--screenshot", opt.screenshot, "Write the last frame to this PNG file");
+    app.add_option("--help-config", helpConfig, "List every setting (text or markdown) and exit")
+        ->expected(0, 1)
+        ->default_str("text");
     CLI11_PARSE(app, argc, argv);
+    if (app.count("--help-config")) {
+        std::fputs((helpConfig == "markdown" ? engine::settingsMarkdownTable() : engine::settingsHelpText()).c_str(), stdout);
+        return 0;
+    }
     try {
         return run(opt);
+    } catch (const engine::ConfigError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
     } catch (const rhi::BackendUnavailable& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 3;

@@ -30,9 +30,7 @@ Result runGame(const std::string& args, const std::string& env = "") {
 TEST_CASE("cli: an unknown backend name lists the valid ones and exits non-zero") {
     const Result r = runGame("--headless --backend d3d9");
     CHECK(r.exitCode != 0);
-    CHECK(r.output.find("unknown backend 'd3d9'") != std::string::npos);
-    CHECK(r.output.find("auto, gl") != std::string::npos);
-    CHECK(r.output.find("vulkan") != std::string::npos);
+    CHECK(r.output.find("'render.backend' = 'd3d9': expected one of: auto, gl, vulkan, null") != std::string::npos);
 }
 
 TEST_CASE("cli: vulkan without a driver fails clearly when fallback is not allowed") {
@@ -48,4 +46,22 @@ TEST_CASE("cli: vulkan without a driver falls back to gl and renders") {
     CHECK_MESSAGE(r.exitCode == 0, r.output);
     CHECK(r.output.find("falling back to 'gl'") != std::string::npos);
     CHECK(r.output.find("running on backend 'gl'") != std::string::npos);
+}
+
+TEST_CASE("cli: a config file with an unknown key names the file and line, and nothing runs") {
+    const std::string path = "/tmp/lpv_cli_bad.toml";
+    FILE* f = std::fopen(path.c_str(), "w");
+    REQUIRE(f != nullptr);
+    std::fputs("[render]\nbackend = \"gl\"\nbakcend = \"vulkan\"\n", f);
+    std::fclose(f);
+    const Result r = runGame("--headless --config " + path);
+    CHECK(r.exitCode == 2);
+    CHECK(r.output.find(path + ":3: unknown setting 'render.bakcend' (did you mean 'render.backend'?)") != std::string::npos);
+    CHECK(r.output.find("running on backend") == std::string::npos);
+}
+
+TEST_CASE("cli: --help-config lists the settings") {
+    const Result r = runGame("--help-config");
+    CHECK(r.exitCode == 0);
+    CHECK(r.output.find("render.backend (enum, default auto, allowed auto, gl, vulkan, null)") != std::string::npos);
 }

@@ -1,0 +1,15 @@
+// The render.* settings that choose and configure the graphics device at startup.
+#pragma once
+
+#include "engine/config/Config.h"
+#include "rhi/Backend.h"
+
+namespace lpv::engine {
+
+// Throws ConfigError for values the RHI cannot use.
+rhi::DeviceConfig deviceConfigFrom(const Config& config);
+
+uint32_t renderWidth(const Config& config);
+uint32_t renderHeight(const Config& config);
+
+} // namespace lpv::engine

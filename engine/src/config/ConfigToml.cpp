@@ -1,0 +1,106 @@
+// Loading settings from TOML (toml++). Tables give the dotted names: [gi] grid_size = 32 is
+// gi.grid_size. Every key must be a declared setting; every value must have the declared type.
+#include "engine/config/Config.h"
+
+#include <toml++/toml.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace lpv::engine {
+namespace {
+
+int lineOf(const toml::node& n) { return int(n.source().begin.line); }
+
+SettingValue convert(const SettingDecl& decl, const toml::node& node, const std::string& source) {
+    const auto wrongType = [&](std::string_view got) {
+        return ConfigError(source, lineOf(node),
+                           "'" + decl.name + "' has " + std::string(got) + " value: expected " + decl.expected());
+    };
+    const auto typeName = [&]() -> std::string_view {
+        switch (node.type()) {
+        case toml::node_type::string: return "a string";
+        case toml::node_type::integer: return "an integer";
+        case toml::node_type::floating_point: return "a float";
+        case toml::node_type::boolean: return "a bool";
+        case toml::node_type::array: return "an array";
+        case toml::node_type::table: return "a table";
+        default: return "a date/time";
+        }
+    };
+    SettingValue v;
+    switch (decl.type) {
+    case SettingType::Bool:
+        if (!node.is_boolean()) throw wrongType(typeName());
+        v = *node.value<bool>();
+        break;
+    case SettingType::Int:
+        if (!node.is_integer()) throw wrongType(typeName());
+        v = *node.value<int64_t>();
+        break;
+    case SettingType::Float:
+        if (!node.is_number()) throw wrongType(typeName());
+        v = *node.value<double>();
+        break;
+    case SettingType::Enum:
+    case SettingType::String:
+        if (!node.is_string()) throw wrongType(typeName());
+        v = *node.value<std::string>();
+        break;
+    case SettingType::Vec3: {
+        const toml::array* a = node.as_array();
+        if (!a || a->size() != 3) throw wrongType(a ? "an array of " + std::to_string(a->size()) : std::string(typeName()));
+        glm::vec3 x;
+        for (size_t i = 0; i < 3; ++i) {
+            if (!(*a)[i].is_number()) throw wrongType("an array with a non-number");
+            x[int(i)] = float(*(*a)[i].value<double>());
+        }
+        v = x;
+        break;
+    }
+    }
+    if (const std::string expected = Config::validate(decl, v); !expected.empty())
+        throw ConfigError(source, lineOf(node), "'" + decl.name + "' = " + decl.format(v) + ": expected " + expected);
+    return v;
+}
+
+void walk(Config& config, const toml::table& table, const std::string& prefix, const std::string& source) {
+    for (const auto& [key, node] : table) {
+        const std::string name = prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
+        if (const toml::table* sub = node.as_table()) {
+            walk(config, *sub, name, source);
+            continue;
+        }
+        const SettingDecl* decl = SettingRegistry::global().find(name);
+        if (!decl) {
+            const std::string suggestion = SettingRegistry::global().nearest(name);
+            throw ConfigError(source, lineOf(node),
+                              "unknown setting '" + name + "'" +
+                                  (suggestion.empty() ? std::string(" (--help-config lists them all)")
+                                                      : " (did you mean '" + suggestion + "'?)"));
+        }
+        config.set(*decl, convert(*decl, node, source), source + ":" + std::to_string(lineOf(node)));
+    }
+}
+
+} // namespace
+
+void Config::loadString(std::string_view text, const std::string& sourceName) {
+    toml::table table;
+    try {
+        table = toml::parse(text, sourceName);
+    } catch (const toml::parse_error& e) {
+        throw ConfigError(sourceName, int(e.source().begin.line), "malformed TOML: " + std::string(e.description()));
+    }
+    walk(*this, table, "", sourceName);
+}
+
+void Config::loadFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw ConfigError(path, 0, "cannot open the config file");
+    std::ostringstream text;
+    text << in.rdbuf();
+    loadString(text.str(), path);
+}
+
+} // namespace lpv::engine
