@@ -1,0 +1,27 @@
+// Scenes made in code, chosen by name (--scene cornell, --scene atrium).
+#pragma once
+
+#include "engine/scene/Scene.h"
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace lpv::engine {
+
+// The Cornell box: 5.5 m, red wall at -x, green at +x, white floor, ceiling and back wall, a short
+// and a tall box, open toward +z where the camera stands; the sun enters through a square opening
+// in the ceiling and lights the floor and the boxes.
+Scene buildCornellBox();
+
+// An open court in the spirit of the Sponza atrium: two stories of arcades with columns and arches
+// around a court, a roof opening for the sun, coloured cloth banners and clutter, materials with
+// textures made in code. About 250k triangles at detail 1.0; `detail` scales the tessellation.
+Scene buildAtrium(float detail = 1.0f);
+
+std::vector<std::string> builtinSceneNames();
+// True when `name` is a built-in scene name (not a path).
+bool isBuiltinScene(std::string_view name);
+Scene buildBuiltinScene(std::string_view name, float detail = 1.0f);
+
+} // namespace lpv::engine

@@ -1,0 +1,2 @@
+// TEMPORARY placeholder, replaced by the atrium builder's texture generators.
+#include "ProceduralTextures.h"

@@ -1,0 +1,43 @@
+// Scene bookkeeping: bounds and counts.
+#include "engine/scene/Scene.h"
+
+#include <glm/common.hpp>
+
+namespace lpv::engine {
+
+void Bounds::add(glm::vec3 p) {
+    min = glm::min(min, p);
+    max = glm::max(max, p);
+}
+
+void Bounds::add(const Bounds& b) {
+    if (b.empty()) return;
+    add(b.min);
+    add(b.max);
+}
+
+Bounds Bounds::transformed(const glm::mat4& m) const {
+    Bounds out;
+    if (empty()) return out;
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 corner{(i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z};
+        out.add(glm::vec3(m * glm::vec4(corner, 1.0f)));
+    }
+    return out;
+}
+
+uint64_t Scene::triangleCount() const {
+    uint64_t n = 0;
+    for (const Instance& inst : instances) n += meshes[inst.mesh].indexCount / 3;
+    return n;
+}
+
+void Scene::updateBounds() {
+    bounds = Bounds{};
+    for (Instance& inst : instances) {
+        inst.worldBounds = meshes[inst.mesh].bounds.transformed(inst.transform);
+        bounds.add(inst.worldBounds);
+    }
+}
+
+} // namespace lpv::engine
