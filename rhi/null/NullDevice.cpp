@@ -1,12 +1,15 @@
 // The null backend: no GPU, but the same handle pools, allocation record and argument checks as
-// the real backends. Front-end logic (handle lifetime, memory accounting, frame bookkeeping) is
-// tested against it without a device. Buffers keep their bytes so uploads read back; textures and
-// timestamps have no contents (zeros).
+// the real backends. Front-end logic (handle lifetime, memory accounting, frame bookkeeping,
+// profiler timing rings) is tested against it without a device. Buffers keep their bytes so uploads
+// read back; textures read back as zeros. Timestamps are simulated: every recorded command costs
+// 1 us of "GPU time", and a frame's results become readable once the frame is complete, which is
+// when frame + framesInFlight begins (the real backends' fence rule) or after waitIdle().
 #include "../src/BackendFactory.h"
 #include "../src/HandlePool.h"
 
 #include "rhi/Error.h"
 
+#include <algorithm>
 #include <cstring>
 #include <vector>
 
@@ -54,15 +57,13 @@ public:
     void clearTexture(TextureHandle t, const std::array<float, 4>&) override;
     void updateBuffer(BufferHandle b, uint64_t offset, const void* data, uint32_t size) override;
     void copyTexture(TextureHandle src, TextureHandle dst) override;
-    void writeTimestamp(uint32_t) override {}
+    void writeTimestamp(uint32_t slot) override;
     void beginMarker(const char*) override {}
     void endMarker() override {}
 
 private:
-    void requirePass(bool inside, const char* what) const {
-        if (inPass_ != inside)
-            throw Error(std::string(what) + (inside ? " outside a render pass" : " inside a render pass"));
-    }
+    // Checks pass state and advances the simulated GPU clock: every command "costs" 1 us.
+    void requirePass(bool inside, const char* what) const;
     NullDevice& device_;
     bool inPass_ = false;
 };
@@ -72,7 +73,10 @@ public:
     explicit NullDevice(const DeviceConfig& config) : list_(*this) {
         caps_.deviceName = "null device";
         caps_.driverName = "none";
-        caps_.timestampSource = TimestampSource::None;
+        caps_.timestampSource = TimestampSource::Simulated;
+        caps_.maxTimestampsPerFrame = config.maxTimestampsPerFrame;
+        timestamps_.resize(config.framesInFlight + 1);
+        for (FrameTimestamps& t : timestamps_) t.ns.assign(config.maxTimestampsPerFrame, 0);
         caps_.framesInFlight = config.framesInFlight;
         caps_.max3DTextureSize = 2048;
         caps_.max2DTextureSize = 16384;
@@ -149,6 +153,11 @@ public:
         if (inFrame_) throw Error("beginFrame() called twice without endFrame()");
         inFrame_ = true;
         ++frame_;
+        // Beginning frame F waits for frame F - framesInFlight, as a real device's fence does.
+        if (frame_ > caps_.framesInFlight) completed_ = std::max(completed_, frame_ - caps_.framesInFlight);
+        FrameTimestamps& t = slotFor(frame_);
+        t.frame = frame_;
+        std::fill(t.ns.begin(), t.ns.end(), 0);
         return list_;
     }
     void endFrame(TextureHandle present) override {
@@ -157,8 +166,23 @@ public:
         inFrame_ = false;
     }
     uint64_t frameIndex() const override { return frame_; }
-    bool readTimestamps(uint64_t, std::span<uint64_t>) override { return false; }
-    void waitIdle() override {}
+    bool readTimestamps(uint64_t frame, std::span<uint64_t> out) override {
+        const FrameTimestamps& t = slotFor(frame);
+        if (t.frame != frame || frame > completed_) return false;
+        if (out.size() > t.ns.size()) throw Error("readTimestamps: more slots than maxTimestampsPerFrame");
+        std::copy_n(t.ns.begin(), out.size(), out.begin());
+        return true;
+    }
+    void waitIdle() override { completed_ = inFrame_ ? frame_ - 1 : frame_; }
+
+    void tick() { clockNs_ += 1000; }
+    void writeTimestamp(uint32_t slot) {
+        if (!inFrame_) throw Error("writeTimestamp outside a frame");
+        FrameTimestamps& t = slotFor(frame_);
+        if (slot >= t.ns.size())
+            throw Error("timestamp slot " + std::to_string(slot) + " >= maxTimestampsPerFrame " + std::to_string(t.ns.size()));
+        t.ns[slot] = clockNs_;
+    }
     const AllocationRecord& allocations() const override { return allocations_; }
 
     HandlePool<BufferTag, NullBuffer> buffers;
@@ -174,12 +198,30 @@ private:
                         std::to_string(offset + size) + ") exceeds its size " + std::to_string(b.desc.size));
     }
 
+    struct FrameTimestamps {
+        uint64_t frame = 0;
+        std::vector<uint64_t> ns;
+    };
+    FrameTimestamps& slotFor(uint64_t frame) { return timestamps_[frame % timestamps_.size()]; }
+    const FrameTimestamps& slotFor(uint64_t frame) const { return timestamps_[frame % timestamps_.size()]; }
+
     Caps caps_;
     AllocationRecord allocations_;
+    std::vector<FrameTimestamps> timestamps_;
+    uint64_t completed_ = 0;
+    uint64_t clockNs_ = 1000000;
     NullCommandList list_;
     uint64_t frame_ = 0;
     bool inFrame_ = false;
 };
+
+void NullCommandList::requirePass(bool inside, const char* what) const {
+    device_.tick();
+    if (inPass_ != inside)
+        throw Error(std::string(what) + (inside ? " outside a render pass" : " inside a render pass"));
+}
+
+void NullCommandList::writeTimestamp(uint32_t slot) { device_.writeTimestamp(slot); }
 
 void NullCommandList::beginRenderPass(const RenderPassDesc& desc) {
     requirePass(false, "beginRenderPass");

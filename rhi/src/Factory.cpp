@@ -85,6 +85,7 @@ std::string_view timestampSourceName(TimestampSource s) {
     case TimestampSource::None: return "none";
     case TimestampSource::GpuQueries: return "gpu-timestamp";
     case TimestampSource::CpuFinished: return "cpu-after-finish";
+    case TimestampSource::Simulated: return "simulated";
     }
     return "?";
 }

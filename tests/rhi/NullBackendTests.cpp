@@ -114,3 +114,32 @@ TEST_CASE("backend names parse, and unknown ones are rejected") {
     CHECK(parseGlHeadless("osmesa") == GlHeadless::OSMesa);
     CHECK_FALSE(parseGlHeadless("glx").has_value());
 }
+
+TEST_CASE("null backend: simulated timestamps follow the frames-in-flight latency and never block") {
+    DeviceConfig config;
+    config.backend = BackendKind::Null;
+    config.framesInFlight = 2;
+    auto device = createDevice(config);
+    REQUIRE(device->caps().timestampSource == TimestampSource::Simulated);
+    CommandList& cmd = device->beginFrame();
+    const uint64_t f1 = device->frameIndex();
+    cmd.writeTimestamp(0);
+    cmd.dispatch(1);
+    cmd.dispatch(1);
+    cmd.writeTimestamp(1);
+    device->endFrame();
+    uint64_t ts[2] = {};
+    CHECK_FALSE(device->readTimestamps(f1, ts));  // frame 1 is still "in flight"
+    device->beginFrame();  // frame 2 does not wait for frame 1
+    device->endFrame();
+    CHECK_FALSE(device->readTimestamps(f1, ts));
+    device->beginFrame();  // frame 3 waits for frame 1
+    CHECK(device->readTimestamps(f1, ts));
+    CHECK(ts[1] - ts[0] == 2000);  // two dispatches, 1 us each
+    device->endFrame();
+    device->beginFrame();
+    device->endFrame();  // frame 4 reuses frame 1's slot: results are gone, not wrong
+    CHECK_FALSE(device->readTimestamps(f1, ts));
+    device->waitIdle();
+    CHECK(device->readTimestamps(device->frameIndex(), ts));
+}

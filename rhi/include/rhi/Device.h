@@ -21,6 +21,8 @@ enum class TimestampSource : uint8_t {
     GpuQueries,   // device timestamps (Vulkan queries, GL_TIMESTAMP): accurate, no stall
     CpuFinished,  // fallback: the CPU clock read after waiting for all prior GPU work
                   // (glFinish). Serializes the GPU at every timestamp, so frame totals grow.
+    Simulated,    // null backend: 1 us per recorded command, ready framesInFlight frames later,
+                  // so front-end code can be tested on the same latency rules as a real device
 };
 std::string_view timestampSourceName(TimestampSource s);
 
