@@ -1,0 +1,155 @@
+// The frame profiler: named, nestable CPU and GPU scopes, opened by one line per pass
+//
+//   auto scope = profiler.scope("gi.propagate", &cmd);   // CPU + GPU
+//   profiler.setWork(propagationWork(settings));         // counts for the cost model
+//
+// GPU times come from the RHI's timestamps, read back from a ring some frames later and never
+// waited for; every figure carries its timing source (device timestamps, the CPU-after-finish
+// fallback of GL on llvmpipe, or CPU only). Per scope it keeps last/mean/median/p95/max over a
+// window of frames, the work counts and their predicted Xbox 360 / PS3 cost, and checks each
+// frame against the active platform profile's frame and GI budgets. All storage is allocated when
+// the profiler is made or when a scope name is first seen, never in a steady-state frame.
+#pragma once
+
+#include "engine/profiler/CostModel.h"
+#include "engine/profiler/SampleWindow.h"
+#include "engine/profiler/WorkCounts.h"
+#include "platforms/PlatformProfile.h"
+#include "rhi/Device.h"
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace lpv::engine {
+
+struct ProfilerOptions {
+    uint32_t statsWindow = 120;      // frames the statistics cover
+    uint32_t traceFrames = 1200;     // frames kept for the trace and the chart
+    uint32_t maxScopesPerFrame = 48;
+};
+
+// A scope name as it appears in reports: the path of nested names ("gi/propagate").
+struct ScopeInfo {
+    std::string name;
+    std::string path;
+    int32_t parent = -1;
+    uint32_t depth = 0;
+    SampleWindow cpuMs;
+    SampleWindow gpuMs;
+    WorkCounts work;  // of the last frame that ran it
+    uint64_t lastFrame = 0;
+};
+
+struct FrameBudgetCheck {
+    double frameMs = 0;  // GPU frame time when resolved, else CPU
+    double giMs = 0;     // sum of the top-level "gi" scopes
+    double giPredictedX360Ms = 0, giPredictedPs3Ms = 0;
+    bool frameOverBudget = false;
+    bool giOverBudget = false;
+    bool giPredictedOverBudget = false;  // console profiles: predicted ms against the GI budget
+};
+
+class FrameProfiler {
+public:
+    FrameProfiler(rhi::Device& device, platforms::PlatformProfile profile, ProfilerOptions options = {});
+    ~FrameProfiler();
+    FrameProfiler(const FrameProfiler&) = delete;
+    FrameProfiler& operator=(const FrameProfiler&) = delete;
+
+    // Call right after Device::beginFrame() and right before Device::endFrame().
+    void beginFrame(rhi::CommandList& cmd);
+    void endFrame(rhi::CommandList& cmd);
+
+    class Scope {
+    public:
+        Scope(Scope&& other) noexcept : profiler_(other.profiler_) { other.profiler_ = nullptr; }
+        Scope(const Scope&) = delete;
+        Scope& operator=(const Scope&) = delete;
+        Scope& operator=(Scope&&) = delete;
+        ~Scope() {
+            if (profiler_) profiler_->closeScope();
+        }
+
+    private:
+        friend class FrameProfiler;
+        explicit Scope(FrameProfiler* p) : profiler_(p) {}
+        FrameProfiler* profiler_;
+    };
+
+    // Opens a scope; with a command list it is timed on the GPU too. Closed when the Scope dies.
+    [[nodiscard]] Scope scope(std::string_view name, rhi::CommandList* gpu = nullptr);
+    // Work counts of the innermost open scope in this frame (replaces earlier counts of this frame).
+    void setWork(const WorkCounts& work);
+
+    const std::vector<ScopeInfo>& scopes() const { return scopes_; }
+    const platforms::PlatformProfile& profile() const { return profile_; }
+    const platforms::PlatformProfile& x360() const { return x360_; }
+    const platforms::PlatformProfile& ps3() const { return ps3_; }
+    rhi::TimestampSource gpuTimingSource() const { return timingSource_; }
+    const rhi::AllocationRecord& allocations() const { return device_.allocations(); }
+    SampleStats frameCpuMs() const { return frameCpu_.stats(); }
+    SampleStats frameGpuMs() const { return frameGpu_.stats(); }
+    // Budget check of the newest frame whose GPU results are in (or CPU-only frames).
+    const FrameBudgetCheck& lastBudgetCheck() const { return lastCheck_; }
+    uint64_t framesOverBudget() const { return framesOverBudget_; }
+    uint64_t framesChecked() const { return framesChecked_; }
+    uint64_t gpuResultsLost() const { return gpuLost_; }
+    uint32_t openScopes() const { return uint32_t(stack_.size()); }
+
+    // One recorded frame, for the trace and the chart.
+    struct Sample {
+        uint16_t scope = 0;
+        uint64_t cpuBegin = 0, cpuEnd = 0;
+        uint64_t gpuBegin = 0, gpuEnd = 0;  // 0 when not timed or not resolved
+        bool gpuTimed = false;
+        WorkCounts work;
+    };
+    struct FrameRecord {
+        uint64_t frame = 0;
+        uint64_t cpuBegin = 0, cpuEnd = 0;
+        uint64_t gpuBegin = 0, gpuEnd = 0;
+        bool gpuResolved = false;
+        bool checked = false;  // budget check done (GPU results in, lost, or CPU-only)
+        uint32_t sampleCount = 0;
+        std::vector<Sample> samples;  // capacity maxScopesPerFrame, sized at construction
+        uint64_t memoryTotal = 0, memoryGi = 0;
+        FrameBudgetCheck check;
+    };
+    // Recorded frames, oldest first (up to ProfilerOptions::traceFrames).
+    template <typename F> void forEachFrame(F&& f) const {
+        const uint64_t n = std::min<uint64_t>(recorded_, records_.size());
+        for (uint64_t i = recorded_ - n; i < recorded_; ++i) f(records_[i % records_.size()]);
+    }
+
+private:
+    void closeScope();
+    uint16_t internScope(std::string_view name, int32_t parent);
+    void resolveGpu();
+    void finishCheck(FrameRecord& r);
+
+    rhi::Device& device_;
+    platforms::PlatformProfile profile_;
+    platforms::PlatformProfile x360_, ps3_;
+    ProfilerOptions options_;
+    rhi::TimestampSource timingSource_;
+    uint32_t gpuSlots_ = 0;  // timestamps per frame we may use
+
+    std::vector<ScopeInfo> scopes_;
+    std::vector<FrameRecord> records_;
+    uint64_t recorded_ = 0;  // frames begun
+    FrameRecord* current_ = nullptr;
+    struct Open {
+        uint16_t scope;
+        uint32_t sample;
+        rhi::CommandList* gpu;
+    };
+    std::vector<Open> stack_;
+    std::vector<uint64_t> timestampScratch_;
+    SampleWindow frameCpu_, frameGpu_;
+    FrameBudgetCheck lastCheck_;
+    uint64_t framesOverBudget_ = 0, framesChecked_ = 0, gpuLost_ = 0;
+};
+
+} // namespace lpv::engine

@@ -1,0 +1,22 @@
+// What the frame profiler writes: a Chrome trace-event JSON (Perfetto, chrome://tracing) with CPU
+// and GPU tracks, memory and budget counters; a summary as text, Markdown and CSV; and an SVG chart
+// of per-frame stacked pass times against the budget line.
+#pragma once
+
+#include <string>
+
+namespace lpv::engine {
+
+class FrameProfiler;
+
+std::string profileSummaryText(const FrameProfiler& profiler);
+std::string profileSummaryMarkdown(const FrameProfiler& profiler);
+std::string profileSummaryCsv(const FrameProfiler& profiler);
+std::string profileTraceJson(const FrameProfiler& profiler);
+std::string profileChartSvg(const FrameProfiler& profiler);
+
+// Writes trace.json, summary.md, summary.csv and frames.svg into `directory` (created if needed).
+// Throws std::runtime_error naming the file that could not be written.
+void writeProfileOutputs(const FrameProfiler& profiler, const std::string& directory);
+
+} // namespace lpv::engine

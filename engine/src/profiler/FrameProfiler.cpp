@@ -1,0 +1,168 @@
+// Scopes, the GPU timestamp ring and per-frame budget checks.
+#include "engine/profiler/FrameProfiler.h"
+
+#include "platforms/Clock.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace lpv::engine {
+namespace {
+double ms(uint64_t begin, uint64_t end) { return end > begin ? double(end - begin) / 1e6 : 0.0; }
+bool isGi(std::string_view path) { return path.starts_with("gi"); }
+} // namespace
+
+FrameProfiler::FrameProfiler(rhi::Device& device, platforms::PlatformProfile profile, ProfilerOptions options)
+    : device_(device), profile_(std::move(profile)), x360_(platforms::loadPlatformProfile("x360")),
+      ps3_(platforms::loadPlatformProfile("ps3")), options_(options),
+      timingSource_(device.caps().timestampSource), frameCpu_(options.statsWindow), frameGpu_(options.statsWindow) {
+    if (timingSource_ != rhi::TimestampSource::None)
+        gpuSlots_ = std::min<uint32_t>(device.caps().maxTimestampsPerFrame, 2 + 2 * options_.maxScopesPerFrame);
+    if (gpuSlots_ < 2) {
+        gpuSlots_ = 0;
+        timingSource_ = rhi::TimestampSource::None;
+    }
+    records_.resize(std::max<uint32_t>(options_.traceFrames, 8));
+    for (FrameRecord& r : records_) r.samples.resize(options_.maxScopesPerFrame);
+    stack_.reserve(64);
+    scopes_.reserve(256);
+    timestampScratch_.resize(gpuSlots_);
+}
+
+FrameProfiler::~FrameProfiler() = default;
+
+uint16_t FrameProfiler::internScope(std::string_view name, int32_t parent) {
+    for (size_t i = 0; i < scopes_.size(); ++i)
+        if (scopes_[i].parent == parent && scopes_[i].name == name) return uint16_t(i);
+    if (scopes_.size() >= 0xffff) throw std::logic_error("profiler: too many distinct scopes");
+    ScopeInfo info{std::string(name), std::string(name), parent, 0, SampleWindow(options_.statsWindow),
+                   SampleWindow(options_.statsWindow), {}, 0};
+    if (parent >= 0) {
+        info.path = scopes_[size_t(parent)].path + "/" + info.name;
+        info.depth = scopes_[size_t(parent)].depth + 1;
+    }
+    scopes_.push_back(std::move(info));
+    return uint16_t(scopes_.size() - 1);
+}
+
+void FrameProfiler::beginFrame(rhi::CommandList& cmd) {
+    if (current_) throw std::logic_error("profiler: beginFrame() twice without endFrame()");
+    resolveGpu();
+    FrameRecord& r = records_[recorded_ % records_.size()];
+    ++recorded_;
+    r.frame = device_.frameIndex();
+    r.cpuBegin = platforms::nowNanoseconds();
+    r.cpuEnd = r.gpuBegin = r.gpuEnd = 0;
+    r.gpuResolved = false;
+    r.checked = false;
+    r.sampleCount = 0;
+    r.memoryTotal = device_.allocations().totalBytes();
+    r.memoryGi = device_.allocations().bytesIn("gi");
+    r.check = {};
+    current_ = &r;
+    if (gpuSlots_) cmd.writeTimestamp(0);
+}
+
+FrameProfiler::Scope FrameProfiler::scope(std::string_view name, rhi::CommandList* gpu) {
+    if (!current_) throw std::logic_error("profiler: scope '" + std::string(name) + "' opened outside a frame");
+    const int32_t parent = stack_.empty() ? -1 : int32_t(stack_.back().scope);
+    const uint16_t id = internScope(name, parent);
+    uint32_t sampleIndex = UINT32_MAX;
+    if (current_->sampleCount < current_->samples.size()) {
+        sampleIndex = current_->sampleCount++;
+        Sample& s = current_->samples[sampleIndex];
+        s = Sample{};
+        s.scope = id;
+        const uint32_t slot = 2 + 2 * sampleIndex;
+        s.gpuTimed = gpu && slot + 1 < gpuSlots_;
+        if (s.gpuTimed) gpu->writeTimestamp(slot);
+        s.cpuBegin = platforms::nowNanoseconds();
+    }
+    stack_.push_back({id, sampleIndex, gpu});
+    scopes_[id].lastFrame = current_->frame;
+    return Scope(this);
+}
+
+void FrameProfiler::closeScope() {
+    const Open open = stack_.back();
+    stack_.pop_back();
+    if (open.sample == UINT32_MAX) return;  // over maxScopesPerFrame: not recorded
+    Sample& s = current_->samples[open.sample];
+    s.cpuEnd = platforms::nowNanoseconds();
+    if (s.gpuTimed) open.gpu->writeTimestamp(3 + 2 * open.sample);
+    scopes_[open.scope].cpuMs.add(ms(s.cpuBegin, s.cpuEnd));
+}
+
+void FrameProfiler::setWork(const WorkCounts& work) {
+    if (stack_.empty()) throw std::logic_error("profiler: setWork() with no open scope");
+    const Open& open = stack_.back();
+    scopes_[open.scope].work = work;
+    if (open.sample != UINT32_MAX) current_->samples[open.sample].work = work;
+}
+
+void FrameProfiler::endFrame(rhi::CommandList& cmd) {
+    if (!current_) throw std::logic_error("profiler: endFrame() without beginFrame()");
+    if (!stack_.empty())
+        throw std::logic_error("profiler: scope '" + scopes_[stack_.back().scope].path + "' still open at endFrame()");
+    if (gpuSlots_) cmd.writeTimestamp(1);
+    current_->cpuEnd = platforms::nowNanoseconds();
+    frameCpu_.add(ms(current_->cpuBegin, current_->cpuEnd));
+    if (!gpuSlots_) finishCheck(*current_);
+    current_ = nullptr;
+}
+
+void FrameProfiler::resolveGpu() {
+    if (!gpuSlots_) return;
+    const uint64_t now = device_.frameIndex();
+    const uint64_t keep = device_.caps().framesInFlight + 1;
+    const uint64_t n = std::min<uint64_t>(recorded_, std::min<uint64_t>(records_.size(), keep + 2));
+    // Oldest first, so budget checks arrive in frame order.
+    for (uint64_t i = recorded_ - n; i < recorded_; ++i) {
+        FrameRecord& r = records_[i % records_.size()];
+        if (r.checked || r.cpuEnd == 0) continue;
+        const size_t slots = std::min<size_t>(gpuSlots_, 2 + 2 * size_t(r.sampleCount));
+        if (device_.readTimestamps(r.frame, std::span(timestampScratch_.data(), slots))) {
+            r.gpuResolved = true;
+            r.gpuBegin = timestampScratch_[0];
+            r.gpuEnd = timestampScratch_[1];
+            frameGpu_.add(ms(r.gpuBegin, r.gpuEnd));
+            for (uint32_t k = 0; k < r.sampleCount; ++k) {
+                Sample& s = r.samples[k];
+                if (!s.gpuTimed || 3 + 2 * k >= slots) continue;
+                s.gpuBegin = timestampScratch_[2 + 2 * k];
+                s.gpuEnd = timestampScratch_[3 + 2 * k];
+                scopes_[s.scope].gpuMs.add(ms(s.gpuBegin, s.gpuEnd));
+            }
+            finishCheck(r);
+        } else if (r.frame + keep <= now) {
+            // The device reused this frame's timestamp storage before we saw it: judge it on CPU time.
+            ++gpuLost_;
+            finishCheck(r);
+        }
+    }
+}
+
+void FrameProfiler::finishCheck(FrameRecord& r) {
+    r.checked = true;
+    FrameBudgetCheck& c = r.check;
+    c.frameMs = r.gpuResolved ? ms(r.gpuBegin, r.gpuEnd) : ms(r.cpuBegin, r.cpuEnd);
+    WorkCounts giWork;
+    for (uint32_t k = 0; k < r.sampleCount; ++k) {
+        const Sample& s = r.samples[k];
+        const ScopeInfo& info = scopes_[s.scope];
+        if (!isGi(info.path)) continue;
+        if (info.depth == 0) c.giMs += r.gpuResolved && s.gpuTimed ? ms(s.gpuBegin, s.gpuEnd) : ms(s.cpuBegin, s.cpuEnd);
+        giWork += s.work;
+    }
+    c.giPredictedX360Ms = predictCost(giWork, x360_.throughput).ms;
+    c.giPredictedPs3Ms = predictCost(giWork, ps3_.throughput).ms;
+    c.frameOverBudget = c.frameMs > profile_.frameBudgetMs;
+    c.giOverBudget = c.giMs > profile_.giBudgetMs;
+    const double predicted = profile_.name == "ps3" ? c.giPredictedPs3Ms : profile_.name == "x360" ? c.giPredictedX360Ms : 0.0;
+    c.giPredictedOverBudget = predicted > profile_.giBudgetMs;
+    lastCheck_ = c;
+    ++framesChecked_;
+    if (c.frameOverBudget || c.giOverBudget || c.giPredictedOverBudget) ++framesOverBudget_;
+}
+
+} // namespace lpv::engine
