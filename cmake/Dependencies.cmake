@@ -8,6 +8,7 @@ find_package(doctest REQUIRED)
 find_package(tomlplusplus REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(TinyGLTF REQUIRED)
+find_package(tinyexr REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 
 pkg_check_modules(EGL REQUIRED IMPORTED_TARGET egl)

@@ -4,6 +4,8 @@
 
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
+#include <iterator>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -55,6 +57,11 @@ GLFWwindow* Window::native(WindowApi api, bool glDebug) {
     gGlfwError.clear();
     window_ = glfwCreateWindow(int(desc_.width), int(desc_.height), desc_.title.c_str(), nullptr, nullptr);
     if (!window_) throw std::runtime_error("glfwCreateWindow failed: " + gGlfwError);
+    glfwSetWindowUserPointer(window_, this);
+    glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int) {
+        auto* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
+        if (action == GLFW_PRESS && key >= 0 && key < kMaxKeys) self->pressed_[key] = true;
+    });
     return window_;
 }
 
@@ -67,6 +74,30 @@ void Window::framebufferSize(uint32_t& width, uint32_t& height) const {
 
 bool Window::shouldClose() const { return window_ && glfwWindowShouldClose(window_); }
 
-void Window::pollEvents() { glfwPollEvents(); }
+void Window::pollEvents() {
+    std::fill(std::begin(pressed_), std::end(pressed_), false);
+    glfwPollEvents();
+    dx_ = dy_ = 0;
+    if (!window_) return;
+    double x = 0, y = 0;
+    glfwGetCursorPos(window_, &x, &y);
+    const bool held = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    if (held && tracking_) {
+        dx_ = x - lastX_;
+        dy_ = y - lastY_;
+    }
+    tracking_ = held;
+    lastX_ = x;
+    lastY_ = y;
+}
+
+bool Window::keyDown(int key) const { return window_ && glfwGetKey(window_, key) == GLFW_PRESS; }
+
+bool Window::keyPressed(int key) const { return key >= 0 && key < kMaxKeys && pressed_[key]; }
+
+void Window::cursorDelta(double& dx, double& dy) const {
+    dx = dx_;
+    dy = dy_;
+}
 
 } // namespace lpv::platforms

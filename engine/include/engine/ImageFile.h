@@ -1,4 +1,4 @@
-// Writing frames to disk: 8-bit sRGB PNG for screenshots.
+// Writing frames to disk: 8-bit sRGB PNG, or linear HDR as OpenEXR (.exr) or PFM (.pfm).
 #pragma once
 
 #include <cstdint>
@@ -9,5 +9,9 @@ namespace lpv::engine {
 
 // RGBA8 pixels, row 0 at the top. Throws std::runtime_error naming the path on failure.
 void writePng(const std::string& path, uint32_t width, uint32_t height, std::span<const uint8_t> rgba);
+// Linear RGBA float pixels, row 0 at the top; the format follows the extension (.exr or .pfm).
+void writeHdr(const std::string& path, uint32_t width, uint32_t height, std::span<const float> rgba);
+// True when `path` names an HDR format (.exr, .pfm).
+bool isHdrPath(const std::string& path);
 
 } // namespace lpv::engine

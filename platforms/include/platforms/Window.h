@@ -36,12 +36,21 @@ public:
     void framebufferSize(uint32_t& width, uint32_t& height) const;
     bool shouldClose() const;
     void pollEvents();
+    // Input, polled: a key by its GLFW_KEY_* code, keys pressed since the last pollEvents() (for
+    // toggles), and the cursor movement since the last pollEvents() while the right button is held.
+    bool keyDown(int key) const;
+    bool keyPressed(int key) const;
+    void cursorDelta(double& dx, double& dy) const;
     static bool displayAvailable();
 
 private:
     WindowDesc desc_;
     GLFWwindow* window_ = nullptr;
     WindowApi api_ = WindowApi::Vulkan;
+    static constexpr int kMaxKeys = 512;
+    bool pressed_[kMaxKeys] = {};
+    double lastX_ = 0, lastY_ = 0, dx_ = 0, dy_ = 0;
+    bool tracking_ = false;
 };
 
 } // namespace lpv::platforms

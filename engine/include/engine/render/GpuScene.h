@@ -1,0 +1,68 @@
+// A scene's GPU copy: vertex and index buffers, material textures with CPU-built mip chains, the
+// punctual-light buffer and the per-draw constants. Made once when a scene is set; a frame only
+// binds what is here.
+#pragma once
+
+#include "engine/scene/Scene.h"
+#include "rhi/Device.h"
+
+#include <glm/mat4x4.hpp>
+
+#include <vector>
+
+namespace lpv::engine {
+
+// std140 block `Draw` of gbuffer.vert / shadow.vert.
+struct DrawUniforms {
+    glm::mat4 model;
+    glm::mat4 normalMatrix;
+    glm::vec4 baseColor;
+    glm::vec4 emissive;
+    glm::vec4 material;  // metallic, roughness, has normal map, has base color texture
+};
+
+// std430 element of `Lights` in lighting.frag.
+struct GpuPunctualLight {
+    glm::vec4 positionRange;
+    glm::vec4 colorIntensity;
+    glm::vec4 directionType;
+    glm::vec4 cone;
+};
+
+struct GpuDraw {
+    uint32_t firstIndex = 0;
+    uint32_t indexCount = 0;
+    rhi::TextureHandle baseColor;  // a 1x1 white texture when the material has none
+    rhi::TextureHandle normal;     // a 1x1 flat normal when the material has none
+    DrawUniforms uniforms;
+};
+
+class GpuScene {
+public:
+    static constexpr uint32_t kMaxPunctualLights = 1024;
+
+    GpuScene(rhi::Device& device, const Scene& scene);
+    ~GpuScene();
+    GpuScene(const GpuScene&) = delete;
+    GpuScene& operator=(const GpuScene&) = delete;
+
+    rhi::BufferHandle vertices() const { return vertices_; }
+    rhi::BufferHandle indices() const { return indices_; }
+    rhi::BufferHandle lights() const { return lights_; }
+    uint32_t lightCount() const { return lightCount_; }
+    const std::vector<GpuDraw>& draws() const { return draws_; }
+    rhi::SamplerHandle materialSampler() const { return sampler_; }
+    uint64_t triangleCount() const { return triangles_; }
+
+private:
+    rhi::Device& device_;
+    rhi::BufferHandle vertices_, indices_, lights_;
+    std::vector<rhi::TextureHandle> textures_;
+    rhi::TextureHandle white_, flatNormal_;
+    rhi::SamplerHandle sampler_;
+    std::vector<GpuDraw> draws_;
+    uint32_t lightCount_ = 0;
+    uint64_t triangles_ = 0;
+};
+
+} // namespace lpv::engine

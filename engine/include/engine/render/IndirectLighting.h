@@ -1,0 +1,31 @@
+// The renderer's hook for global illumination. Between the G-buffer and the lighting pass, the
+// renderer asks the provider (the LPV in gi/) to fill the indirect-irradiance target; without a
+// provider the target holds the constant render.ambient.
+#pragma once
+
+#include "engine/render/CameraMatrices.h"
+#include "rhi/CommandList.h"
+#include "rhi/Handle.h"
+
+namespace lpv::engine {
+
+class FrameProfiler;
+
+struct GBufferView {
+    rhi::TextureHandle albedo;    // RGBA8 sRGB: albedo, metallic in alpha
+    rhi::TextureHandle normal;    // RGBA16F: world normal, roughness in alpha
+    rhi::TextureHandle depth;     // D32F, sampled
+    rhi::TextureHandle ao;        // R32F, 1 = unoccluded
+    uint32_t width = 0, height = 0;
+};
+
+class IndirectLighting {
+public:
+    virtual ~IndirectLighting() = default;
+    // Writes indirect irradiance (RGBA16F, linear, W/m^2-like units of the sun's) for every pixel
+    // into `target`, which the call must fully overwrite.
+    virtual void renderIndirect(rhi::CommandList& cmd, const CameraMatrices& camera, const GBufferView& gbuffer,
+                                rhi::TextureHandle target, FrameProfiler* profiler) = 0;
+};
+
+} // namespace lpv::engine

@@ -1,0 +1,88 @@
+// The deferred renderer: sun shadow map, G-buffer (albedo, normal, emissive, depth), SSAO,
+// indirect light (from an IndirectLighting provider or the ambient constant), HDR lighting and
+// tone mapping to sRGB. Every pass goes through the RHI with a debug marker and a profiler scope.
+// Targets are made at construction and on resize or when a setting that sizes them changes, never
+// in a steady-state frame.
+#pragma once
+
+#include "engine/config/Config.h"
+#include "engine/render/CameraMatrices.h"
+#include "engine/render/GpuScene.h"
+#include "engine/render/IndirectLighting.h"
+#include "rhi/Device.h"
+
+#include <glm/vec3.hpp>
+
+#include <memory>
+
+namespace lpv::engine {
+
+class FrameProfiler;
+
+enum class DebugView { Final, Albedo, Normals, Depth, Ssao, Shadow, Indirect };
+
+struct SunLight {
+    glm::vec3 direction{0.25f, -1.0f, -0.15f};  // where the light travels
+    glm::vec3 radiance{20.0f};                   // irradiance on a surface facing the sun
+};
+
+// std140 block `Frame` of common.glsl.
+struct FrameUniforms {
+    glm::mat4 viewProjection;
+    glm::mat4 invViewProjection;
+    glm::mat4 view;
+    glm::mat4 sunViewProjection;
+    glm::vec4 cameraPosition;
+    glm::vec4 sunDirection;
+    glm::vec4 sunRadiance;
+    glm::vec4 ambient;
+    glm::vec4 viewport;
+    glm::vec4 params;
+    glm::ivec4 counts;
+};
+
+class Renderer {
+public:
+    Renderer(rhi::Device& device, uint32_t width, uint32_t height);
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    void resize(uint32_t width, uint32_t height);
+    // Uploads the scene (replacing the previous one) and takes its first directional light as the sun.
+    void setScene(const Scene& scene);
+    SunLight& sun() { return sun_; }
+    const Bounds& sceneBounds() const { return bounds_; }
+
+    // Records one frame's passes into `cmd`. Reads render.* settings.
+    void render(rhi::CommandList& cmd, const CameraMatrices& camera, const Config& config, FrameProfiler* profiler,
+                IndirectLighting* indirect = nullptr);
+
+    rhi::TextureHandle output() const { return targets_.output; }  // RGBA8 sRGB, tone mapped
+    rhi::TextureHandle hdr() const { return targets_.hdr; }        // RGBA16F linear, before tone mapping
+    GBufferView gbuffer() const;
+    uint32_t width() const { return width_; }
+    uint32_t height() const { return height_; }
+    const FrameUniforms& frameUniforms() const { return frame_; }
+
+private:
+    struct Targets {
+        rhi::TextureHandle albedo, normal, emissive, depth, aoRaw, ao, indirect, hdr, output, shadow;
+    };
+    void createTargets(uint32_t shadowSize);
+    void destroyTargets();
+    void createPipelines();
+
+    rhi::Device& device_;
+    uint32_t width_, height_, shadowSize_ = 0;
+    Targets targets_;
+    rhi::GraphicsPipelineHandle gbufferPipeline_, shadowPipeline_, ssaoPipeline_, ssaoBlurPipeline_, lightingPipeline_,
+        tonemapPipeline_;
+    rhi::SamplerHandle linearClamp_, pointClamp_, shadowCompare_;
+    std::unique_ptr<GpuScene> scene_;
+    Bounds bounds_;
+    SunLight sun_;
+    FrameUniforms frame_{};
+};
+
+} // namespace lpv::engine

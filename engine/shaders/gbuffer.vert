@@ -1,0 +1,31 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// G-buffer geometry: world-space normal and tangent frame, uv.
+#include "common.glsl"
+
+layout(location = 0) in vec3 inPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inUv;
+layout(location = 3) in vec4 inTangent;
+
+layout(binding = 1, std140) uniform Draw {
+    mat4 model;
+    mat4 normalMatrix;
+    vec4 baseColor;
+    vec4 emissive;
+    vec4 material;  // x metallic, y roughness, z has normal map, w has base color texture
+} draw;
+
+layout(location = 0) out vec3 vNormal;
+layout(location = 1) out vec2 vUv;
+layout(location = 2) out vec4 vTangent;
+layout(location = 3) out vec3 vWorld;
+
+void main() {
+    vec4 world = draw.model * vec4(inPosition, 1.0);
+    vNormal = mat3(draw.normalMatrix) * inNormal;
+    vTangent = vec4(mat3(draw.model) * inTangent.xyz, inTangent.w);
+    vUv = inUv;
+    vWorld = world.xyz;
+    gl_Position = frame.viewProjection * world;
+}

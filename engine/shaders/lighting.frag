@@ -1,0 +1,84 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Deferred lighting into the HDR target: the shadowed sun, punctual lights, emissive, and the
+// indirect irradiance (filled by the GI, or the ambient constant) times SSAO. Lambertian diffuse.
+#include "common.glsl"
+
+struct PunctualLight {
+    vec4 positionRange;      // xyz position, w range (0: infinite)
+    vec4 colorIntensity;     // rgb color, w intensity (candela)
+    vec4 directionType;      // xyz direction the light travels, w: 1 point, 2 spot
+    vec4 cone;               // x cos(outer), y cos(inner)
+};
+
+layout(binding = 1) uniform sampler2D albedoTexture;
+layout(binding = 2) uniform sampler2D normalTexture;
+layout(binding = 3) uniform sampler2D emissiveTexture;
+layout(binding = 4) uniform sampler2D depthTexture;
+layout(binding = 5) uniform sampler2DShadow shadowMap;
+layout(binding = 6) uniform sampler2D aoTexture;
+layout(binding = 7) uniform sampler2D indirectTexture;
+layout(binding = 8, std430) readonly buffer Lights {
+    PunctualLight lights[];
+};
+
+layout(location = 0) in vec2 vUv;
+layout(location = 0) out vec4 outColor;
+
+float sunShadow(vec3 p, vec3 n) {
+    // Offset along the normal against acne on slopes; the pipeline bias handles the rest.
+    vec4 s = frame.sunViewProjection * vec4(p + n * 0.02, 1.0);
+    vec3 c = s.xyz / s.w;
+    vec2 uv = c.xy * 0.5 + 0.5;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || c.z > 1.0) return 1.0;
+    // 3x3 PCF of hardware-filtered compares.
+    float texel = 1.0 / float(frame.counts.z);
+    float lit = 0.0;
+    for (int y = -1; y <= 1; ++y)
+        for (int x = -1; x <= 1; ++x) lit += texture(shadowMap, vec3(uv + vec2(x, y) * texel, c.z - frame.sunDirection.w));
+    return lit / 9.0;
+}
+
+void main() {
+    float depth = textureLod(depthTexture, vUv, 0.0).r;
+    int debugView = int(frame.params.w);
+    if (depth >= 1.0) {
+        outColor = vec4(debugView == 0 ? vec3(0.02, 0.025, 0.03) : vec3(0.0), 1.0);
+        return;
+    }
+    vec3 p = worldFromDepth(vUv, depth);
+    vec4 albedoMetal = textureLod(albedoTexture, vUv, 0.0);
+    vec3 albedo = albedoMetal.rgb;
+    vec3 n = normalize(textureLod(normalTexture, vUv, 0.0).xyz);
+    float ao = textureLod(aoTexture, vUv, 0.0).r;
+    vec3 indirectIrradiance = textureLod(indirectTexture, vUv, 0.0).rgb;
+    float shadow = sunShadow(p, n);
+
+    vec3 L = -frame.sunDirection.xyz;
+    vec3 irradiance = frame.sunRadiance.rgb * max(dot(n, L), 0.0) * shadow;
+    for (int i = 0; i < frame.counts.x; ++i) {
+        PunctualLight l = lights[i];
+        vec3 toLight = l.positionRange.xyz - p;
+        float d2 = max(dot(toLight, toLight), 1e-4);
+        vec3 dir = toLight * inversesqrt(d2);
+        float atten = 1.0 / d2;
+        if (l.positionRange.w > 0.0) {
+            float ratio = sqrt(d2) / l.positionRange.w;
+            atten *= clamp(1.0 - ratio * ratio * ratio * ratio, 0.0, 1.0);
+        }
+        if (l.directionType.w > 1.5) atten *= smoothstep(l.cone.x, l.cone.y, dot(-dir, l.directionType.xyz));
+        irradiance += l.colorIntensity.rgb * l.colorIntensity.w * atten * max(dot(n, dir), 0.0);
+    }
+    vec3 direct = albedo / PI * irradiance;
+    vec3 indirect = albedo / PI * indirectIrradiance * ao;
+    vec3 emissive = textureLod(emissiveTexture, vUv, 0.0).rgb;
+
+    vec3 color = direct + indirect + emissive;
+    if (debugView == 1) color = albedo;
+    else if (debugView == 2) color = n * 0.5 + 0.5;
+    else if (debugView == 3) color = vec3(length(p - frame.cameraPosition.xyz) / 50.0);
+    else if (debugView == 4) color = vec3(ao);
+    else if (debugView == 5) color = vec3(shadow);
+    else if (debugView == 6) color = indirect;  // linear indirect diffuse alone (irradiance x albedo / pi)
+    outColor = vec4(color, 1.0);
+}

@@ -1,0 +1,142 @@
+// Uploading a scene: buffers, textures with mips, lights, draw list.
+#include "engine/render/GpuScene.h"
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace lpv::engine {
+namespace {
+
+// Box-filtered mip chain of an RGBA8 image, all levels packed one after another. sRGB textures
+// are averaged in linear space so mips do not darken.
+std::vector<uint8_t> mipChain(const TextureImage& image, uint32_t& levels) {
+    std::vector<uint8_t> out(image.rgba);
+    uint32_t w = image.width, h = image.height;
+    levels = 1;
+    std::vector<float> lut(256);
+    for (int i = 0; i < 256; ++i) {
+        const float c = float(i) / 255.0f;
+        lut[size_t(i)] = image.srgb ? (c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f)) : c;
+    }
+    const auto encode = [&](float v) {
+        v = std::clamp(v, 0.0f, 1.0f);
+        if (image.srgb) v = v <= 0.0031308f ? v * 12.92f : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+        return uint8_t(std::lround(v * 255.0f));
+    };
+    size_t srcOffset = 0;
+    while (w > 1 || h > 1) {
+        const uint32_t nw = std::max(1u, w / 2), nh = std::max(1u, h / 2);
+        const size_t dstOffset = out.size();
+        out.resize(dstOffset + size_t(nw) * nh * 4);
+        for (uint32_t y = 0; y < nh; ++y)
+            for (uint32_t x = 0; x < nw; ++x)
+                for (int c = 0; c < 4; ++c) {
+                    float sum = 0.0f;
+                    for (uint32_t dy = 0; dy < 2; ++dy)
+                        for (uint32_t dx = 0; dx < 2; ++dx) {
+                            const uint32_t sx = std::min(w - 1, x * 2 + dx), sy = std::min(h - 1, y * 2 + dy);
+                            const uint8_t v = out[srcOffset + (size_t(sy) * w + sx) * 4 + size_t(c)];
+                            sum += c == 3 ? float(v) / 255.0f : lut[v];
+                        }
+                    out[dstOffset + (size_t(y) * nw + x) * 4 + size_t(c)] =
+                        c == 3 ? uint8_t(std::lround(sum / 4.0f * 255.0f)) : encode(sum / 4.0f);
+                }
+        srcOffset = dstOffset;
+        w = nw;
+        h = nh;
+        ++levels;
+    }
+    return out;
+}
+
+rhi::TextureHandle solidTexture(rhi::Device& device, const uint8_t rgba[4], rhi::Format format, const char* name) {
+    const rhi::TextureHandle t = device.createTexture(
+        {rhi::TextureKind::Tex2D, format, 1, 1, 1, 1, rhi::kTextureSampled | rhi::kTextureTransfer, name, "scene.textures"});
+    device.uploadTexture(t, 0, rgba, 4);
+    return t;
+}
+
+} // namespace
+
+GpuScene::GpuScene(rhi::Device& device, const Scene& scene) : device_(device) {
+    using namespace rhi;
+    vertices_ = device.createBuffer({scene.vertices.size() * sizeof(Vertex), kBufferVertex | kBufferTransfer,
+                                     MemoryAccess::GpuOnly, scene.name + " vertices", "scene.geometry"},
+                                    scene.vertices.data());
+    indices_ = device.createBuffer({scene.indices.size() * sizeof(uint32_t), kBufferIndex | kBufferTransfer,
+                                    MemoryAccess::GpuOnly, scene.name + " indices", "scene.geometry"},
+                                   scene.indices.data());
+    const uint8_t white[4] = {255, 255, 255, 255}, flat[4] = {128, 128, 255, 255};
+    white_ = solidTexture(device, white, Format::RGBA8Srgb, "white");
+    flatNormal_ = solidTexture(device, flat, Format::RGBA8Unorm, "flat normal");
+    for (const TextureImage& image : scene.textures) {
+        uint32_t levels = 1;
+        const std::vector<uint8_t> chain = mipChain(image, levels);
+        const TextureHandle t = device.createTexture({TextureKind::Tex2D, image.srgb ? Format::RGBA8Srgb : Format::RGBA8Unorm,
+                                                      image.width, image.height, 1, levels,
+                                                      kTextureSampled | kTextureTransfer, image.name, "scene.textures"});
+        size_t offset = 0;
+        uint32_t w = image.width, h = image.height;
+        for (uint32_t level = 0; level < levels; ++level) {
+            const size_t bytes = size_t(w) * h * 4;
+            device.uploadTexture(t, level, chain.data() + offset, bytes);
+            offset += bytes;
+            w = std::max(1u, w / 2);
+            h = std::max(1u, h / 2);
+        }
+        textures_.push_back(t);
+    }
+    SamplerDesc sd;
+    sd.address = AddressMode::Repeat;
+    sd.debugName = "material";
+    sampler_ = device.createSampler(sd);
+
+    std::vector<GpuPunctualLight> lights;
+    for (const Light& l : scene.lights) {
+        if (l.type == LightType::Directional) continue;
+        GpuPunctualLight g;
+        g.positionRange = glm::vec4(l.position, l.range);
+        g.colorIntensity = glm::vec4(l.color, l.intensity);
+        g.directionType = glm::vec4(glm::normalize(l.direction), l.type == LightType::Spot ? 2.0f : 1.0f);
+        g.cone = glm::vec4(std::cos(l.outerConeAngle), std::cos(l.innerConeAngle), 0.0f, 0.0f);
+        lights.push_back(g);
+    }
+    lightCount_ = uint32_t(std::min<size_t>(lights.size(), kMaxPunctualLights));
+    lights_ = device.createBuffer({sizeof(GpuPunctualLight) * kMaxPunctualLights, kBufferStorage | kBufferTransfer,
+                                   MemoryAccess::GpuOnly, scene.name + " lights", "scene.lights"});
+    if (lightCount_) device.uploadBuffer(lights_, 0, lights.data(), lightCount_ * sizeof(GpuPunctualLight));
+
+    for (const Instance& inst : scene.instances) {
+        const Mesh& mesh = scene.meshes[inst.mesh];
+        const Material& mat = scene.materials[mesh.material];
+        GpuDraw d;
+        d.firstIndex = mesh.firstIndex;
+        d.indexCount = mesh.indexCount;
+        d.baseColor = mat.baseColorTexture >= 0 ? textures_[size_t(mat.baseColorTexture)] : white_;
+        d.normal = mat.normalTexture >= 0 ? textures_[size_t(mat.normalTexture)] : flatNormal_;
+        d.uniforms.model = inst.transform;
+        d.uniforms.normalMatrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(inst.transform))));
+        d.uniforms.baseColor = mat.baseColor;
+        d.uniforms.emissive = glm::vec4(mat.emissive, 0.0f);
+        d.uniforms.material = glm::vec4(mat.metallic, mat.roughness, mat.normalTexture >= 0 ? 1.0f : 0.0f,
+                                        mat.baseColorTexture >= 0 ? 1.0f : 0.0f);
+        draws_.push_back(d);
+        triangles_ += mesh.indexCount / 3;
+    }
+}
+
+GpuScene::~GpuScene() {
+    device_.waitIdle();
+    for (rhi::TextureHandle t : textures_) device_.destroy(t);
+    device_.destroy(white_);
+    device_.destroy(flatNormal_);
+    device_.destroy(sampler_);
+    device_.destroy(vertices_);
+    device_.destroy(indices_);
+    device_.destroy(lights_);
+}
+
+} // namespace lpv::engine

@@ -1,0 +1,348 @@
+// The deferred renderer's passes.
+#include "engine/render/Renderer.h"
+
+#include "EngineShaders.h"
+#include "engine/profiler/FrameProfiler.h"
+#include "rhi/Error.h"
+
+#define GLM_FORCE_DEPTH_ZERO_TO_ONE
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace lpv::engine {
+namespace {
+
+const IntSetting kShadowMapSize{"render.shadow_map_size", 2048, 256, 8192, "Sun shadow map resolution (texels per side)"};
+const BoolSetting kSsao{"render.ssao", true, "Screen-space ambient occlusion on the indirect light"};
+const FloatSetting kSsaoRadius{"render.ssao_radius", 0.5, 0.01, 10.0, "SSAO sampling radius in metres"};
+const FloatSetting kSsaoStrength{"render.ssao_strength", 1.0, 0.0, 2.0, "SSAO darkening at full occlusion"};
+const FloatSetting kExposure{"render.exposure", 1.0, 0.001, 1000.0, "Exposure multiplier before tone mapping"};
+const Vec3Setting kAmbient{"render.ambient", {0.3f, 0.32f, 0.36f},
+                           "Constant indirect irradiance used when GI is off (linear RGB)"};
+const EnumSetting<DebugView> kDebugView{"render.debug_view",
+                                        DebugView::Final,
+                                        {{DebugView::Final, "final"},
+                                         {DebugView::Albedo, "albedo"},
+                                         {DebugView::Normals, "normals"},
+                                         {DebugView::Depth, "depth"},
+                                         {DebugView::Ssao, "ssao"},
+                                         {DebugView::Shadow, "shadow"},
+                                         {DebugView::Indirect, "indirect"}},
+                                        "What the frame shows; indirect = linear indirect diffuse only"};
+
+rhi::GraphicsPipelineHandle fullscreenPipeline(rhi::Device& device, const rhi::ShaderBinary& fragment, rhi::Format format,
+                                               const char* name) {
+    rhi::GraphicsPipelineDesc d;
+    d.vertex = &shaders::fullscreen_vert;
+    d.fragment = &fragment;
+    d.colorFormats = {format};
+    d.debugName = name;
+    return device.createPipeline(d);
+}
+
+WorkCounts fullscreenWork(uint64_t pixels, uint64_t texelsPerPixel, uint64_t aluPerPixel, uint64_t bytesPerPixel) {
+    WorkCounts w;
+    w.pixelsShaded = pixels;
+    w.texelsRead = pixels * texelsPerPixel;
+    w.texelsWritten = pixels;
+    w.aluOps = pixels * aluPerPixel;
+    w.bytesMoved = pixels * bytesPerPixel;
+    w.primitives = 1;
+    return w;
+}
+
+} // namespace
+
+Renderer::Renderer(rhi::Device& device, uint32_t width, uint32_t height)
+    : device_(device), width_(width), height_(height) {
+    using namespace rhi;
+    SamplerDesc linear;
+    linear.mipFilter = Filter::Nearest;
+    linear.debugName = "linear clamp";
+    linearClamp_ = device.createSampler(linear);
+    SamplerDesc point{Filter::Nearest, Filter::Nearest, Filter::Nearest};
+    point.debugName = "point clamp";
+    pointClamp_ = device.createSampler(point);
+    SamplerDesc compare;
+    compare.mipFilter = Filter::Nearest;
+    compare.compareEnable = true;
+    compare.compareOp = CompareOp::LessOrEqual;
+    compare.debugName = "shadow compare";
+    shadowCompare_ = device.createSampler(compare);
+    createTargets(uint32_t(std::get<int64_t>(kShadowMapSize.decl().defaultValue)));
+    createPipelines();
+}
+
+Renderer::~Renderer() {
+    device_.waitIdle();
+    scene_.reset();
+    destroyTargets();
+    for (auto p : {gbufferPipeline_, shadowPipeline_, ssaoPipeline_, ssaoBlurPipeline_, lightingPipeline_, tonemapPipeline_})
+        device_.destroy(p);
+    for (auto s : {linearClamp_, pointClamp_, shadowCompare_}) device_.destroy(s);
+}
+
+void Renderer::createTargets(uint32_t shadowSize) {
+    using namespace rhi;
+    const auto target = [&](Format f, uint32_t extraUsage, const char* name, const char* category) {
+        return device_.createTexture({TextureKind::Tex2D, f, width_, height_, 1, 1,
+                                      kTextureColorTarget | kTextureSampled | extraUsage, name, category});
+    };
+    targets_.albedo = target(Format::RGBA8Srgb, 0, "gbuffer albedo", "render.gbuffer");
+    targets_.normal = target(Format::RGBA16F, 0, "gbuffer normal", "render.gbuffer");
+    targets_.emissive = target(Format::RGBA16F, 0, "gbuffer emissive", "render.gbuffer");
+    targets_.depth = device_.createTexture({TextureKind::Tex2D, Format::D32F, width_, height_, 1, 1,
+                                            kTextureDepthTarget | kTextureSampled | kTextureTransfer, "gbuffer depth",
+                                            "render.gbuffer"});
+    targets_.aoRaw = target(Format::R32F, 0, "ssao raw", "render.ssao");
+    targets_.ao = target(Format::R32F, kTextureTransfer, "ssao", "render.ssao");
+    targets_.indirect = target(Format::RGBA16F, kTextureStorage | kTextureTransfer, "indirect irradiance", "render.lighting");
+    targets_.hdr = target(Format::RGBA16F, kTextureTransfer, "hdr", "render.lighting");
+    targets_.output = target(Format::RGBA8Srgb, kTextureTransfer, "output", "render.output");
+    shadowSize_ = shadowSize;
+    targets_.shadow = device_.createTexture({TextureKind::Tex2D, Format::D32F, shadowSize, shadowSize, 1, 1,
+                                             kTextureDepthTarget | kTextureSampled, "sun shadow map", "render.shadow"});
+}
+
+void Renderer::destroyTargets() {
+    for (auto t : {targets_.albedo, targets_.normal, targets_.emissive, targets_.depth, targets_.aoRaw, targets_.ao,
+                   targets_.indirect, targets_.hdr, targets_.output, targets_.shadow})
+        if (t) device_.destroy(t);
+    targets_ = {};
+}
+
+void Renderer::createPipelines() {
+    using namespace rhi;
+    GraphicsPipelineDesc g;
+    g.vertex = &shaders::gbuffer_vert;
+    g.fragment = &shaders::gbuffer_frag;
+    g.vertexBuffers = {{sizeof(Vertex)}};
+    g.attributes = {{0, VertexFormat::Float3, offsetof(Vertex, position)},
+                    {1, VertexFormat::Float3, offsetof(Vertex, normal)},
+                    {2, VertexFormat::Float2, offsetof(Vertex, uv)},
+                    {3, VertexFormat::Float4, offsetof(Vertex, tangent)}};
+    g.depthTest = g.depthWrite = true;
+    g.depthCompare = CompareOp::Less;
+    g.colorFormats = {Format::RGBA8Srgb, Format::RGBA16F, Format::RGBA16F};
+    g.depthFormat = Format::D32F;
+    g.debugName = "gbuffer";
+    gbufferPipeline_ = device_.createPipeline(g);
+
+    GraphicsPipelineDesc s;
+    s.vertex = &shaders::shadow_vert;
+    s.fragment = &shaders::shadow_frag;
+    s.vertexBuffers = {{sizeof(Vertex)}};
+    s.attributes = {{0, VertexFormat::Float3, offsetof(Vertex, position)}};
+    s.depthTest = s.depthWrite = true;
+    s.depthCompare = CompareOp::Less;
+    s.depthBiasConstant = 2.0f;
+    s.depthBiasSlope = 2.0f;
+    s.depthFormat = Format::D32F;
+    s.debugName = "sun shadow";
+    shadowPipeline_ = device_.createPipeline(s);
+
+    ssaoPipeline_ = fullscreenPipeline(device_, shaders::ssao_frag, Format::R32F, "ssao");
+    ssaoBlurPipeline_ = fullscreenPipeline(device_, shaders::ssao_blur_frag, Format::R32F, "ssao blur");
+    lightingPipeline_ = fullscreenPipeline(device_, shaders::lighting_frag, Format::RGBA16F, "lighting");
+    tonemapPipeline_ = fullscreenPipeline(device_, shaders::tonemap_frag, Format::RGBA8Srgb, "tone map");
+}
+
+void Renderer::resize(uint32_t width, uint32_t height) {
+    if (width == width_ && height == height_) return;
+    device_.waitIdle();
+    destroyTargets();
+    width_ = width;
+    height_ = height;
+    createTargets(shadowSize_);
+}
+
+void Renderer::setScene(const Scene& scene) {
+    device_.waitIdle();
+    scene_.reset();
+    scene_ = std::make_unique<GpuScene>(device_, scene);
+    bounds_ = scene.bounds;
+    for (const Light& l : scene.lights)
+        if (l.type == LightType::Directional) {
+            sun_.direction = glm::normalize(l.direction);
+            sun_.radiance = l.color * l.intensity;
+            break;
+        }
+}
+
+GBufferView Renderer::gbuffer() const {
+    return {targets_.albedo, targets_.normal, targets_.depth, targets_.ao, width_, height_};
+}
+
+void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const Config& config,
+                      FrameProfiler* profiler, IndirectLighting* indirect) {
+    using namespace rhi;
+    if (!scene_) throw Error("Renderer::render() before setScene()");
+    const uint32_t wantShadow = uint32_t(config.get(kShadowMapSize));
+    if (wantShadow != shadowSize_) {
+        // A settings change, not a steady-state frame: the shadow map is remade at its new size.
+        device_.destroy(targets_.shadow);
+        shadowSize_ = wantShadow;
+        targets_.shadow = device_.createTexture({TextureKind::Tex2D, Format::D32F, shadowSize_, shadowSize_, 1, 1,
+                                                 kTextureDepthTarget | kTextureSampled, "sun shadow map", "render.shadow"});
+    }
+
+    // Sun shadow fitted to the scene bounds.
+    const glm::vec3 center = bounds_.center();
+    const float radius = std::max(0.5f * glm::length(bounds_.size()), 0.01f);
+    const glm::vec3 dir = glm::normalize(sun_.direction);
+    const glm::vec3 up = std::fabs(dir.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+    const glm::mat4 sunView = glm::lookAt(center - dir * radius * 2.0f, center, up);
+    const glm::mat4 sunProj = glm::orthoRH_ZO(-radius, radius, -radius, radius, radius * 0.5f, radius * 3.5f);
+
+    const glm::vec3 ambient = config.get(kAmbient);
+    frame_.viewProjection = camera.viewProjection;
+    frame_.invViewProjection = camera.invViewProjection;
+    frame_.view = camera.view;
+    frame_.sunViewProjection = sunProj * sunView;
+    frame_.cameraPosition = glm::vec4(camera.position, 1.0f);
+    frame_.sunDirection = glm::vec4(dir, 0.0005f);
+    frame_.sunRadiance = glm::vec4(sun_.radiance, 0.0f);
+    frame_.ambient = glm::vec4(ambient, 0.0f);
+    frame_.viewport = glm::vec4(float(width_), float(height_), 1.0f / float(width_), 1.0f / float(height_));
+    frame_.params = glm::vec4(float(config.get(kExposure)), float(config.get(kSsaoRadius)),
+                              float(config.get(kSsaoStrength)), float(int(config.get(kDebugView))));
+    frame_.counts = glm::ivec4(int(scene_->lightCount()), config.get(kSsao) ? 1 : 0, int(shadowSize_), 0);
+
+    const uint64_t pixels = uint64_t(width_) * height_;
+    const auto scope = [&](const char* name) {
+        return profiler ? std::optional<FrameProfiler::Scope>(profiler->scope(name, &cmd)) : std::nullopt;
+    };
+    const auto work = [&](const WorkCounts& w) {
+        if (profiler) profiler->setWork(w);
+    };
+    auto renderScope = scope("render");
+
+    {
+        auto s = scope("shadow");
+        cmd.beginMarker("sun shadow");
+        RenderPassDesc pass;
+        pass.depth = {targets_.shadow, 0, LoadOp::Clear, 1.0f};
+        pass.debugName = "sun shadow";
+        cmd.beginRenderPass(pass);
+        cmd.bindPipeline(shadowPipeline_);
+        cmd.pushUniforms(0, &frame_, sizeof(frame_));
+        cmd.bindVertexBuffer(0, scene_->vertices());
+        cmd.bindIndexBuffer(scene_->indices(), IndexType::Uint32);
+        for (const GpuDraw& d : scene_->draws()) {
+            cmd.pushUniforms(1, &d.uniforms, sizeof(d.uniforms));
+            cmd.drawIndexed(d.indexCount, 1, d.firstIndex);
+        }
+        cmd.endRenderPass();
+        cmd.endMarker();
+        WorkCounts w;
+        w.primitives = scene_->triangleCount();
+        w.texelsWritten = uint64_t(shadowSize_) * shadowSize_;
+        w.bytesMoved = w.texelsWritten * 4 + scene_->triangleCount() * 3 * sizeof(Vertex);
+        work(w);
+    }
+    {
+        auto s = scope("gbuffer");
+        cmd.beginMarker("gbuffer");
+        RenderPassDesc pass;
+        pass.colors[0] = {targets_.albedo, 0, 0, LoadOp::Clear, {0, 0, 0, 0}};
+        pass.colors[1] = {targets_.normal, 0, 0, LoadOp::Clear, {0, 0, 1, 1}};
+        pass.colors[2] = {targets_.emissive, 0, 0, LoadOp::Clear, {0, 0, 0, 0}};
+        pass.colorCount = 3;
+        pass.depth = {targets_.depth, 0, LoadOp::Clear, 1.0f};
+        pass.debugName = "gbuffer";
+        cmd.beginRenderPass(pass);
+        cmd.bindPipeline(gbufferPipeline_);
+        cmd.pushUniforms(0, &frame_, sizeof(frame_));
+        cmd.bindVertexBuffer(0, scene_->vertices());
+        cmd.bindIndexBuffer(scene_->indices(), IndexType::Uint32);
+        for (const GpuDraw& d : scene_->draws()) {
+            cmd.pushUniforms(1, &d.uniforms, sizeof(d.uniforms));
+            cmd.bindTexture(2, d.baseColor, scene_->materialSampler());
+            cmd.bindTexture(3, d.normal, scene_->materialSampler());
+            cmd.drawIndexed(d.indexCount, 1, d.firstIndex);
+        }
+        cmd.endRenderPass();
+        cmd.endMarker();
+        WorkCounts w = fullscreenWork(pixels, 2, 40, 4 + 8 + 8 + 4);
+        w.primitives = scene_->triangleCount();
+        w.texelsWritten = pixels * 4;
+        work(w);
+    }
+    {
+        auto s = scope("ssao");
+        cmd.beginMarker("ssao");
+        RenderPassDesc pass;
+        pass.colors[0] = {targets_.aoRaw, 0, 0, LoadOp::DontCare};
+        pass.colorCount = 1;
+        pass.debugName = "ssao";
+        cmd.beginRenderPass(pass);
+        cmd.bindPipeline(ssaoPipeline_);
+        cmd.pushUniforms(0, &frame_, sizeof(frame_));
+        cmd.bindTexture(1, targets_.depth, pointClamp_);
+        cmd.bindTexture(2, targets_.normal, pointClamp_);
+        cmd.draw(3);
+        cmd.endRenderPass();
+        pass.colors[0] = {targets_.ao, 0, 0, LoadOp::DontCare};
+        pass.debugName = "ssao blur";
+        cmd.beginRenderPass(pass);
+        cmd.bindPipeline(ssaoBlurPipeline_);
+        cmd.pushUniforms(0, &frame_, sizeof(frame_));
+        cmd.bindTexture(1, targets_.aoRaw, pointClamp_);
+        cmd.draw(3);
+        cmd.endRenderPass();
+        cmd.endMarker();
+        WorkCounts w = fullscreenWork(pixels, 2 + 16 + 16, 16 * 40, 4 * 34);
+        w += fullscreenWork(pixels, 16, 16, 4 * 17);
+        work(w);
+    }
+    if (indirect) {
+        indirect->renderIndirect(cmd, camera, gbuffer(), targets_.indirect, profiler);
+    } else {
+        cmd.clearTexture(targets_.indirect, {ambient.x, ambient.y, ambient.z, 0.0f});
+    }
+    {
+        auto s = scope("lighting");
+        cmd.beginMarker("lighting");
+        RenderPassDesc pass;
+        pass.colors[0] = {targets_.hdr, 0, 0, LoadOp::DontCare};
+        pass.colorCount = 1;
+        pass.debugName = "lighting";
+        cmd.beginRenderPass(pass);
+        cmd.bindPipeline(lightingPipeline_);
+        cmd.pushUniforms(0, &frame_, sizeof(frame_));
+        cmd.bindTexture(1, targets_.albedo, pointClamp_);
+        cmd.bindTexture(2, targets_.normal, pointClamp_);
+        cmd.bindTexture(3, targets_.emissive, pointClamp_);
+        cmd.bindTexture(4, targets_.depth, pointClamp_);
+        cmd.bindTexture(5, targets_.shadow, shadowCompare_);
+        cmd.bindTexture(6, targets_.ao, pointClamp_);
+        cmd.bindTexture(7, targets_.indirect, pointClamp_);
+        cmd.bindStorageBuffer(8, scene_->lights());
+        cmd.draw(3);
+        cmd.endRenderPass();
+        cmd.endMarker();
+        work(fullscreenWork(pixels, 7 + 9 * 4, 120 + 40 * scene_->lightCount(), 4 * 8 + 8));
+    }
+    {
+        auto s = scope("tonemap");
+        cmd.beginMarker("tone map");
+        RenderPassDesc pass;
+        pass.colors[0] = {targets_.output, 0, 0, LoadOp::DontCare};
+        pass.colorCount = 1;
+        pass.debugName = "tone map";
+        cmd.beginRenderPass(pass);
+        cmd.bindPipeline(tonemapPipeline_);
+        cmd.pushUniforms(0, &frame_, sizeof(frame_));
+        cmd.bindTexture(1, targets_.hdr, pointClamp_);
+        cmd.draw(3);
+        cmd.endRenderPass();
+        cmd.endMarker();
+        work(fullscreenWork(pixels, 1, 20, 8 + 4));
+    }
+}
+
+} // namespace lpv::engine

@@ -1,0 +1,24 @@
+// The windowed free camera: WASD to move (Q/E down/up, Shift faster), right mouse button to look.
+#pragma once
+
+#include "engine/scene/Scene.h"
+
+namespace lpv::platforms {
+class Window;
+}
+
+namespace lpv::game {
+
+class FreeCamera {
+public:
+    explicit FreeCamera(const engine::Camera& start);
+    // Applies this frame's input; returns true when the camera moved.
+    bool update(const platforms::Window& window, float seconds, float speed);
+    const engine::Camera& camera() const { return camera_; }
+
+private:
+    engine::Camera camera_;
+    float yaw_ = 0, pitch_ = 0;
+};
+
+} // namespace lpv::game

@@ -1,0 +1,162 @@
+// The game loop.
+#include "Game.h"
+
+#include "Console.h"
+#include "FreeCamera.h"
+
+#include "engine/DeviceSettings.h"
+#include "engine/PlatformSettings.h"
+#include "engine/Screenshot.h"
+#include "engine/config/Config.h"
+#include "engine/profiler/FrameProfiler.h"
+#include "engine/profiler/ProfileReport.h"
+#include "engine/render/CameraPath.h"
+#include "engine/render/Renderer.h"
+#include "engine/scene/SceneLoading.h"
+#include "platforms/Clock.h"
+#include "platforms/Log.h"
+#include "platforms/Window.h"
+#include "rhi/Device.h"
+
+#include <GLFW/glfw3.h>
+#include <glm/geometric.hpp>
+
+#include <cstdio>
+#include <memory>
+
+namespace lpv::game {
+namespace {
+
+const engine::FloatSetting kSceneDetail{"scene.detail", 1.0, 0.05, 4.0,
+                                        "Tessellation scale of the built-in atrium (1.0 = about 250k triangles)",
+                                        engine::Apply::Restart};
+const engine::FloatSetting kCameraSpeed{"game.camera_speed", 3.0, 0.1, 100.0, "Free camera speed in metres per second"};
+
+engine::Camera defaultCamera(const engine::Scene& scene) {
+    if (scene.camera) return *scene.camera;
+    engine::Camera cam;
+    const glm::vec3 c = scene.bounds.center(), size = scene.bounds.size();
+    cam.position = c + glm::vec3(0.0f, 0.1f * size.y, 0.9f * std::max(size.x, size.z) + 0.5f);
+    cam.forward = glm::normalize(c - cam.position);
+    cam.farPlane = std::max(100.0f, 4.0f * glm::length(size));
+    return cam;
+}
+
+// Stages the next value of an enum setting (a key cycles through its choices).
+void cycle(engine::Config& config, const char* name) {
+    const engine::SettingDecl* d = engine::SettingRegistry::global().find(name);
+    if (!d || d->type != engine::SettingType::Enum) return;
+    const std::string& current = std::get<std::string>(config.value(*d));
+    size_t i = 0;
+    while (i < d->choices.size() && d->choices[i] != current) ++i;
+    config.stage(*d, d->choices[(i + 1) % d->choices.size()], "key");
+}
+
+void toggle(engine::Config& config, const char* name) {
+    const engine::SettingDecl* d = engine::SettingRegistry::global().find(name);
+    if (!d || d->type != engine::SettingType::Bool) {
+        log::info(std::string("game: no setting '") + name + "' in this build");
+        return;
+    }
+    config.stage(*d, !std::get<bool>(config.value(*d)), "key");
+}
+
+} // namespace
+
+int runGame(const GameOptions& opt) {
+    engine::Config config;
+    for (const std::string& file : opt.configFiles) config.loadFile(file);
+    for (const auto& [source, assignment] : opt.overrides) config.applyOverride(assignment, source);
+    if (!opt.cameraPath.empty() && !engine::isCameraPath(opt.cameraPath))
+        throw engine::ConfigError("--camera-path", 0, "unknown camera path '" + opt.cameraPath + "' (orbit, flythrough)");
+    const platforms::PlatformProfile profile = engine::activePlatformProfile(config);
+    const uint32_t width = engine::renderWidth(config), height = engine::renderHeight(config);
+
+    uint64_t t0 = platforms::nowNanoseconds();
+    const engine::Scene scene = engine::loadScene(opt.scene, float(config.get(kSceneDetail)));
+    log::info("game: scene '" + scene.name + "': " + std::to_string(scene.triangleCount()) + " triangles, " +
+              std::to_string(scene.instances.size()) + " instances, " + std::to_string(scene.lights.size()) +
+              " lights (" + std::to_string((platforms::nowNanoseconds() - t0) / 1000000) + " ms)");
+
+    std::unique_ptr<platforms::Window> window;
+    if (!opt.headless && platforms::Window::displayAvailable())
+        window = std::make_unique<platforms::Window>(platforms::WindowDesc{width, height, "LPV Engine"});
+
+    rhi::DeviceConfig deviceConfig = engine::deviceConfigFrom(config);
+    deviceConfig.window = window.get();
+    t0 = platforms::nowNanoseconds();
+    std::unique_ptr<rhi::Device> device = rhi::createDevice(deviceConfig);
+    log::info("game: running on backend '" + std::string(rhi::backendName(device->backend())) + "' (" +
+              device->caps().deviceName + ", " + std::to_string((platforms::nowNanoseconds() - t0) / 1000000) +
+              " ms to create)" + (window ? ", windowed" : ", headless") + ", platform profile '" + profile.name + "'");
+
+    engine::Renderer renderer(*device, width, height);
+    renderer.setScene(scene);
+    engine::FrameProfiler profiler(*device, profile);
+    const engine::Camera start = defaultCamera(scene);
+    FreeCamera freeCamera(start);
+    std::unique_ptr<Console> console;
+    if (window) console = std::make_unique<Console>();
+
+    const int frames = opt.frames > 0 ? opt.frames : (window ? 0 : 1);
+    uint64_t last = platforms::nowNanoseconds();
+    for (int frame = 0; frames == 0 || frame < frames; ++frame) {
+        const uint64_t now = platforms::nowNanoseconds();
+        const float dt = float(now - last) / 1e9f;
+        last = now;
+        if (window) {
+            window->pollEvents();
+            if (window->shouldClose() || window->keyPressed(GLFW_KEY_ESCAPE)) break;
+            if (window->keyPressed(GLFW_KEY_F1)) cycle(config, "render.debug_view");
+            if (window->keyPressed(GLFW_KEY_F2)) cycle(config, "gi.debug_view");
+            if (window->keyPressed(GLFW_KEY_G)) toggle(config, "gi.enabled");
+            for (const std::string& line : console->takeLines()) {
+                try {
+                    config.stage(line, "console");
+                } catch (const engine::ConfigError& e) {
+                    log::error(e.what());
+                }
+            }
+            uint32_t fw = 0, fh = 0;
+            window->framebufferSize(fw, fh);
+            if (fw == 0 || fh == 0) continue;  // minimised
+        }
+        for (const engine::SettingDecl* changed : config.applyPending())
+            log::info("game: " + changed->name + " = " + changed->format(config.value(*changed)) +
+                      (changed->apply == engine::Apply::Restart ? " (takes effect after a restart)" : ""));
+
+        engine::Camera cam = freeCamera.camera();
+        if (!opt.cameraPath.empty())
+            cam = engine::cameraOnPath(opt.cameraPath, scene.bounds, start, frames > 1 ? float(frame) / float(frames - 1) : 0.0f);
+        else if (window)
+            freeCamera.update(*window, dt, float(config.get(kCameraSpeed))), cam = freeCamera.camera();
+        const engine::CameraMatrices matrices = engine::cameraMatrices(cam, float(width) / float(height));
+
+        rhi::CommandList& cmd = device->beginFrame();
+        profiler.beginFrame(cmd);
+        renderer.render(cmd, matrices, config, &profiler);
+        profiler.endFrame(cmd);
+        device->endFrame(window ? renderer.output() : rhi::TextureHandle{});
+    }
+    device->waitIdle();
+
+    if (!opt.screenshot.empty()) {
+        engine::writeScreenshot(*device, renderer, opt.screenshot);
+        log::info("game: wrote " + opt.screenshot + " (backend '" + std::string(rhi::backendName(device->backend())) + "')");
+    }
+    if (!opt.profileOut.empty()) {
+        // Let the last frames' GPU timings arrive before reporting.
+        for (uint32_t i = 0; i <= device->caps().framesInFlight; ++i) {
+            rhi::CommandList& cmd = device->beginFrame();
+            profiler.beginFrame(cmd);
+            profiler.endFrame(cmd);
+            device->endFrame();
+        }
+        engine::writeProfileOutputs(profiler, opt.profileOut);
+        std::fputs(engine::profileSummaryText(profiler).c_str(), stdout);
+        log::info("game: profile written to " + opt.profileOut + " (trace.json, summary.md, summary.csv, frames.svg)");
+    }
+    return 0;
+}
+
+} // namespace lpv::game
