@@ -1,0 +1,119 @@
+// The CPU reference of injection and propagation: SH identities, symmetry, and the energy curve.
+//
+// Expected energy curve (measured by the L0 sum, proportional to flux): the first step from a
+// clamped-cosine VPL gains about 13.8% because the L1 lobe has a negative back lobe that the
+// propagation clamps (the continuous figure is 12.5%: the integral of max(0, 1/4 + cos/2) over the
+// sphere is 9/8 of the cosine's); from then on every step carries the same energy to within the
+// rounding of the published solid angles (6 x (0.40067 + 4 x 0.42344) = 4 pi + 2.4e-4, so +0.0019%
+// per step) until light reaches the volume border, after which each step loses what crosses it.
+#include "gi/LpvReference.h"
+#include "gi/PropagationScheme.h"
+#include "gi/ShBasis.h"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+using namespace lpv::gi;
+
+TEST_CASE("gi reference: SH constants and the cosine lobe") {
+    CHECK(kShY0 == doctest::Approx(1.0 / (2.0 * std::sqrt(M_PI))));
+    CHECK(kCosLobeC0 == doctest::Approx(std::sqrt(M_PI) / 2.0));
+    CHECK(kCosLobeC1 == doctest::Approx(std::sqrt(M_PI / 3.0)));
+    // A cosine lobe's irradiance on a surface facing it: integral of cos^2 over the hemisphere is
+    // 2 pi / 3, and L1 reproduces it exactly.
+    const glm::vec3 n(0.0f, 1.0f, 0.0f);
+    CHECK(shIrradiance(shCosineLobe(n), n) == doctest::Approx(kCosLobeC0 * kCosLobeC0 + kCosLobeC1 * kCosLobeC1));
+    // The five faces seen from a neighbour cover 2 pi / 3 sr.
+    float total = 0.0f;
+    for (const PropagationFace& f : propagationFaces(0)) total += f.solidAngle;
+    CHECK(total == doctest::Approx(2.0 * M_PI / 3.0).epsilon(1e-4));
+    for (int a = 0; a < 6; ++a)
+        for (const PropagationFace& f : propagationFaces(a)) {
+            CHECK(glm::length(f.evalDirection) == doctest::Approx(1.0f));
+            CHECK(glm::dot(f.evalDirection, glm::vec3(kAxes[size_t(a)])) > 0.8f);
+        }
+}
+
+TEST_CASE("gi reference: injection shifts half a cell along the normal and toward the light") {
+    VolumeGrid grid{{0, 0, 0}, 1.0f, 8};
+    glm::ivec3 cell;
+    // A floor surfel at y = 2.0 (on a cell border) facing up, lit from above: lands above the floor.
+    REQUIRE(injectionCell(grid, {{3.5f, 2.0f, 3.5f}, {0, 1, 0}, {1, 1, 1}}, {0, -1, 0}, cell));
+    CHECK(cell == glm::ivec3(3, 3, 3));
+    // A wall surfel at x = 4 facing -x, lit from above: half a cell into the room and half a cell up.
+    REQUIRE(injectionCell(grid, {{4.0f, 2.5f, 2.5f}, {-1, 0, 0}, {1, 1, 1}}, {0, -1, 0}, cell));
+    CHECK(cell == glm::ivec3(3, 3, 2));
+    CHECK_FALSE(injectionCell(grid, {{9.0f, 2.5f, 2.5f}, {1, 0, 0}, {1, 1, 1}}, {0, -1, 0}, cell));
+    ShVolume v(8);
+    injectReference(v, grid, {{{3.5f, 2.0f, 3.5f}, {0, 1, 0}, {2.0f, 1.0f, 0.0f}}}, {0, -1, 0});
+    const ShCell& c = v.at(3, 3, 3);
+    CHECK(c.r.x == doctest::Approx(2.0f / kPi * kCosLobeC0));
+    CHECK(c.r.y == doctest::Approx(2.0f / kPi * kCosLobeC1));  // the y coefficient carries the normal
+    CHECK(c.g.x == doctest::Approx(1.0f / kPi * kCosLobeC0));
+    CHECK(c.b.x == 0.0f);
+    // Total flux: 4 pi Y00 c0 = 2.0 watts of red.
+    CHECK(4.0f * kPi * kShY0 * v.totalL0().r == doctest::Approx(2.0f));
+}
+
+TEST_CASE("gi reference: a single VPL spreads symmetrically about its axis") {
+    VolumeGrid grid{{0, 0, 0}, 1.0f, 17};
+    ShVolume v(17);
+    injectReference(v, grid, {{{8.5f, 7.6f, 8.5f}, {0, 1, 0}, {1, 1, 1}}}, {0, -1, 0});
+    REQUIRE(v.at(8, 8, 8).r.x > 0.0f);
+    const ShVolume out = propagateReference(v, 6);
+    float worst = 0.0f, peak = 0.0f;
+    for (uint32_t z = 0; z < 17; ++z)
+        for (uint32_t y = 0; y < 17; ++y)
+            for (uint32_t x = 0; x < 17; ++x) {
+                const float e = out.at(x, y, z).r.x;
+                peak = std::max(peak, e);
+                // Mirror in x, mirror in z and the 90-degree turn about y all leave the volume unchanged.
+                worst = std::max(worst, std::fabs(e - out.at(16 - x, y, z).r.x));
+                worst = std::max(worst, std::fabs(e - out.at(x, y, 16 - z).r.x));
+                worst = std::max(worst, std::fabs(e - out.at(z, y, x).r.x));
+            }
+    CHECK(worst <= 1e-6f * peak);
+    // More light goes where the surfel faces than behind it.
+    CHECK(out.at(8, 11, 8).r.x > 4.0f * out.at(8, 5, 8).r.x);
+}
+
+TEST_CASE("gi reference: energy per iteration follows the documented curve") {
+    const uint32_t n = 32;
+    ShVolume v(n);
+    injectReference(v, {{0, 0, 0}, 1.0f, n}, {{{16.5f, 15.6f, 16.5f}, {0, 1, 0}, {1, 1, 1}}}, {0, -1, 0});
+    const float injected = v.totalL0().r;
+    std::vector<glm::vec3> perIteration;
+    const ShVolume out = propagateReference(v, 12, &perIteration);
+    REQUIRE(perIteration.size() == 12);
+    // First step: +13.8% from clamping the L1 lobe's back side.
+    CHECK(perIteration[0].r / injected == doctest::Approx(1.1382).epsilon(0.002));
+    // Then constant to +0.0019% per step while nothing reaches the border (12 < 15 cells away).
+    for (size_t i = 1; i < perIteration.size(); ++i)
+        CHECK(perIteration[i].r / perIteration[i - 1].r == doctest::Approx(1.0000191).epsilon(2e-6));
+    // Accumulated: the injected volume plus every iteration, nothing propagated twice.
+    float sum = injected;
+    for (const glm::vec3& e : perIteration) sum += e.r;
+    CHECK(out.totalL0().r == doctest::Approx(sum).epsilon(1e-5));
+
+    // Near a border the loss shows: light from a cell next to the -x face leaves the volume.
+    ShVolume edge(8);
+    edge.at(0, 4, 4).r = {1, 0, 0, 0};
+    std::vector<glm::vec3> edgeCurve;
+    propagateReference(edge, 4, &edgeCurve);
+    for (size_t i = 1; i < edgeCurve.size(); ++i) CHECK(edgeCurve[i].r < edgeCurve[i - 1].r);
+}
+
+TEST_CASE("gi reference: propagation is linear in the SH coefficients of a channel") {
+    ShVolume a(6), b(6), ab(6);
+    a.at(2, 2, 2).r = {1.0f, 0.3f, -0.2f, 0.1f};
+    b.at(3, 2, 2).r = {0.5f, -0.1f, 0.2f, 0.4f};
+    ab.at(2, 2, 2).r = a.at(2, 2, 2).r;
+    ab.at(3, 2, 2).r = b.at(3, 2, 2).r;
+    // The clamp makes propagation non-linear only where a neighbour's intensity goes negative;
+    // with one source per cell the step is additive over sources in different cells.
+    const ShVolume pa = propagateStep(a), pb = propagateStep(b), pab = propagateStep(ab);
+    for (size_t i = 0; i < pab.cells().size(); ++i)
+        for (int c = 0; c < 4; ++c)
+            REQUIRE(pab.cells()[i].r[c] == doctest::Approx(pa.cells()[i].r[c] + pb.cells()[i].r[c]).epsilon(1e-5));
+}
