@@ -343,6 +343,7 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         cmd.endMarker();
         work(fullscreenWork(pixels, 1, 20, 8 + 4));
     }
+    if (indirect) indirect->renderDebugOverlay(cmd, camera, targets_.output);
 }
 
 } // namespace lpv::engine

@@ -26,6 +26,10 @@ public:
     // into `target`, which the call must fully overwrite.
     virtual void renderIndirect(rhi::CommandList& cmd, const CameraMatrices& camera, const GBufferView& gbuffer,
                                 rhi::TextureHandle target, FrameProfiler* profiler) = 0;
+    // Draws debug views over the tone-mapped output (RGBA8 sRGB color target); none by default.
+    virtual void renderDebugOverlay(rhi::CommandList& cmd, const CameraMatrices& camera, rhi::TextureHandle output) {
+        (void)cmd, (void)camera, (void)output;
+    }
 };
 
 } // namespace lpv::engine

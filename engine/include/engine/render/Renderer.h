@@ -52,7 +52,10 @@ public:
     // Uploads the scene (replacing the previous one) and takes its first directional light as the sun.
     void setScene(const Scene& scene);
     SunLight& sun() { return sun_; }
+    const SunLight& sun() const { return sun_; }
     const Bounds& sceneBounds() const { return bounds_; }
+    // The uploaded scene (null before setScene()); the GI draws its reflective shadow maps from it.
+    const GpuScene* scene() const { return scene_.get(); }
 
     // Records one frame's passes into `cmd`. Reads render.* settings.
     void render(rhi::CommandList& cmd, const CameraMatrices& camera, const Config& config, FrameProfiler* profiler,

@@ -1,0 +1,19 @@
+// Work counts of the GI passes, derived from the same sizes the passes dispatch with, for the
+// frame profiler's console cost model (engine/profiler/CostModel.h).
+#pragma once
+
+#include "engine/profiler/WorkCounts.h"
+#include "gi/LpvSettings.h"
+
+#include <cstdint>
+
+namespace lpv::gi {
+
+engine::WorkCounts rsmWork(const LpvSettings& s, uint64_t sceneTriangles);
+engine::WorkCounts vplClusterWork(const LpvSettings& s);
+engine::WorkCounts injectWork(const LpvSettings& s);
+// All iterations of the shipped kernel.
+engine::WorkCounts propagateWork(const LpvSettings& s);
+engine::WorkCounts lookupWork(const LpvSettings& s, uint64_t pixels);
+
+} // namespace lpv::gi

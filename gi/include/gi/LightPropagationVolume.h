@@ -1,0 +1,65 @@
+// Dynamic diffuse GI with a light propagation volume (Kaplanyan 2009; Kaplanyan & Dachsbacher
+// 2010), plugged into the renderer as its IndirectLighting:
+//   rsm -> vpl (intensity-aware clustering) -> inject -> propagate -> lookup (+ debug views)
+// each a profiler scope under "gi" with its work counts. The volume follows the camera, snapped to
+// whole cells and kept inside the scene. Settings are read every frame; a change of size or format
+// remakes the resources on that frame (not a steady-state frame), after checking the platform
+// profile's budget.
+#pragma once
+
+#include "engine/render/IndirectLighting.h"
+#include "engine/render/Renderer.h"
+#include "gi/LpvReference.h"
+#include "gi/LpvSettings.h"
+#include "gi/LpvVolumes.h"
+#include "gi/ReflectiveShadowMap.h"
+#include "platforms/PlatformProfile.h"
+
+#include <memory>
+
+namespace lpv::gi {
+
+// Where the volume sits this frame: centred ahead of the camera, snapped to whole cells, and
+// pushed inside the scene bounds (centred on the scene on axes where the scene is smaller).
+VolumeGrid placeVolume(const LpvSettings& settings, glm::vec3 cameraPosition, glm::vec3 cameraForward,
+                       const engine::Bounds& sceneBounds);
+
+class LightPropagationVolume final : public engine::IndirectLighting {
+public:
+    LightPropagationVolume(rhi::Device& device, platforms::PlatformProfile profile);
+    ~LightPropagationVolume() override;
+
+    // Reads gi.* and prepares the frame: checks the budget (throws GiBudgetError or
+    // engine::ConfigError; the previous configuration stays), remakes resources on a change,
+    // places the volume.
+    void update(const engine::Config& config, const engine::Renderer& renderer, const engine::CameraMatrices& camera);
+
+    void renderIndirect(rhi::CommandList& cmd, const engine::CameraMatrices& camera, const engine::GBufferView& gbuffer,
+                        rhi::TextureHandle target, engine::FrameProfiler* profiler) override;
+    void renderDebugOverlay(rhi::CommandList& cmd, const engine::CameraMatrices& camera, rhi::TextureHandle output) override;
+
+    const LpvSettings& settings() const { return settings_; }
+    const VolumeGrid& grid() const { return grid_; }
+    const LpvVolumes* volumes() const { return volumes_.get(); }
+    const ReflectiveShadowMap* rsm() const { return rsm_.get(); }
+    rhi::BufferHandle vplBuffer() const { return vpls_; }
+
+private:
+    void remake(const LpvSettings& settings);
+    void release();
+
+    rhi::Device& device_;
+    platforms::PlatformProfile profile_;
+    LpvSettings settings_;
+    bool made_ = false;
+    VolumeGrid grid_;
+    const engine::Renderer* renderer_ = nullptr;
+    std::unique_ptr<ReflectiveShadowMap> rsm_;
+    std::unique_ptr<LpvVolumes> volumes_;
+    rhi::BufferHandle vpls_;
+    rhi::ComputePipelineHandle clusterPipeline_;
+    rhi::GraphicsPipelineHandle lookupPipeline_, slicePipeline_, pointsPipeline_;
+    rhi::SamplerHandle pointSampler_, linearSampler_;
+};
+
+} // namespace lpv::gi

@@ -1,0 +1,41 @@
+// The gi.* settings, read once per frame into a plain struct. Declared in LpvSettings.cpp; every
+// one can change while the game runs (volumes are remade on the next frame when a size changes).
+#pragma once
+
+#include "engine/config/Config.h"
+#include "rhi/Format.h"
+
+#include <cstdint>
+#include <string>
+
+namespace lpv::gi {
+
+enum class ShFormat { Rgba8, Rgba16f, Rgba32f };
+enum class GiDebugView { None, VolumeSlice, Vpls, Indirect };
+
+struct LpvSettings {
+    bool enabled = false;
+    uint32_t gridSize = 32;
+    float cellSize = 0.25f;
+    uint32_t iterations = 8;
+    uint32_t rsmSize = 256;
+    uint32_t vplCount = 4096;
+    float intensity = 1.0f;
+    ShFormat shFormat = ShFormat::Rgba16f;
+    GiDebugView debugView = GiDebugView::None;
+    uint32_t debugSlice = 16;
+    float rgba8Range = 2.0f;
+    bool damping = true;
+
+    // Side of the VPL grid the RSM is clustered into (sqrt of vplCount).
+    uint32_t vplGridSide() const;
+    bool operator==(const LpvSettings&) const = default;
+};
+
+// Reads and cross-checks the settings (vpl count against RSM size). Throws engine::ConfigError.
+LpvSettings readLpvSettings(const engine::Config& config);
+
+std::string_view shFormatName(ShFormat f);
+rhi::Format shTextureFormat(ShFormat f);
+
+} // namespace lpv::gi

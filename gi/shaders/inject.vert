@@ -1,0 +1,39 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Injection: one point per VPL, drawn once per volume slice; VPLs whose cell is in another slice
+// are moved outside the clip volume. The cell follows the half-cell shifts along the normal and
+// toward the light (gi/LpvReference.cpp does the same on the CPU).
+#include "lpv_common.glsl"
+
+struct Vpl {
+    vec4 position;
+    vec4 normal;
+    vec4 flux;
+};
+
+layout(binding = 0, std140) uniform Inject {
+    vec4 gridOrigin;      // xyz: corner of cell 0; w: cell size
+    vec4 lightDirection;  // xyz: where the light travels
+    vec4 intensity;       // x: gi.intensity
+    ivec4 grid;           // x: cells per axis, y: slice being drawn, z: VPL count
+} inject;
+layout(binding = 1, std430) readonly buffer Vpls {
+    Vpl vpls[];
+};
+
+layout(location = 0) flat out vec3 vNormal;
+layout(location = 1) flat out vec3 vFlux;
+
+void main() {
+    Vpl v = vpls[gl_VertexIndex];
+    float cell = inject.gridOrigin.w;
+    vec3 p = v.position.xyz + 0.5 * cell * (v.normal.xyz - inject.lightDirection.xyz);
+    ivec3 c = ivec3(floor((p - inject.gridOrigin.xyz) / cell));
+    int n = inject.grid.x;
+    bool inside = v.position.w > 0.0 && all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n))) &&
+                  c.z == inject.grid.y;
+    vNormal = v.normal.xyz;
+    vFlux = v.flux.rgb * inject.intensity.x;
+    gl_PointSize = 1.0;
+    gl_Position = inside ? vec4((vec2(c.xy) + 0.5) / float(n) * 2.0 - 1.0, 0.0, 1.0) : vec4(-4.0, -4.0, 0.0, 1.0);
+}

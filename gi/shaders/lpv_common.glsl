@@ -1,0 +1,15 @@
+// Shared by the LPV shaders: SH L1 basis and cosine lobe (gi/ShBasis.h holds the same constants)
+// and the volume's placement.
+#ifndef LPV_LPV_COMMON_GLSL
+#define LPV_LPV_COMMON_GLSL
+
+const float SH_Y0 = 0.282094792;
+const float SH_Y1 = 0.488602512;
+const float SH_COS_C0 = 0.886226925;
+const float SH_COS_C1 = 1.023326708;
+const float PI = 3.14159265358979;
+
+vec4 shBasis(vec3 w) { return vec4(SH_Y0, SH_Y1 * w.y, SH_Y1 * w.z, SH_Y1 * w.x); }
+vec4 shCosineLobe(vec3 n) { return vec4(SH_COS_C0, SH_COS_C1 * n.y, SH_COS_C1 * n.z, SH_COS_C1 * n.x); }
+
+#endif

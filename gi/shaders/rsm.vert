@@ -1,0 +1,27 @@
+#version 450
+// Reflective shadow map: the scene from the sun, fitted to the light volume.
+layout(location = 0) in vec3 inPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inUv;
+
+layout(binding = 0, std140) uniform Rsm {
+    mat4 lightViewProjection;
+    vec4 lightDirection;  // xyz: where the light travels
+    vec4 fluxScale;       // rgb: sun irradiance x texel area (watts per texel at albedo 1)
+} rsm;
+layout(binding = 1, std140) uniform Draw {
+    mat4 model;
+    mat4 normalMatrix;
+    vec4 baseColor;
+    vec4 emissive;
+    vec4 material;
+} draw;
+
+layout(location = 0) out vec3 vNormal;
+layout(location = 1) out vec2 vUv;
+
+void main() {
+    vNormal = mat3(draw.normalMatrix) * inNormal;
+    vUv = inUv;
+    gl_Position = rsm.lightViewProjection * draw.model * vec4(inPosition, 1.0);
+}

@@ -1,0 +1,22 @@
+#version 450
+// Debug view: every VPL as a point at its position, coloured by its normalised flux.
+struct Vpl {
+    vec4 position;
+    vec4 normal;
+    vec4 flux;
+};
+layout(binding = 0, std140) uniform Points {
+    mat4 viewProjection;
+} points;
+layout(binding = 1, std430) readonly buffer Vpls {
+    Vpl vpls[];
+};
+layout(location = 0) flat out vec3 vColor;
+
+void main() {
+    Vpl v = vpls[gl_VertexIndex];
+    float m = max(max(v.flux.r, v.flux.g), max(v.flux.b, 1e-8));
+    vColor = v.flux.rgb / m;
+    gl_PointSize = 1.0;
+    gl_Position = v.position.w > 0.0 ? points.viewProjection * vec4(v.position.xyz, 1.0) : vec4(-4.0, -4.0, 0.0, 1.0);
+}

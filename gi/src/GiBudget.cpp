@@ -1,0 +1,54 @@
+// GI resource plan and its check against the platform profile.
+#include "gi/GiBudget.h"
+
+#include "rhi/Format.h"
+
+#include <cstdio>
+
+namespace lpv::gi {
+
+std::vector<GiResource> giResources(const LpvSettings& s) {
+    const uint64_t rsm = uint64_t(s.rsmSize) * s.rsmSize;
+    const uint64_t cells = uint64_t(s.gridSize) * s.gridSize * s.gridSize;
+    const uint64_t shBytes = rhi::bytesPerPixel(shTextureFormat(s.shFormat));
+    // Injection blends in float: 32-bit floats for rgba32f volumes, half floats otherwise.
+    const uint64_t injectBytes = s.shFormat == ShFormat::Rgba32f ? 16 : 8;
+    return {
+        {"rsm depth", "gi.rsm", rsm * 4},
+        {"rsm normal", "gi.rsm", rsm * 8},
+        {"rsm flux", "gi.rsm", rsm * 8},
+        {"vpl buffer", "gi.vpl", uint64_t(s.vplCount) * 48},
+        {"injection volume (3 SH textures)", "gi.lpv", 3 * cells * injectBytes},
+        {"propagation ping (3 SH textures)", "gi.lpv", 3 * cells * shBytes},
+        {"propagation pong (3 SH textures)", "gi.lpv", 3 * cells * shBytes},
+        {"accumulation (3 SH textures)", "gi.lpv", 3 * cells * shBytes},
+    };
+}
+
+uint64_t giBytes(const std::vector<GiResource>& resources) {
+    uint64_t sum = 0;
+    for (const GiResource& r : resources) sum += r.bytes;
+    return sum;
+}
+
+void checkGiBudget(const LpvSettings& s, const platforms::PlatformProfile& profile) {
+    if (!profile.allowsShFormat(shFormatName(s.shFormat))) {
+        std::string allowed;
+        for (const auto& f : profile.shFormats) allowed += (allowed.empty() ? "" : ", ") + f;
+        throw GiBudgetError("gi.sh_format '" + std::string(shFormatName(s.shFormat)) + "' is not allowed by platform '" +
+                            profile.name + "' (allowed: " + allowed + ")");
+    }
+    if (s.gridSize > profile.maxVolumeSize)
+        throw GiBudgetError("gi.grid_size " + std::to_string(s.gridSize) + " exceeds platform '" + profile.name +
+                            "' limit of " + std::to_string(profile.maxVolumeSize));
+    const auto resources = giResources(s);
+    const uint64_t total = giBytes(resources);
+    if (total <= profile.giMemoryBudgetBytes) return;
+    std::string message = "GI configuration needs " + std::to_string(total) + " bytes, over platform '" + profile.name +
+                          "' GI memory budget of " + std::to_string(profile.giMemoryBudgetBytes) + " bytes by " +
+                          std::to_string(total - profile.giMemoryBudgetBytes) + ":";
+    for (const GiResource& r : resources) message += "\n  " + r.category + " " + r.name + ": " + std::to_string(r.bytes) + " bytes";
+    throw GiBudgetError(message);
+}
+
+} // namespace lpv::gi
