@@ -13,6 +13,8 @@
 #include "engine/render/CameraPath.h"
 #include "engine/render/Renderer.h"
 #include "engine/scene/SceneLoading.h"
+#include "gi/GiBudget.h"
+#include "gi/LightPropagationVolume.h"
 #include "platforms/Clock.h"
 #include "platforms/Log.h"
 #include "platforms/Window.h"
@@ -93,6 +95,11 @@ int runGame(const GameOptions& opt) {
     engine::Renderer renderer(*device, width, height);
     renderer.setScene(scene);
     engine::FrameProfiler profiler(*device, profile);
+    gi::LightPropagationVolume lpv(*device, profile);
+    // The gi.* values of the last configuration that fitted the budget, restored when a change
+    // made while running does not fit.
+    std::vector<std::pair<const engine::SettingDecl*, engine::SettingValue>> lastGoodGi;
+    bool firstFrame = true;
     const engine::Camera start = defaultCamera(scene);
     FreeCamera freeCamera(start);
     std::unique_ptr<Console> console;
@@ -121,9 +128,14 @@ int runGame(const GameOptions& opt) {
             window->framebufferSize(fw, fh);
             if (fw == 0 || fh == 0) continue;  // minimised
         }
-        for (const engine::SettingDecl* changed : config.applyPending())
+        const std::vector<const engine::SettingDecl*> changes = config.applyPending();
+        for (const engine::SettingDecl* changed : changes) {
+            // The GI's "indirect" view is the renderer's indirect view.
+            if (changed->name == "gi.debug_view" && std::get<std::string>(config.value(*changed)) == "indirect")
+                config.set(*engine::SettingRegistry::global().find("render.debug_view"), std::string("indirect"), changed->name);
             log::info("game: " + changed->name + " = " + changed->format(config.value(*changed)) +
                       (changed->apply == engine::Apply::Restart ? " (takes effect after a restart)" : ""));
+        }
 
         engine::Camera cam = freeCamera.camera();
         if (!opt.cameraPath.empty())
@@ -131,10 +143,26 @@ int runGame(const GameOptions& opt) {
         else if (window)
             freeCamera.update(*window, dt, float(config.get(kCameraSpeed))), cam = freeCamera.camera();
         const engine::CameraMatrices matrices = engine::cameraMatrices(cam, float(width) / float(height));
+        try {
+            lpv.update(config, renderer, matrices);
+        } catch (const std::runtime_error& e) {
+            // GiBudgetError or ConfigError: at startup the configuration is refused outright; while
+            // running the change is undone.
+            if (firstFrame) throw engine::ConfigError("gi settings", 0, e.what());
+            log::error(std::string("game: GI change refused: ") + e.what());
+            for (const auto& [decl, value] : lastGoodGi) config.stage(*decl, value, "restored");
+            continue;
+        }
+        if (firstFrame || !changes.empty()) {
+            lastGoodGi.clear();
+            for (const engine::SettingDecl* d : engine::SettingRegistry::global().all())
+                if (d->name.starts_with("gi.")) lastGoodGi.emplace_back(d, config.value(*d));
+        }
+        firstFrame = false;
 
         rhi::CommandList& cmd = device->beginFrame();
         profiler.beginFrame(cmd);
-        renderer.render(cmd, matrices, config, &profiler);
+        renderer.render(cmd, matrices, config, &profiler, lpv.settings().enabled ? &lpv : nullptr);
         profiler.endFrame(cmd);
         device->endFrame(window ? renderer.output() : rhi::TextureHandle{});
     }
