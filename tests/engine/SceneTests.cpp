@@ -116,7 +116,7 @@ TEST_CASE("scenes: the Cornell box") {
     CHECK(s.materials[2].baseColor.g > 3 * s.materials[2].baseColor.r);  // green wall
     REQUIRE(s.lights.size() == 1);
     CHECK(s.lights[0].type == LightType::Directional);
-    CHECK(s.lights[0].direction.y < -0.9f);
+    CHECK(s.lights[0].direction.y < -0.85f);
     REQUIRE(s.camera.has_value());
     CHECK(s.bounds.min.y == doctest::Approx(-0.1f));
     CHECK(s.bounds.max.y == doctest::Approx(5.6f));

@@ -52,7 +52,9 @@ Scene buildCornellBox() {
     Light sun;
     sun.name = "sun";
     sun.type = LightType::Directional;
-    sun.direction = glm::normalize(glm::vec3(0.25f, -1.0f, -0.15f));
+    // Through the ceiling opening onto the floor by the red wall and the foot of that wall, so the
+    // red wall reflects light (its colour bleeds onto the floor) and the boxes stay out of the beam.
+    sun.direction = glm::normalize(glm::vec3(-0.45f, -1.0f, 0.25f));
     sun.color = {1.0f, 0.95f, 0.88f};
     sun.intensity = 20.0f;
     scene.lights.push_back(sun);

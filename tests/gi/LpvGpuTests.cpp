@@ -1,0 +1,212 @@
+// The LPV on each backend: GPU injection and propagation against the CPU reference, colour
+// bleeding in the Cornell box, GI off, GL/Vulkan agreement, and refused configurations.
+#include "../render/CornellFrame.h"
+#include "../support/TestDevice.h"
+
+#include "engine/config/Config.h"
+#include "gi/GiBudget.h"
+#include "gi/LpvReference.h"
+#include "gi/LpvVolumes.h"
+#include "platforms/PlatformProfile.h"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+using namespace lpv;
+using namespace lpv::test;
+
+namespace {
+
+struct GpuVpl {
+    glm::vec4 position, normal, flux;
+};
+
+// A deterministic scatter of VPLs inside a 16^3 volume of 0.5 m cells.
+std::vector<gi::Vpl> testVpls() {
+    std::vector<gi::Vpl> v;
+    uint32_t state = 12345;
+    const auto next = [&] {
+        state = state * 1664525u + 1013904223u;
+        return float(state >> 8) / float(1u << 24);
+    };
+    for (int i = 0; i < 48; ++i) {
+        glm::vec3 n(next() * 2 - 1, next() * 2 - 1, next() * 2 - 1);
+        if (glm::length(n) < 0.1f) n = {0, 1, 0};
+        v.push_back({{1.0f + next() * 6.0f, 1.0f + next() * 6.0f, 1.0f + next() * 6.0f}, glm::normalize(n),
+                     {next() * 2.0f, next() * 2.0f, next() * 2.0f}});
+    }
+    return v;
+}
+
+// Largest difference over all coefficients, relative to the largest reference coefficient.
+float relativeError(const gi::ShVolume& ref, const std::array<Image, 3>& gpu, bool encoded, float range) {
+    float worst = 0.0f, peak = 0.0f;
+    for (uint32_t z = 0; z < ref.size(); ++z)
+        for (uint32_t y = 0; y < ref.size(); ++y)
+            for (uint32_t x = 0; x < ref.size(); ++x) {
+                const gi::ShCell& c = ref.at(x, y, z);
+                const glm::vec4 want[3] = {c.r, c.g, c.b};
+                for (int ch = 0; ch < 3; ++ch) {
+                    glm::vec4 got = gpu[size_t(ch)].at(x, y, z);
+                    if (encoded) got = (got * 2.0f - 1.0f) * range;
+                    for (int k = 0; k < 4; ++k) {
+                        worst = std::max(worst, std::fabs(got[k] - want[ch][k]));
+                        peak = std::max(peak, std::fabs(want[ch][k]));
+                    }
+                }
+            }
+    return worst / peak;
+}
+
+} // namespace
+
+TEST_CASE("gi: GPU injection and propagation match the CPU reference") {
+    struct Case {
+        gi::ShFormat format;
+        float injectTolerance, propagateTolerance;  // relative to the largest coefficient
+    };
+    // rgba32f: float rounding only. rgba16f: 11-bit mantissas, rounded at every iteration.
+    // rgba8: range-encoded 8 bits, half a step of 2 x range / 255 per store.
+    const Case cases[] = {{gi::ShFormat::Rgba32f, 1e-4f, 1e-4f},
+                          {gi::ShFormat::Rgba16f, 2e-3f, 4e-3f},
+                          {gi::ShFormat::Rgba8, 2e-3f, 0.05f}};
+    const std::vector<gi::Vpl> vpls = testVpls();
+    const gi::VolumeGrid grid{{0.0f, 0.0f, 0.0f}, 0.5f, 16};
+    const glm::vec3 light(0.0f, -1.0f, 0.0f);
+    gi::ShVolume injected(16);
+    gi::injectReference(injected, grid, vpls, light);
+    const gi::ShVolume propagated = gi::propagateReference(injected, 4);
+    for (const auto& backend : selectedBackends()) {
+        for (const Case& c : cases) {
+            SUBCASE((backend.name + " " + std::string(gi::shFormatName(c.format))).c_str()) {
+                TestDevice device(backend);
+                gi::LpvSettings s;
+                s.gridSize = 16;
+                s.shFormat = c.format;
+                // Range of the rgba8 encoding: the largest coefficient the accumulation reaches.
+                s.rgba8Range = 1.05f * [&] {
+                    float m = 0;
+                    for (const gi::ShCell& cell : propagated.cells())
+                        for (int k = 0; k < 4; ++k)
+                            m = std::max({m, std::fabs(cell.r[k]), std::fabs(cell.g[k]), std::fabs(cell.b[k])});
+                    return m;
+                }();
+                std::vector<GpuVpl> gpuVpls;
+                for (const gi::Vpl& v : vpls) gpuVpls.push_back({glm::vec4(v.position, 1), glm::vec4(v.normal, 0), glm::vec4(v.flux, 0)});
+                const rhi::BufferHandle buffer = device->createBuffer(
+                    {gpuVpls.size() * sizeof(GpuVpl), rhi::kBufferStorage | rhi::kBufferTransfer, rhi::MemoryAccess::GpuOnly, "test vpls", "test"},
+                    gpuVpls.data());
+                {
+                    gi::LpvVolumes volumes(*device, s);
+                    rhi::CommandList& cmd = device->beginFrame();
+                    volumes.inject(cmd, buffer, uint32_t(vpls.size()), grid, light, 1.0f);
+                    volumes.propagate(cmd, 4);
+                    device->endFrame();
+                    device->waitIdle();
+                    std::array<Image, 3> inj, acc;
+                    for (int ch = 0; ch < 3; ++ch) {
+                        inj[size_t(ch)] = readImage(*device, volumes.injected()[size_t(ch)]);
+                        acc[size_t(ch)] = readImage(*device, volumes.accumulated()[size_t(ch)]);
+                    }
+                    const float injErr = relativeError(injected, inj, false, 0);
+                    const float accErr = relativeError(propagated, acc, volumes.encoded(), s.rgba8Range);
+                    MESSAGE(backend.name << " " << gi::shFormatName(c.format) << ": injection error " << injErr
+                                         << ", after 4 iterations " << accErr << " (relative to the largest coefficient)");
+                    CHECK(injErr <= c.injectTolerance);
+                    CHECK(accErr <= c.propagateTolerance);
+                }
+                device->destroy(buffer);
+                device.expectSilent();
+            }
+        }
+    }
+}
+
+TEST_CASE("gi: Cornell box colour bleeding, and nothing when GI is off") {
+    const std::vector<std::string> on = {"gi.enabled=true", "render.debug_view=indirect", "gi.cell_size=0.2",
+                                         "render.ssao=false"};
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            // The default sun lights the floor by the red wall and the wall's foot.
+            const CornellFrame red = renderCornell(*device, on);
+            // Mirrored in x, it lights the green side instead.
+            const glm::vec3 d = red.scene.lights[0].direction;
+            const CornellFrame green = renderCornell(*device, on, glm::vec3(-d.x, d.y, d.z));
+            uint32_t rx = 0, ry = 0, gx = 0, gy = 0;
+            REQUIRE(red.pixelOf({-2.2f, 0.0f, 2.0f}, rx, ry));
+            REQUIRE(green.pixelOf({2.2f, 0.0f, 2.0f}, gx, gy));
+            const glm::vec4 nearRed = red.hdr.at(rx, ry), nearGreen = green.hdr.at(gx, gy);
+            MESSAGE(backend.name << ": indirect on the floor by the red wall " << describe(nearRed)
+                                 << ", mirrored by the green wall " << describe(nearGreen));
+            CHECK(nearRed.r > 1.2f * nearRed.g);
+            CHECK(nearGreen.g > 1.2f * nearGreen.r);
+            CHECK(luminance(nearRed) > 0.0f);
+
+            const CornellFrame off = renderCornell(*device, {"gi.enabled=false", "render.debug_view=indirect"});
+            float maxIndirect = 0.0f;
+            for (const glm::vec4& t : off.hdr.texels) maxIndirect = std::max({maxIndirect, t.r, t.g, t.b});
+            CHECK(maxIndirect == 0.0f);
+            device.expectSilent();
+        }
+    }
+}
+
+TEST_CASE("gi: GL and Vulkan compute the same indirect light") {
+    const std::vector<std::string> on = {"gi.enabled=true", "render.debug_view=indirect", "gi.cell_size=0.2"};
+    CornellFrame gl, vk;
+    {
+        TestDevice device(backendByName("gl-egl"));
+        gl = renderCornell(*device, on);
+        device.expectSilent();
+    }
+    {
+        TestDevice device(backendByName("vulkan"));
+        vk = renderCornell(*device, on);
+        device.expectSilent();
+    }
+    float peak = 0.0f;
+    for (const glm::vec4& t : vk.hdr.texels) peak = std::max({peak, t.r, t.g, t.b});
+    REQUIRE(peak > 0.0f);
+    // Tolerance: 1% of the brightest indirect value per channel, on 99% of the pixels.
+    const ImageDifference d = compareImages(gl.hdr, vk.hdr, 0.01f * peak);
+    MESSAGE("indirect GL vs Vulkan: max difference " << d.maxAbs << " (peak " << peak << "), " << d.texelsOver << " pixels over");
+    CHECK(d.texelsOver <= gl.hdr.texels.size() / 100);
+}
+
+TEST_CASE("gi: configurations that do not fit are refused with a clear message") {
+    gi::LpvSettings s;
+    s.gridSize = 64;
+    s.shFormat = gi::ShFormat::Rgba16f;
+    const auto x360 = platforms::loadPlatformProfile("x360");
+    std::string message;
+    try {
+        gi::checkGiBudget(s, x360);
+    } catch (const gi::GiBudgetError& e) {
+        message = e.what();
+    }
+    CHECK(message == "gi.sh_format 'rgba16f' is not allowed by platform 'x360' (allowed: rgba8)");
+    s.shFormat = gi::ShFormat::Rgba8;
+    message.clear();
+    try {
+        gi::checkGiBudget(s, x360);
+    } catch (const gi::GiBudgetError& e) {
+        message = e.what();
+    }
+    // 64^3 fits the grid limit but not the 3 MiB budget: every resource is listed with its bytes.
+    CHECK(message.find("over platform 'x360' GI memory budget of 3145728 bytes by") != std::string::npos);
+    CHECK(message.find("gi.lpv accumulation (3 SH textures): 3145728 bytes") != std::string::npos);
+    CHECK(message.find("gi.rsm rsm depth: 262144 bytes") != std::string::npos);
+    // The CryEngine 3 console setup fits.
+    s.gridSize = 32;
+    s.rsmSize = 128;
+    s.vplCount = 1024;
+    CHECK_NOTHROW(gi::checkGiBudget(s, x360));
+    // Grid size out of range is a config error.
+    engine::Config config;
+    CHECK_THROWS_WITH_AS(config.applyOverride("gi.grid_size=128"), "--set: 'gi.grid_size' = '128': expected an integer in [16, 64]",
+                         engine::ConfigError);
+    config.applyOverride("gi.vpl_count=1000");
+    CHECK_THROWS_AS(gi::readLpvSettings(config), engine::ConfigError);
+}

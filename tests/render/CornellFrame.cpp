@@ -1,0 +1,58 @@
+// Cornell box frames for the render and GI tests.
+#include "CornellFrame.h"
+
+#include "engine/config/Config.h"
+#include "engine/render/Renderer.h"
+#include "engine/scene/BuiltinScenes.h"
+#include "gi/LightPropagationVolume.h"
+#include "platforms/PlatformProfile.h"
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+
+namespace lpv::test {
+
+float luminance(glm::vec4 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
+bool CornellFrame::pixelOf(glm::vec3 world, uint32_t& x, uint32_t& y) const {
+    const glm::vec4 clip = camera.viewProjection * glm::vec4(world, 1.0f);
+    if (clip.w <= 0.0f) return false;
+    const glm::vec3 ndc = glm::vec3(clip) / clip.w;
+    if (std::fabs(ndc.x) >= 1.0f || std::fabs(ndc.y) >= 1.0f) return false;
+    x = uint32_t((ndc.x * 0.5f + 0.5f) * float(width));
+    y = uint32_t((ndc.y * 0.5f + 0.5f) * float(height));
+    // Visible when the depth buffer holds (nearly) this point's depth.
+    return std::fabs(depth.at(x, y).x - ndc.z) < 2e-3f;
+}
+
+CornellFrame renderCornell(rhi::Device& device, const std::vector<std::string>& settings,
+                           std::optional<glm::vec3> sunDirection, uint32_t width, uint32_t height, int frames) {
+    engine::Config config;
+    for (const std::string& s : settings) config.applyOverride(s, "test");
+    CornellFrame f;
+    f.scene = engine::buildCornellBox();
+    f.width = width;
+    f.height = height;
+    {
+        engine::Renderer renderer(device, width, height);
+        renderer.setScene(f.scene);
+        if (sunDirection) renderer.sun().direction = glm::normalize(*sunDirection);
+        gi::LightPropagationVolume lpv(device, platforms::loadPlatformProfile("pc"));
+        f.camera = engine::cameraMatrices(*f.scene.camera, float(width) / float(height));
+        for (int i = 0; i < frames; ++i) {
+            lpv.update(config, renderer, f.camera);
+            rhi::CommandList& cmd = device.beginFrame();
+            // The LPV is always the indirect provider here, so GI off means no indirect light at all.
+            renderer.render(cmd, f.camera, config, nullptr, &lpv);
+            device.endFrame();
+        }
+        device.waitIdle();
+        f.output = readImage(device, renderer.output());
+        f.hdr = readImage(device, renderer.hdr());
+        f.depth = readImage(device, renderer.gbuffer().depth);
+    }
+    return f;
+}
+
+} // namespace lpv::test

@@ -1,0 +1,38 @@
+// Renders the Cornell box through the engine's renderer (and the LPV when gi.enabled) on a test
+// device and reads back what the render tests look at.
+#pragma once
+
+#include "../support/Image.h"
+
+#include "engine/render/CameraMatrices.h"
+#include "engine/scene/Scene.h"
+#include "rhi/Device.h"
+
+#include <glm/vec3.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lpv::test {
+
+struct CornellFrame {
+    Image output;  // tone-mapped sRGB, as [0,1] floats of the stored bytes
+    Image hdr;     // linear HDR before tone mapping (or the debug view)
+    Image depth;
+    engine::CameraMatrices camera;
+    engine::Scene scene;
+    uint32_t width = 0, height = 0;
+
+    // The pixel a world point lands on; false when off screen or hidden behind other geometry.
+    bool pixelOf(glm::vec3 world, uint32_t& x, uint32_t& y) const;
+};
+
+// `settings`: key=value overrides (e.g. "render.debug_view=ssao", "gi.enabled=true").
+CornellFrame renderCornell(rhi::Device& device, const std::vector<std::string>& settings,
+                           std::optional<glm::vec3> sunDirection = std::nullopt, uint32_t width = 320,
+                           uint32_t height = 240, int frames = 1);
+
+float luminance(glm::vec4 c);
+
+} // namespace lpv::test
