@@ -1,0 +1,297 @@
+// GI benchmark, two parts, every backend in one run (compare ratios, not absolute times: this
+// machine is noisy):
+//  1. Propagation kernels: the shipped kernel against the straightforward 5-face gather kept here
+//     as the baseline, 32^3 x 8 iterations, RGBA16F, same injected VPLs; median GPU time of each
+//     and the largest difference between their results.
+//  2. Frames: the Cornell box and the atrium at 1280x720 with GI on (32^3, 8 iterations) along a
+//     scripted camera; per-pass median GPU times from the frame profiler, GI share of the frame,
+//     memory by category, and the predicted Xbox 360 / PS3 GI time of the frame's work and of the
+//     CryEngine 3 console setup (32^3, 128^2 RSM, 6 iterations, RGBA8).
+//
+//   lpv_bench [--backends=vulkan,gl-egl,gl-osmesa] [--runs=N] [--frames=N] [--scenes=cornell,atrium]
+#include "BenchShaders.h"
+
+#include "engine/config/Config.h"
+#include "engine/profiler/CostModel.h"
+#include "engine/profiler/FrameProfiler.h"
+#include "engine/render/CameraPath.h"
+#include "engine/render/Renderer.h"
+#include "engine/scene/BuiltinScenes.h"
+#include "gi/GiWork.h"
+#include "gi/LightPropagationVolume.h"
+#include "gi/LpvVolumes.h"
+#include "platforms/Clock.h"
+#include "rhi/Device.h"
+#include "rhi/Error.h"
+
+#include <glm/gtc/packing.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace lpv;
+
+namespace {
+
+struct BenchBackend {
+    std::string name;
+    rhi::BackendKind kind;
+    rhi::GlHeadless gl = rhi::GlHeadless::EglSurfaceless;
+};
+
+double median(std::vector<double> v) {
+    if (v.empty()) return -1.0;
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+std::unique_ptr<rhi::Device> makeDevice(const BenchBackend& b) {
+    rhi::DeviceConfig c;
+    c.backend = b.kind;
+    c.glHeadless = b.gl;
+    c.allowFallback = false;
+    return rhi::createDevice(c);
+}
+
+struct GpuVpl {
+    glm::vec4 position, normal, flux;
+};
+
+std::vector<float> readVolume(rhi::Device& device, rhi::TextureHandle t) {
+    const rhi::TextureDesc& d = device.desc(t);
+    std::vector<uint16_t> half(size_t(d.width) * d.height * d.depthOrLayers * 4);
+    device.readTexture(t, 0, half.data(), half.size() * 2);
+    std::vector<float> out(half.size());
+    for (size_t i = 0; i < half.size(); ++i) out[i] = glm::unpackHalf1x16(half[i]);
+    return out;
+}
+
+void benchPropagation(const BenchBackend& b, int runs) {
+    using namespace rhi;
+    auto device = makeDevice(b);
+    gi::LpvSettings s;
+    s.gridSize = 32;
+    s.iterations = 8;
+    s.shFormat = gi::ShFormat::Rgba16f;
+    const gi::VolumeGrid grid{{0, 0, 0}, 0.25f, 32};
+    std::vector<GpuVpl> vpls;
+    uint32_t state = 7;
+    const auto next = [&] {
+        state = state * 1664525u + 1013904223u;
+        return float(state >> 8) / float(1u << 24);
+    };
+    for (int i = 0; i < 4096; ++i) {
+        const glm::vec3 n = glm::normalize(glm::vec3(next() - 0.5f, next(), next() - 0.5f) + glm::vec3(0, 0.1f, 0));
+        vpls.push_back({glm::vec4(next() * 8, next() * 8, next() * 8, 1), glm::vec4(n, 0), glm::vec4(next(), next(), next(), 0) * 0.01f});
+    }
+    const BufferHandle vplBuffer = device->createBuffer(
+        {vpls.size() * sizeof(GpuVpl), kBufferStorage, MemoryAccess::GpuOnly, "bench vpls", "bench"}, vpls.data());
+    gi::LpvVolumes volumes(*device, s);
+    // Baseline volumes: per channel a ping, a pong and an accumulation, RGBA16F.
+    std::array<TextureHandle, 3> ping{}, pong{}, acc{};
+    for (int c = 0; c < 3; ++c) {
+        const auto vol = [&](const char* name) {
+            return device->createTexture({TextureKind::Tex3D, Format::RGBA16F, 32, 32, 32, 1,
+                                          kTextureStorage | kTextureSampled | kTextureTransfer, name, "bench"});
+        };
+        ping[size_t(c)] = vol("baseline ping");
+        pong[size_t(c)] = vol("baseline pong");
+        acc[size_t(c)] = vol("baseline acc");
+    }
+    const ComputePipelineHandle baseline = device->createPipeline(ComputePipelineDesc{&bench::shaders::propagate_baseline_comp, "baseline propagate"});
+    const ComputePipelineHandle accumulate = device->createPipeline(ComputePipelineDesc{&bench::shaders::accumulate_baseline_comp, "baseline accumulate"});
+    const glm::ivec4 params(32, 0, 0, 0);
+
+    std::vector<double> shipped, straightforward;
+    for (int run = 0; run < runs + 1; ++run) {
+        CommandList& cmd = device->beginFrame();
+        const uint64_t frame = device->frameIndex();
+        volumes.inject(cmd, vplBuffer, uint32_t(vpls.size()), grid, {0, -1, 0}, 1.0f);
+        for (int c = 0; c < 3; ++c) cmd.copyTexture(volumes.injected()[size_t(c)], acc[size_t(c)]);
+        cmd.writeTimestamp(0);
+        volumes.propagate(cmd, s.iterations);
+        cmd.writeTimestamp(1);
+        const std::array<TextureHandle, 3>* src = &volumes.injected();
+        for (uint32_t i = 0; i < s.iterations; ++i) {
+            const std::array<TextureHandle, 3>* dst = (i % 2 == 0) ? &ping : &pong;
+            for (int c = 0; c < 3; ++c) {
+                cmd.bindPipeline(baseline);
+                cmd.pushUniforms(0, &params, sizeof(params));
+                cmd.bindStorageImage(1, (*src)[size_t(c)]);
+                cmd.bindStorageImage(2, (*dst)[size_t(c)]);
+                cmd.dispatch(8, 8, 8);
+                cmd.bindPipeline(accumulate);
+                cmd.pushUniforms(0, &params, sizeof(params));
+                cmd.bindStorageImage(1, (*dst)[size_t(c)]);
+                cmd.bindStorageImage(2, acc[size_t(c)]);
+                cmd.dispatch(8, 8, 8);
+            }
+            src = dst;
+        }
+        cmd.writeTimestamp(2);
+        device->endFrame();
+        device->waitIdle();
+        uint64_t ts[3] = {};
+        if (run > 0 && device->readTimestamps(frame, ts)) {
+            shipped.push_back(double(ts[1] - ts[0]) / 1e6);
+            straightforward.push_back(double(ts[2] - ts[1]) / 1e6);
+        }
+    }
+    float worst = 0, peak = 0;
+    for (int c = 0; c < 3; ++c) {
+        const std::vector<float> a = readVolume(*device, volumes.accumulated()[size_t(c)]);
+        const std::vector<float> bsl = readVolume(*device, acc[size_t(c)]);
+        for (size_t i = 0; i < a.size(); ++i) {
+            worst = std::max(worst, std::fabs(a[i] - bsl[i]));
+            peak = std::max(peak, std::fabs(bsl[i]));
+        }
+    }
+    const double ms = median(shipped), base = median(straightforward);
+    std::printf("| %-9s | %10.2f | %10.2f | %6.2fx | %9.2e | %-16s |\n", b.name.c_str(), ms, base, base / ms,
+                peak > 0 ? worst / peak : 0.0, std::string(rhi::timestampSourceName(device->caps().timestampSource)).c_str());
+    std::fflush(stdout);
+    device->waitIdle();
+    for (const auto* set : {&ping, &pong, &acc})
+        for (TextureHandle t : *set) device->destroy(t);
+    device->destroy(baseline);
+    device->destroy(accumulate);
+    device->destroy(vplBuffer);
+}
+
+void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames) {
+    auto device = makeDevice(b);
+    engine::Config config;
+    config.applyOverride("gi.enabled=true");
+    config.applyOverride("gi.grid_size=32");
+    config.applyOverride("gi.iterations=8");
+    config.applyOverride(sceneName == "atrium" ? "gi.cell_size=1.0" : "gi.cell_size=0.2");
+    const engine::Scene scene = engine::buildBuiltinScene(sceneName);
+    const uint32_t w = 1280, h = 720;
+    engine::Renderer renderer(*device, w, h);
+    renderer.setScene(scene);
+    const auto pc = platforms::loadPlatformProfile("pc");
+    engine::FrameProfiler profiler(*device, pc);
+    gi::LightPropagationVolume lpv(*device, pc);
+    const engine::Camera start = *scene.camera;
+    for (int f = 0; f < frames; ++f) {
+        const float t = frames > 1 ? float(f) / float(frames - 1) : 0.0f;
+        const engine::Camera cam = engine::cameraOnPath(sceneName == "atrium" ? "flythrough" : "orbit", scene.bounds, start, t * 0.25f);
+        // The sun moves during the run, so every frame redoes the RSM and the volume.
+        renderer.sun().direction = glm::normalize(scene.lights[0].direction + glm::vec3(0.1f * std::sin(t * 6.28f), 0, 0));
+        const engine::CameraMatrices m = engine::cameraMatrices(cam, float(w) / float(h));
+        lpv.update(config, renderer, m);
+        rhi::CommandList& cmd = device->beginFrame();
+        profiler.beginFrame(cmd);
+        renderer.render(cmd, m, config, &profiler, &lpv);
+        profiler.endFrame(cmd);
+        device->endFrame();
+    }
+    for (uint32_t i = 0; i <= device->caps().framesInFlight; ++i) {  // collect the last frames' timings
+        rhi::CommandList& cmd = device->beginFrame();
+        profiler.beginFrame(cmd);
+        profiler.endFrame(cmd);
+        device->endFrame();
+    }
+    const std::string source(rhi::timestampSourceName(profiler.gpuTimingSource()));
+    std::printf("\n### %s, %s (%llu triangles, %ux%u, GI 32^3 x 8, timing: %s)\n\n", sceneName.c_str(), b.name.c_str(),
+                (unsigned long long)scene.triangleCount(), w, h, source.c_str());
+    std::printf("| pass | median ms | p95 ms | predicted x360 ms | predicted ps3 ms |\n|---|---|---|---|---|\n");
+    double giMs = 0;
+    for (const engine::ScopeInfo& s : profiler.scopes()) {
+        const engine::SampleStats st = s.gpuMs.count() ? s.gpuMs.stats() : s.cpuMs.stats();
+        if (s.depth == 0 && s.name == "gi") giMs = st.median;
+        std::printf("| %s%s | %.2f | %.2f | %.3f | %.3f |\n", std::string(2 * s.depth, ' ').c_str(), s.path.c_str(), st.median,
+                    st.p95, engine::predictCost(s.work, profiler.x360().throughput).ms,
+                    engine::predictCost(s.work, profiler.ps3().throughput).ms);
+    }
+    const engine::SampleStats frame = profiler.frameGpuMs().count ? profiler.frameGpuMs() : profiler.frameCpuMs();
+    std::printf("\nframe median %.2f ms; GI %.2f ms = %.1f%% of the frame (goal: at most 10%%)\n", frame.median, giMs,
+                frame.median > 0 ? 100.0 * giMs / frame.median : 0.0);
+    std::printf("memory:");
+    for (const auto& [category, usage] : device->allocations().categories())
+        if (usage.currentBytes) std::printf(" %s %.2f MiB;", category.c_str(), double(usage.currentBytes) / 1048576.0);
+    std::printf("\n");
+    std::fflush(stdout);
+}
+
+void consolePrediction() {
+    gi::LpvSettings s;
+    s.gridSize = 32;
+    s.rsmSize = 128;
+    s.vplCount = 1024;
+    s.iterations = 6;
+    s.shFormat = gi::ShFormat::Rgba8;
+    const uint64_t pixels = 1280 * 720;
+    const auto x360 = platforms::loadPlatformProfile("x360"), ps3 = platforms::loadPlatformProfile("ps3");
+    double sx = 0, sp = 0;
+    for (const engine::WorkCounts& w : {gi::rsmWork(s, 100000), gi::vplClusterWork(s), gi::injectWork(s), gi::propagateWork(s),
+                                        gi::lookupWork(s, pixels)}) {
+        sx += engine::predictCost(w, x360.throughput).ms;
+        sp += engine::predictCost(w, ps3.throughput).ms;
+    }
+    std::printf("\nCryEngine 3 console setup (32^3, RSM 128^2, 6 iterations, 1 cascade, RGBA8, 1280x720): predicted GI "
+                "%.2f ms on Xbox 360 (published 3.5 ms), %.2f ms on PS3 (published 3.4 ms)\n",
+                sx, sp);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    std::vector<BenchBackend> backends = {{"vulkan", rhi::BackendKind::Vulkan},
+                                          {"gl-egl", rhi::BackendKind::OpenGL, rhi::GlHeadless::EglSurfaceless},
+                                          {"gl-osmesa", rhi::BackendKind::OpenGL, rhi::GlHeadless::OSMesa}};
+    std::vector<std::string> scenes = {"cornell", "atrium"};
+    int runs = 5, frames = 12;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        const auto list = [&](const std::string& value) {
+            std::vector<std::string> out;
+            std::stringstream in(value);
+            std::string item;
+            while (std::getline(in, item, ',')) out.push_back(item);
+            return out;
+        };
+        if (a.rfind("--runs=", 0) == 0) runs = std::max(1, std::atoi(a.c_str() + 7));
+        else if (a.rfind("--frames=", 0) == 0) frames = std::max(1, std::atoi(a.c_str() + 9));
+        else if (a.rfind("--scenes=", 0) == 0) scenes = list(a.substr(9));
+        else if (a.rfind("--backends=", 0) == 0) {
+            std::vector<BenchBackend> chosen;
+            for (const std::string& n : list(a.substr(11)))
+                for (const auto& b : backends)
+                    if (b.name == n) chosen.push_back(b);
+            backends = chosen;
+        } else {
+            std::fprintf(stderr, "usage: %s [--backends=...] [--runs=N] [--frames=N] [--scenes=cornell,atrium]\n", argv[0]);
+            return 2;
+        }
+    }
+    std::printf("## Propagation, 32^3 x 8 iterations, RGBA16F (median of %d, ms)\n\n", runs);
+    std::printf("| backend   | shipped ms | baseline ms | speedup | max rel diff | timing source    |\n");
+    std::printf("|-----------|------------|------------|---------|-----------|------------------|\n");
+    int failures = 0;
+    for (const auto& b : backends) {
+        try {
+            benchPropagation(b, runs);
+        } catch (const std::exception& e) {
+            std::printf("| %-9s | failed: %s\n", b.name.c_str(), e.what());
+            ++failures;
+        }
+    }
+    std::printf("\n## Frames (GI on, %d frames, median)\n", frames);
+    for (const std::string& scene : scenes)
+        for (const auto& b : backends) {
+            try {
+                benchFrames(b, scene, frames);
+            } catch (const std::exception& e) {
+                std::printf("%s on %s failed: %s\n", scene.c_str(), b.name.c_str(), e.what());
+                ++failures;
+            }
+        }
+    consolePrediction();
+    return failures ? 1 : 0;
+}
