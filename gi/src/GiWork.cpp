@@ -60,7 +60,9 @@ WorkCounts lookupWork(const LpvSettings& s, uint64_t pixels) {
     WorkCounts w;
     w.pixelsShaded = pixels;
     const uint64_t lookups = s.damping ? 2 : 1;
-    w.texelsRead = pixels * (2 + 3 * lookups);  // depth, normal, 3 trilinear volume fetches per lookup
+    // Depth, normal, and 3 filtered volume fetches per lookup; a 3D (trilinear) fetch costs two
+    // bilinear ones on the texture units the cost model describes.
+    w.texelsRead = pixels * (2 + 3 * 2 * lookups);
     w.texelsWritten = pixels;
     w.aluOps = pixels * (30 + 25 * lookups);
     w.bytesMoved = pixels * (4 + 8 + 8);

@@ -81,6 +81,13 @@ const std::map<std::string, Field>& fields() {
         {"throughput.memory_gbs", throughput(&Throughput::memoryGBs)},
         {"throughput.edram_gbs", throughput(&Throughput::edramGBs)},
         {"throughput.triangle_rate_m", throughput(&Throughput::triangleRateM)},
+        {"throughput.texture_blocks_alu",
+         {[](const toml::node& n, PlatformProfile& p) {
+              if (!n.is_boolean()) return false;
+              p.throughput.textureBlocksAlu = *n.value<bool>();
+              return true;
+          },
+          "true or false"}},
     };
     return f;
 }

@@ -58,11 +58,12 @@ fill_rate_gpix = 1
 memory_gbs = 1
 edram_gbs = 0
 triangle_rate_m = 1
+texture_blocks_alu = false
 )");
     CHECK(platforms::parsePlatformProfile(good, "t.toml").giMemoryBudgetBytes == 1024);
     std::string unknown = good + "[extra]\nrops = 8\n";
     CHECK(errorOf([&] { platforms::parsePlatformProfile(unknown, "t.toml"); }) ==
-          "t.toml:20: unknown platform profile key 'extra.rops'");
+          "t.toml:21: unknown platform profile key 'extra.rops'");
     std::string wrong = good;
     wrong.replace(wrong.find("budget_ms = 3.3"), 15, "budget_ms = \"x\"");
     CHECK(errorOf([&] { platforms::parsePlatformProfile(wrong, "t.toml"); }) ==

@@ -117,3 +117,33 @@ TEST_CASE("gi reference: propagation is linear in the SH coefficients of a chann
         for (int c = 0; c < 4; ++c)
             REQUIRE(pab.cells()[i].r[c] == doctest::Approx(pa.cells()[i].r[c] + pb.cells()[i].r[c]).epsilon(1e-5));
 }
+
+#include "engine/profiler/CostModel.h"
+#include "gi/GiWork.h"
+#include "platforms/PlatformProfile.h"
+
+TEST_CASE("gi cost model: the CryEngine 3 console setup predicts the published times within 25%") {
+    // Published (talk, slide 40): 3.5 ms on Xbox 360, 3.4 ms on PS3, for a 32^3 volume, 128^2 RSM,
+    // 6 iterations, 1 cascade, 32-bit SH textures. The frame is 1280x720 and the RSM draws a
+    // 100k-triangle scene (assumptions: the talk gives neither).
+    LpvSettings s;
+    s.gridSize = 32;
+    s.rsmSize = 128;
+    s.vplCount = 1024;
+    s.iterations = 6;
+    s.shFormat = ShFormat::Rgba8;
+    const lpv::engine::WorkCounts passes[] = {rsmWork(s, 100000), vplClusterWork(s), injectWork(s), propagateWork(s),
+                                              lookupWork(s, 1280 * 720)};
+    const auto x360 = lpv::platforms::loadPlatformProfile("x360"), ps3 = lpv::platforms::loadPlatformProfile("ps3");
+    double x = 0, p = 0;
+    for (const auto& w : passes) {
+        x += lpv::engine::predictCost(w, x360.throughput).ms;
+        p += lpv::engine::predictCost(w, ps3.throughput).ms;
+    }
+    MESSAGE("predicted GI: Xbox 360 " << x << " ms (published 3.5), PS3 " << p << " ms (published 3.4)");
+    CHECK(std::fabs(x - 3.5) <= 0.25 * 3.5);
+    CHECK(std::fabs(p - 3.4) <= 0.25 * 3.4);
+    // The propagation's counts by hand: 32^3 cells x (6 x 5 x 3 x 10 + 12) flops x 6 iterations.
+    CHECK(propagateWork(s).aluOps == 32768ull * 912ull * 6ull);
+    CHECK(propagateWork(s).texelsRead == 32768ull * 21ull * 6ull);
+}

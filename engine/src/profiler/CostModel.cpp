@@ -11,8 +11,10 @@ CostPrediction predictCost(const WorkCounts& w, const platforms::Throughput& t) 
     p.memoryMs = ms(double(w.bytesMoved), t.memoryGBs * 1e9);
     p.fillMs = ms(double(w.texelsWritten), t.fillRateGpix * 1e9);
     p.setupMs = ms(double(w.primitives), t.triangleRateM * 1e6);
+    // Where a fetch takes an ALU slot, shading time is ALU plus texture time.
+    const double shadeMs = t.textureBlocksAlu ? p.aluMs + p.textureMs : p.aluMs;
     const std::pair<double, const char*> units[] = {
-        {p.aluMs, "alu"}, {p.textureMs, "texture"}, {p.memoryMs, "memory"}, {p.fillMs, "fill"}, {p.setupMs, "setup"}};
+        {shadeMs, t.textureBlocksAlu ? "alu+texture" : "alu"}, {p.textureMs, "texture"}, {p.memoryMs, "memory"}, {p.fillMs, "fill"}, {p.setupMs, "setup"}};
     for (const auto& [value, name] : units)
         if (value > p.ms) {
             p.ms = value;

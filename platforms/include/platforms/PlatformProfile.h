@@ -18,6 +18,7 @@ struct Throughput {
     double memoryGBs = 0;     // main graphics memory bandwidth, GB/s
     double edramGBs = 0;      // render-target memory (Xbox 360 eDRAM), GB/s; 0 when none
     double triangleRateM = 0; // triangle setup, M/s
+    bool textureBlocksAlu = false;  // a texture fetch occupies an ALU slot (G70-class pixel pipes)
 };
 
 struct PlatformProfile {
