@@ -1,0 +1,427 @@
+// Command recording for the Vulkan backend.
+#include "VkCommandList.h"
+
+#include "VkBarriers.h"
+#include "VkFormats.h"
+#include "VulkanDevice.h"
+
+#include "rhi/Error.h"
+
+#include <algorithm>
+#include <string>
+
+namespace lpv::rhi::vk {
+namespace {
+
+const char* kindName(int kind) {
+    static const char* const names[] = {"nothing", "a uniform buffer", "a storage buffer",
+                                        "a sampled texture", "a storage image"};
+    return names[kind];
+}
+
+} // namespace
+
+void VulkanCommandList::begin(VkCommandBuffer cmd) {
+    cmd_ = cmd;
+    clearBindings();
+    graphics_ = {};
+    compute_ = {};
+    inPass_ = false;
+    passTargetCount_ = 0;
+    markerDepth_ = 0;
+}
+
+void VulkanCommandList::finish() {
+    if (inPass_) throw Error("endFrame() inside a render pass: call endRenderPass() first");
+    while (markerDepth_ > 0) {
+        endLabel();
+        --markerDepth_;
+    }
+}
+
+void VulkanCommandList::requireFrame(const char* what) const {
+    if (!device_.inFrame()) throw Error(std::string(what) + " outside beginFrame()/endFrame()");
+}
+
+void VulkanCommandList::requirePass(bool inside, const char* what) const {
+    requireFrame(what);
+    if (inPass_ != inside)
+        throw Error(std::string(what) + (inside ? " outside a render pass" : " inside a render pass"));
+}
+
+VulkanCommandList::Bound& VulkanCommandList::slot(uint32_t binding, const char* what) {
+    requireFrame(what);
+    if (binding >= kMaxBindings)
+        throw Error(std::string(what) + ": binding " + std::to_string(binding) +
+                    " >= " + std::to_string(kMaxBindings));
+    return bound_[binding];
+}
+
+void VulkanCommandList::clearBindings() {
+    for (Bound& b : bound_)
+        b.kind = BoundKind::None;
+}
+
+void VulkanCommandList::beginLabel(const char* name) {
+    const VulkanContext& ctx = device_.context();
+    if (!ctx.cmdBeginDebugUtilsLabel) return;
+    VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
+    label.pLabelName = name ? name : "";
+    ctx.cmdBeginDebugUtilsLabel(cmd_, &label);
+}
+
+void VulkanCommandList::endLabel() {
+    const VulkanContext& ctx = device_.context();
+    if (ctx.cmdEndDebugUtilsLabel) ctx.cmdEndDebugUtilsLabel(cmd_);
+}
+
+void VulkanCommandList::beginRenderPass(const RenderPassDesc& desc) {
+    requirePass(false, "beginRenderPass");
+    if (desc.colorCount > RenderPassDesc::kMaxColorTargets)
+        throw Error("beginRenderPass: more than 8 color targets");
+    if (desc.colorCount == 0 && !desc.depth.texture) throw Error("beginRenderPass: no color or depth target");
+    device_.flushNewTextures(cmd_);
+
+    // Every attachment moves to its attachment layout before rendering begins: barriers are not
+    // allowed inside a dynamic rendering instance.
+    std::array<VkRenderingAttachmentInfo, RenderPassDesc::kMaxColorTargets> colors{};
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    passTargetCount_ = 0;
+    passExtent_ = {0, 0};
+    auto checkExtent = [&](const VulkanTexture& t, uint32_t mip) {
+        const VkExtent2D e{t.width(mip), t.height(mip)};
+        if (passTargetCount_ == 0) {
+            passExtent_ = e;
+        } else if (e.width < passExtent_.width || e.height < passExtent_.height) {
+            throw Error("beginRenderPass '" + std::string(desc.debugName) + "': target '" + t.desc.debugName +
+                        "' is smaller than the first target");
+        }
+    };
+    for (uint32_t i = 0; i < desc.colorCount; ++i) {
+        const ColorAttachment& a = desc.colors[i];
+        VulkanTexture& t = device_.textures.get(a.texture);
+        if (!(t.desc.usage & kTextureColorTarget) || isDepthFormat(t.desc.format))
+            throw Error("beginRenderPass: texture '" + t.desc.debugName + "' is not a color target");
+        if (a.mipLevel >= t.desc.mipLevels || a.layer >= t.targetLayers(a.mipLevel))
+            throw Error("beginRenderPass: texture '" + t.desc.debugName + "' has no mip " +
+                        std::to_string(a.mipLevel) + " layer " + std::to_string(a.layer));
+        checkExtent(t, a.mipLevel);
+        transition(cmd_, t, a.mipLevel, 1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+        VkRenderingAttachmentInfo& c = colors[i];
+        c = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        c.imageView = t.targetViews[t.targetBase[a.mipLevel] + a.layer];
+        c.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        c.loadOp = toVkLoadOp(a.load);
+        c.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        if (t.desc.format == Format::R32UI) {
+            for (int k = 0; k < 4; ++k)
+                c.clearValue.color.uint32[k] = uint32_t(std::max(0.0f, a.clearColor[k]));
+        } else {
+            for (int k = 0; k < 4; ++k)
+                c.clearValue.color.float32[k] = a.clearColor[k];
+        }
+        passTargets_[passTargetCount_++] = {a.texture, a.mipLevel};
+    }
+    if (desc.depth.texture) {
+        const DepthAttachment& a = desc.depth;
+        VulkanTexture& t = device_.textures.get(a.texture);
+        if (!isDepthFormat(t.desc.format) || !(t.desc.usage & (kTextureDepthTarget | kTextureColorTarget)))
+            throw Error("beginRenderPass: texture '" + t.desc.debugName + "' is not a depth target");
+        if (a.layer >= t.targetLayers(0))
+            throw Error("beginRenderPass: depth texture '" + t.desc.debugName + "' has no layer " +
+                        std::to_string(a.layer));
+        checkExtent(t, 0);
+        transition(cmd_, t, 0, 1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
+        depth.imageView = t.targetViews[t.targetBase[0] + a.layer];
+        depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+        depth.loadOp = toVkLoadOp(a.load);
+        depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        depth.clearValue.depthStencil = {a.clearDepth, 0};
+        passTargets_[passTargetCount_++] = {a.texture, 0};
+    }
+
+    beginLabel(desc.debugName);
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    info.renderArea = {{0, 0}, passExtent_};
+    info.layerCount = 1;
+    info.colorAttachmentCount = desc.colorCount;
+    info.pColorAttachments = colors.data();
+    info.pDepthAttachment = desc.depth.texture ? &depth : nullptr;
+    vkCmdBeginRendering(cmd_, &info);
+    inPass_ = true;
+
+    // The RHI's rule: viewport and scissor start as the whole first target.
+    setViewport({0.0f, 0.0f, float(passExtent_.width), float(passExtent_.height), 0.0f, 1.0f});
+    setScissor(0, 0, passExtent_.width, passExtent_.height);
+}
+
+void VulkanCommandList::endRenderPass() {
+    requirePass(true, "endRenderPass");
+    vkCmdEndRendering(cmd_);
+    endLabel();
+    inPass_ = false;
+    for (uint32_t i = 0; i < passTargetCount_; ++i)
+        if (device_.textures.contains(passTargets_[i].texture))
+            transitionHome(cmd_, device_.textures.get(passTargets_[i].texture));
+    passTargetCount_ = 0;
+    // Writes of the pass (attachments and any storage writes of its shaders) become visible to
+    // everything recorded later.
+    fullBarrier(cmd_);
+}
+
+void VulkanCommandList::setViewport(const Viewport& vp) {
+    requireFrame("setViewport");
+    // No y-flip: NDC y = -1 lands on framebuffer row 0, which is memory row 0 (the RHI convention).
+    const VkViewport v{vp.x, vp.y, vp.width, vp.height, vp.minDepth, vp.maxDepth};
+    vkCmdSetViewport(cmd_, 0, 1, &v);
+}
+
+void VulkanCommandList::setScissor(int32_t x, int32_t y, uint32_t width, uint32_t height) {
+    requireFrame("setScissor");
+    // Vulkan rejects negative offsets; clip the rectangle to the framebuffer's origin instead.
+    if (x < 0) {
+        const uint32_t cut = uint32_t(-int64_t(x));
+        width = width > cut ? width - cut : 0;
+        x = 0;
+    }
+    if (y < 0) {
+        const uint32_t cut = uint32_t(-int64_t(y));
+        height = height > cut ? height - cut : 0;
+        y = 0;
+    }
+    const VkRect2D r{{x, y}, {width, height}};
+    vkCmdSetScissor(cmd_, 0, 1, &r);
+}
+
+void VulkanCommandList::bindPipeline(GraphicsPipelineHandle pipeline) {
+    requireFrame("bindPipeline");
+    const VulkanPipeline& p = device_.graphicsPipelines.get(pipeline);
+    vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_GRAPHICS, p.pipeline);
+    clearBindings();
+    graphics_ = pipeline;
+}
+
+void VulkanCommandList::bindPipeline(ComputePipelineHandle pipeline) {
+    requireFrame("bindPipeline");
+    const VulkanPipeline& p = device_.computePipelines.get(pipeline);
+    vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
+    clearBindings();
+    compute_ = pipeline;
+}
+
+void VulkanCommandList::bindVertexBuffer(uint32_t slotIndex, BufferHandle buffer, uint64_t offset) {
+    requireFrame("bindVertexBuffer");
+    const VulkanBuffer& b = device_.buffers.get(buffer);
+    if (!(b.desc.usage & kBufferVertex)) throw Error("buffer '" + b.desc.debugName + "' lacks kBufferVertex");
+    vkCmdBindVertexBuffers(cmd_, slotIndex, 1, &b.buffer, &offset);
+}
+
+void VulkanCommandList::bindIndexBuffer(BufferHandle buffer, IndexType type, uint64_t offset) {
+    requireFrame("bindIndexBuffer");
+    const VulkanBuffer& b = device_.buffers.get(buffer);
+    if (!(b.desc.usage & kBufferIndex)) throw Error("buffer '" + b.desc.debugName + "' lacks kBufferIndex");
+    vkCmdBindIndexBuffer(cmd_, b.buffer, offset,
+                         type == IndexType::Uint16 ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32);
+}
+
+void VulkanCommandList::bindBuffer(uint32_t binding, BufferHandle buffer, uint64_t offset, uint64_t size,
+                                   bool storage) {
+    Bound& s = slot(binding, storage ? "bindStorageBuffer" : "bindUniformBuffer");
+    const VulkanBuffer& b = device_.buffers.get(buffer);
+    const uint32_t need = storage ? kBufferStorage : kBufferUniform;
+    if (!(b.desc.usage & need))
+        throw Error("buffer '" + b.desc.debugName +
+                    (storage ? "' lacks kBufferStorage" : "' lacks kBufferUniform"));
+    if (offset >= b.desc.size) throw Error("buffer '" + b.desc.debugName + "': binding offset past its end");
+    if (size == kWholeSize) size = b.desc.size - offset;
+    if (offset + size > b.desc.size)
+        throw Error("buffer '" + b.desc.debugName + "': bound range exceeds its size");
+    s.kind = storage ? BoundKind::StorageBuffer : BoundKind::UniformBuffer;
+    s.buffer = {b.buffer, offset, size};
+}
+
+void VulkanCommandList::bindUniformBuffer(uint32_t binding, BufferHandle buffer, uint64_t offset,
+                                          uint64_t size) {
+    bindBuffer(binding, buffer, offset, size, false);
+}
+
+void VulkanCommandList::bindStorageBuffer(uint32_t binding, BufferHandle buffer, uint64_t offset,
+                                          uint64_t size) {
+    bindBuffer(binding, buffer, offset, size, true);
+}
+
+void VulkanCommandList::bindTexture(uint32_t binding, TextureHandle texture, SamplerHandle sampler) {
+    Bound& s = slot(binding, "bindTexture");
+    const VulkanTexture& t = device_.textures.get(texture);
+    const VulkanSampler& smp = device_.samplers.get(sampler);
+    if (!(t.desc.usage & kTextureSampled))
+        throw Error("texture '" + t.desc.debugName + "' lacks kTextureSampled");
+    // Integer formats have no filtering in Vulkan (or GL); a linear sampler would read garbage.
+    if (t.desc.format == Format::R32UI &&
+        (smp.desc.minFilter == Filter::Linear || smp.desc.magFilter == Filter::Linear ||
+         (smp.desc.mipFilter == Filter::Linear && t.desc.mipLevels > 1)))
+        throw Error("texture '" + t.desc.debugName + "' (r32ui) cannot be sampled with a linear filter");
+    s.kind = BoundKind::Texture;
+    s.image = {smp.sampler, t.sampledView, t.home};
+}
+
+void VulkanCommandList::bindStorageImage(uint32_t binding, TextureHandle texture, uint32_t mipLevel) {
+    Bound& s = slot(binding, "bindStorageImage");
+    const VulkanTexture& t = device_.textures.get(texture);
+    if (!(t.desc.usage & kTextureStorage))
+        throw Error("texture '" + t.desc.debugName + "' lacks kTextureStorage");
+    if (mipLevel >= t.desc.mipLevels)
+        throw Error("texture '" + t.desc.debugName + "' has no mip " + std::to_string(mipLevel));
+    s.kind = BoundKind::StorageImage;
+    s.image = {VK_NULL_HANDLE, t.mipViews[mipLevel], VK_IMAGE_LAYOUT_GENERAL};
+}
+
+void VulkanCommandList::pushUniforms(uint32_t binding, const void* data, uint32_t size) {
+    Bound& s = slot(binding, "pushUniforms");
+    if (!data || size == 0) throw Error("pushUniforms: no data");
+    const uint64_t offset = device_.pushToRing(data, size);
+    s.kind = BoundKind::UniformBuffer;
+    s.buffer = {device_.ringBuffer(), offset, size};
+}
+
+void VulkanCommandList::pushBindings(const VulkanPipeline& p) {
+    std::array<VkWriteDescriptorSet, kMaxBindings> writes;
+    uint32_t count = 0;
+    for (const PipelineBinding& pb : p.bindings) {
+        BoundKind want = BoundKind::None;
+        switch (pb.type) {
+        case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
+            want = BoundKind::UniformBuffer;
+            break;
+        case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
+            want = BoundKind::StorageBuffer;
+            break;
+        case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER:
+            want = BoundKind::Texture;
+            break;
+        case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
+            want = BoundKind::StorageImage;
+            break;
+        default:
+            break;
+        }
+        const BoundKind have = pb.binding < kMaxBindings ? bound_[pb.binding].kind : BoundKind::None;
+        if (have != want)
+            throw Error("pipeline '" + p.name + "': binding " + std::to_string(pb.binding) + " expects " +
+                        kindName(int(want)) + " but " + kindName(int(have)) + " is bound");
+        const Bound& b = bound_[pb.binding];
+        VkWriteDescriptorSet& w = writes[count++];
+        w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstBinding = pb.binding;
+        w.descriptorCount = 1;
+        w.descriptorType = pb.type;
+        if (want == BoundKind::UniformBuffer || want == BoundKind::StorageBuffer)
+            w.pBufferInfo = &b.buffer;
+        else
+            w.pImageInfo = &b.image;
+    }
+    if (count > 0)
+        device_.context().cmdPushDescriptorSet(cmd_, p.bindPoint, p.layout, 0, count, writes.data());
+}
+
+void VulkanCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex,
+                             uint32_t firstInstance) {
+    requirePass(true, "draw");
+    if (!graphics_) throw Error("draw without a graphics pipeline");
+    pushBindings(device_.graphicsPipelines.get(graphics_));
+    vkCmdDraw(cmd_, vertexCount, instanceCount, firstVertex, firstInstance);
+}
+
+void VulkanCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex,
+                                    int32_t vertexOffset, uint32_t firstInstance) {
+    requirePass(true, "drawIndexed");
+    if (!graphics_) throw Error("drawIndexed without a graphics pipeline");
+    pushBindings(device_.graphicsPipelines.get(graphics_));
+    vkCmdDrawIndexed(cmd_, indexCount, instanceCount, firstIndex, vertexOffset, firstInstance);
+}
+
+void VulkanCommandList::dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) {
+    requirePass(false, "dispatch");
+    if (!compute_) throw Error("dispatch without a compute pipeline");
+    device_.flushNewTextures(cmd_);
+    pushBindings(device_.computePipelines.get(compute_));
+    vkCmdDispatch(cmd_, groupsX, groupsY, groupsZ);
+    // Storage writes of the dispatch become visible to every later command.
+    fullBarrier(cmd_);
+}
+
+void VulkanCommandList::clearTexture(TextureHandle texture, const std::array<float, 4>& value) {
+    requirePass(false, "clearTexture");
+    VulkanTexture& t = device_.textures.get(texture);
+    transition(cmd_, t, 0, t.desc.mipLevels, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    const VkImageSubresourceRange range{t.aspect, 0, t.desc.mipLevels, 0, t.arrayLayers()};
+    if (isDepthFormat(t.desc.format)) {
+        const VkClearDepthStencilValue v{value[0], 0};
+        vkCmdClearDepthStencilImage(cmd_, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &v, 1, &range);
+    } else {
+        VkClearColorValue v{};
+        if (t.desc.format == Format::R32UI) {
+            for (int k = 0; k < 4; ++k)
+                v.uint32[k] = uint32_t(std::max(0.0f, value[k]));
+        } else {
+            for (int k = 0; k < 4; ++k)
+                v.float32[k] = value[k];
+        }
+        vkCmdClearColorImage(cmd_, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &v, 1, &range);
+    }
+    transitionHome(cmd_, t);
+}
+
+void VulkanCommandList::updateBuffer(BufferHandle buffer, uint64_t offset, const void* data, uint32_t size) {
+    requirePass(false, "updateBuffer");
+    const VulkanBuffer& b = device_.buffers.get(buffer);
+    if (!data || size == 0 || size > 65536 || size % 4 != 0 || offset % 4 != 0)
+        throw Error("updateBuffer '" + b.desc.debugName +
+                    "': size must be 4..65536 and offset and size multiples of 4");
+    if (offset + size > b.desc.size)
+        throw Error("updateBuffer '" + b.desc.debugName + "': range exceeds its size");
+    fullBarrier(cmd_); // earlier reads of the old contents finish first
+    vkCmdUpdateBuffer(cmd_, b.buffer, offset, size, data);
+    fullBarrier(cmd_);
+}
+
+void VulkanCommandList::copyTexture(TextureHandle src, TextureHandle dst) {
+    requirePass(false, "copyTexture");
+    if (src == dst) throw Error("copyTexture: source and destination are the same texture");
+    VulkanTexture& s = device_.textures.get(src);
+    VulkanTexture& d = device_.textures.get(dst);
+    if (s.desc.kind != d.desc.kind || s.desc.format != d.desc.format || s.desc.width != d.desc.width ||
+        s.desc.height != d.desc.height || s.desc.depthOrLayers != d.desc.depthOrLayers)
+        throw Error("copyTexture: '" + s.desc.debugName + "' and '" + d.desc.debugName +
+                    "' differ in kind, format or size");
+    transition(cmd_, s, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    transition(cmd_, d, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    VkImageCopy region{};
+    region.srcSubresource = {s.aspect, 0, 0, s.arrayLayers()};
+    region.dstSubresource = region.srcSubresource;
+    region.extent = {s.width(0), s.height(0), s.depth(0)};
+    vkCmdCopyImage(cmd_, s.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.image,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    transitionHome(cmd_, s);
+    transitionHome(cmd_, d);
+}
+
+void VulkanCommandList::writeTimestamp(uint32_t slotIndex) {
+    requireFrame("writeTimestamp");
+    device_.timestamps().write(cmd_, device_.frameIndex(), slotIndex);
+}
+
+void VulkanCommandList::beginMarker(const char* name) {
+    requireFrame("beginMarker");
+    beginLabel(name);
+    ++markerDepth_;
+}
+
+void VulkanCommandList::endMarker() {
+    requireFrame("endMarker");
+    if (markerDepth_ == 0) throw Error("endMarker without beginMarker");
+    endLabel();
+    --markerDepth_;
+}
+
+} // namespace lpv::rhi::vk

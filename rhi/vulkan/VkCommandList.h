@@ -1,0 +1,87 @@
+// Recording of one frame into its VkCommandBuffer: dynamic rendering for passes, push descriptors
+// for every binding the bound pipeline declares (pushed at each draw and dispatch), and the RHI's
+// automatic barriers around passes, dispatches and transfers.
+#pragma once
+
+#include "VkResources.h"
+
+#include "rhi/CommandList.h"
+
+#include <vulkan/vulkan.h>
+
+#include <array>
+
+namespace lpv::rhi::vk {
+
+class VulkanDevice;
+
+class VulkanCommandList final : public CommandList {
+public:
+    explicit VulkanCommandList(VulkanDevice& device) : device_(device) {}
+
+    // Starts recording a frame into `cmd`: forgets every binding of the previous frame.
+    void begin(VkCommandBuffer cmd);
+    // Checks the frame can be submitted and closes markers left open.
+    void finish();
+
+    void beginRenderPass(const RenderPassDesc& desc) override;
+    void endRenderPass() override;
+    void setViewport(const Viewport& vp) override;
+    void setScissor(int32_t x, int32_t y, uint32_t width, uint32_t height) override;
+    void bindPipeline(GraphicsPipelineHandle pipeline) override;
+    void bindPipeline(ComputePipelineHandle pipeline) override;
+    void bindVertexBuffer(uint32_t slot, BufferHandle buffer, uint64_t offset) override;
+    void bindIndexBuffer(BufferHandle buffer, IndexType type, uint64_t offset) override;
+    void bindUniformBuffer(uint32_t binding, BufferHandle buffer, uint64_t offset, uint64_t size) override;
+    void bindStorageBuffer(uint32_t binding, BufferHandle buffer, uint64_t offset, uint64_t size) override;
+    void bindTexture(uint32_t binding, TextureHandle texture, SamplerHandle sampler) override;
+    void bindStorageImage(uint32_t binding, TextureHandle texture, uint32_t mipLevel) override;
+    void pushUniforms(uint32_t binding, const void* data, uint32_t size) override;
+    void draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex,
+              uint32_t firstInstance) override;
+    void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, int32_t vertexOffset,
+                     uint32_t firstInstance) override;
+    void dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) override;
+    void clearTexture(TextureHandle texture, const std::array<float, 4>& value) override;
+    void updateBuffer(BufferHandle buffer, uint64_t offset, const void* data, uint32_t size) override;
+    void copyTexture(TextureHandle src, TextureHandle dst) override;
+    void writeTimestamp(uint32_t slot) override;
+    void beginMarker(const char* name) override;
+    void endMarker() override;
+
+private:
+    static constexpr uint32_t kMaxBindings = 32;
+    enum class BoundKind : uint8_t { None, UniformBuffer, StorageBuffer, Texture, StorageImage };
+    struct Bound {
+        BoundKind kind = BoundKind::None;
+        VkDescriptorBufferInfo buffer{};
+        VkDescriptorImageInfo image{};
+    };
+    struct PassTarget {
+        TextureHandle texture;
+        uint32_t mip = 0;
+    };
+
+    void requireFrame(const char* what) const;
+    void requirePass(bool inside, const char* what) const;
+    Bound& slot(uint32_t binding, const char* what);
+    void bindBuffer(uint32_t binding, BufferHandle buffer, uint64_t offset, uint64_t size, bool storage);
+    void clearBindings();
+    // Pushes the descriptors the bound pipeline of `bindPoint` declares; throws if one is missing.
+    void pushBindings(const VulkanPipeline& pipeline);
+    void beginLabel(const char* name);
+    void endLabel();
+
+    VulkanDevice& device_;
+    VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+    std::array<Bound, kMaxBindings> bound_{};
+    GraphicsPipelineHandle graphics_;
+    ComputePipelineHandle compute_;
+    std::array<PassTarget, RenderPassDesc::kMaxColorTargets + 1> passTargets_{};
+    uint32_t passTargetCount_ = 0;
+    VkExtent2D passExtent_{0, 0};
+    bool inPass_ = false;
+    uint32_t markerDepth_ = 0;
+};
+
+} // namespace lpv::rhi::vk

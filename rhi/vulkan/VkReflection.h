@@ -1,0 +1,20 @@
+// SPIR-V reflection through the SPIRV-Cross C API: the descriptor bindings a shader stage declares.
+#pragma once
+
+#include "VkResources.h"
+
+#include "rhi/Shader.h"
+
+#include <vulkan/vulkan.h>
+
+#include <vector>
+
+namespace lpv::rhi::vk {
+
+// Adds the bindings of `shader` to `bindings` (merging stage flags of a binding several stages
+// share). Throws rhi::Error for what the RHI does not support: a set other than 0, arrays of
+// resources, push constants, separate images/samplers, or one binding number used with two types.
+void reflectBindings(const ShaderBinary& shader, VkShaderStageFlags stage,
+                     std::vector<VkDescriptorSetLayoutBinding>& bindings);
+
+} // namespace lpv::rhi::vk
