@@ -67,7 +67,8 @@ std::vector<float> readVolume(rhi::Device& device, rhi::TextureHandle t) {
     std::vector<uint16_t> half(size_t(d.width) * d.height * d.depthOrLayers * 4);
     device.readTexture(t, 0, half.data(), half.size() * 2);
     std::vector<float> out(half.size());
-    for (size_t i = 0; i < half.size(); ++i) out[i] = glm::unpackHalf1x16(half[i]);
+    for (size_t i = 0; i < half.size(); ++i)
+        out[i] = glm::unpackHalf1x16(half[i]);
     return out;
 }
 
@@ -86,25 +87,31 @@ void benchPropagation(const BenchBackend& b, int runs) {
         return float(state >> 8) / float(1u << 24);
     };
     for (int i = 0; i < 4096; ++i) {
-        const glm::vec3 n = glm::normalize(glm::vec3(next() - 0.5f, next(), next() - 0.5f) + glm::vec3(0, 0.1f, 0));
-        vpls.push_back({glm::vec4(next() * 8, next() * 8, next() * 8, 1), glm::vec4(n, 0), glm::vec4(next(), next(), next(), 0) * 0.01f});
+        const glm::vec3 n =
+            glm::normalize(glm::vec3(next() - 0.5f, next(), next() - 0.5f) + glm::vec3(0, 0.1f, 0));
+        vpls.push_back({glm::vec4(next() * 8, next() * 8, next() * 8, 1), glm::vec4(n, 0),
+                        glm::vec4(next(), next(), next(), 0) * 0.01f});
     }
     const BufferHandle vplBuffer = device->createBuffer(
-        {vpls.size() * sizeof(GpuVpl), kBufferStorage, MemoryAccess::GpuOnly, "bench vpls", "bench"}, vpls.data());
+        {vpls.size() * sizeof(GpuVpl), kBufferStorage, MemoryAccess::GpuOnly, "bench vpls", "bench"},
+        vpls.data());
     gi::LpvVolumes volumes(*device, s);
     // Baseline volumes: per channel a ping, a pong and an accumulation, RGBA16F.
     std::array<TextureHandle, 3> ping{}, pong{}, acc{};
     for (int c = 0; c < 3; ++c) {
         const auto vol = [&](const char* name) {
             return device->createTexture({TextureKind::Tex3D, Format::RGBA16F, 32, 32, 32, 1,
-                                          kTextureStorage | kTextureSampled | kTextureTransfer, name, "bench"});
+                                          kTextureStorage | kTextureSampled | kTextureTransfer, name,
+                                          "bench"});
         };
         ping[size_t(c)] = vol("baseline ping");
         pong[size_t(c)] = vol("baseline pong");
         acc[size_t(c)] = vol("baseline acc");
     }
-    const ComputePipelineHandle baseline = device->createPipeline(ComputePipelineDesc{&bench::shaders::propagate_baseline_comp, "baseline propagate"});
-    const ComputePipelineHandle accumulate = device->createPipeline(ComputePipelineDesc{&bench::shaders::accumulate_baseline_comp, "baseline accumulate"});
+    const ComputePipelineHandle baseline = device->createPipeline(
+        ComputePipelineDesc{&bench::shaders::propagate_baseline_comp, "baseline propagate"});
+    const ComputePipelineHandle accumulate = device->createPipeline(
+        ComputePipelineDesc{&bench::shaders::accumulate_baseline_comp, "baseline accumulate"});
     const glm::ivec4 params(32, 0, 0, 0);
 
     std::vector<double> shipped, straightforward;
@@ -112,7 +119,8 @@ void benchPropagation(const BenchBackend& b, int runs) {
         CommandList& cmd = device->beginFrame();
         const uint64_t frame = device->frameIndex();
         volumes.inject(cmd, vplBuffer, uint32_t(vpls.size()), grid, {0, -1, 0}, 1.0f);
-        for (int c = 0; c < 3; ++c) cmd.copyTexture(volumes.injected()[size_t(c)], acc[size_t(c)]);
+        for (int c = 0; c < 3; ++c)
+            cmd.copyTexture(volumes.injected()[size_t(c)], acc[size_t(c)]);
         cmd.writeTimestamp(0);
         volumes.propagate(cmd, s.iterations);
         cmd.writeTimestamp(1);
@@ -153,11 +161,13 @@ void benchPropagation(const BenchBackend& b, int runs) {
     }
     const double ms = median(shipped), base = median(straightforward);
     std::printf("| %-9s | %10.2f | %10.2f | %6.2fx | %9.2e | %-16s |\n", b.name.c_str(), ms, base, base / ms,
-                peak > 0 ? worst / peak : 0.0, std::string(rhi::timestampSourceName(device->caps().timestampSource)).c_str());
+                peak > 0 ? worst / peak : 0.0,
+                std::string(rhi::timestampSourceName(device->caps().timestampSource)).c_str());
     std::fflush(stdout);
     device->waitIdle();
     for (const auto* set : {&ping, &pong, &acc})
-        for (TextureHandle t : *set) device->destroy(t);
+        for (TextureHandle t : *set)
+            device->destroy(t);
     device->destroy(baseline);
     device->destroy(accumulate);
     device->destroy(vplBuffer);
@@ -180,9 +190,11 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
     const engine::Camera start = *scene.camera;
     for (int f = 0; f < frames; ++f) {
         const float t = frames > 1 ? float(f) / float(frames - 1) : 0.0f;
-        const engine::Camera cam = engine::cameraOnPath(sceneName == "atrium" ? "flythrough" : "orbit", scene.bounds, start, t * 0.25f);
+        const engine::Camera cam = engine::cameraOnPath(sceneName == "atrium" ? "flythrough" : "orbit",
+                                                        scene.bounds, start, t * 0.25f);
         // The sun moves during the run, so every frame redoes the RSM and the volume.
-        renderer.sun().direction = glm::normalize(scene.lights[0].direction + glm::vec3(0.1f * std::sin(t * 6.28f), 0, 0));
+        renderer.sun().direction =
+            glm::normalize(scene.lights[0].direction + glm::vec3(0.1f * std::sin(t * 6.28f), 0, 0));
         const engine::CameraMatrices m = engine::cameraMatrices(cam, float(w) / float(h));
         lpv.update(config, renderer, m);
         rhi::CommandList& cmd = device->beginFrame();
@@ -191,30 +203,34 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
         profiler.endFrame(cmd);
         device->endFrame();
     }
-    for (uint32_t i = 0; i <= device->caps().framesInFlight; ++i) {  // collect the last frames' timings
+    for (uint32_t i = 0; i <= device->caps().framesInFlight; ++i) { // collect the last frames' timings
         rhi::CommandList& cmd = device->beginFrame();
         profiler.beginFrame(cmd);
         profiler.endFrame(cmd);
         device->endFrame();
     }
     const std::string source(rhi::timestampSourceName(profiler.gpuTimingSource()));
-    std::printf("\n### %s, %s (%llu triangles, %ux%u, GI 32^3 x 8, timing: %s)\n\n", sceneName.c_str(), b.name.c_str(),
-                (unsigned long long)scene.triangleCount(), w, h, source.c_str());
-    std::printf("| pass | median ms | p95 ms | predicted x360 ms | predicted ps3 ms |\n|---|---|---|---|---|\n");
+    std::printf("\n### %s, %s (%llu triangles, %ux%u, GI 32^3 x 8, timing: %s)\n\n", sceneName.c_str(),
+                b.name.c_str(), (unsigned long long)scene.triangleCount(), w, h, source.c_str());
+    std::printf(
+        "| pass | median ms | p95 ms | predicted x360 ms | predicted ps3 ms |\n|---|---|---|---|---|\n");
     double giMs = 0;
     for (const engine::ScopeInfo& s : profiler.scopes()) {
         const engine::SampleStats st = s.gpuMs.count() ? s.gpuMs.stats() : s.cpuMs.stats();
         if (s.depth == 0 && s.name == "gi") giMs = st.median;
-        std::printf("| %s%s | %.2f | %.2f | %.3f | %.3f |\n", std::string(2 * s.depth, ' ').c_str(), s.path.c_str(), st.median,
-                    st.p95, engine::predictCost(s.work, profiler.x360().throughput).ms,
+        std::printf("| %s%s | %.2f | %.2f | %.3f | %.3f |\n", std::string(2 * s.depth, ' ').c_str(),
+                    s.path.c_str(), st.median, st.p95,
+                    engine::predictCost(s.work, profiler.x360().throughput).ms,
                     engine::predictCost(s.work, profiler.ps3().throughput).ms);
     }
-    const engine::SampleStats frame = profiler.frameGpuMs().count ? profiler.frameGpuMs() : profiler.frameCpuMs();
-    std::printf("\nframe median %.2f ms; GI %.2f ms = %.1f%% of the frame (goal: at most 10%%)\n", frame.median, giMs,
-                frame.median > 0 ? 100.0 * giMs / frame.median : 0.0);
+    const engine::SampleStats frame =
+        profiler.frameGpuMs().count ? profiler.frameGpuMs() : profiler.frameCpuMs();
+    std::printf("\nframe median %.2f ms; GI %.2f ms = %.1f%% of the frame (goal: at most 10%%)\n",
+                frame.median, giMs, frame.median > 0 ? 100.0 * giMs / frame.median : 0.0);
     std::printf("memory:");
     for (const auto& [category, usage] : device->allocations().categories())
-        if (usage.currentBytes) std::printf(" %s %.2f MiB;", category.c_str(), double(usage.currentBytes) / 1048576.0);
+        if (usage.currentBytes)
+            std::printf(" %s %.2f MiB;", category.c_str(), double(usage.currentBytes) / 1048576.0);
     std::printf("\n");
     std::fflush(stdout);
 }
@@ -229,12 +245,13 @@ void consolePrediction() {
     const uint64_t pixels = 1280 * 720;
     const auto x360 = platforms::loadPlatformProfile("x360"), ps3 = platforms::loadPlatformProfile("ps3");
     double sx = 0, sp = 0;
-    for (const engine::WorkCounts& w : {gi::rsmWork(s, 100000), gi::vplClusterWork(s), gi::injectWork(s), gi::propagateWork(s),
-                                        gi::lookupWork(s, pixels)}) {
+    for (const engine::WorkCounts& w : {gi::rsmWork(s, 100000), gi::vplClusterWork(s), gi::injectWork(s),
+                                        gi::propagateWork(s), gi::lookupWork(s, pixels)}) {
         sx += engine::predictCost(w, x360.throughput).ms;
         sp += engine::predictCost(w, ps3.throughput).ms;
     }
-    std::printf("\nCryEngine 3 console setup (32^3, RSM 128^2, 6 iterations, 1 cascade, RGBA8, 1280x720): predicted GI "
+    std::printf("\nCryEngine 3 console setup (32^3, RSM 128^2, 6 iterations, 1 cascade, RGBA8, 1280x720): "
+                "predicted GI "
                 "%.2f ms on Xbox 360 (published 3.5 ms), %.2f ms on PS3 (published 3.4 ms)\n",
                 sx, sp);
 }
@@ -242,9 +259,10 @@ void consolePrediction() {
 } // namespace
 
 int main(int argc, char** argv) {
-    std::vector<BenchBackend> backends = {{"vulkan", rhi::BackendKind::Vulkan},
-                                          {"gl-egl", rhi::BackendKind::OpenGL, rhi::GlHeadless::EglSurfaceless},
-                                          {"gl-osmesa", rhi::BackendKind::OpenGL, rhi::GlHeadless::OSMesa}};
+    std::vector<BenchBackend> backends = {
+        {"vulkan", rhi::BackendKind::Vulkan},
+        {"gl-egl", rhi::BackendKind::OpenGL, rhi::GlHeadless::EglSurfaceless},
+        {"gl-osmesa", rhi::BackendKind::OpenGL, rhi::GlHeadless::OSMesa}};
     std::vector<std::string> scenes = {"cornell", "atrium"};
     int runs = 5, frames = 12;
     for (int i = 1; i < argc; ++i) {
@@ -253,12 +271,16 @@ int main(int argc, char** argv) {
             std::vector<std::string> out;
             std::stringstream in(value);
             std::string item;
-            while (std::getline(in, item, ',')) out.push_back(item);
+            while (std::getline(in, item, ','))
+                out.push_back(item);
             return out;
         };
-        if (a.rfind("--runs=", 0) == 0) runs = std::max(1, std::atoi(a.c_str() + 7));
-        else if (a.rfind("--frames=", 0) == 0) frames = std::max(1, std::atoi(a.c_str() + 9));
-        else if (a.rfind("--scenes=", 0) == 0) scenes = list(a.substr(9));
+        if (a.rfind("--runs=", 0) == 0)
+            runs = std::max(1, std::atoi(a.c_str() + 7));
+        else if (a.rfind("--frames=", 0) == 0)
+            frames = std::max(1, std::atoi(a.c_str() + 9));
+        else if (a.rfind("--scenes=", 0) == 0)
+            scenes = list(a.substr(9));
         else if (a.rfind("--backends=", 0) == 0) {
             std::vector<BenchBackend> chosen;
             for (const std::string& n : list(a.substr(11)))
@@ -266,7 +288,9 @@ int main(int argc, char** argv) {
                     if (b.name == n) chosen.push_back(b);
             backends = chosen;
         } else {
-            std::fprintf(stderr, "usage: %s [--backends=...] [--runs=N] [--frames=N] [--scenes=cornell,atrium]\n", argv[0]);
+            std::fprintf(stderr,
+                         "usage: %s [--backends=...] [--runs=N] [--frames=N] [--scenes=cornell,atrium]\n",
+                         argv[0]);
             return 2;
         }
     }

@@ -35,7 +35,9 @@ double median(std::vector<double> v) {
     return v.empty() ? 0.0 : (v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]));
 }
 
-double msSince(uint64_t t0) { return double(platforms::nowNanoseconds() - t0) / 1e6; }
+double msSince(uint64_t t0) {
+    return double(platforms::nowNanoseconds() - t0) / 1e6;
+}
 
 std::unique_ptr<Device> makeDevice(const BenchBackend& b) {
     DeviceConfig config;
@@ -55,7 +57,8 @@ struct Vertex {
 void makeMesh(uint32_t triangles, std::vector<Vertex>& vertices, std::vector<uint32_t>& indices) {
     const uint32_t quads = triangles / 2;
     uint32_t cols = 1;
-    while (cols * cols < quads) ++cols;
+    while (cols * cols < quads)
+        ++cols;
     const uint32_t rows = (quads + cols - 1) / cols;
     for (uint32_t y = 0; y <= rows; ++y)
         for (uint32_t x = 0; x <= cols; ++x) {
@@ -70,9 +73,10 @@ void makeMesh(uint32_t triangles, std::vector<Vertex>& vertices, std::vector<uin
 }
 
 // Runs `record` in a frame `runs` times; returns {median GPU ms from timestamps 0..1, median wall ms}.
-std::pair<double, double> timeFrames(Device& device, int runs, const std::function<void(CommandList&)>& record) {
+std::pair<double, double> timeFrames(Device& device, int runs,
+                                     const std::function<void(CommandList&)>& record) {
     std::vector<double> gpu, wall;
-    for (int i = 0; i < runs + 1; ++i) {  // first run warms caches and is dropped
+    for (int i = 0; i < runs + 1; ++i) { // first run warms caches and is dropped
         const uint64_t t0 = platforms::nowNanoseconds();
         CommandList& cmd = device.beginFrame();
         const uint64_t frame = device.frameIndex();
@@ -105,7 +109,8 @@ void benchBackend(const BenchBackend& b, int runs) {
     pd.vertex = &bench::shaders::mrt_vert;
     pd.fragment = &bench::shaders::mrt_frag;
     pd.vertexBuffers = {{sizeof(Vertex)}};
-    pd.attributes = {{0, VertexFormat::Float3, offsetof(Vertex, position)}, {1, VertexFormat::Float4, offsetof(Vertex, color)}};
+    pd.attributes = {{0, VertexFormat::Float3, offsetof(Vertex, position)},
+                     {1, VertexFormat::Float4, offsetof(Vertex, color)}};
     pd.depthTest = pd.depthWrite = true;
     pd.colorFormats = {Format::RGBA8Unorm, Format::RGBA16F};
     pd.depthFormat = Format::D32F;
@@ -116,15 +121,18 @@ void benchBackend(const BenchBackend& b, int runs) {
         const GraphicsPipelineHandle g = device->createPipeline(pd);
         graphicsCreate.push_back(msSince(t0));
         t0 = platforms::nowNanoseconds();
-        const ComputePipelineHandle c = device->createPipeline(ComputePipelineDesc{&bench::shaders::fill_volume_comp, "bench fill"});
+        const ComputePipelineHandle c =
+            device->createPipeline(ComputePipelineDesc{&bench::shaders::fill_volume_comp, "bench fill"});
         computeCreate.push_back(msSince(t0));
         device->destroy(g);
         device->destroy(c);
     }
     const GraphicsPipelineHandle mrt = device->createPipeline(pd);
-    const ComputePipelineHandle fill = device->createPipeline(ComputePipelineDesc{&bench::shaders::fill_volume_comp, "bench fill"});
+    const ComputePipelineHandle fill =
+        device->createPipeline(ComputePipelineDesc{&bench::shaders::fill_volume_comp, "bench fill"});
 
-    const TextureHandle volume = device->createTexture({TextureKind::Tex3D, Format::RGBA16F, 32, 32, 32, 1, kTextureStorage, "bench volume", "bench"});
+    const TextureHandle volume = device->createTexture(
+        {TextureKind::Tex3D, Format::RGBA16F, 32, 32, 32, 1, kTextureStorage, "bench volume", "bench"});
     const float scale[4] = {0.1f, 0.2f, 0.05f, 0.0f};
     const auto [dispatchGpu, dispatchWall] = timeFrames(*device, runs * 3, [&](CommandList& cmd) {
         cmd.bindPipeline(fill);
@@ -136,11 +144,18 @@ void benchBackend(const BenchBackend& b, int runs) {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;
     makeMesh(100000, vertices, indices);
-    const BufferHandle vb = device->createBuffer({vertices.size() * sizeof(Vertex), kBufferVertex, MemoryAccess::GpuOnly, "bench vb", "bench"}, vertices.data());
-    const BufferHandle ib = device->createBuffer({indices.size() * sizeof(uint32_t), kBufferIndex, MemoryAccess::GpuOnly, "bench ib", "bench"}, indices.data());
-    const TextureHandle c0 = device->createTexture({TextureKind::Tex2D, Format::RGBA8Unorm, 1280, 720, 1, 1, kTextureColorTarget, "bench c0", "bench"});
-    const TextureHandle c1 = device->createTexture({TextureKind::Tex2D, Format::RGBA16F, 1280, 720, 1, 1, kTextureColorTarget, "bench c1", "bench"});
-    const TextureHandle depth = device->createTexture({TextureKind::Tex2D, Format::D32F, 1280, 720, 1, 1, kTextureDepthTarget, "bench depth", "bench"});
+    const BufferHandle vb = device->createBuffer(
+        {vertices.size() * sizeof(Vertex), kBufferVertex, MemoryAccess::GpuOnly, "bench vb", "bench"},
+        vertices.data());
+    const BufferHandle ib = device->createBuffer(
+        {indices.size() * sizeof(uint32_t), kBufferIndex, MemoryAccess::GpuOnly, "bench ib", "bench"},
+        indices.data());
+    const TextureHandle c0 = device->createTexture(
+        {TextureKind::Tex2D, Format::RGBA8Unorm, 1280, 720, 1, 1, kTextureColorTarget, "bench c0", "bench"});
+    const TextureHandle c1 = device->createTexture(
+        {TextureKind::Tex2D, Format::RGBA16F, 1280, 720, 1, 1, kTextureColorTarget, "bench c1", "bench"});
+    const TextureHandle depth = device->createTexture(
+        {TextureKind::Tex2D, Format::D32F, 1280, 720, 1, 1, kTextureDepthTarget, "bench depth", "bench"});
     const float tint[4] = {0.25f, 0.5f, 0.75f, 1.0f};
     const auto [drawGpu, drawWall] = timeFrames(*device, runs, [&](CommandList& cmd) {
         RenderPassDesc pass;
@@ -159,11 +174,13 @@ void benchBackend(const BenchBackend& b, int runs) {
 
     const std::string source(timestampSourceName(caps.timestampSource));
     std::printf("| %-9s | %8.1f | %8.2f | %8.2f | %8.3f | %8.3f | %8.2f | %8.2f | %-16s |\n", b.name.c_str(),
-                median(create), median(graphicsCreate), median(computeCreate), dispatchGpu, dispatchWall, drawGpu,
-                drawWall, source.c_str());
+                median(create), median(graphicsCreate), median(computeCreate), dispatchGpu, dispatchWall,
+                drawGpu, drawWall, source.c_str());
     std::fflush(stdout);
-    for (TextureHandle t : {volume, c0, c1, depth}) device->destroy(t);
-    for (BufferHandle h : {vb, ib}) device->destroy(h);
+    for (TextureHandle t : {volume, c0, c1, depth})
+        device->destroy(t);
+    for (BufferHandle h : {vb, ib})
+        device->destroy(h);
     device->destroy(mrt);
     device->destroy(fill);
 }
@@ -191,9 +208,13 @@ int main(int argc, char** argv) {
             return 2;
         }
     }
-    std::printf("RHI benchmark, median of %d runs (ms). GPU columns: device timestamps; wall: submit to idle.\n", runs);
-    std::printf("| backend   | device   | gfx pipe | cmp pipe | 32^3 gpu | 32^3 wall| 100k gpu | 100k wall| timing source    |\n");
-    std::printf("|-----------|----------|----------|----------|----------|----------|----------|----------|------------------|\n");
+    std::printf(
+        "RHI benchmark, median of %d runs (ms). GPU columns: device timestamps; wall: submit to idle.\n",
+        runs);
+    std::printf("| backend   | device   | gfx pipe | cmp pipe | 32^3 gpu | 32^3 wall| 100k gpu | 100k wall| "
+                "timing source    |\n");
+    std::printf("|-----------|----------|----------|----------|----------|----------|----------|----------|--"
+                "----------------|\n");
     int failures = 0;
     for (const auto& b : backends) {
         try {

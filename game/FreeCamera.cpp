@@ -22,7 +22,8 @@ bool FreeCamera::update(const platforms::Window& window, float seconds, float sp
     window.cursorDelta(dx, dy);
     yaw_ += float(dx) * 0.003f;
     pitch_ = std::clamp(pitch_ - float(dy) * 0.003f, -1.5f, 1.5f);
-    const glm::vec3 forward(std::sin(yaw_) * std::cos(pitch_), std::sin(pitch_), -std::cos(yaw_) * std::cos(pitch_));
+    const glm::vec3 forward(std::sin(yaw_) * std::cos(pitch_), std::sin(pitch_),
+                            -std::cos(yaw_) * std::cos(pitch_));
     const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
     glm::vec3 move(0.0f);
     if (window.keyDown(GLFW_KEY_W)) move += forward;

@@ -29,10 +29,15 @@
 namespace lpv::game {
 namespace {
 
-const engine::FloatSetting kSceneDetail{"scene.detail", 1.0, 0.05, 4.0,
-                                        "Tessellation scale of the built-in atrium (1.0 = about 250k triangles)",
-                                        engine::Apply::Restart};
-const engine::FloatSetting kCameraSpeed{"game.camera_speed", 3.0, 0.1, 100.0, "Free camera speed in metres per second"};
+const engine::FloatSetting kSceneDetail{
+    "scene.detail",
+    1.0,
+    0.05,
+    4.0,
+    "Tessellation scale of the built-in atrium (1.0 = about 250k triangles)",
+    engine::Apply::Restart};
+const engine::FloatSetting kCameraSpeed{"game.camera_speed", 3.0, 0.1, 100.0,
+                                        "Free camera speed in metres per second"};
 
 engine::Camera defaultCamera(const engine::Scene& scene) {
     if (scene.camera) return *scene.camera;
@@ -50,7 +55,8 @@ void cycle(engine::Config& config, const char* name) {
     if (!d || d->type != engine::SettingType::Enum) return;
     const std::string& current = std::get<std::string>(config.value(*d));
     size_t i = 0;
-    while (i < d->choices.size() && d->choices[i] != current) ++i;
+    while (i < d->choices.size() && d->choices[i] != current)
+        ++i;
     config.stage(*d, d->choices[(i + 1) % d->choices.size()], "key");
 }
 
@@ -67,10 +73,13 @@ void toggle(engine::Config& config, const char* name) {
 
 int runGame(const GameOptions& opt) {
     engine::Config config;
-    for (const std::string& file : opt.configFiles) config.loadFile(file);
-    for (const auto& [source, assignment] : opt.overrides) config.applyOverride(assignment, source);
+    for (const std::string& file : opt.configFiles)
+        config.loadFile(file);
+    for (const auto& [source, assignment] : opt.overrides)
+        config.applyOverride(assignment, source);
     if (!opt.cameraPath.empty() && !engine::isCameraPath(opt.cameraPath))
-        throw engine::ConfigError("--camera-path", 0, "unknown camera path '" + opt.cameraPath + "' (orbit, flythrough)");
+        throw engine::ConfigError("--camera-path", 0,
+                                  "unknown camera path '" + opt.cameraPath + "' (orbit, flythrough)");
     const platforms::PlatformProfile profile = engine::activePlatformProfile(config);
     const uint32_t width = engine::renderWidth(config), height = engine::renderHeight(config);
 
@@ -89,8 +98,9 @@ int runGame(const GameOptions& opt) {
     t0 = platforms::nowNanoseconds();
     std::unique_ptr<rhi::Device> device = rhi::createDevice(deviceConfig);
     log::info("game: running on backend '" + std::string(rhi::backendName(device->backend())) + "' (" +
-              device->caps().deviceName + ", " + std::to_string((platforms::nowNanoseconds() - t0) / 1000000) +
-              " ms to create)" + (window ? ", windowed" : ", headless") + ", platform profile '" + profile.name + "'");
+              device->caps().deviceName + ", " +
+              std::to_string((platforms::nowNanoseconds() - t0) / 1000000) + " ms to create)" +
+              (window ? ", windowed" : ", headless") + ", platform profile '" + profile.name + "'");
 
     engine::Renderer renderer(*device, width, height);
     renderer.setScene(scene);
@@ -126,20 +136,23 @@ int runGame(const GameOptions& opt) {
             }
             uint32_t fw = 0, fh = 0;
             window->framebufferSize(fw, fh);
-            if (fw == 0 || fh == 0) continue;  // minimised
+            if (fw == 0 || fh == 0) continue; // minimised
         }
         const std::vector<const engine::SettingDecl*> changes = config.applyPending();
         for (const engine::SettingDecl* changed : changes) {
             // The GI's "indirect" view is the renderer's indirect view.
-            if (changed->name == "gi.debug_view" && std::get<std::string>(config.value(*changed)) == "indirect")
-                config.set(*engine::SettingRegistry::global().find("render.debug_view"), std::string("indirect"), changed->name);
+            if (changed->name == "gi.debug_view" &&
+                std::get<std::string>(config.value(*changed)) == "indirect")
+                config.set(*engine::SettingRegistry::global().find("render.debug_view"),
+                           std::string("indirect"), changed->name);
             log::info("game: " + changed->name + " = " + changed->format(config.value(*changed)) +
                       (changed->apply == engine::Apply::Restart ? " (takes effect after a restart)" : ""));
         }
 
         engine::Camera cam = freeCamera.camera();
         if (!opt.cameraPath.empty())
-            cam = engine::cameraOnPath(opt.cameraPath, scene.bounds, start, frames > 1 ? float(frame) / float(frames - 1) : 0.0f);
+            cam = engine::cameraOnPath(opt.cameraPath, scene.bounds, start,
+                                       frames > 1 ? float(frame) / float(frames - 1) : 0.0f);
         else if (window)
             freeCamera.update(*window, dt, float(config.get(kCameraSpeed))), cam = freeCamera.camera();
         const engine::CameraMatrices matrices = engine::cameraMatrices(cam, float(width) / float(height));
@@ -150,7 +163,8 @@ int runGame(const GameOptions& opt) {
             // running the change is undone.
             if (firstFrame) throw engine::ConfigError("gi settings", 0, e.what());
             log::error(std::string("game: GI change refused: ") + e.what());
-            for (const auto& [decl, value] : lastGoodGi) config.stage(*decl, value, "restored");
+            for (const auto& [decl, value] : lastGoodGi)
+                config.stage(*decl, value, "restored");
             continue;
         }
         if (firstFrame || !changes.empty()) {
@@ -170,7 +184,8 @@ int runGame(const GameOptions& opt) {
 
     if (!opt.screenshot.empty()) {
         engine::writeScreenshot(*device, renderer, opt.screenshot);
-        log::info("game: wrote " + opt.screenshot + " (backend '" + std::string(rhi::backendName(device->backend())) + "')");
+        log::info("game: wrote " + opt.screenshot + " (backend '" +
+                  std::string(rhi::backendName(device->backend())) + "')");
     }
     if (!opt.profileOut.empty()) {
         // Let the last frames' GPU timings arrive before reporting.
@@ -182,7 +197,8 @@ int runGame(const GameOptions& opt) {
         }
         engine::writeProfileOutputs(profiler, opt.profileOut);
         std::fputs(engine::profileSummaryText(profiler).c_str(), stdout);
-        log::info("game: profile written to " + opt.profileOut + " (trace.json, summary.md, summary.csv, frames.svg)");
+        log::info("game: profile written to " + opt.profileOut +
+                  " (trace.json, summary.md, summary.csv, frames.svg)");
     }
     return 0;
 }

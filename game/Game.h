@@ -13,7 +13,7 @@ struct GameOptions {
     // (source, key=value): --set and the shorthand flags, in order.
     std::vector<std::pair<std::string, std::string>> overrides;
     std::string scene = "cornell";
-    int frames = -1;  // -1: 1 headless, until closed in a window
+    int frames = -1; // -1: 1 headless, until closed in a window
     bool headless = false;
     std::string screenshot;
     std::string cameraPath;

@@ -18,37 +18,51 @@ int main(int argc, char** argv) {
     game::GameOptions opt;
     std::string helpConfig;
     const auto shorthand = [&](const char* flag, const char* key) {
-        return [&opt, flag, key](const std::string& v) { opt.overrides.emplace_back(flag, std::string(key) + "=" + v); };
+        return [&opt, flag, key](const std::string& v) {
+            opt.overrides.emplace_back(flag, std::string(key) + "=" + v);
+        };
     };
     app.add_option("--config", opt.configFiles, "TOML config file(s), applied in order");
     app.add_option_function<std::vector<std::string>>(
         "--set",
         [&](const std::vector<std::string>& v) {
-            for (const std::string& a : v) opt.overrides.emplace_back("--set", a);
+            for (const std::string& a : v)
+                opt.overrides.emplace_back("--set", a);
         },
         "Override a setting: --set render.exposure=1.5 (after the config files)");
-    app.add_option("--scene", opt.scene, "Built-in scene (cornell, atrium) or a .gltf/.glb path")->capture_default_str();
-    app.add_option_function<std::string>("--backend", shorthand("--backend", "render.backend"),
-                                         "Graphics backend: auto, gl, vulkan, null (= --set render.backend=...)");
+    app.add_option("--scene", opt.scene, "Built-in scene (cornell, atrium) or a .gltf/.glb path")
+        ->capture_default_str();
+    app.add_option_function<std::string>(
+        "--backend", shorthand("--backend", "render.backend"),
+        "Graphics backend: auto, gl, vulkan, null (= --set render.backend=...)");
     app.add_option_function<std::string>("--gl-platform", shorthand("--gl-platform", "render.gl_platform"),
                                          "Headless GL context: egl or osmesa");
-    app.add_flag_callback("--no-fallback", [&] { opt.overrides.emplace_back("--no-fallback", "render.allow_fallback=false"); },
-                          "Fail instead of falling back to the other backend");
-    app.add_flag_callback("--validation", [&] { opt.overrides.emplace_back("--validation", "render.validation=true"); },
-                          "Vulkan validation layer / GL debug output");
+    app.add_flag_callback(
+        "--no-fallback", [&] { opt.overrides.emplace_back("--no-fallback", "render.allow_fallback=false"); },
+        "Fail instead of falling back to the other backend");
+    app.add_flag_callback(
+        "--validation", [&] { opt.overrides.emplace_back("--validation", "render.validation=true"); },
+        "Vulkan validation layer / GL debug output");
     app.add_option_function<std::string>("--width", shorthand("--width", "render.width"), "Frame width");
     app.add_option_function<std::string>("--height", shorthand("--height", "render.height"), "Frame height");
-    app.add_option_function<std::string>("--platform", shorthand("--platform", "platform.profile"),
-                                         "Budget profile: x360, ps3, pc or a file (= --set platform.profile=...)");
+    app.add_option_function<std::string>(
+        "--platform", shorthand("--platform", "platform.profile"),
+        "Budget profile: x360, ps3, pc or a file (= --set platform.profile=...)");
     app.add_flag("--headless", opt.headless, "Never open a window");
-    app.add_option("--frames", opt.frames, "Frames to render (default: 1 headless, until closed in a window)");
-    app.add_option("--screenshot", opt.screenshot, "Write the last frame: .png (sRGB) or .exr/.pfm (linear HDR)");
+    app.add_option("--frames", opt.frames,
+                   "Frames to render (default: 1 headless, until closed in a window)");
+    app.add_option("--screenshot", opt.screenshot,
+                   "Write the last frame: .png (sRGB) or .exr/.pfm (linear HDR)");
     app.add_option("--camera-path", opt.cameraPath, "Scripted camera over the frames: orbit or flythrough");
-    app.add_option("--profile-out", opt.profileOut, "Write the profiler's trace, summary and chart into this folder");
-    app.add_option("--help-config", helpConfig, "List every setting (text or markdown) and exit")->expected(0, 1);
+    app.add_option("--profile-out", opt.profileOut,
+                   "Write the profiler's trace, summary and chart into this folder");
+    app.add_option("--help-config", helpConfig, "List every setting (text or markdown) and exit")
+        ->expected(0, 1);
     CLI11_PARSE(app, argc, argv);
     if (app.count("--help-config")) {
-        std::fputs((helpConfig == "markdown" ? engine::settingsMarkdownTable() : engine::settingsHelpText()).c_str(), stdout);
+        std::fputs(
+            (helpConfig == "markdown" ? engine::settingsMarkdownTable() : engine::settingsHelpText()).c_str(),
+            stdout);
         return 0;
     }
     try {

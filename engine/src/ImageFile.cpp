@@ -20,7 +20,9 @@ bool endsWith(const std::string& s, const char* suffix) {
 }
 } // namespace
 
-bool isHdrPath(const std::string& path) { return endsWith(path, ".exr") || endsWith(path, ".pfm"); }
+bool isHdrPath(const std::string& path) {
+    return endsWith(path, ".exr") || endsWith(path, ".pfm");
+}
 
 void writePng(const std::string& path, uint32_t width, uint32_t height, std::span<const uint8_t> rgba) {
     if (rgba.size() != size_t(width) * height * 4)
@@ -28,7 +30,8 @@ void writePng(const std::string& path, uint32_t width, uint32_t height, std::spa
                                  std::to_string(height) + " RGBA8");
     errno = 0;
     if (!stbi_write_png(path.c_str(), int(width), int(height), 4, rgba.data(), int(width * 4)))
-        throw std::runtime_error("cannot write " + path + (errno ? std::string(": ") + std::strerror(errno) : ""));
+        throw std::runtime_error("cannot write " + path +
+                                 (errno ? std::string(": ") + std::strerror(errno) : ""));
 }
 
 void writeHdr(const std::string& path, uint32_t width, uint32_t height, std::span<const float> rgba) {
@@ -40,7 +43,8 @@ void writeHdr(const std::string& path, uint32_t width, uint32_t height, std::spa
         // RGB, full float precision: the indirect-light view is compared against a path tracer.
         std::vector<float> rgb(size_t(width) * height * 3);
         for (size_t i = 0; i < size_t(width) * height; ++i)
-            for (int c = 0; c < 3; ++c) rgb[i * 3 + size_t(c)] = rgba[i * 4 + size_t(c)];
+            for (int c = 0; c < 3; ++c)
+                rgb[i * 3 + size_t(c)] = rgba[i * 4 + size_t(c)];
         if (SaveEXR(rgb.data(), int(width), int(height), 3, 0, path.c_str(), &err) < 0) {
             const std::string message = err ? err : "unknown error";
             FreeEXRErrorMessage(err);
@@ -48,7 +52,8 @@ void writeHdr(const std::string& path, uint32_t width, uint32_t height, std::spa
         }
         return;
     }
-    if (!endsWith(path, ".pfm")) throw std::runtime_error(path + ": HDR screenshots must end in .exr or .pfm");
+    if (!endsWith(path, ".pfm"))
+        throw std::runtime_error(path + ": HDR screenshots must end in .exr or .pfm");
     std::ofstream out(path, std::ios::binary);
     if (!out) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
     // PFM: "PF", size, negative scale = little endian; rows run bottom to top.
@@ -56,7 +61,8 @@ void writeHdr(const std::string& path, uint32_t width, uint32_t height, std::spa
     std::vector<float> row(size_t(width) * 3);
     for (uint32_t y = height; y-- > 0;) {
         for (uint32_t x = 0; x < width; ++x)
-            for (int c = 0; c < 3; ++c) row[size_t(x) * 3 + size_t(c)] = rgba[(size_t(y) * width + x) * 4 + size_t(c)];
+            for (int c = 0; c < 3; ++c)
+                row[size_t(x) * 3 + size_t(c)] = rgba[(size_t(y) * width + x) * 4 + size_t(c)];
         out.write(reinterpret_cast<const char*>(row.data()), std::streamsize(row.size() * sizeof(float)));
     }
     if (!out) throw std::runtime_error("cannot write " + path);

@@ -18,7 +18,8 @@ void writeScreenshot(rhi::Device& device, const Renderer& renderer, const std::s
         std::vector<uint16_t> half(size_t(w) * h * 4);
         device.readTexture(renderer.hdr(), 0, half.data(), half.size() * sizeof(uint16_t));
         std::vector<float> rgba(half.size());
-        for (size_t i = 0; i < half.size(); ++i) rgba[i] = glm::unpackHalf1x16(half[i]);
+        for (size_t i = 0; i < half.size(); ++i)
+            rgba[i] = glm::unpackHalf1x16(half[i]);
         writeHdr(path, w, h, rgba);
     } else {
         std::vector<uint8_t> rgba(size_t(w) * h * 4);

@@ -27,27 +27,31 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
 
 uint64_t giBytes(const std::vector<GiResource>& resources) {
     uint64_t sum = 0;
-    for (const GiResource& r : resources) sum += r.bytes;
+    for (const GiResource& r : resources)
+        sum += r.bytes;
     return sum;
 }
 
 void checkGiBudget(const LpvSettings& s, const platforms::PlatformProfile& profile) {
     if (!profile.allowsShFormat(shFormatName(s.shFormat))) {
         std::string allowed;
-        for (const auto& f : profile.shFormats) allowed += (allowed.empty() ? "" : ", ") + f;
-        throw GiBudgetError("gi.sh_format '" + std::string(shFormatName(s.shFormat)) + "' is not allowed by platform '" +
-                            profile.name + "' (allowed: " + allowed + ")");
+        for (const auto& f : profile.shFormats)
+            allowed += (allowed.empty() ? "" : ", ") + f;
+        throw GiBudgetError("gi.sh_format '" + std::string(shFormatName(s.shFormat)) +
+                            "' is not allowed by platform '" + profile.name + "' (allowed: " + allowed + ")");
     }
     if (s.gridSize > profile.maxVolumeSize)
-        throw GiBudgetError("gi.grid_size " + std::to_string(s.gridSize) + " exceeds platform '" + profile.name +
-                            "' limit of " + std::to_string(profile.maxVolumeSize));
+        throw GiBudgetError("gi.grid_size " + std::to_string(s.gridSize) + " exceeds platform '" +
+                            profile.name + "' limit of " + std::to_string(profile.maxVolumeSize));
     const auto resources = giResources(s);
     const uint64_t total = giBytes(resources);
     if (total <= profile.giMemoryBudgetBytes) return;
-    std::string message = "GI configuration needs " + std::to_string(total) + " bytes, over platform '" + profile.name +
-                          "' GI memory budget of " + std::to_string(profile.giMemoryBudgetBytes) + " bytes by " +
+    std::string message = "GI configuration needs " + std::to_string(total) + " bytes, over platform '" +
+                          profile.name + "' GI memory budget of " +
+                          std::to_string(profile.giMemoryBudgetBytes) + " bytes by " +
                           std::to_string(total - profile.giMemoryBudgetBytes) + ":";
-    for (const GiResource& r : resources) message += "\n  " + r.category + " " + r.name + ": " + std::to_string(r.bytes) + " bytes";
+    for (const GiResource& r : resources)
+        message += "\n  " + r.category + " " + r.name + ": " + std::to_string(r.bytes) + " bytes";
     throw GiBudgetError(message);
 }
 

@@ -14,7 +14,7 @@ WorkCounts rsmWork(const LpvSettings& s, uint64_t sceneTriangles) {
     w.primitives = sceneTriangles;
     w.pixelsShaded = texels;
     w.texelsRead = texels;        // albedo texture
-    w.texelsWritten = texels * 3;  // normal, flux, depth
+    w.texelsWritten = texels * 3; // normal, flux, depth
     w.aluOps = texels * 20;
     w.bytesMoved = texels * (8 + 8 + 4 + 4);
     return w;
@@ -24,7 +24,7 @@ WorkCounts vplClusterWork(const LpvSettings& s) {
     const uint64_t texels = uint64_t(s.rsmSize) * s.rsmSize;
     WorkCounts w;
     w.texelsRead = texels * 3;
-    w.aluOps = texels * 30;  // unproject, weight, three weighted sums
+    w.aluOps = texels * 30; // unproject, weight, three weighted sums
     w.bytesMoved = texels * (4 + 8 + 8) + uint64_t(s.vplCount) * 48;
     return w;
 }
@@ -37,7 +37,7 @@ WorkCounts injectWork(const LpvSettings& s) {
     w.aluOps = w.primitives * 20;
     w.pixelsShaded = s.vplCount;
     w.texelsWritten = uint64_t(s.vplCount) * 3;
-    w.bytesMoved = w.primitives * 48 + w.texelsWritten * injectBytes * 2;  // blending reads and writes
+    w.bytesMoved = w.primitives * 48 + w.texelsWritten * injectBytes * 2; // blending reads and writes
     w.cells = uint64_t(s.gridSize) * s.gridSize * s.gridSize;
     return w;
 }
@@ -47,8 +47,8 @@ WorkCounts propagateWork(const LpvSettings& s) {
     const uint64_t bpp = rhi::bytesPerPixel(shTextureFormat(s.shFormat));
     WorkCounts one;
     one.cells = cells;
-    one.texelsRead = cells * (6 * 3 + 3);  // 6 neighbours x 3 channels, plus the accumulation
-    one.texelsWritten = cells * 6;         // next iteration and accumulation, 3 channels each
+    one.texelsRead = cells * (6 * 3 + 3); // 6 neighbours x 3 channels, plus the accumulation
+    one.texelsWritten = cells * 6;        // next iteration and accumulation, 3 channels each
     // Per face and channel after constant folding: a 3-term dot (5), a clamp (1), a 2-term update (4).
     one.aluOps = cells * (6 * 5 * 3 * 10 + 12);
     // Neighbour reads hit the texture cache: each texel comes from memory about once.

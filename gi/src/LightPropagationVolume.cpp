@@ -47,8 +47,10 @@ VolumeGrid placeVolume(const LpvSettings& s, glm::vec3 cameraPosition, glm::vec3
     if (!bounds.empty()) {
         for (int a = 0; a < 3; ++a) {
             const float lo = bounds.min[a], hi = bounds.max[a];
-            if (hi - lo <= extent) center[a] = 0.5f * (lo + hi);
-            else center[a] = std::clamp(center[a], lo + 0.5f * extent, hi - 0.5f * extent);
+            if (hi - lo <= extent)
+                center[a] = 0.5f * (lo + hi);
+            else
+                center[a] = std::clamp(center[a], lo + 0.5f * extent, hi - 0.5f * extent);
         }
     }
     // Whole cells: the volume moves in steps of one cell, so a static scene's lighting only
@@ -87,7 +89,8 @@ LightPropagationVolume::LightPropagationVolume(rhi::Device& device, platforms::P
 
 LightPropagationVolume::~LightPropagationVolume() {
     release();
-    for (auto p : {lookupPipeline_, slicePipeline_, pointsPipeline_}) device_.destroy(p);
+    for (auto p : {lookupPipeline_, slicePipeline_, pointsPipeline_})
+        device_.destroy(p);
     device_.destroy(clusterPipeline_);
     device_.destroy(pointSampler_);
     device_.destroy(linearSampler_);
@@ -115,10 +118,10 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
                                     const engine::CameraMatrices& camera) {
     const LpvSettings s = readLpvSettings(config);
     renderer_ = &renderer;
-    const bool resized = !made_ || s.rsmSize != settings_.rsmSize || s.vplCount != settings_.vplCount ||
-                         !volumes_->matches(s);
+    const bool resized =
+        !made_ || s.rsmSize != settings_.rsmSize || s.vplCount != settings_.vplCount || !volumes_->matches(s);
     if (s.enabled && resized) {
-        checkGiBudget(s, profile_);  // throws before anything changes
+        checkGiBudget(s, profile_); // throws before anything changes
         remake(s);
     }
     settings_ = s;
@@ -130,11 +133,12 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                                             engine::FrameProfiler* profiler) {
     using namespace rhi;
     if (!settings_.enabled || !made_ || !renderer_ || !renderer_->scene()) {
-        cmd.clearTexture(target, {0, 0, 0, 0});  // GI off: no indirect light at all
+        cmd.clearTexture(target, {0, 0, 0, 0}); // GI off: no indirect light at all
         return;
     }
     const auto scope = [&](const char* name) {
-        return profiler ? std::optional<engine::FrameProfiler::Scope>(profiler->scope(name, &cmd)) : std::nullopt;
+        return profiler ? std::optional<engine::FrameProfiler::Scope>(profiler->scope(name, &cmd))
+                        : std::nullopt;
     };
     const auto work = [&](const engine::WorkCounts& w) {
         if (profiler) profiler->setWork(w);
@@ -191,7 +195,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         cmd.pushUniforms(0, &u, sizeof(u));
         cmd.bindTexture(1, gbuffer.depth, pointSampler_);
         cmd.bindTexture(2, gbuffer.normal, pointSampler_);
-        for (uint32_t c = 0; c < 3; ++c) cmd.bindTexture(3 + c, volumes_->accumulated()[c], linearSampler_);
+        for (uint32_t c = 0; c < 3; ++c)
+            cmd.bindTexture(3 + c, volumes_->accumulated()[c], linearSampler_);
         cmd.draw(3);
         cmd.endRenderPass();
         work(lookupWork(settings_, uint64_t(gbuffer.width) * gbuffer.height));
@@ -217,12 +222,13 @@ void LightPropagationVolume::renderDebugOverlay(rhi::CommandList& cmd, const eng
         cmd.setViewport({0, 0, side, side, 0, 1});
         SliceUniforms u;
         const uint32_t slice = std::min(settings_.debugSlice, grid_.size - 1);
-        u.params = glm::vec4((float(slice) + 0.5f) / float(grid_.size), 1.0f / (grid_.cellSize * grid_.cellSize),
-                             volumes_->encodeRange(), 0);
+        u.params = glm::vec4((float(slice) + 0.5f) / float(grid_.size),
+                             1.0f / (grid_.cellSize * grid_.cellSize), volumes_->encodeRange(), 0);
         u.flags = glm::ivec4(volumes_->encoded() ? 1 : 0, 0, 0, 0);
         cmd.bindPipeline(slicePipeline_);
         cmd.pushUniforms(0, &u, sizeof(u));
-        for (uint32_t c = 0; c < 3; ++c) cmd.bindTexture(1 + c, volumes_->accumulated()[c], pointSampler_);
+        for (uint32_t c = 0; c < 3; ++c)
+            cmd.bindTexture(1 + c, volumes_->accumulated()[c], pointSampler_);
         cmd.draw(3);
     } else {
         cmd.bindPipeline(pointsPipeline_);

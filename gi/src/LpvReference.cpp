@@ -13,7 +13,8 @@ namespace lpv::gi {
 
 glm::vec3 ShVolume::totalL0() const {
     glm::dvec3 sum(0.0);
-    for (const ShCell& c : cells_) sum += glm::dvec3(c.r.x, c.g.x, c.b.x);
+    for (const ShCell& c : cells_)
+        sum += glm::dvec3(c.r.x, c.g.x, c.b.x);
     return glm::vec3(sum);
 }
 
@@ -23,10 +24,12 @@ bool injectionCell(const VolumeGrid& grid, const Vpl& vpl, glm::vec3 lightDirect
     const glm::vec3 p = vpl.position + 0.5f * grid.cellSize * (vpl.normal - lightDirection);
     const glm::vec3 c = glm::floor((p - grid.origin) / grid.cellSize);
     cell = glm::ivec3(c);
-    return glm::all(glm::greaterThanEqual(cell, glm::ivec3(0))) && glm::all(glm::lessThan(cell, glm::ivec3(int(grid.size))));
+    return glm::all(glm::greaterThanEqual(cell, glm::ivec3(0))) &&
+           glm::all(glm::lessThan(cell, glm::ivec3(int(grid.size))));
 }
 
-void injectReference(ShVolume& volume, const VolumeGrid& grid, const std::vector<Vpl>& vpls, glm::vec3 lightDirection) {
+void injectReference(ShVolume& volume, const VolumeGrid& grid, const std::vector<Vpl>& vpls,
+                     glm::vec3 lightDirection) {
     for (const Vpl& vpl : vpls) {
         glm::ivec3 c;
         if (!injectionCell(grid, vpl, lightDirection, c)) continue;
@@ -45,7 +48,8 @@ ShVolume propagateStep(const ShVolume& src) {
     std::array<std::array<glm::vec4, 5>, 6> lobes;
     for (int a = 0; a < 6; ++a) {
         faces[size_t(a)] = propagationFaces(a);
-        for (int f = 0; f < 5; ++f) lobes[size_t(a)][size_t(f)] = shCosineLobe(faces[size_t(a)][size_t(f)].normal);
+        for (int f = 0; f < 5; ++f)
+            lobes[size_t(a)][size_t(f)] = shCosineLobe(faces[size_t(a)][size_t(f)].normal);
     }
     for (int z = 0; z < n; ++z)
         for (int y = 0; y < n; ++y)
@@ -54,7 +58,9 @@ ShVolume propagateStep(const ShVolume& src) {
                 for (int a = 0; a < 6; ++a) {
                     // The neighbour sits on the opposite side of the axis it sends along.
                     const glm::ivec3 nb = glm::ivec3(x, y, z) - kAxes[size_t(a)];
-                    if (glm::any(glm::lessThan(nb, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(nb, glm::ivec3(n)))) continue;
+                    if (glm::any(glm::lessThan(nb, glm::ivec3(0))) ||
+                        glm::any(glm::greaterThanEqual(nb, glm::ivec3(n))))
+                        continue;
                     const ShCell& in = src.at(uint32_t(nb.x), uint32_t(nb.y), uint32_t(nb.z));
                     for (int f = 0; f < 5; ++f) {
                         const PropagationFace& face = faces[size_t(a)][size_t(f)];

@@ -7,33 +7,44 @@ namespace lpv::gi {
 namespace {
 
 using engine::Apply;
-const engine::BoolSetting kEnabled{"gi.enabled", false, "Dynamic global illumination (light propagation volumes)"};
+const engine::BoolSetting kEnabled{"gi.enabled", false,
+                                   "Dynamic global illumination (light propagation volumes)"};
 const engine::IntSetting kGridSize{"gi.grid_size", 32, 16, 64, "LPV cells per axis"};
-const engine::FloatSetting kCellSize{"gi.cell_size", 0.25, 0.01, 100.0, "LPV cell size in metres (volume = grid x cell)"};
+const engine::FloatSetting kCellSize{"gi.cell_size", 0.25, 0.01, 100.0,
+                                     "LPV cell size in metres (volume = grid x cell)"};
 const engine::IntSetting kIterations{"gi.iterations", 8, 1, 64, "Propagation iterations per frame"};
-const engine::IntSetting kRsmSize{"gi.rsm_size", 256, 32, 2048, "Reflective shadow map resolution (texels per side)"};
-const engine::IntSetting kVplCount{"gi.vpl_count", 4096, 16, 262144,
-                                   "VPLs after clustering the RSM (a square number whose side divides gi.rsm_size)"};
+const engine::IntSetting kRsmSize{"gi.rsm_size", 256, 32, 2048,
+                                  "Reflective shadow map resolution (texels per side)"};
+const engine::IntSetting kVplCount{
+    "gi.vpl_count", 4096, 16, 262144,
+    "VPLs after clustering the RSM (a square number whose side divides gi.rsm_size)"};
 const engine::FloatSetting kIntensity{"gi.intensity", 1.0, 0.0, 100.0, "Scale of the indirect light"};
-const engine::EnumSetting<ShFormat> kShFormat{"gi.sh_format",
-                                              ShFormat::Rgba16f,
-                                              {{ShFormat::Rgba8, "rgba8"}, {ShFormat::Rgba16f, "rgba16f"}, {ShFormat::Rgba32f, "rgba32f"}},
-                                              "Storage of the SH volumes; the platform profile limits it"};
-const engine::EnumSetting<GiDebugView> kDebugView{"gi.debug_view",
-                                                  GiDebugView::None,
-                                                  {{GiDebugView::None, "none"},
-                                                   {GiDebugView::VolumeSlice, "volume_slice"},
-                                                   {GiDebugView::Vpls, "vpls"},
-                                                   {GiDebugView::Indirect, "indirect"}},
-                                                  "GI debug view: a volume slice, the VPLs, or the indirect light alone"};
-const engine::FloatSetting kRgba8Range{"gi.rgba8_range", 2.0, 0.001, 1000.0,
-                                      "Largest SH coefficient an rgba8 volume stores (values are range-encoded)"};
-const engine::BoolSetting kDamping{"gi.damping", true, "Anisotropic damping of light arriving through surfaces"};
-const engine::IntSetting kDebugSlice{"gi.debug_slice", 16, 0, 63, "Volume slice (z) shown by gi.debug_view=volume_slice"};
+const engine::EnumSetting<ShFormat> kShFormat{
+    "gi.sh_format",
+    ShFormat::Rgba16f,
+    {{ShFormat::Rgba8, "rgba8"}, {ShFormat::Rgba16f, "rgba16f"}, {ShFormat::Rgba32f, "rgba32f"}},
+    "Storage of the SH volumes; the platform profile limits it"};
+const engine::EnumSetting<GiDebugView> kDebugView{
+    "gi.debug_view",
+    GiDebugView::None,
+    {{GiDebugView::None, "none"},
+     {GiDebugView::VolumeSlice, "volume_slice"},
+     {GiDebugView::Vpls, "vpls"},
+     {GiDebugView::Indirect, "indirect"}},
+    "GI debug view: a volume slice, the VPLs, or the indirect light alone"};
+const engine::FloatSetting kRgba8Range{
+    "gi.rgba8_range", 2.0, 0.001, 1000.0,
+    "Largest SH coefficient an rgba8 volume stores (values are range-encoded)"};
+const engine::BoolSetting kDamping{"gi.damping", true,
+                                   "Anisotropic damping of light arriving through surfaces"};
+const engine::IntSetting kDebugSlice{"gi.debug_slice", 16, 0, 63,
+                                     "Volume slice (z) shown by gi.debug_view=volume_slice"};
 
 } // namespace
 
-uint32_t LpvSettings::vplGridSide() const { return uint32_t(std::lround(std::sqrt(double(vplCount)))); }
+uint32_t LpvSettings::vplGridSide() const {
+    return uint32_t(std::lround(std::sqrt(double(vplCount))));
+}
 
 LpvSettings readLpvSettings(const engine::Config& config) {
     LpvSettings s;
@@ -54,24 +65,31 @@ LpvSettings readLpvSettings(const engine::Config& config) {
         throw engine::ConfigError(config.origin(kVplCount.decl()), 0,
                                   "'gi.vpl_count' = " + std::to_string(s.vplCount) +
                                       ": expected a square number whose side divides gi.rsm_size (" +
-                                      std::to_string(s.rsmSize) + "), e.g. " + std::to_string((s.rsmSize / 4) * (s.rsmSize / 4)));
+                                      std::to_string(s.rsmSize) + "), e.g. " +
+                                      std::to_string((s.rsmSize / 4) * (s.rsmSize / 4)));
     return s;
 }
 
 std::string_view shFormatName(ShFormat f) {
     switch (f) {
-    case ShFormat::Rgba8: return "rgba8";
-    case ShFormat::Rgba16f: return "rgba16f";
-    case ShFormat::Rgba32f: return "rgba32f";
+    case ShFormat::Rgba8:
+        return "rgba8";
+    case ShFormat::Rgba16f:
+        return "rgba16f";
+    case ShFormat::Rgba32f:
+        return "rgba32f";
     }
     return "?";
 }
 
 rhi::Format shTextureFormat(ShFormat f) {
     switch (f) {
-    case ShFormat::Rgba8: return rhi::Format::RGBA8Unorm;
-    case ShFormat::Rgba16f: return rhi::Format::RGBA16F;
-    case ShFormat::Rgba32f: return rhi::Format::RGBA32F;
+    case ShFormat::Rgba8:
+        return rhi::Format::RGBA8Unorm;
+    case ShFormat::Rgba16f:
+        return rhi::Format::RGBA16F;
+    case ShFormat::Rgba32f:
+        return rhi::Format::RGBA32F;
     }
     return rhi::Format::RGBA16F;
 }

@@ -22,16 +22,20 @@ struct PropagateUniforms {
 
 const rhi::ShaderBinary& propagateShader(ShFormat f) {
     switch (f) {
-    case ShFormat::Rgba8: return shaders::propagate_rgba8_comp;
-    case ShFormat::Rgba32f: return shaders::propagate_rgba32f_comp;
-    case ShFormat::Rgba16f: break;
+    case ShFormat::Rgba8:
+        return shaders::propagate_rgba8_comp;
+    case ShFormat::Rgba32f:
+        return shaders::propagate_rgba32f_comp;
+    case ShFormat::Rgba16f:
+        break;
     }
     return shaders::propagate_rgba16f_comp;
 }
 
 } // namespace
 
-LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings) : device_(device), settings_(settings) {
+LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings)
+    : device_(device), settings_(settings) {
     using namespace rhi;
     const uint32_t n = settings.gridSize;
     const Format injectFormat = settings.shFormat == ShFormat::Rgba32f ? Format::RGBA32F : Format::RGBA16F;
@@ -55,34 +59,39 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings) : devic
     d.blend = {BlendState::additive()};
     d.debugName = "lpv inject";
     injectPipeline_ = device.createPipeline(d);
-    propagatePipeline_ = device.createPipeline(ComputePipelineDesc{&propagateShader(settings.shFormat), "lpv propagate"});
+    propagatePipeline_ =
+        device.createPipeline(ComputePipelineDesc{&propagateShader(settings.shFormat), "lpv propagate"});
     pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
 }
 
 LpvVolumes::~LpvVolumes() {
     device_.waitIdle();
     for (const auto* set : {&inject_, &ping_, &pong_, &accum_})
-        for (rhi::TextureHandle t : *set) device_.destroy(t);
+        for (rhi::TextureHandle t : *set)
+            device_.destroy(t);
     device_.destroy(injectPipeline_);
     device_.destroy(propagatePipeline_);
     device_.destroy(pointSampler_);
 }
 
 bool LpvVolumes::matches(const LpvSettings& s) const {
-    return s.gridSize == settings_.gridSize && s.shFormat == settings_.shFormat && s.rgba8Range == settings_.rgba8Range;
+    return s.gridSize == settings_.gridSize && s.shFormat == settings_.shFormat &&
+           s.rgba8Range == settings_.rgba8Range;
 }
 
-void LpvVolumes::inject(rhi::CommandList& cmd, rhi::BufferHandle vpls, uint32_t vplCount, const VolumeGrid& grid,
-                        glm::vec3 lightDirection, float intensity) {
+void LpvVolumes::inject(rhi::CommandList& cmd, rhi::BufferHandle vpls, uint32_t vplCount,
+                        const VolumeGrid& grid, glm::vec3 lightDirection, float intensity) {
     using namespace rhi;
-    for (TextureHandle t : inject_) cmd.clearTexture(t, {0, 0, 0, 0});
+    for (TextureHandle t : inject_)
+        cmd.clearTexture(t, {0, 0, 0, 0});
     InjectUniforms u;
     u.gridOrigin = glm::vec4(grid.origin, grid.cellSize);
     u.lightDirection = glm::vec4(lightDirection, 0.0f);
     u.intensity = glm::vec4(intensity, 0, 0, 0);
     for (uint32_t slice = 0; slice < settings_.gridSize; ++slice) {
         RenderPassDesc pass;
-        for (uint32_t c = 0; c < 3; ++c) pass.colors[c] = {inject_[c], 0, slice, LoadOp::Load};
+        for (uint32_t c = 0; c < 3; ++c)
+            pass.colors[c] = {inject_[c], 0, slice, LoadOp::Load};
         pass.colorCount = 3;
         pass.debugName = "lpv inject slice";
         cmd.beginRenderPass(pass);

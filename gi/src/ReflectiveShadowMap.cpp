@@ -21,11 +21,14 @@ struct RsmUniforms {
 ReflectiveShadowMap::ReflectiveShadowMap(rhi::Device& device, uint32_t size) : device_(device), size_(size) {
     using namespace rhi;
     depth_ = device.createTexture({TextureKind::Tex2D, Format::D32F, size, size, 1, 1,
-                                   kTextureDepthTarget | kTextureSampled | kTextureTransfer, "rsm depth", "gi.rsm"});
+                                   kTextureDepthTarget | kTextureSampled | kTextureTransfer, "rsm depth",
+                                   "gi.rsm"});
     normal_ = device.createTexture({TextureKind::Tex2D, Format::RGBA16F, size, size, 1, 1,
-                                    kTextureColorTarget | kTextureSampled | kTextureTransfer, "rsm normal", "gi.rsm"});
+                                    kTextureColorTarget | kTextureSampled | kTextureTransfer, "rsm normal",
+                                    "gi.rsm"});
     flux_ = device.createTexture({TextureKind::Tex2D, Format::RGBA16F, size, size, 1, 1,
-                                  kTextureColorTarget | kTextureSampled | kTextureTransfer, "rsm flux", "gi.rsm"});
+                                  kTextureColorTarget | kTextureSampled | kTextureTransfer, "rsm flux",
+                                  "gi.rsm"});
     GraphicsPipelineDesc d;
     d.vertex = &shaders::rsm_vert;
     d.fragment = &shaders::rsm_frag;
@@ -52,7 +55,7 @@ ReflectiveShadowMap::~ReflectiveShadowMap() {
 glm::mat4 ReflectiveShadowMap::fit(const VolumeGrid& grid, glm::vec3 lightDirection) {
     const float extent = grid.cellSize * float(grid.size);
     const glm::vec3 center = grid.origin + glm::vec3(0.5f * extent);
-    const float radius = 0.5f * std::sqrt(3.0f) * extent;  // the volume's bounding sphere
+    const float radius = 0.5f * std::sqrt(3.0f) * extent; // the volume's bounding sphere
     const glm::vec3 dir = glm::normalize(lightDirection);
     const glm::vec3 up = std::fabs(dir.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
     // A light view through the world origin, so its orientation does not depend on the volume;
@@ -63,15 +66,15 @@ glm::mat4 ReflectiveShadowMap::fit(const VolumeGrid& grid, glm::vec3 lightDirect
     c.x = std::floor(c.x / texel) * texel;
     c.y = std::floor(c.y / texel) * texel;
     // Depth range: the bounding sphere, plus room behind it toward the light for occluders.
-    const glm::mat4 projection =
-        glm::orthoRH_ZO(c.x - radius, c.x + radius, c.y - radius, c.y + radius, -c.z - 4.0f * radius, -c.z + radius);
+    const glm::mat4 projection = glm::orthoRH_ZO(c.x - radius, c.x + radius, c.y - radius, c.y + radius,
+                                                 -c.z - 4.0f * radius, -c.z + radius);
     viewProjection_ = projection * view;
     texelArea_ = texel * texel;
     return viewProjection_;
 }
 
-void ReflectiveShadowMap::render(rhi::CommandList& cmd, const engine::GpuScene& scene, glm::vec3 lightDirection,
-                                 glm::vec3 sunIrradiance) {
+void ReflectiveShadowMap::render(rhi::CommandList& cmd, const engine::GpuScene& scene,
+                                 glm::vec3 lightDirection, glm::vec3 sunIrradiance) {
     using namespace rhi;
     RsmUniforms u;
     u.lightViewProjection = viewProjection_;

@@ -21,7 +21,7 @@ bool PlatformProfile::allowsShFormat(std::string_view format) const {
 namespace {
 
 struct Field {
-    std::function<bool(const toml::node&, PlatformProfile&)> read;  // false: wrong type or value
+    std::function<bool(const toml::node&, PlatformProfile&)> read; // false: wrong type or value
     const char* expected;
 };
 
@@ -100,7 +100,8 @@ const std::map<std::string, Field>& fields() {
 void walk(const toml::table& t, const std::string& prefix, const std::string& source, PlatformProfile& p,
           std::vector<std::string>& seen) {
     for (const auto& [key, node] : t) {
-        const std::string name = prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
+        const std::string name =
+            prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
         if (const toml::table* sub = node.as_table()) {
             walk(*sub, name, source, p, seen);
             continue;
@@ -134,18 +135,21 @@ PlatformProfile parsePlatformProfile(std::string_view text, const std::string& s
 
 std::vector<std::string> builtinProfileNames() {
     std::vector<std::string> names;
-    for (const auto& b : builtinProfiles()) names.emplace_back(b.name);
+    for (const auto& b : builtinProfiles())
+        names.emplace_back(b.name);
     return names;
 }
 
 PlatformProfile loadPlatformProfile(std::string_view nameOrPath) {
     for (const auto& b : builtinProfiles())
-        if (b.name == nameOrPath) return parsePlatformProfile(b.toml, "platforms/profiles/" + std::string(b.name) + ".toml");
+        if (b.name == nameOrPath)
+            return parsePlatformProfile(b.toml, "platforms/profiles/" + std::string(b.name) + ".toml");
     const std::string path(nameOrPath);
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         std::string names;
-        for (const auto& n : builtinProfileNames()) names += (names.empty() ? "" : ", ") + n;
+        for (const auto& n : builtinProfileNames())
+            names += (names.empty() ? "" : ", ") + n;
         throw std::runtime_error("platform profile '" + path + "' is neither a built-in profile (" + names +
                                  ") nor a readable file");
     }

@@ -27,7 +27,9 @@ bool initGlfw() {
 
 } // namespace
 
-bool Window::displayAvailable() { return initGlfw(); }
+bool Window::displayAvailable() {
+    return initGlfw();
+}
 
 Window::Window(const WindowDesc& desc) : desc_(desc) {
     if (!initGlfw()) throw std::runtime_error("cannot open a window: " + gGlfwError);
@@ -72,7 +74,9 @@ void Window::framebufferSize(uint32_t& width, uint32_t& height) const {
     height = uint32_t(h > 0 ? h : 0);
 }
 
-bool Window::shouldClose() const { return window_ && glfwWindowShouldClose(window_); }
+bool Window::shouldClose() const {
+    return window_ && glfwWindowShouldClose(window_);
+}
 
 void Window::pollEvents() {
     std::fill(std::begin(pressed_), std::end(pressed_), false);
@@ -91,9 +95,13 @@ void Window::pollEvents() {
     lastY_ = y;
 }
 
-bool Window::keyDown(int key) const { return window_ && glfwGetKey(window_, key) == GLFW_PRESS; }
+bool Window::keyDown(int key) const {
+    return window_ && glfwGetKey(window_, key) == GLFW_PRESS;
+}
 
-bool Window::keyPressed(int key) const { return key >= 0 && key < kMaxKeys && pressed_[key]; }
+bool Window::keyPressed(int key) const {
+    return key >= 0 && key < kMaxKeys && pressed_[key];
+}
 
 void Window::cursorDelta(double& dx, double& dy) const {
     dx = dx_;

@@ -52,7 +52,9 @@ public:
     void bindStorageImage(uint32_t, TextureHandle t, uint32_t) override;
     void pushUniforms(uint32_t, const void*, uint32_t) override {}
     void draw(uint32_t, uint32_t, uint32_t, uint32_t) override { requirePass(true, "draw"); }
-    void drawIndexed(uint32_t, uint32_t, uint32_t, int32_t, uint32_t) override { requirePass(true, "drawIndexed"); }
+    void drawIndexed(uint32_t, uint32_t, uint32_t, int32_t, uint32_t) override {
+        requirePass(true, "drawIndexed");
+    }
     void dispatch(uint32_t, uint32_t, uint32_t) override { requirePass(false, "dispatch"); }
     void clearTexture(TextureHandle t, const std::array<float, 4>&) override;
     void updateBuffer(BufferHandle b, uint64_t offset, const void* data, uint32_t size) override;
@@ -76,7 +78,8 @@ public:
         caps_.timestampSource = TimestampSource::Simulated;
         caps_.maxTimestampsPerFrame = config.maxTimestampsPerFrame;
         timestamps_.resize(config.framesInFlight + 1);
-        for (FrameTimestamps& t : timestamps_) t.ns.assign(config.maxTimestampsPerFrame, 0);
+        for (FrameTimestamps& t : timestamps_)
+            t.ns.assign(config.maxTimestampsPerFrame, 0);
         caps_.framesInFlight = config.framesInFlight;
         caps_.max3DTextureSize = 2048;
         caps_.max2DTextureSize = 16384;
@@ -91,7 +94,8 @@ public:
         NullBuffer b{desc, std::vector<std::byte>(desc.size)};
         if (initialData) std::memcpy(b.bytes.data(), initialData, desc.size);
         const BufferHandle h = buffers.insert(std::move(b));
-        allocations_.add(ResourceType::Buffer, h.bits, {ResourceType::Buffer, desc.debugName, desc.category, desc.size});
+        allocations_.add(ResourceType::Buffer, h.bits,
+                         {ResourceType::Buffer, desc.debugName, desc.category, desc.size});
         return h;
     }
     TextureHandle createTexture(const TextureDesc& desc) override {
@@ -180,7 +184,8 @@ public:
         if (!inFrame_) throw Error("writeTimestamp outside a frame");
         FrameTimestamps& t = slotFor(frame_);
         if (slot >= t.ns.size())
-            throw Error("timestamp slot " + std::to_string(slot) + " >= maxTimestampsPerFrame " + std::to_string(t.ns.size()));
+            throw Error("timestamp slot " + std::to_string(slot) + " >= maxTimestampsPerFrame " +
+                        std::to_string(t.ns.size()));
         t.ns[slot] = clockNs_;
     }
     const AllocationRecord& allocations() const override { return allocations_; }
@@ -221,25 +226,42 @@ void NullCommandList::requirePass(bool inside, const char* what) const {
         throw Error(std::string(what) + (inside ? " outside a render pass" : " inside a render pass"));
 }
 
-void NullCommandList::writeTimestamp(uint32_t slot) { device_.writeTimestamp(slot); }
+void NullCommandList::writeTimestamp(uint32_t slot) {
+    device_.writeTimestamp(slot);
+}
 
 void NullCommandList::beginRenderPass(const RenderPassDesc& desc) {
     requirePass(false, "beginRenderPass");
-    for (uint32_t i = 0; i < desc.colorCount; ++i) device_.textures.get(desc.colors[i].texture);
+    for (uint32_t i = 0; i < desc.colorCount; ++i)
+        device_.textures.get(desc.colors[i].texture);
     if (desc.depth.texture) device_.textures.get(desc.depth.texture);
     inPass_ = true;
 }
-void NullCommandList::bindPipeline(GraphicsPipelineHandle p) { device_.graphicsPipelines.get(p); }
-void NullCommandList::bindPipeline(ComputePipelineHandle p) { device_.computePipelines.get(p); }
-void NullCommandList::bindVertexBuffer(uint32_t, BufferHandle b, uint64_t) { device_.buffers.get(b); }
-void NullCommandList::bindIndexBuffer(BufferHandle b, IndexType, uint64_t) { device_.buffers.get(b); }
-void NullCommandList::bindUniformBuffer(uint32_t, BufferHandle b, uint64_t, uint64_t) { device_.buffers.get(b); }
-void NullCommandList::bindStorageBuffer(uint32_t, BufferHandle b, uint64_t, uint64_t) { device_.buffers.get(b); }
+void NullCommandList::bindPipeline(GraphicsPipelineHandle p) {
+    device_.graphicsPipelines.get(p);
+}
+void NullCommandList::bindPipeline(ComputePipelineHandle p) {
+    device_.computePipelines.get(p);
+}
+void NullCommandList::bindVertexBuffer(uint32_t, BufferHandle b, uint64_t) {
+    device_.buffers.get(b);
+}
+void NullCommandList::bindIndexBuffer(BufferHandle b, IndexType, uint64_t) {
+    device_.buffers.get(b);
+}
+void NullCommandList::bindUniformBuffer(uint32_t, BufferHandle b, uint64_t, uint64_t) {
+    device_.buffers.get(b);
+}
+void NullCommandList::bindStorageBuffer(uint32_t, BufferHandle b, uint64_t, uint64_t) {
+    device_.buffers.get(b);
+}
 void NullCommandList::bindTexture(uint32_t, TextureHandle t, SamplerHandle s) {
     device_.textures.get(t);
     device_.samplers.get(s);
 }
-void NullCommandList::bindStorageImage(uint32_t, TextureHandle t, uint32_t) { device_.textures.get(t); }
+void NullCommandList::bindStorageImage(uint32_t, TextureHandle t, uint32_t) {
+    device_.textures.get(t);
+}
 void NullCommandList::clearTexture(TextureHandle t, const std::array<float, 4>&) {
     requirePass(false, "clearTexture");
     device_.textures.get(t);
@@ -256,6 +278,8 @@ void NullCommandList::copyTexture(TextureHandle src, TextureHandle dst) {
 
 } // namespace
 
-std::unique_ptr<Device> createNullDevice(const DeviceConfig& config) { return std::make_unique<NullDevice>(config); }
+std::unique_ptr<Device> createNullDevice(const DeviceConfig& config) {
+    return std::make_unique<NullDevice>(config);
+}
 
 } // namespace lpv::rhi

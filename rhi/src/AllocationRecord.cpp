@@ -38,7 +38,8 @@ uint64_t AllocationRecord::bytesIn(const std::string& prefix) const {
 std::vector<Allocation> AllocationRecord::live() const {
     std::vector<Allocation> out;
     out.reserve(live_.size());
-    for (const auto& [k, a] : live_) out.push_back(a);
+    for (const auto& [k, a] : live_)
+        out.push_back(a);
     return out;
 }
 

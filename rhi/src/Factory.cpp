@@ -48,7 +48,9 @@ std::optional<BackendKind> parseBackend(std::string_view name) {
     return std::nullopt;
 }
 
-std::string validBackendNames() { return "auto, gl (or opengl), vulkan, null"; }
+std::string validBackendNames() {
+    return "auto, gl (or opengl), vulkan, null";
+}
 
 std::optional<GlHeadless> parseGlHeadless(std::string_view name) {
     if (name == "egl") return GlHeadless::EglSurfaceless;
@@ -56,36 +58,43 @@ std::optional<GlHeadless> parseGlHeadless(std::string_view name) {
     return std::nullopt;
 }
 
-std::string_view glHeadlessName(GlHeadless h) { return h == GlHeadless::OSMesa ? "osmesa" : "egl"; }
+std::string_view glHeadlessName(GlHeadless h) {
+    return h == GlHeadless::OSMesa ? "osmesa" : "egl";
+}
 
 std::unique_ptr<Device> createDevice(const DeviceConfig& config) {
     const BackendKind first = config.backend == BackendKind::Auto ? BackendKind::Vulkan : config.backend;
     try {
         return entry(first).create(config);
     } catch (const BackendUnavailable& e) {
-        const bool canFallBack = first != BackendKind::Null && (config.allowFallback || config.backend == BackendKind::Auto);
+        const bool canFallBack =
+            first != BackendKind::Null && (config.allowFallback || config.backend == BackendKind::Auto);
         if (!canFallBack)
             throw BackendUnavailable(std::string("backend '") + std::string(entry(first).name) +
                                      "' could not start: " + e.what() + " (fallback not allowed)");
         const BackendKind second = otherBackend(first);
-        log::warn(std::string("rhi: backend '") + std::string(entry(first).name) + "' unavailable (" + e.what() +
-                  "); falling back to '" + std::string(entry(second).name) + "'");
+        log::warn(std::string("rhi: backend '") + std::string(entry(first).name) + "' unavailable (" +
+                  e.what() + "); falling back to '" + std::string(entry(second).name) + "'");
         try {
             return entry(second).create(config);
         } catch (const BackendUnavailable& e2) {
-            throw BackendUnavailable(std::string("no backend could start: ") + std::string(entry(first).name) +
-                                     ": " + e.what() + "; " + std::string(entry(second).name) + ": " +
-                                     e2.what());
+            throw BackendUnavailable(std::string("no backend could start: ") +
+                                     std::string(entry(first).name) + ": " + e.what() + "; " +
+                                     std::string(entry(second).name) + ": " + e2.what());
         }
     }
 }
 
 std::string_view timestampSourceName(TimestampSource s) {
     switch (s) {
-    case TimestampSource::None: return "none";
-    case TimestampSource::GpuQueries: return "gpu-timestamp";
-    case TimestampSource::CpuFinished: return "cpu-after-finish";
-    case TimestampSource::Simulated: return "simulated";
+    case TimestampSource::None:
+        return "none";
+    case TimestampSource::GpuQueries:
+        return "gpu-timestamp";
+    case TimestampSource::CpuFinished:
+        return "cpu-after-finish";
+    case TimestampSource::Simulated:
+        return "simulated";
     }
     return "?";
 }

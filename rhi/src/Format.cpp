@@ -13,27 +13,42 @@ uint32_t bytesPerPixel(Format f) {
     case Format::RG16F:
     case Format::R32F:
     case Format::R32UI:
-    case Format::D32F: return 4;
-    case Format::RGBA16F: return 8;
-    case Format::RGBA32F: return 16;
-    case Format::Undefined: return 0;
+    case Format::D32F:
+        return 4;
+    case Format::RGBA16F:
+        return 8;
+    case Format::RGBA32F:
+        return 16;
+    case Format::Undefined:
+        return 0;
     }
     return 0;
 }
 
-bool isDepthFormat(Format f) { return f == Format::D32F; }
+bool isDepthFormat(Format f) {
+    return f == Format::D32F;
+}
 
 std::string_view formatName(Format f) {
     switch (f) {
-    case Format::Undefined: return "undefined";
-    case Format::RGBA8Unorm: return "rgba8";
-    case Format::RGBA8Srgb: return "rgba8_srgb";
-    case Format::RGBA16F: return "rgba16f";
-    case Format::RGBA32F: return "rgba32f";
-    case Format::RG16F: return "rg16f";
-    case Format::R32F: return "r32f";
-    case Format::R32UI: return "r32ui";
-    case Format::D32F: return "d32f";
+    case Format::Undefined:
+        return "undefined";
+    case Format::RGBA8Unorm:
+        return "rgba8";
+    case Format::RGBA8Srgb:
+        return "rgba8_srgb";
+    case Format::RGBA16F:
+        return "rgba16f";
+    case Format::RGBA32F:
+        return "rgba32f";
+    case Format::RG16F:
+        return "rg16f";
+    case Format::R32F:
+        return "r32f";
+    case Format::R32UI:
+        return "r32ui";
+    case Format::D32F:
+        return "d32f";
     }
     return "?";
 }

@@ -67,13 +67,12 @@ private:
     uint32_t check(HandleType h) const {
         if (!h.valid()) throw Error(std::string("use of a null ") + Tag::kName);
         if (h.index() >= slots_.size())
-            throw Error(std::string("use of an unknown ") + Tag::kName + " (slot " + std::to_string(h.index()) +
-                        " was never created)");
+            throw Error(std::string("use of an unknown ") + Tag::kName + " (slot " +
+                        std::to_string(h.index()) + " was never created)");
         const Slot& slot = slots_[h.index()];
         if (!slot.value || slot.generation != h.generation())
             throw Error(std::string("use of a stale ") + Tag::kName + " (slot " + std::to_string(h.index()) +
-                        ", generation " + std::to_string(h.generation()) +
-                        "): the resource was destroyed");
+                        ", generation " + std::to_string(h.generation()) + "): the resource was destroyed");
         return h.index();
     }
 

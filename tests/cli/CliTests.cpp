@@ -19,7 +19,8 @@ Result runGame(const std::string& args, const std::string& env = "") {
     FILE* pipe = popen(command.c_str(), "r");
     REQUIRE(pipe != nullptr);
     std::array<char, 512> buffer{};
-    while (fgets(buffer.data(), int(buffer.size()), pipe)) r.output += buffer.data();
+    while (fgets(buffer.data(), int(buffer.size()), pipe))
+        r.output += buffer.data();
     const int status = pclose(pipe);
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
@@ -30,11 +31,13 @@ Result runGame(const std::string& args, const std::string& env = "") {
 TEST_CASE("cli: an unknown backend name lists the valid ones and exits non-zero") {
     const Result r = runGame("--headless --backend d3d9");
     CHECK(r.exitCode != 0);
-    CHECK(r.output.find("'render.backend' = 'd3d9': expected one of: auto, gl, vulkan, null") != std::string::npos);
+    CHECK(r.output.find("'render.backend' = 'd3d9': expected one of: auto, gl, vulkan, null") !=
+          std::string::npos);
 }
 
 TEST_CASE("cli: vulkan without a driver fails clearly when fallback is not allowed") {
-    const Result r = runGame("--headless --backend vulkan --no-fallback", "VK_DRIVER_FILES=/nonexistent/icd.json");
+    const Result r =
+        runGame("--headless --backend vulkan --no-fallback", "VK_DRIVER_FILES=/nonexistent/icd.json");
     CHECK(r.exitCode == 3);
     CHECK(r.output.find("vulkan") != std::string::npos);
     CHECK(r.output.find("fallback not allowed") != std::string::npos);
@@ -56,12 +59,14 @@ TEST_CASE("cli: a config file with an unknown key names the file and line, and n
     std::fclose(f);
     const Result r = runGame("--headless --config " + path);
     CHECK(r.exitCode == 2);
-    CHECK(r.output.find(path + ":3: unknown setting 'render.bakcend' (did you mean 'render.backend'?)") != std::string::npos);
+    CHECK(r.output.find(path + ":3: unknown setting 'render.bakcend' (did you mean 'render.backend'?)") !=
+          std::string::npos);
     CHECK(r.output.find("running on backend") == std::string::npos);
 }
 
 TEST_CASE("cli: --help-config lists the settings") {
     const Result r = runGame("--help-config");
     CHECK(r.exitCode == 0);
-    CHECK(r.output.find("render.backend (enum, default auto, allowed auto, gl, vulkan, null)") != std::string::npos);
+    CHECK(r.output.find("render.backend (enum, default auto, allowed auto, gl, vulkan, null)") !=
+          std::string::npos);
 }

@@ -21,7 +21,9 @@ const IntSetting kGrid{"cfgtest.grid_size", 32, 16, 64, "Cells per axis"};
 const FloatSetting kScale{"cfgtest.scale", 1.0, 0.0, 10.0, "A scale"};
 const StringSetting kName{"cfgtest.name", "box", "A name"};
 const Vec3Setting kDir{"cfgtest.sun_direction", {0.0f, -1.0f, 0.0f}, "Where the sun shines"};
-const EnumSetting<Format> kFormat{"cfgtest.format", Format::Rgba16f, {{Format::Rgba8, "rgba8"}, {Format::Rgba16f, "rgba16f"}},
+const EnumSetting<Format> kFormat{"cfgtest.format",
+                                  Format::Rgba16f,
+                                  {{Format::Rgba8, "rgba8"}, {Format::Rgba16f, "rgba16f"}},
                                   "Storage format"};
 const IntSetting kRestart{"cfgtest.window_count", 1, 1, 4, "Windows", Apply::Restart};
 
@@ -52,13 +54,15 @@ TEST_CASE("config: defaults") {
 }
 
 TEST_CASE("config: files layer in order, then --set overrides them") {
-    const std::string a = writeTemp("a.toml", "[cfgtest]\nenabled = true\ngrid_size = 48\nname = \"atrium\"\n");
-    const std::string b = writeTemp("b.toml", "cfgtest.grid_size = 24\ncfgtest.sun_direction = [0.5, -1, 0.25]\n");
+    const std::string a =
+        writeTemp("a.toml", "[cfgtest]\nenabled = true\ngrid_size = 48\nname = \"atrium\"\n");
+    const std::string b =
+        writeTemp("b.toml", "cfgtest.grid_size = 24\ncfgtest.sun_direction = [0.5, -1, 0.25]\n");
     Config c;
     c.loadFile(a);
     c.loadFile(b);
     CHECK(c.get(kEnabled) == true);
-    CHECK(c.get(kGrid) == 24);  // the later file wins
+    CHECK(c.get(kGrid) == 24); // the later file wins
     CHECK(c.origin(kGrid.decl()) == b + ":1");
     CHECK(c.get(kName) == "atrium");
     CHECK(c.get(kDir).x == 0.5f);
@@ -69,12 +73,13 @@ TEST_CASE("config: files layer in order, then --set overrides them") {
     CHECK(c.origin(kGrid.decl()) == "--set");
     CHECK(c.get(kFormat) == Format::Rgba8);
     CHECK(c.get(kDir).z == 3.0f);
-    CHECK(c.get(kScale) == 1.0);  // untouched
+    CHECK(c.get(kScale) == 1.0); // untouched
 }
 
 TEST_CASE("config: an unknown key is an error naming the file, the line and the nearest key") {
     Config c;
-    const std::string e = errorOf([&] { c.loadString("[cfgtest]\nenabled = true\ngrid_sise = 40\n", "game.toml"); });
+    const std::string e =
+        errorOf([&] { c.loadString("[cfgtest]\nenabled = true\ngrid_sise = 40\n", "game.toml"); });
     CHECK(e == "game.toml:3: unknown setting 'cfgtest.grid_sise' (did you mean 'cfgtest.grid_size'?)");
     const std::string far = errorOf([&] { c.loadString("zzzzzzzz.qqqqqq = 1\n", "game.toml"); });
     CHECK(far.find("game.toml:1: unknown setting 'zzzzzzzz.qqqqqq'") == 0);
@@ -89,10 +94,12 @@ TEST_CASE("config: a wrong type names what was expected") {
           "t.toml:3: 'cfgtest.grid_size' has a string value: expected an integer in [16, 64]");
     CHECK(errorOf([&] { c.loadString("cfgtest.enabled = 1\n", "t.toml"); }) ==
           "t.toml:1: 'cfgtest.enabled' has an integer value: expected a bool (true or false)");
-    CHECK(errorOf([&] { c.loadString("cfgtest.sun_direction = [1, 2]\n", "t.toml"); }).find("t.toml:1:") == 0);
+    CHECK(errorOf([&] { c.loadString("cfgtest.sun_direction = [1, 2]\n", "t.toml"); }).find("t.toml:1:") ==
+          0);
     CHECK(errorOf([&] { c.applyOverride("cfgtest.scale=fast"); }) ==
           "--set: 'cfgtest.scale' = 'fast': expected a number in [0, 10]");
-    CHECK(errorOf([&] { c.applyOverride("cfgtest.grid_size"); }).find("expected key=value") != std::string::npos);
+    CHECK(errorOf([&] { c.applyOverride("cfgtest.grid_size"); }).find("expected key=value") !=
+          std::string::npos);
 }
 
 TEST_CASE("config: out of range values and unknown enum names are errors") {
@@ -103,29 +110,31 @@ TEST_CASE("config: out of range values and unknown enum names are errors") {
           "--set: 'cfgtest.grid_size' = '8': expected an integer in [16, 64]");
     CHECK(errorOf([&] { c.loadString("cfgtest.format = \"bc7\"\n", "t.toml"); }) ==
           "t.toml:1: 'cfgtest.format' = bc7: expected one of: rgba8, rgba16f");
-    CHECK(c.get(kGrid) == 32);  // a refused value changes nothing
+    CHECK(c.get(kGrid) == 32); // a refused value changes nothing
 }
 
 TEST_CASE("config: malformed TOML names the file and line") {
     Config c;
-    const std::string e = errorOf([&] { c.loadString("[cfgtest]\nenabled = true\ngrid_size = = 3\n", "broken.toml"); });
+    const std::string e =
+        errorOf([&] { c.loadString("[cfgtest]\nenabled = true\ngrid_size = = 3\n", "broken.toml"); });
     CHECK(e.find("broken.toml:3: malformed TOML") == 0);
-    CHECK(errorOf([&] { c.loadFile("/nonexistent/game.toml"); }) == "/nonexistent/game.toml: cannot open the config file");
+    CHECK(errorOf([&] { c.loadFile("/nonexistent/game.toml"); }) ==
+          "/nonexistent/game.toml: cannot open the config file");
 }
 
 TEST_CASE("config: changes while running apply at the next frame") {
     Config c;
     c.stage("cfgtest.grid_size=40", "console");
     c.stage(kEnabled.decl(), true, "key G");
-    CHECK(c.get(kGrid) == 32);  // this frame still sees the old value
-    CHECK_THROWS_AS(c.stage("cfgtest.grid_size=100", "console"), ConfigError);  // checked when staged
+    CHECK(c.get(kGrid) == 32); // this frame still sees the old value
+    CHECK_THROWS_AS(c.stage("cfgtest.grid_size=100", "console"), ConfigError); // checked when staged
     const auto changed = c.applyPending();
     CHECK(changed.size() == 2);
     CHECK(c.get(kGrid) == 40);
     CHECK(c.get(kEnabled));
     CHECK(c.origin(kGrid.decl()) == "console");
     CHECK(c.applyPending().empty());
-    c.stage("cfgtest.grid_size=40", "console");  // same value: not a change
+    c.stage("cfgtest.grid_size=40", "console"); // same value: not a change
     CHECK(c.applyPending().empty());
 }
 
@@ -136,7 +145,8 @@ TEST_CASE("config: help lists every setting with type, default, range and help")
     CHECK(help.find("cfgtest.window_count") != std::string::npos);
     CHECK(help.find("[needs a restart]") != std::string::npos);
     const std::string table = settingsMarkdownTable();
-    CHECK(table.find("| `cfgtest.format` | enum | `rgba16f` | rgba8, rgba16f | next frame | Storage format |") !=
+    CHECK(table.find(
+              "| `cfgtest.format` | enum | `rgba16f` | rgba8, rgba16f | next frame | Storage format |") !=
           std::string::npos);
     CHECK(kRestart.decl().apply == Apply::Restart);
 }

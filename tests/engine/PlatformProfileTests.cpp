@@ -25,7 +25,7 @@ TEST_CASE("platform profiles: x360, ps3 and pc load with their budgets") {
     const auto x360 = platforms::loadPlatformProfile("x360");
     CHECK(x360.name == "x360");
     CHECK(x360.frameBudgetMs == doctest::Approx(33.333));
-    CHECK(x360.giBudgetMs == doctest::Approx(3.3));  // CryEngine 3: 10% of a 30 fps frame
+    CHECK(x360.giBudgetMs == doctest::Approx(3.3)); // CryEngine 3: 10% of a 30 fps frame
     CHECK(x360.gpuMemoryBytes == 512ull << 20);
     CHECK(x360.throughput.aluGflops == doctest::Approx(240.0));
     CHECK(x360.allowsShFormat("rgba8"));
@@ -72,8 +72,9 @@ texture_blocks_alu = false
     missing.erase(missing.find("edram_gbs = 0\n"), 14);
     CHECK(errorOf([&] { platforms::parsePlatformProfile(missing, "t.toml"); }) ==
           "t.toml: missing platform profile key 'throughput.edram_gbs'");
-    CHECK(errorOf([&] { platforms::loadPlatformProfile("wii"); }).find("neither a built-in profile (x360, ps3, pc)") !=
-          std::string::npos);
+    CHECK(errorOf([&] {
+              platforms::loadPlatformProfile("wii");
+          }).find("neither a built-in profile (x360, ps3, pc)") != std::string::npos);
 }
 
 TEST_CASE("platform profiles: platform.profile selects one, and a bad one is a config error") {

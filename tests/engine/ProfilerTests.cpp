@@ -40,15 +40,17 @@ void frame(rhi::Device& device, FrameProfiler& profiler, int renderDispatches, i
     {
         auto render = profiler.scope("render", &cmd);
         auto gbuffer = profiler.scope("gbuffer", &cmd);
-        for (int i = 0; i < renderDispatches; ++i) cmd.dispatch(1);
+        for (int i = 0; i < renderDispatches; ++i)
+            cmd.dispatch(1);
     }
     {
         auto gi = profiler.scope("gi", &cmd);
         auto propagate = profiler.scope("propagate", &cmd);
         WorkCounts w;
-        w.aluOps = 240'000'000;  // 1 ms on Xbox 360's 240 GFLOPS
+        w.aluOps = 240'000'000; // 1 ms on Xbox 360's 240 GFLOPS
         profiler.setWork(w);
-        for (int i = 0; i < giDispatches; ++i) cmd.dispatch(1);
+        for (int i = 0; i < giDispatches; ++i)
+            cmd.dispatch(1);
     }
     profiler.endFrame(cmd);
     device.endFrame();
@@ -66,7 +68,7 @@ TEST_CASE("profiler: scopes nest, get paths and close") {
     CHECK(profiler.scopes()[3].path == "gi/propagate");
     CHECK(profiler.openScopes() == 0);
     frame(*device, profiler, 1, 1);
-    CHECK(profiler.scopes().size() == 4);  // the same names are the same scopes next frame
+    CHECK(profiler.scopes().size() == 4); // the same names are the same scopes next frame
     CHECK(profiler.scopes()[1].cpuMs.count() == 2);
 
     rhi::CommandList& cmd = device->beginFrame();
@@ -77,22 +79,22 @@ TEST_CASE("profiler: scopes nest, get paths and close") {
     }
     profiler.endFrame(cmd);
     device->endFrame();
-    CHECK_THROWS_AS(profiler.setWork({}), std::logic_error);  // no open scope
+    CHECK_THROWS_AS(profiler.setWork({}), std::logic_error); // no open scope
 }
 
 TEST_CASE("profiler: GPU results arrive frames later, never by waiting") {
     auto device = nullDevice();
     FrameProfiler profiler(*device, tinyProfile(100, 100));
     CHECK(profiler.gpuTimingSource() == rhi::TimestampSource::Simulated);
-    frame(*device, profiler, 3, 2);  // frame 1
+    frame(*device, profiler, 3, 2); // frame 1
     const ScopeInfo& gbuffer = profiler.scopes()[1];
     CHECK(gbuffer.gpuMs.count() == 0);
-    frame(*device, profiler, 3, 2);  // frame 2: frame 1 still in flight
+    frame(*device, profiler, 3, 2); // frame 2: frame 1 still in flight
     CHECK(gbuffer.gpuMs.count() == 0);
     CHECK(profiler.framesChecked() == 0);
-    frame(*device, profiler, 3, 2);  // frame 3 began after frame 1 completed
+    frame(*device, profiler, 3, 2); // frame 3 began after frame 1 completed
     REQUIRE(gbuffer.gpuMs.count() == 1);
-    CHECK(gbuffer.gpuMs.stats().last == doctest::Approx(0.003));  // three dispatches, 1 us each
+    CHECK(gbuffer.gpuMs.stats().last == doctest::Approx(0.003)); // three dispatches, 1 us each
     CHECK(profiler.scopes()[3].gpuMs.stats().last == doctest::Approx(0.002));
     CHECK(profiler.framesChecked() == 1);
     CHECK(profiler.lastBudgetCheck().frameMs == doctest::Approx(0.005));
@@ -101,7 +103,8 @@ TEST_CASE("profiler: GPU results arrive frames later, never by waiting") {
 
 TEST_CASE("profiler: statistics over the window") {
     SampleWindow w(4);
-    for (double v : {5.0, 1.0, 3.0, 2.0, 4.0}) w.add(v);  // 5.0 falls out of the window
+    for (double v : {5.0, 1.0, 3.0, 2.0, 4.0})
+        w.add(v); // 5.0 falls out of the window
     const SampleStats s = w.stats();
     CHECK(s.count == 4);
     CHECK(s.last == 4.0);
@@ -115,11 +118,11 @@ TEST_CASE("profiler: budget checks trip exactly past the boundary") {
     auto device = nullDevice();
     // Frame budget 10 us; GI budget 4 us.
     FrameProfiler profiler(*device, tinyProfile(0.010, 0.004));
-    frame(*device, profiler, 6, 4);  // 10 us frame, 4 us GI: at the budgets, not over
-    frame(*device, profiler, 7, 4);  // 11 us frame: over
-    frame(*device, profiler, 5, 5);  // 10 us frame, 5 us GI: GI over
+    frame(*device, profiler, 6, 4); // 10 us frame, 4 us GI: at the budgets, not over
+    frame(*device, profiler, 7, 4); // 11 us frame: over
+    frame(*device, profiler, 5, 5); // 10 us frame, 5 us GI: GI over
     device->waitIdle();
-    frame(*device, profiler, 1, 1);  // resolves the three above
+    frame(*device, profiler, 1, 1); // resolves the three above
     REQUIRE(profiler.framesChecked() >= 3);
     std::vector<FrameBudgetCheck> checks;
     profiler.forEachFrame([&](const FrameProfiler::FrameRecord& r) {
@@ -139,7 +142,8 @@ TEST_CASE("profiler: budget checks trip exactly past the boundary") {
 TEST_CASE("profiler: the trace is valid JSON with CPU and GPU tracks, counters and every pass") {
     auto device = nullDevice();
     FrameProfiler profiler(*device, tinyProfile(100, 100));
-    for (int i = 0; i < 5; ++i) frame(*device, profiler, 2, 2);
+    for (int i = 0; i < 5; ++i)
+        frame(*device, profiler, 2, 2);
     const auto trace = nlohmann::json::parse(profileTraceJson(profiler));
     std::set<std::string> threads, names, counters;
     std::set<int> tids;
@@ -171,9 +175,9 @@ TEST_CASE("profiler: cost model predictions match hand-computed values") {
     const auto x360 = platforms::loadPlatformProfile("x360").throughput;
     const auto ps3 = platforms::loadPlatformProfile("ps3").throughput;
     WorkCounts w;
-    w.aluOps = 480'000'000;   // x360: 480e6 / 240e9 = 2 ms
+    w.aluOps = 480'000'000;    // x360: 480e6 / 240e9 = 2 ms
     w.texelsRead = 8'000'000;  // x360: 8e6 / 8e9 = 1 ms
-    w.bytesMoved = 11'200'000;  // x360: 11.2e6 / 22.4e9 = 0.5 ms
+    w.bytesMoved = 11'200'000; // x360: 11.2e6 / 22.4e9 = 0.5 ms
     const CostPrediction p = predictCost(w, x360);
     CHECK(p.aluMs == doctest::Approx(2.0));
     CHECK(p.textureMs == doctest::Approx(1.0));
@@ -184,7 +188,7 @@ TEST_CASE("profiler: cost model predictions match hand-computed values") {
     CHECK(q.aluMs == doctest::Approx(480e6 / 211.2e9 * 1e3));
     CHECK(q.textureMs == doctest::Approx(8e6 / 13.2e9 * 1e3));
     WorkCounts fill;
-    fill.texelsWritten = 4'400'000;  // ps3: 4.4e6 / 4.4e9 = 1 ms
+    fill.texelsWritten = 4'400'000; // ps3: 4.4e6 / 4.4e9 = 1 ms
     CHECK(predictCost(fill, ps3).ms == doctest::Approx(1.0));
     CHECK(std::string(predictCost(fill, ps3).bottleneck) == "fill");
 }

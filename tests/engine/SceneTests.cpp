@@ -24,7 +24,8 @@ std::string base64(const std::vector<uint8_t>& bytes) {
     static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;
     for (size_t i = 0; i < bytes.size(); i += 3) {
-        const uint32_t n = (uint32_t(bytes[i]) << 16) | (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
+        const uint32_t n = (uint32_t(bytes[i]) << 16) |
+                           (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
                            (i + 2 < bytes.size() ? bytes[i + 2] : 0);
         out += kAlphabet[(n >> 18) & 63];
         out += kAlphabet[(n >> 12) & 63];
@@ -52,19 +53,24 @@ QuadBuffer quadBuffer(float firstX = 0.0f, uint16_t lastIndex = 3) {
 }
 
 struct GltfOptions {
-    std::string bufferUri;        // empty: embedded data URI
+    std::string bufferUri; // empty: embedded data URI
     std::string extensionsRequired = "";
-    std::string imageUri = "";  // non-empty: the material gets a base color texture from this image
+    std::string imageUri = ""; // non-empty: the material gets a base color texture from this image
 };
 
 std::string gltfJson(const QuadBuffer& buffer, const GltfOptions& o = {}) {
-    const std::string uri = o.bufferUri.empty() ? "data:application/octet-stream;base64," + base64(buffer.bytes) : o.bufferUri;
+    const std::string uri =
+        o.bufferUri.empty() ? "data:application/octet-stream;base64," + base64(buffer.bytes) : o.bufferUri;
     std::string texture = o.imageUri.empty() ? "" : R"(, "baseColorTexture": {"index": 0})";
-    std::string images = o.imageUri.empty() ? "" : R"(, "images": [{"uri": ")" + o.imageUri + R"("}], "textures": [{"source": 0}])";
-    std::string required = o.extensionsRequired.empty() ? "" : R"(, "extensionsRequired": [")" + o.extensionsRequired + R"("])";
+    std::string images =
+        o.imageUri.empty() ? ""
+                           : R"(, "images": [{"uri": ")" + o.imageUri + R"("}], "textures": [{"source": 0}])";
+    std::string required =
+        o.extensionsRequired.empty() ? "" : R"(, "extensionsRequired": [")" + o.extensionsRequired + R"("])";
     return R"({
   "asset": {"version": "2.0"},
-  "extensionsUsed": ["KHR_lights_punctual"])" + required + R"(,
+  "extensionsUsed": ["KHR_lights_punctual"])" +
+           required + R"(,
   "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1, 0.5, 0.25], "intensity": 40}]}},
   "scene": 0,
   "scenes": [{"nodes": [0, 2, 3]}],
@@ -76,8 +82,10 @@ std::string gltfJson(const QuadBuffer& buffer, const GltfOptions& o = {}) {
   ],
   "cameras": [{"type": "perspective", "perspective": {"yfov": 0.9, "znear": 0.1, "zfar": 50, "aspectRatio": 1.5}}],
   "meshes": [{"name": "quad", "primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
-  "materials": [{"name": "paint", "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.2, 0.1, 1], "metallicFactor": 0, "roughnessFactor": 0.4)" + texture + R"(}}],
-  "buffers": [{"byteLength": )" + std::to_string(buffer.bytes.size()) + R"(, "uri": ")" + uri + R"("}],
+  "materials": [{"name": "paint", "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.2, 0.1, 1], "metallicFactor": 0, "roughnessFactor": 0.4)" +
+           texture + R"(}}],
+  "buffers": [{"byteLength": )" +
+           std::to_string(buffer.bytes.size()) + R"(, "uri": ")" + uri + R"("}],
   "bufferViews": [
     {"buffer": 0, "byteOffset": 0, "byteLength": 48},
     {"buffer": 0, "byteOffset": 48, "byteLength": 12}
@@ -85,7 +93,8 @@ std::string gltfJson(const QuadBuffer& buffer, const GltfOptions& o = {}) {
   "accessors": [
     {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
     {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}
-  ])" + images + "}";
+  ])" + images +
+           "}";
 }
 
 std::string write(const std::string& name, const std::string& text) {
@@ -110,18 +119,20 @@ TEST_CASE("scenes: the Cornell box") {
     CHECK(s.name == "cornell");
     CHECK(s.meshes.size() == 7);
     CHECK(s.instances.size() == 7);
-    CHECK(s.triangleCount() == 120);  // 10 slabs and 2 boxes, 12 triangles each
+    CHECK(s.triangleCount() == 120); // 10 slabs and 2 boxes, 12 triangles each
     CHECK(s.materials.size() == 4);
-    CHECK(s.materials[1].baseColor.r > 5 * s.materials[1].baseColor.g);  // red wall
-    CHECK(s.materials[2].baseColor.g > 3 * s.materials[2].baseColor.r);  // green wall
+    CHECK(s.materials[1].baseColor.r > 5 * s.materials[1].baseColor.g); // red wall
+    CHECK(s.materials[2].baseColor.g > 3 * s.materials[2].baseColor.r); // green wall
     REQUIRE(s.lights.size() == 1);
     CHECK(s.lights[0].type == LightType::Directional);
     CHECK(s.lights[0].direction.y < -0.85f);
     REQUIRE(s.camera.has_value());
     CHECK(s.bounds.min.y == doctest::Approx(-0.1f));
     CHECK(s.bounds.max.y == doctest::Approx(5.6f));
-    for (const Vertex& v : s.vertices) REQUIRE(glm::length(v.normal) == doctest::Approx(1.0f).epsilon(1e-4));
-    for (uint32_t i : s.indices) REQUIRE(i < s.vertices.size());
+    for (const Vertex& v : s.vertices)
+        REQUIRE(glm::length(v.normal) == doctest::Approx(1.0f).epsilon(1e-4));
+    for (uint32_t i : s.indices)
+        REQUIRE(i < s.vertices.size());
     CHECK(loadScene("cornell").triangleCount() == 120);
 }
 
@@ -158,13 +169,14 @@ TEST_CASE("scenes: a .glb with an external buffer file loads") {
         bin.write(reinterpret_cast<const char*>(buffer.bytes.data()), std::streamsize(buffer.bytes.size()));
     }
     std::string json = gltfJson(buffer, {"lpv_scenetest_quad.bin"});
-    while (json.size() % 4) json += ' ';
+    while (json.size() % 4)
+        json += ' ';
     std::string glb = "glTF";
     const auto u32 = [&](uint32_t v) { glb.append(reinterpret_cast<const char*>(&v), 4); };
     u32(2);
     u32(uint32_t(12 + 8 + json.size()));
     u32(uint32_t(json.size()));
-    u32(0x4E4F534Au);  // "JSON"
+    u32(0x4E4F534Au); // "JSON"
     glb += json;
     const std::string path = write("quad.glb", glb);
     CHECK(loadGltf(path).triangleCount() == 2);
@@ -186,17 +198,20 @@ TEST_CASE("scenes: a missing buffer is an error naming the file") {
 
 TEST_CASE("scenes: out-of-range indices are an error") {
     const std::string path = write("badindex.gltf", gltfJson(quadBuffer(0.0f, 7)));
-    CHECK(errorOf(path) == path + ": mesh 0 'quad' primitive 0: index 7 at position 5 is out of range (4 vertices)");
+    CHECK(errorOf(path) ==
+          path + ": mesh 0 'quad' primitive 0: index 7 at position 5 is out of range (4 vertices)");
 }
 
 TEST_CASE("scenes: NaN positions are an error") {
     const std::string path = write("nan.gltf", gltfJson(quadBuffer(std::numeric_limits<float>::quiet_NaN())));
-    CHECK(errorOf(path) == path + ": mesh 0 'quad' primitive 0: vertex 0 has a non-finite position (NaN or infinity)");
+    CHECK(errorOf(path) ==
+          path + ": mesh 0 'quad' primitive 0: vertex 0 has a non-finite position (NaN or infinity)");
 }
 
 TEST_CASE("scenes: an unsupported extension marked required is an error") {
     const std::string path = write("draco.gltf", gltfJson(quadBuffer(), {"", "KHR_draco_mesh_compression"}));
-    CHECK(errorOf(path) == path + ": requires extension 'KHR_draco_mesh_compression', which LPV Engine does not support");
+    CHECK(errorOf(path) ==
+          path + ": requires extension 'KHR_draco_mesh_compression', which LPV Engine does not support");
 }
 
 TEST_CASE("scenes: a missing texture warns and falls back to the flat color") {
@@ -210,7 +225,8 @@ TEST_CASE("scenes: a missing texture warns and falls back to the flat color") {
     CHECK(s.materials[0].baseColorTexture == -1);
     CHECK(s.materials[0].baseColor.r == doctest::Approx(0.9f));
     bool named = false;
-    for (const auto& w : warnings) named = named || (w.find(path) == 0 && w.find("nothere.png") != std::string::npos);
+    for (const auto& w : warnings)
+        named = named || (w.find(path) == 0 && w.find("nothere.png") != std::string::npos);
     CHECK_MESSAGE(named, "no warning naming the file and the texture");
 }
 

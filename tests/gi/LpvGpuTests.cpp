@@ -33,7 +33,8 @@ std::vector<gi::Vpl> testVpls() {
     for (int i = 0; i < 48; ++i) {
         glm::vec3 n(next() * 2 - 1, next() * 2 - 1, next() * 2 - 1);
         if (glm::length(n) < 0.1f) n = {0, 1, 0};
-        v.push_back({{1.0f + next() * 6.0f, 1.0f + next() * 6.0f, 1.0f + next() * 6.0f}, glm::normalize(n),
+        v.push_back({{1.0f + next() * 6.0f, 1.0f + next() * 6.0f, 1.0f + next() * 6.0f},
+                     glm::normalize(n),
                      {next() * 2.0f, next() * 2.0f, next() * 2.0f}});
     }
     return v;
@@ -64,7 +65,7 @@ float relativeError(const gi::ShVolume& ref, const std::array<Image, 3>& gpu, bo
 TEST_CASE("gi: GPU injection and propagation match the CPU reference") {
     struct Case {
         gi::ShFormat format;
-        float injectTolerance, propagateTolerance;  // relative to the largest coefficient
+        float injectTolerance, propagateTolerance; // relative to the largest coefficient
     };
     // rgba32f: float rounding only. rgba16f: 11-bit mantissas, rounded at every iteration.
     // rgba8: range-encoded 8 bits, half a step of 2 x range / 255 per store.
@@ -89,13 +90,17 @@ TEST_CASE("gi: GPU injection and propagation match the CPU reference") {
                     float m = 0;
                     for (const gi::ShCell& cell : propagated.cells())
                         for (int k = 0; k < 4; ++k)
-                            m = std::max({m, std::fabs(cell.r[k]), std::fabs(cell.g[k]), std::fabs(cell.b[k])});
+                            m = std::max(
+                                {m, std::fabs(cell.r[k]), std::fabs(cell.g[k]), std::fabs(cell.b[k])});
                     return m;
                 }();
                 std::vector<GpuVpl> gpuVpls;
-                for (const gi::Vpl& v : vpls) gpuVpls.push_back({glm::vec4(v.position, 1), glm::vec4(v.normal, 0), glm::vec4(v.flux, 0)});
+                for (const gi::Vpl& v : vpls)
+                    gpuVpls.push_back(
+                        {glm::vec4(v.position, 1), glm::vec4(v.normal, 0), glm::vec4(v.flux, 0)});
                 const rhi::BufferHandle buffer = device->createBuffer(
-                    {gpuVpls.size() * sizeof(GpuVpl), rhi::kBufferStorage | rhi::kBufferTransfer, rhi::MemoryAccess::GpuOnly, "test vpls", "test"},
+                    {gpuVpls.size() * sizeof(GpuVpl), rhi::kBufferStorage | rhi::kBufferTransfer,
+                     rhi::MemoryAccess::GpuOnly, "test vpls", "test"},
                     gpuVpls.data());
                 {
                     gi::LpvVolumes volumes(*device, s);
@@ -111,8 +116,9 @@ TEST_CASE("gi: GPU injection and propagation match the CPU reference") {
                     }
                     const float injErr = relativeError(injected, inj, false, 0);
                     const float accErr = relativeError(propagated, acc, volumes.encoded(), s.rgba8Range);
-                    MESSAGE(backend.name << " " << gi::shFormatName(c.format) << ": injection error " << injErr
-                                         << ", after 4 iterations " << accErr << " (relative to the largest coefficient)");
+                    MESSAGE(backend.name << " " << gi::shFormatName(c.format) << ": injection error "
+                                         << injErr << ", after 4 iterations " << accErr
+                                         << " (relative to the largest coefficient)");
                     CHECK(injErr <= c.injectTolerance);
                     CHECK(accErr <= c.propagateTolerance);
                 }
@@ -148,9 +154,11 @@ TEST_CASE("gi: Cornell box colour bleeding, and nothing when GI is off") {
             CHECK(nearGreen.g > 1.05f * nearGreen.r);
             CHECK(luminance(nearRed) > 0.0f);
 
-            const CornellFrame off = renderCornell(*device, {"gi.enabled=false", "render.debug_view=indirect"});
+            const CornellFrame off =
+                renderCornell(*device, {"gi.enabled=false", "render.debug_view=indirect"});
             float maxIndirect = 0.0f;
-            for (const glm::vec4& t : off.hdr.texels) maxIndirect = std::max({maxIndirect, t.r, t.g, t.b});
+            for (const glm::vec4& t : off.hdr.texels)
+                maxIndirect = std::max({maxIndirect, t.r, t.g, t.b});
             CHECK(maxIndirect == 0.0f);
             device.expectSilent();
         }
@@ -158,7 +166,8 @@ TEST_CASE("gi: Cornell box colour bleeding, and nothing when GI is off") {
 }
 
 TEST_CASE("gi: GL and Vulkan compute the same indirect light") {
-    const std::vector<std::string> on = {"gi.enabled=true", "render.debug_view=indirect", "gi.cell_size=0.17"};
+    const std::vector<std::string> on = {"gi.enabled=true", "render.debug_view=indirect",
+                                         "gi.cell_size=0.17"};
     CornellFrame gl, vk;
     {
         TestDevice device(backendByName("gl-egl"));
@@ -171,11 +180,13 @@ TEST_CASE("gi: GL and Vulkan compute the same indirect light") {
         device.expectSilent();
     }
     float peak = 0.0f;
-    for (const glm::vec4& t : vk.hdr.texels) peak = std::max({peak, t.r, t.g, t.b});
+    for (const glm::vec4& t : vk.hdr.texels)
+        peak = std::max({peak, t.r, t.g, t.b});
     REQUIRE(peak > 0.0f);
     // Tolerance: 1% of the brightest indirect value per channel, on 99% of the pixels.
     const ImageDifference d = compareImages(gl.hdr, vk.hdr, 0.01f * peak);
-    MESSAGE("indirect GL vs Vulkan: max difference " << d.maxAbs << " (peak " << peak << "), " << d.texelsOver << " pixels over");
+    MESSAGE("indirect GL vs Vulkan: max difference " << d.maxAbs << " (peak " << peak << "), " << d.texelsOver
+                                                     << " pixels over");
     CHECK(d.texelsOver <= gl.hdr.texels.size() / 100);
 }
 
@@ -209,7 +220,8 @@ TEST_CASE("gi: configurations that do not fit are refused with a clear message")
     CHECK_NOTHROW(gi::checkGiBudget(s, x360));
     // Grid size out of range is a config error.
     engine::Config config;
-    CHECK_THROWS_WITH_AS(config.applyOverride("gi.grid_size=128"), "--set: 'gi.grid_size' = '128': expected an integer in [16, 64]",
+    CHECK_THROWS_WITH_AS(config.applyOverride("gi.grid_size=128"),
+                         "--set: 'gi.grid_size' = '128': expected an integer in [16, 64]",
                          engine::ConfigError);
     config.applyOverride("gi.vpl_count=1000");
     CHECK_THROWS_AS(gi::readLpvSettings(config), engine::ConfigError);

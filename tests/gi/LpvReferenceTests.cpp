@@ -23,10 +23,12 @@ TEST_CASE("gi reference: SH constants and the cosine lobe") {
     // A cosine lobe's irradiance on a surface facing it: integral of cos^2 over the hemisphere is
     // 2 pi / 3, and L1 reproduces it exactly.
     const glm::vec3 n(0.0f, 1.0f, 0.0f);
-    CHECK(shIrradiance(shCosineLobe(n), n) == doctest::Approx(kCosLobeC0 * kCosLobeC0 + kCosLobeC1 * kCosLobeC1));
+    CHECK(shIrradiance(shCosineLobe(n), n) ==
+          doctest::Approx(kCosLobeC0 * kCosLobeC0 + kCosLobeC1 * kCosLobeC1));
     // The five faces seen from a neighbour cover 2 pi / 3 sr.
     float total = 0.0f;
-    for (const PropagationFace& f : propagationFaces(0)) total += f.solidAngle;
+    for (const PropagationFace& f : propagationFaces(0))
+        total += f.solidAngle;
     CHECK(total == doctest::Approx(2.0 * M_PI / 3.0).epsilon(1e-4));
     for (int a = 0; a < 6; ++a)
         for (const PropagationFace& f : propagationFaces(a)) {
@@ -49,7 +51,7 @@ TEST_CASE("gi reference: injection shifts half a cell along the normal and towar
     injectReference(v, grid, {{{3.5f, 2.0f, 3.5f}, {0, 1, 0}, {2.0f, 1.0f, 0.0f}}}, {0, -1, 0});
     const ShCell& c = v.at(3, 3, 3);
     CHECK(c.r.x == doctest::Approx(2.0f / kPi * kCosLobeC0));
-    CHECK(c.r.y == doctest::Approx(2.0f / kPi * kCosLobeC1));  // the y coefficient carries the normal
+    CHECK(c.r.y == doctest::Approx(2.0f / kPi * kCosLobeC1)); // the y coefficient carries the normal
     CHECK(c.g.x == doctest::Approx(1.0f / kPi * kCosLobeC0));
     CHECK(c.b.x == 0.0f);
     // Total flux: 4 pi Y00 c0 = 2.0 watts of red.
@@ -93,7 +95,8 @@ TEST_CASE("gi reference: energy per iteration follows the documented curve") {
         CHECK(perIteration[i].r / perIteration[i - 1].r == doctest::Approx(1.0000191).epsilon(2e-6));
     // Accumulated: the injected volume plus every iteration, nothing propagated twice.
     float sum = injected;
-    for (const glm::vec3& e : perIteration) sum += e.r;
+    for (const glm::vec3& e : perIteration)
+        sum += e.r;
     CHECK(out.totalL0().r == doctest::Approx(sum).epsilon(1e-5));
 
     // Near a border the loss shows: light from a cell next to the -x face leaves the volume.
@@ -101,7 +104,8 @@ TEST_CASE("gi reference: energy per iteration follows the documented curve") {
     edge.at(0, 4, 4).r = {1, 0, 0, 0};
     std::vector<glm::vec3> edgeCurve;
     propagateReference(edge, 4, &edgeCurve);
-    for (size_t i = 1; i < edgeCurve.size(); ++i) CHECK(edgeCurve[i].r < edgeCurve[i - 1].r);
+    for (size_t i = 1; i < edgeCurve.size(); ++i)
+        CHECK(edgeCurve[i].r < edgeCurve[i - 1].r);
 }
 
 TEST_CASE("gi reference: propagation is linear in the SH coefficients of a channel") {
@@ -115,7 +119,8 @@ TEST_CASE("gi reference: propagation is linear in the SH coefficients of a chann
     const ShVolume pa = propagateStep(a), pb = propagateStep(b), pab = propagateStep(ab);
     for (size_t i = 0; i < pab.cells().size(); ++i)
         for (int c = 0; c < 4; ++c)
-            REQUIRE(pab.cells()[i].r[c] == doctest::Approx(pa.cells()[i].r[c] + pb.cells()[i].r[c]).epsilon(1e-5));
+            REQUIRE(pab.cells()[i].r[c] ==
+                    doctest::Approx(pa.cells()[i].r[c] + pb.cells()[i].r[c]).epsilon(1e-5));
 }
 
 #include "engine/profiler/CostModel.h"
@@ -132,9 +137,10 @@ TEST_CASE("gi cost model: the CryEngine 3 console setup predicts the published t
     s.vplCount = 1024;
     s.iterations = 6;
     s.shFormat = ShFormat::Rgba8;
-    const lpv::engine::WorkCounts passes[] = {rsmWork(s, 100000), vplClusterWork(s), injectWork(s), propagateWork(s),
-                                              lookupWork(s, 1280 * 720)};
-    const auto x360 = lpv::platforms::loadPlatformProfile("x360"), ps3 = lpv::platforms::loadPlatformProfile("ps3");
+    const lpv::engine::WorkCounts passes[] = {rsmWork(s, 100000), vplClusterWork(s), injectWork(s),
+                                              propagateWork(s), lookupWork(s, 1280 * 720)};
+    const auto x360 = lpv::platforms::loadPlatformProfile("x360"),
+               ps3 = lpv::platforms::loadPlatformProfile("ps3");
     double x = 0, p = 0;
     for (const auto& w : passes) {
         x += lpv::engine::predictCost(w, x360.throughput).ms;

@@ -29,8 +29,9 @@ TEST_CASE("rhi: clear a render target") {
         SUBCASE(backend.name.c_str()) {
             TestDevice device(backend);
             using namespace rhi;
-            const TextureHandle t = device->createTexture(
-                {TextureKind::Tex2D, Format::RGBA8Unorm, 8, 4, 1, 1, kTextureColorTarget | kTextureTransfer, "clear", "test"});
+            const TextureHandle t =
+                device->createTexture({TextureKind::Tex2D, Format::RGBA8Unorm, 8, 4, 1, 1,
+                                       kTextureColorTarget | kTextureTransfer, "clear", "test"});
             CommandList& cmd = device->beginFrame();
             RenderPassDesc pass;
             pass.colors[0] = {t, 0, 0, LoadOp::Clear, {0.2f, 0.4f, 0.6f, 1.0f}};
@@ -104,7 +105,8 @@ TEST_CASE("rhi: additive blending accumulates") {
             TestDevice device(backend);
             const Image img = additiveBlend(*device);
             const glm::vec4 want = kBlendClear + 2.0f * kBlendColor;
-            for (const glm::vec4& texel : img.texels) REQUIRE_MESSAGE(near(texel, want, 1e-3f), describe(texel));
+            for (const glm::vec4& texel : img.texels)
+                REQUIRE_MESSAGE(near(texel, want, 1e-3f), describe(texel));
             device.expectSilent();
         }
     }
@@ -121,9 +123,11 @@ TEST_CASE("rhi: render into one slice of a 3D texture, then sample it from compu
                     for (uint32_t x = 0; x < kInjectSize; ++x) {
                         const size_t i = (size_t(z) * kInjectSize + y) * kInjectSize + x;
                         REQUIRE_MESSAGE(near(r.readback.at(x, y, z), want, 1e-3f),
-                                        "readback at " << x << "," << y << "," << z << " " << describe(r.readback.at(x, y, z)));
+                                        "readback at " << x << "," << y << "," << z << " "
+                                                       << describe(r.readback.at(x, y, z)));
                         REQUIRE_MESSAGE(near(r.sampledReads[i], want, 1e-3f),
-                                        "sampled at " << x << "," << y << "," << z << " " << describe(r.sampledReads[i]));
+                                        "sampled at " << x << "," << y << "," << z << " "
+                                                      << describe(r.sampledReads[i]));
                     }
             }
             device.expectSilent();
@@ -142,9 +146,11 @@ TEST_CASE("rhi: timestamps are ordered and read back frames later without waitin
                 return;
             }
             REQUIRE(device->caps().maxTimestampsPerFrame >= 2);
-            const TextureHandle volume = device->createTexture({TextureKind::Tex3D, Format::RGBA16F, 32, 32, 32, 1,
-                                                                kTextureStorage, "timed volume", "test"});
-            const ComputePipelineHandle pipeline = device->createPipeline(ComputePipelineDesc{&shaders::fill_volume_comp, "timed"});
+            const TextureHandle volume =
+                device->createTexture({TextureKind::Tex3D, Format::RGBA16F, 32, 32, 32, 1, kTextureStorage,
+                                       "timed volume", "test"});
+            const ComputePipelineHandle pipeline =
+                device->createPipeline(ComputePipelineDesc{&shaders::fill_volume_comp, "timed"});
             const glm::vec4 scale{0.1f, 0.2f, 0.05f, 0.0f};
 
             CommandList& cmd = device->beginFrame();
@@ -187,8 +193,8 @@ TEST_CASE("rhi: allocation record follows creation and destruction on a real dev
             TestDevice device(backend);
             using namespace rhi;
             const uint64_t before = device->allocations().bytesIn("test");
-            const TextureHandle t = device->createTexture({TextureKind::Tex3D, Format::RGBA16F, 32, 32, 32, 1,
-                                                           kTextureStorage, "lpv red", "test.lpv"});
+            const TextureHandle t = device->createTexture(
+                {TextureKind::Tex3D, Format::RGBA16F, 32, 32, 32, 1, kTextureStorage, "lpv red", "test.lpv"});
             CHECK(device->allocations().bytesIn("test") - before >= 32u * 32u * 32u * 8u);
             device->destroy(t);
             CHECK(device->allocations().bytesIn("test") == before);

@@ -23,17 +23,26 @@ MrtImages renderIndexedMrt(rhi::Device& device) {
     // Triangle B (green, nearer, alpha 0.5) is drawn first so only the depth test makes it win
     // where it overlaps triangle A (red, alpha 1). NDC y = -1 is image row 0 on every backend.
     const Vertex vertices[] = {
-        {{-1.0f, -1.0f, 0.5f}, {1, 0, 0, 1}}, {{1.0f, -1.0f, 0.5f}, {1, 0, 0, 1}},
-        {{-1.0f, 1.0f, 0.5f}, {1, 0, 0, 1}},  {{0.0f, -1.0f, 0.25f}, {0, 1, 0, 0.5f}},
+        {{-1.0f, -1.0f, 0.5f}, {1, 0, 0, 1}},    {{1.0f, -1.0f, 0.5f}, {1, 0, 0, 1}},
+        {{-1.0f, 1.0f, 0.5f}, {1, 0, 0, 1}},     {{0.0f, -1.0f, 0.25f}, {0, 1, 0, 0.5f}},
         {{1.0f, -1.0f, 0.25f}, {0, 1, 0, 0.5f}}, {{1.0f, 0.0f, 0.25f}, {0, 1, 0, 0.5f}},
     };
     const uint16_t indices[] = {3, 4, 5, 0, 1, 2};
-    const BufferHandle vb = device.createBuffer({sizeof(vertices), kBufferVertex, MemoryAccess::GpuOnly, "mrt vertices", "test"}, vertices);
-    const BufferHandle ib = device.createBuffer({sizeof(indices), kBufferIndex, MemoryAccess::GpuOnly, "mrt indices", "test"}, indices);
+    const BufferHandle vb = device.createBuffer(
+        {sizeof(vertices), kBufferVertex, MemoryAccess::GpuOnly, "mrt vertices", "test"}, vertices);
+    const BufferHandle ib = device.createBuffer(
+        {sizeof(indices), kBufferIndex, MemoryAccess::GpuOnly, "mrt indices", "test"}, indices);
 
     const uint32_t size = 64;
-    TextureDesc colorDesc{TextureKind::Tex2D, Format::RGBA8Unorm, size, size, 1, 1,
-                          kTextureColorTarget | kTextureTransfer | kTextureSampled, "mrt color", "test"};
+    TextureDesc colorDesc{TextureKind::Tex2D,
+                          Format::RGBA8Unorm,
+                          size,
+                          size,
+                          1,
+                          1,
+                          kTextureColorTarget | kTextureTransfer | kTextureSampled,
+                          "mrt color",
+                          "test"};
     TextureDesc secondDesc = colorDesc;
     secondDesc.format = Format::RGBA16F;
     secondDesc.debugName = "mrt second";
@@ -99,7 +108,8 @@ Image fillVolume(rhi::Device& device) {
     const TextureHandle volume =
         device.createTexture({TextureKind::Tex3D, Format::RGBA16F, kVolumeSize, kVolumeSize, kVolumeSize, 1,
                               kTextureStorage | kTextureSampled | kTextureTransfer, "test volume", "test"});
-    const ComputePipelineHandle pipeline = device.createPipeline(ComputePipelineDesc{&shaders::fill_volume_comp, "fill volume"});
+    const ComputePipelineHandle pipeline =
+        device.createPipeline(ComputePipelineDesc{&shaders::fill_volume_comp, "fill volume"});
     const glm::vec4 scale{0.1f, 0.2f, 0.05f, 0.0f};
 
     CommandList& cmd = device.beginFrame();
@@ -118,8 +128,9 @@ Image fillVolume(rhi::Device& device) {
 
 Image additiveBlend(rhi::Device& device) {
     using namespace rhi;
-    const TextureHandle target = device.createTexture(
-        {TextureKind::Tex2D, Format::RGBA16F, 16, 16, 1, 1, kTextureColorTarget | kTextureTransfer, "blend target", "test"});
+    const TextureHandle target =
+        device.createTexture({TextureKind::Tex2D, Format::RGBA16F, 16, 16, 1, 1,
+                              kTextureColorTarget | kTextureTransfer, "blend target", "test"});
     GraphicsPipelineDesc pd;
     pd.vertex = &shaders::fullscreen_vert;
     pd.fragment = &shaders::constant_frag;
@@ -130,7 +141,8 @@ Image additiveBlend(rhi::Device& device) {
 
     CommandList& cmd = device.beginFrame();
     RenderPassDesc pass;
-    pass.colors[0] = {target, 0, 0, LoadOp::Clear, {kBlendClear.x, kBlendClear.y, kBlendClear.z, kBlendClear.w}};
+    pass.colors[0] = {
+        target, 0, 0, LoadOp::Clear, {kBlendClear.x, kBlendClear.y, kBlendClear.z, kBlendClear.w}};
     pass.colorCount = 1;
     cmd.beginRenderPass(pass);
     cmd.bindPipeline(pipeline);
@@ -153,8 +165,9 @@ InjectionResult injectIntoSlice(rhi::Device& device) {
         {TextureKind::Tex3D, Format::RGBA16F, kInjectSize, kInjectSize, kInjectSize, 1,
          kTextureColorTarget | kTextureSampled | kTextureTransfer, "injection volume", "test"});
     const uint32_t texels = kInjectSize * kInjectSize * kInjectSize;
-    const BufferHandle result = device.createBuffer(
-        {texels * sizeof(glm::vec4), kBufferStorage | kBufferTransfer, MemoryAccess::GpuOnly, "sampled reads", "test"});
+    const BufferHandle result =
+        device.createBuffer({texels * sizeof(glm::vec4), kBufferStorage | kBufferTransfer,
+                             MemoryAccess::GpuOnly, "sampled reads", "test"});
     const SamplerHandle nearest = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
 
     GraphicsPipelineDesc pd;
@@ -164,7 +177,8 @@ InjectionResult injectIntoSlice(rhi::Device& device) {
     pd.blend = {BlendState::additive()};
     pd.debugName = "inject";
     const GraphicsPipelineHandle inject = device.createPipeline(pd);
-    const ComputePipelineHandle sample = device.createPipeline(ComputePipelineDesc{&shaders::sample_volume_comp, "sample volume"});
+    const ComputePipelineHandle sample =
+        device.createPipeline(ComputePipelineDesc{&shaders::sample_volume_comp, "sample volume"});
 
     CommandList& cmd = device.beginFrame();
     cmd.clearTexture(volume, {0, 0, 0, 0});

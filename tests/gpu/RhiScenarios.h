@@ -36,7 +36,7 @@ inline constexpr uint32_t kInjectSize = 8;
 inline constexpr uint32_t kInjectSlice = 3;
 struct InjectionResult {
     Image readback;                      // readTexture of the volume
-    std::vector<glm::vec4> sampledReads;  // what the compute shader sampled, in the same order
+    std::vector<glm::vec4> sampledReads; // what the compute shader sampled, in the same order
 };
 InjectionResult injectIntoSlice(rhi::Device& device);
 

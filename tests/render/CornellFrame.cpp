@@ -13,7 +13,9 @@
 
 namespace lpv::test {
 
-float luminance(glm::vec4 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+float luminance(glm::vec4 c) {
+    return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+}
 
 bool CornellFrame::pixelOf(glm::vec3 world, uint32_t& x, uint32_t& y) const {
     const glm::vec4 clip = camera.viewProjection * glm::vec4(world, 1.0f);
@@ -27,9 +29,11 @@ bool CornellFrame::pixelOf(glm::vec3 world, uint32_t& x, uint32_t& y) const {
 }
 
 CornellFrame renderCornell(rhi::Device& device, const std::vector<std::string>& settings,
-                           std::optional<glm::vec3> sunDirection, uint32_t width, uint32_t height, int frames) {
+                           std::optional<glm::vec3> sunDirection, uint32_t width, uint32_t height,
+                           int frames) {
     engine::Config config;
-    for (const std::string& s : settings) config.applyOverride(s, "test");
+    for (const std::string& s : settings)
+        config.applyOverride(s, "test");
     CornellFrame f;
     f.scene = engine::buildCornellBox();
     f.width = width;

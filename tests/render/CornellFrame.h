@@ -17,8 +17,8 @@
 namespace lpv::test {
 
 struct CornellFrame {
-    Image output;  // tone-mapped sRGB, as [0,1] floats of the stored bytes
-    Image hdr;     // linear HDR before tone mapping (or the debug view)
+    Image output; // tone-mapped sRGB, as [0,1] floats of the stored bytes
+    Image hdr;    // linear HDR before tone mapping (or the debug view)
     Image depth;
     engine::CameraMatrices camera;
     engine::Scene scene;

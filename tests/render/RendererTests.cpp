@@ -65,10 +65,12 @@ TEST_CASE("render: a floor point in a box's shadow is darker than a lit floor po
                     if (!ray.throughOpening || !f.pixelOf(p, px, py)) continue;
                     // Keep away from shadow edges: the neighbours a pixel away agree.
                     const float l = luminance(f.output.at(px, py));
-                    if (!ray.blockedByBox && lit < 0 && !traceToSun(f.scene, p + glm::vec3(0.15f, 0, 0.15f), sun).blockedByBox &&
+                    if (!ray.blockedByBox && lit < 0 &&
+                        !traceToSun(f.scene, p + glm::vec3(0.15f, 0, 0.15f), sun).blockedByBox &&
                         !traceToSun(f.scene, p - glm::vec3(0.15f, 0, 0.15f), sun).blockedByBox)
                         lit = l;
-                    if (ray.blockedByBox && shadowed < 0 && traceToSun(f.scene, p + glm::vec3(0.15f, 0, 0.15f), sun).blockedByBox &&
+                    if (ray.blockedByBox && shadowed < 0 &&
+                        traceToSun(f.scene, p + glm::vec3(0.15f, 0, 0.15f), sun).blockedByBox &&
                         traceToSun(f.scene, p - glm::vec3(0.15f, 0, 0.15f), sun).blockedByBox)
                         shadowed = l;
                 }
@@ -114,7 +116,7 @@ TEST_CASE("render: the Cornell box is the same image on GL and Vulkan") {
     // Tolerance: 3 8-bit steps per channel; at most 1% of the pixels (triangle and shadow edges,
     // where the two rasterizers may cover different samples) beyond it.
     const ImageDifference d = compareImages(gl.output, vk.output, 3.0f / 255.0f + 1e-4f);
-    MESSAGE("GL vs Vulkan: max difference " << d.maxAbs << ", " << d.texelsOver << " of " << gl.output.texels.size()
-                                            << " pixels over tolerance");
+    MESSAGE("GL vs Vulkan: max difference " << d.maxAbs << ", " << d.texelsOver << " of "
+                                            << gl.output.texels.size() << " pixels over tolerance");
     CHECK(d.texelsOver <= gl.output.texels.size() / 100);
 }

@@ -28,10 +28,12 @@ std::string errorOf(auto&& f) {
 
 TEST_CASE("null backend: a destroyed handle is caught, not reused") {
     auto device = nullDevice();
-    const TextureHandle a = device->createTexture({TextureKind::Tex2D, Format::RGBA8Unorm, 4, 4, 1, 1, kTextureSampled, "a", "test"});
+    const TextureHandle a = device->createTexture(
+        {TextureKind::Tex2D, Format::RGBA8Unorm, 4, 4, 1, 1, kTextureSampled, "a", "test"});
     device->destroy(a);
     // The slot is reused by the next texture, with a new generation.
-    const TextureHandle b = device->createTexture({TextureKind::Tex2D, Format::RGBA8Unorm, 4, 4, 1, 1, kTextureSampled, "b", "test"});
+    const TextureHandle b = device->createTexture(
+        {TextureKind::Tex2D, Format::RGBA8Unorm, 4, 4, 1, 1, kTextureSampled, "b", "test"});
     CHECK(a.index() == b.index());
     CHECK(a.generation() != b.generation());
     CHECK(device->desc(b).debugName == "b");
@@ -43,7 +45,8 @@ TEST_CASE("null backend: a destroyed handle is caught, not reused") {
     CHECK(errorOf([&] { cmd.bindStorageImage(0, a); }).find("stale") != std::string::npos);
     device->endFrame();
     CHECK(errorOf([&] { device->desc(TextureHandle{}); }).find("null TextureHandle") != std::string::npos);
-    CHECK(errorOf([&] { device->desc(TextureHandle::make(999, 1)); }).find("never created") != std::string::npos);
+    CHECK(errorOf([&] { device->desc(TextureHandle::make(999, 1)); }).find("never created") !=
+          std::string::npos);
 }
 
 TEST_CASE("null backend: handle types do not mix") {
@@ -59,11 +62,12 @@ TEST_CASE("null backend: allocation record sums by category, current and peak") 
         {TextureKind::Tex3D, Format::RGBA8Unorm, 32, 32, 32, 1, kTextureStorage, "lpv r", "gi.lpv"});
     const TextureHandle gv = device->createTexture(
         {TextureKind::Tex3D, Format::RGBA16F, 32, 32, 32, 1, kTextureStorage, "gv", "gi.gv"});
-    const BufferHandle vb = device->createBuffer({1000, kBufferVertex, MemoryAccess::GpuOnly, "verts", "render.mesh"});
-    CHECK(rec.bytesIn("gi.lpv") == 32u * 32u * 32u * 4u);  // one RGBA8 SH texture = 128 KiB
+    const BufferHandle vb =
+        device->createBuffer({1000, kBufferVertex, MemoryAccess::GpuOnly, "verts", "render.mesh"});
+    CHECK(rec.bytesIn("gi.lpv") == 32u * 32u * 32u * 4u); // one RGBA8 SH texture = 128 KiB
     CHECK(rec.bytesIn("gi.gv") == 32u * 32u * 32u * 8u);
     CHECK(rec.bytesIn("gi") == 32u * 32u * 32u * 12u);
-    CHECK(rec.bytesIn("g") == 0);  // prefix matches whole dotted components only
+    CHECK(rec.bytesIn("g") == 0); // prefix matches whole dotted components only
     CHECK(rec.totalBytes() == 32u * 32u * 32u * 12u + 1000u);
     device->destroy(gv);
     CHECK(rec.bytesIn("gi") == 32u * 32u * 32u * 4u);
@@ -91,7 +95,7 @@ TEST_CASE("null backend: frame and pass misuse is reported") {
     CommandList& cmd = device->beginFrame();
     CHECK(device->frameIndex() == 1);
     CHECK_THROWS_AS(device->beginFrame(), Error);
-    CHECK_THROWS_AS(cmd.draw(3), Error);  // outside a render pass
+    CHECK_THROWS_AS(cmd.draw(3), Error); // outside a render pass
     device->endFrame();
     const BufferHandle b = device->createBuffer({16, kBufferStorage, MemoryAccess::GpuOnly, "b"});
     const uint32_t data[4] = {1, 2, 3, 4};
@@ -99,7 +103,8 @@ TEST_CASE("null backend: frame and pass misuse is reported") {
     uint32_t back[4] = {};
     device->readBuffer(b, 0, back, sizeof(back));
     CHECK(back[3] == 4);
-    CHECK(errorOf([&] { device->uploadBuffer(b, 8, data, sizeof(data)); }).find("exceeds its size") != std::string::npos);
+    CHECK(errorOf([&] { device->uploadBuffer(b, 8, data, sizeof(data)); }).find("exceeds its size") !=
+          std::string::npos);
 }
 
 TEST_CASE("backend names parse, and unknown ones are rejected") {
@@ -129,16 +134,16 @@ TEST_CASE("null backend: simulated timestamps follow the frames-in-flight latenc
     cmd.writeTimestamp(1);
     device->endFrame();
     uint64_t ts[2] = {};
-    CHECK_FALSE(device->readTimestamps(f1, ts));  // frame 1 is still "in flight"
-    device->beginFrame();  // frame 2 does not wait for frame 1
+    CHECK_FALSE(device->readTimestamps(f1, ts)); // frame 1 is still "in flight"
+    device->beginFrame();                        // frame 2 does not wait for frame 1
     device->endFrame();
     CHECK_FALSE(device->readTimestamps(f1, ts));
-    device->beginFrame();  // frame 3 waits for frame 1
+    device->beginFrame(); // frame 3 waits for frame 1
     CHECK(device->readTimestamps(f1, ts));
-    CHECK(ts[1] - ts[0] == 2000);  // two dispatches, 1 us each
+    CHECK(ts[1] - ts[0] == 2000); // two dispatches, 1 us each
     device->endFrame();
     device->beginFrame();
-    device->endFrame();  // frame 4 reuses frame 1's slot: results are gone, not wrong
+    device->endFrame(); // frame 4 reuses frame 1's slot: results are gone, not wrong
     CHECK_FALSE(device->readTimestamps(f1, ts));
     device->waitIdle();
     CHECK(device->readTimestamps(device->frameIndex(), ts));

@@ -25,18 +25,26 @@ Image readImage(rhi::Device& device, rhi::TextureHandle texture) {
         switch (d.format) {
         case rhi::Format::RGBA8Unorm:
         case rhi::Format::RGBA8Srgb:
-            for (int c = 0; c < 4; ++c) t[c] = float(bytes[i * 4 + c]) / 255.0f;
+            for (int c = 0; c < 4; ++c)
+                t[c] = float(bytes[i * 4 + c]) / 255.0f;
             break;
         case rhi::Format::RGBA16F: {
             uint16_t h[4];
             std::memcpy(h, &bytes[i * 8], 8);
-            for (int c = 0; c < 4; ++c) t[c] = glm::unpackHalf1x16(h[c]);
+            for (int c = 0; c < 4; ++c)
+                t[c] = glm::unpackHalf1x16(h[c]);
             break;
         }
-        case rhi::Format::RGBA32F: std::memcpy(&t, &bytes[i * 16], 16); break;
+        case rhi::Format::RGBA32F:
+            std::memcpy(&t, &bytes[i * 16], 16);
+            break;
         case rhi::Format::R32F:
-        case rhi::Format::D32F: std::memcpy(&t.x, &bytes[i * 4], 4); break;
-        default: throw std::runtime_error("readImage: unsupported format " + std::string(rhi::formatName(d.format)));
+        case rhi::Format::D32F:
+            std::memcpy(&t.x, &bytes[i * 4], 4);
+            break;
+        default:
+            throw std::runtime_error("readImage: unsupported format " +
+                                     std::string(rhi::formatName(d.format)));
         }
     }
     return img;
@@ -48,7 +56,8 @@ ImageDifference compareImages(const Image& a, const Image& b, float tolerance) {
     ImageDifference diff;
     for (size_t i = 0; i < a.texels.size(); ++i) {
         float m = 0.0f;
-        for (int c = 0; c < 4; ++c) m = std::max(m, std::fabs(a.texels[i][c] - b.texels[i][c]));
+        for (int c = 0; c < 4; ++c)
+            m = std::max(m, std::fabs(a.texels[i][c] - b.texels[i][c]));
         diff.maxAbs = std::max(diff.maxAbs, m);
         if (m > tolerance) ++diff.texelsOver;
     }

@@ -15,14 +15,16 @@ namespace lpv::test {
 struct Image {
     uint32_t width = 0, height = 0, depth = 1;
     std::vector<glm::vec4> texels;
-    glm::vec4 at(uint32_t x, uint32_t y, uint32_t z = 0) const { return texels[(z * height + y) * width + x]; }
+    glm::vec4 at(uint32_t x, uint32_t y, uint32_t z = 0) const {
+        return texels[(z * height + y) * width + x];
+    }
 };
 
 Image readImage(rhi::Device& device, rhi::TextureHandle texture);
 
 struct ImageDifference {
     float maxAbs = 0.0f;
-    uint32_t texelsOver = 0;  // texels whose difference exceeds the tolerance
+    uint32_t texelsOver = 0; // texels whose difference exceeds the tolerance
 };
 ImageDifference compareImages(const Image& a, const Image& b, float tolerance);
 

@@ -22,7 +22,9 @@ std::vector<BackendUnderTest>& selection() {
 
 } // namespace
 
-const std::vector<BackendUnderTest>& selectedBackends() { return selection(); }
+const std::vector<BackendUnderTest>& selectedBackends() {
+    return selection();
+}
 
 const BackendUnderTest& backendByName(const std::string& name) {
     static const std::vector<BackendUnderTest> all = allBackends();
@@ -45,7 +47,7 @@ TestDevice::TestDevice(const BackendUnderTest& backend)
     rhi::DeviceConfig config;
     config.backend = backend.kind;
     config.glHeadless = backend.glHeadless;
-    config.allowFallback = false;  // a test of one backend must never silently run on the other
+    config.allowFallback = false; // a test of one backend must never silently run on the other
     config.validation = true;
     config.onDebugMessage = [messages = messages_](const rhi::DebugMessage& m) {
         if (m.severity != rhi::DebugSeverity::Info) messages->push_back(m.text);
@@ -57,11 +59,13 @@ TestDevice::~TestDevice() {
     if (device_) device_->waitIdle();
     device_.reset();
     // Messages raised while tearing down count too.
-    for (const auto& m : *messages_) FAIL_CHECK("debug message during teardown: " << m);
+    for (const auto& m : *messages_)
+        FAIL_CHECK("debug message during teardown: " << m);
 }
 
 void TestDevice::expectSilent() {
-    for (const auto& m : *messages_) FAIL_CHECK("validation / debug message: " << m);
+    for (const auto& m : *messages_)
+        FAIL_CHECK("validation / debug message: " << m);
     messages_->clear();
 }
 

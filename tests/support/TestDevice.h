@@ -11,7 +11,7 @@
 namespace lpv::test {
 
 struct BackendUnderTest {
-    std::string name;  // "vulkan", "gl-egl", "gl-osmesa"
+    std::string name; // "vulkan", "gl-egl", "gl-osmesa"
     rhi::BackendKind kind;
     rhi::GlHeadless glHeadless = rhi::GlHeadless::EglSurfaceless;
 };

@@ -28,9 +28,9 @@ TEST_CASE("window: each backend opens a window and presents frames") {
                 CHECK(device->backend() == kind);
                 CHECK(device->caps().presentation);
                 using namespace rhi;
-                const TextureHandle frame = device->createTexture({TextureKind::Tex2D, Format::RGBA8Unorm, 160, 90, 1, 1,
-                                                                   kTextureColorTarget | kTextureSampled | kTextureTransfer,
-                                                                   "presented", "test"});
+                const TextureHandle frame = device->createTexture(
+                    {TextureKind::Tex2D, Format::RGBA8Unorm, 160, 90, 1, 1,
+                     kTextureColorTarget | kTextureSampled | kTextureTransfer, "presented", "test"});
                 for (int i = 0; i < 6; ++i) {
                     window.pollEvents();
                     CommandList& cmd = device->beginFrame();
@@ -45,7 +45,8 @@ TEST_CASE("window: each backend opens a window and presents frames") {
                 device->waitIdle();
                 device->destroy(frame);
             }
-            for (const auto& m : messages) FAIL_CHECK("debug message: " << m);
+            for (const auto& m : messages)
+                FAIL_CHECK("debug message: " << m);
         }
     }
 }

@@ -13,7 +13,8 @@ ConfigError::ConfigError(std::string source, int line, const std::string& messag
       source_(std::move(source)), line_(line) {}
 
 Config::Config() {
-    for (const SettingDecl* d : SettingRegistry::global().all()) slot(*d);
+    for (const SettingDecl* d : SettingRegistry::global().all())
+        slot(*d);
 }
 
 Config::Slot& Config::slot(const SettingDecl& decl) {
@@ -42,19 +43,22 @@ std::string Config::validate(const SettingDecl& decl, const SettingValue& v) {
         break;
     case SettingType::Int:
         if (!std::holds_alternative<int64_t>(v)) return decl.expected();
-        if (decl.min <= decl.max && (double(std::get<int64_t>(v)) < decl.min || double(std::get<int64_t>(v)) > decl.max))
+        if (decl.min <= decl.max &&
+            (double(std::get<int64_t>(v)) < decl.min || double(std::get<int64_t>(v)) > decl.max))
             return decl.expected();
         break;
     case SettingType::Float: {
         if (!std::holds_alternative<double>(v)) return decl.expected();
         const double x = std::get<double>(v);
-        if (!std::isfinite(x) || (decl.min <= decl.max && (x < decl.min || x > decl.max))) return decl.expected();
+        if (!std::isfinite(x) || (decl.min <= decl.max && (x < decl.min || x > decl.max)))
+            return decl.expected();
         break;
     }
     case SettingType::Enum: {
         if (!std::holds_alternative<std::string>(v)) return decl.expected();
         bool found = false;
-        for (const auto& c : decl.choices) found = found || c == std::get<std::string>(v);
+        for (const auto& c : decl.choices)
+            found = found || c == std::get<std::string>(v);
         if (!found) return decl.expected();
         break;
     }
@@ -82,8 +86,10 @@ void Config::set(const SettingDecl& decl, SettingValue v, const std::string& ori
 namespace {
 
 std::string_view trim(std::string_view s) {
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front())))
+        s.remove_prefix(1);
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back())))
+        s.remove_suffix(1);
     return s;
 }
 
@@ -98,17 +104,22 @@ bool parseDouble(std::string_view text, double& out) {
 
 } // namespace
 
-SettingValue Config::parse(const SettingDecl& decl, std::string_view raw, const std::string& source, int line) {
+SettingValue Config::parse(const SettingDecl& decl, std::string_view raw, const std::string& source,
+                           int line) {
     const std::string_view text = trim(raw);
     const auto fail = [&]() -> ConfigError {
-        return ConfigError(source, line, "'" + decl.name + "' = '" + std::string(text) + "': expected " + decl.expected());
+        return ConfigError(source, line,
+                           "'" + decl.name + "' = '" + std::string(text) + "': expected " + decl.expected());
     };
     SettingValue v;
     switch (decl.type) {
     case SettingType::Bool:
-        if (text == "true" || text == "1" || text == "on") v = true;
-        else if (text == "false" || text == "0" || text == "off") v = false;
-        else throw fail();
+        if (text == "true" || text == "1" || text == "on")
+            v = true;
+        else if (text == "false" || text == "0" || text == "off")
+            v = false;
+        else
+            throw fail();
         break;
     case SettingType::Int: {
         int64_t x = 0;
@@ -124,11 +135,14 @@ SettingValue Config::parse(const SettingDecl& decl, std::string_view raw, const 
         break;
     }
     case SettingType::Enum:
-    case SettingType::String: v = std::string(text); break;
+    case SettingType::String:
+        v = std::string(text);
+        break;
     case SettingType::Vec3: {
         glm::vec3 x;
         std::string_view rest = text;
-        if (rest.size() >= 2 && rest.front() == '[' && rest.back() == ']') rest = rest.substr(1, rest.size() - 2);
+        if (rest.size() >= 2 && rest.front() == '[' && rest.back() == ']')
+            rest = rest.substr(1, rest.size() - 2);
         for (int i = 0; i < 3; ++i) {
             const size_t comma = rest.find(',');
             const std::string_view part = i < 2 ? rest.substr(0, comma) : rest;
@@ -161,19 +175,24 @@ void Config::assign(std::string_view assignment, const std::string& source, bool
     const std::string_view key = trim(assignment.substr(0, eq));
     const SettingDecl& decl = lookup(key, source, 0);
     SettingValue v = parse(decl, assignment.substr(eq + 1), source, 0);
-    if (staged) pending_.push_back({&decl, std::move(v), source});
-    else set(decl, std::move(v), source);
+    if (staged)
+        pending_.push_back({&decl, std::move(v), source});
+    else
+        set(decl, std::move(v), source);
 }
 
 void Config::applyOverride(std::string_view assignment, const std::string& sourceName) {
     assign(assignment, sourceName, false);
 }
 
-void Config::stage(std::string_view assignment, const std::string& sourceName) { assign(assignment, sourceName, true); }
+void Config::stage(std::string_view assignment, const std::string& sourceName) {
+    assign(assignment, sourceName, true);
+}
 
 void Config::stage(const SettingDecl& decl, SettingValue v, const std::string& sourceName) {
     if (const std::string expected = validate(decl, v); !expected.empty())
-        throw ConfigError(sourceName, 0, "'" + decl.name + "' = " + decl.format(v) + ": expected " + expected);
+        throw ConfigError(sourceName, 0,
+                          "'" + decl.name + "' = " + decl.format(v) + ": expected " + expected);
     pending_.push_back({&decl, std::move(v), sourceName});
 }
 

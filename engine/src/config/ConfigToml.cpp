@@ -10,22 +10,32 @@
 namespace lpv::engine {
 namespace {
 
-int lineOf(const toml::node& n) { return int(n.source().begin.line); }
+int lineOf(const toml::node& n) {
+    return int(n.source().begin.line);
+}
 
 SettingValue convert(const SettingDecl& decl, const toml::node& node, const std::string& source) {
     const auto wrongType = [&](std::string_view got) {
         return ConfigError(source, lineOf(node),
-                           "'" + decl.name + "' has " + std::string(got) + " value: expected " + decl.expected());
+                           "'" + decl.name + "' has " + std::string(got) + " value: expected " +
+                               decl.expected());
     };
     const auto typeName = [&]() -> std::string_view {
         switch (node.type()) {
-        case toml::node_type::string: return "a string";
-        case toml::node_type::integer: return "an integer";
-        case toml::node_type::floating_point: return "a float";
-        case toml::node_type::boolean: return "a bool";
-        case toml::node_type::array: return "an array";
-        case toml::node_type::table: return "a table";
-        default: return "a date/time";
+        case toml::node_type::string:
+            return "a string";
+        case toml::node_type::integer:
+            return "an integer";
+        case toml::node_type::floating_point:
+            return "a float";
+        case toml::node_type::boolean:
+            return "a bool";
+        case toml::node_type::array:
+            return "an array";
+        case toml::node_type::table:
+            return "a table";
+        default:
+            return "a date/time";
         }
     };
     SettingValue v;
@@ -49,7 +59,8 @@ SettingValue convert(const SettingDecl& decl, const toml::node& node, const std:
         break;
     case SettingType::Vec3: {
         const toml::array* a = node.as_array();
-        if (!a || a->size() != 3) throw wrongType(a ? "an array of " + std::to_string(a->size()) : std::string(typeName()));
+        if (!a || a->size() != 3)
+            throw wrongType(a ? "an array of " + std::to_string(a->size()) : std::string(typeName()));
         glm::vec3 x;
         for (size_t i = 0; i < 3; ++i) {
             if (!(*a)[i].is_number()) throw wrongType("an array with a non-number");
@@ -60,13 +71,15 @@ SettingValue convert(const SettingDecl& decl, const toml::node& node, const std:
     }
     }
     if (const std::string expected = Config::validate(decl, v); !expected.empty())
-        throw ConfigError(source, lineOf(node), "'" + decl.name + "' = " + decl.format(v) + ": expected " + expected);
+        throw ConfigError(source, lineOf(node),
+                          "'" + decl.name + "' = " + decl.format(v) + ": expected " + expected);
     return v;
 }
 
 void walk(Config& config, const toml::table& table, const std::string& prefix, const std::string& source) {
     for (const auto& [key, node] : table) {
-        const std::string name = prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
+        const std::string name =
+            prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
         if (const toml::table* sub = node.as_table()) {
             walk(config, *sub, name, source);
             continue;
@@ -90,7 +103,8 @@ void Config::loadString(std::string_view text, const std::string& sourceName) {
     try {
         table = toml::parse(text, sourceName);
     } catch (const toml::parse_error& e) {
-        throw ConfigError(sourceName, int(e.source().begin.line), "malformed TOML: " + std::string(e.description()));
+        throw ConfigError(sourceName, int(e.source().begin.line),
+                          "malformed TOML: " + std::string(e.description()));
     }
     walk(*this, table, "", sourceName);
 }

@@ -10,12 +10,18 @@ namespace lpv::engine {
 
 std::string_view settingTypeName(SettingType t) {
     switch (t) {
-    case SettingType::Bool: return "bool";
-    case SettingType::Int: return "int";
-    case SettingType::Float: return "float";
-    case SettingType::Enum: return "enum";
-    case SettingType::String: return "string";
-    case SettingType::Vec3: return "vec3";
+    case SettingType::Bool:
+        return "bool";
+    case SettingType::Int:
+        return "int";
+    case SettingType::Float:
+        return "float";
+    case SettingType::Enum:
+        return "enum";
+    case SettingType::String:
+        return "string";
+    case SettingType::Vec3:
+        return "vec3";
     }
     return "?";
 }
@@ -30,18 +36,22 @@ std::string number(double v) {
 
 std::string SettingDecl::expected() const {
     switch (type) {
-    case SettingType::Bool: return "a bool (true or false)";
+    case SettingType::Bool:
+        return "a bool (true or false)";
     case SettingType::Int:
         return min <= max ? "an integer in [" + number(min) + ", " + number(max) + "]" : "an integer";
     case SettingType::Float:
         return min <= max ? "a number in [" + number(min) + ", " + number(max) + "]" : "a number";
     case SettingType::Enum: {
         std::string s = "one of: ";
-        for (size_t i = 0; i < choices.size(); ++i) s += (i ? ", " : "") + choices[i];
+        for (size_t i = 0; i < choices.size(); ++i)
+            s += (i ? ", " : "") + choices[i];
         return s;
     }
-    case SettingType::String: return "a string";
-    case SettingType::Vec3: return "three numbers ([x, y, z] in TOML, x,y,z on the command line)";
+    case SettingType::String:
+        return "a string";
+    case SettingType::Vec3:
+        return "three numbers ([x, y, z] in TOML, x,y,z on the command line)";
     }
     return "?";
 }
@@ -50,11 +60,16 @@ std::string SettingDecl::format(const SettingValue& v) const {
     return std::visit(
         [](const auto& x) -> std::string {
             using T = std::decay_t<decltype(x)>;
-            if constexpr (std::is_same_v<T, bool>) return x ? "true" : "false";
-            else if constexpr (std::is_same_v<T, int64_t>) return std::to_string(x);
-            else if constexpr (std::is_same_v<T, double>) return number(x);
-            else if constexpr (std::is_same_v<T, std::string>) return x;
-            else return number(x.x) + "," + number(x.y) + "," + number(x.z);
+            if constexpr (std::is_same_v<T, bool>)
+                return x ? "true" : "false";
+            else if constexpr (std::is_same_v<T, int64_t>)
+                return std::to_string(x);
+            else if constexpr (std::is_same_v<T, double>)
+                return number(x);
+            else if constexpr (std::is_same_v<T, std::string>)
+                return x;
+            else
+                return number(x.x) + "," + number(x.y) + "," + number(x.z);
         },
         v);
 }
@@ -81,7 +96,8 @@ const SettingDecl* SettingRegistry::find(std::string_view name) const {
 namespace {
 size_t editDistance(std::string_view a, std::string_view b) {
     std::vector<size_t> row(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t j = 0; j <= b.size(); ++j)
+        row[j] = j;
     for (size_t i = 1; i <= a.size(); ++i) {
         size_t diagonal = row[0];
         row[0] = i;
@@ -97,7 +113,7 @@ size_t editDistance(std::string_view a, std::string_view b) {
 
 std::string SettingRegistry::nearest(std::string_view name) const {
     std::string best;
-    size_t bestDistance = std::max<size_t>(3, name.size() / 3) + 1;  // beyond this, no suggestion
+    size_t bestDistance = std::max<size_t>(3, name.size() / 3) + 1; // beyond this, no suggestion
     for (const SettingDecl* d : decls_) {
         const size_t dist = editDistance(name, d->name);
         if (dist < bestDistance) {
@@ -147,8 +163,8 @@ StringSetting::StringSetting(std::string_view name, std::string_view def, std::s
 Vec3Setting::Vec3Setting(std::string_view name, glm::vec3 def, std::string_view help, Apply apply)
     : decl_(&declare(name, SettingType::Vec3, def, 1, 0, help, apply)) {}
 
-const SettingDecl& registerEnumSetting(std::string_view name, std::string_view def, std::vector<std::string> choices,
-                                       std::string_view help, Apply apply) {
+const SettingDecl& registerEnumSetting(std::string_view name, std::string_view def,
+                                       std::vector<std::string> choices, std::string_view help, Apply apply) {
     return declare(name, SettingType::Enum, std::string(def), 1, 0, help, apply, std::move(choices));
 }
 

@@ -19,12 +19,16 @@ std::string allowed(const SettingDecl& d) {
     }
     case SettingType::Enum: {
         std::string s;
-        for (size_t i = 0; i < d.choices.size(); ++i) s += (i ? ", " : "") + d.choices[i];
+        for (size_t i = 0; i < d.choices.size(); ++i)
+            s += (i ? ", " : "") + d.choices[i];
         return s;
     }
-    case SettingType::Bool: return "true, false";
-    case SettingType::String: return "text";
-    case SettingType::Vec3: return "[x, y, z]";
+    case SettingType::Bool:
+        return "true, false";
+    case SettingType::String:
+        return "text";
+    case SettingType::Vec3:
+        return "[x, y, z]";
     }
     return "";
 }
@@ -35,8 +39,8 @@ std::string settingsHelpText() {
     std::ostringstream out;
     out << "Settings (set in a TOML file given with --config, or with --set name=value):\n\n";
     for (const SettingDecl* d : SettingRegistry::global().all()) {
-        out << "  " << d->name << " (" << settingTypeName(d->type) << ", default " << d->format(d->defaultValue)
-            << ", allowed " << allowed(*d) << ")\n      " << d->help
+        out << "  " << d->name << " (" << settingTypeName(d->type) << ", default "
+            << d->format(d->defaultValue) << ", allowed " << allowed(*d) << ")\n      " << d->help
             << (d->apply == Apply::Restart ? " [needs a restart]" : "") << "\n";
     }
     return out.str();
@@ -47,9 +51,9 @@ std::string settingsMarkdownTable() {
     out << "| setting | type | default | allowed | applies | description |\n";
     out << "|---|---|---|---|---|---|\n";
     for (const SettingDecl* d : SettingRegistry::global().all()) {
-        out << "| `" << d->name << "` | " << settingTypeName(d->type) << " | `" << d->format(d->defaultValue) << "` | "
-            << allowed(*d) << " | " << (d->apply == Apply::Restart ? "restart" : "next frame") << " | " << d->help
-            << " |\n";
+        out << "| `" << d->name << "` | " << settingTypeName(d->type) << " | `" << d->format(d->defaultValue)
+            << "` | " << allowed(*d) << " | " << (d->apply == Apply::Restart ? "restart" : "next frame")
+            << " | " << d->help << " |\n";
     }
     return out.str();
 }

@@ -4,7 +4,9 @@
 namespace lpv::engine {
 
 CostPrediction predictCost(const WorkCounts& w, const platforms::Throughput& t) {
-    const auto ms = [](double amount, double perSecond) { return perSecond > 0 ? amount / perSecond * 1e3 : 0.0; };
+    const auto ms = [](double amount, double perSecond) {
+        return perSecond > 0 ? amount / perSecond * 1e3 : 0.0;
+    };
     CostPrediction p;
     p.aluMs = ms(double(w.aluOps), t.aluGflops * 1e9);
     p.textureMs = ms(double(w.texelsRead), t.texelRateG * 1e9);
@@ -13,8 +15,11 @@ CostPrediction predictCost(const WorkCounts& w, const platforms::Throughput& t) 
     p.setupMs = ms(double(w.primitives), t.triangleRateM * 1e6);
     // Where a fetch takes an ALU slot, shading time is ALU plus texture time.
     const double shadeMs = t.textureBlocksAlu ? p.aluMs + p.textureMs : p.aluMs;
-    const std::pair<double, const char*> units[] = {
-        {shadeMs, t.textureBlocksAlu ? "alu+texture" : "alu"}, {p.textureMs, "texture"}, {p.memoryMs, "memory"}, {p.fillMs, "fill"}, {p.setupMs, "setup"}};
+    const std::pair<double, const char*> units[] = {{shadeMs, t.textureBlocksAlu ? "alu+texture" : "alu"},
+                                                    {p.textureMs, "texture"},
+                                                    {p.memoryMs, "memory"},
+                                                    {p.fillMs, "fill"},
+                                                    {p.setupMs, "setup"}};
     for (const auto& [value, name] : units)
         if (value > p.ms) {
             p.ms = value;

@@ -8,22 +8,29 @@
 
 namespace lpv::engine {
 namespace {
-double ms(uint64_t begin, uint64_t end) { return end > begin ? double(end - begin) / 1e6 : 0.0; }
-bool isGi(std::string_view path) { return path.starts_with("gi"); }
+double ms(uint64_t begin, uint64_t end) {
+    return end > begin ? double(end - begin) / 1e6 : 0.0;
+}
+bool isGi(std::string_view path) {
+    return path.starts_with("gi");
+}
 } // namespace
 
 FrameProfiler::FrameProfiler(rhi::Device& device, platforms::PlatformProfile profile, ProfilerOptions options)
     : device_(device), profile_(std::move(profile)), x360_(platforms::loadPlatformProfile("x360")),
       ps3_(platforms::loadPlatformProfile("ps3")), options_(options),
-      timingSource_(device.caps().timestampSource), frameCpu_(options.statsWindow), frameGpu_(options.statsWindow) {
+      timingSource_(device.caps().timestampSource), frameCpu_(options.statsWindow),
+      frameGpu_(options.statsWindow) {
     if (timingSource_ != rhi::TimestampSource::None)
-        gpuSlots_ = std::min<uint32_t>(device.caps().maxTimestampsPerFrame, 2 + 2 * options_.maxScopesPerFrame);
+        gpuSlots_ =
+            std::min<uint32_t>(device.caps().maxTimestampsPerFrame, 2 + 2 * options_.maxScopesPerFrame);
     if (gpuSlots_ < 2) {
         gpuSlots_ = 0;
         timingSource_ = rhi::TimestampSource::None;
     }
     records_.resize(std::max<uint32_t>(options_.traceFrames, 8));
-    for (FrameRecord& r : records_) r.samples.resize(options_.maxScopesPerFrame);
+    for (FrameRecord& r : records_)
+        r.samples.resize(options_.maxScopesPerFrame);
     stack_.reserve(64);
     scopes_.reserve(256);
     timestampScratch_.resize(gpuSlots_);
@@ -35,8 +42,14 @@ uint16_t FrameProfiler::internScope(std::string_view name, int32_t parent) {
     for (size_t i = 0; i < scopes_.size(); ++i)
         if (scopes_[i].parent == parent && scopes_[i].name == name) return uint16_t(i);
     if (scopes_.size() >= 0xffff) throw std::logic_error("profiler: too many distinct scopes");
-    ScopeInfo info{std::string(name), std::string(name), parent, 0, SampleWindow(options_.statsWindow),
-                   SampleWindow(options_.statsWindow), {}, 0};
+    ScopeInfo info{std::string(name),
+                   std::string(name),
+                   parent,
+                   0,
+                   SampleWindow(options_.statsWindow),
+                   SampleWindow(options_.statsWindow),
+                   {},
+                   0};
     if (parent >= 0) {
         info.path = scopes_[size_t(parent)].path + "/" + info.name;
         info.depth = scopes_[size_t(parent)].depth + 1;
@@ -64,7 +77,8 @@ void FrameProfiler::beginFrame(rhi::CommandList& cmd) {
 }
 
 FrameProfiler::Scope FrameProfiler::scope(std::string_view name, rhi::CommandList* gpu) {
-    if (!current_) throw std::logic_error("profiler: scope '" + std::string(name) + "' opened outside a frame");
+    if (!current_)
+        throw std::logic_error("profiler: scope '" + std::string(name) + "' opened outside a frame");
     const int32_t parent = stack_.empty() ? -1 : int32_t(stack_.back().scope);
     const uint16_t id = internScope(name, parent);
     uint32_t sampleIndex = UINT32_MAX;
@@ -86,7 +100,7 @@ FrameProfiler::Scope FrameProfiler::scope(std::string_view name, rhi::CommandLis
 void FrameProfiler::closeScope() {
     const Open open = stack_.back();
     stack_.pop_back();
-    if (open.sample == UINT32_MAX) return;  // over maxScopesPerFrame: not recorded
+    if (open.sample == UINT32_MAX) return; // over maxScopesPerFrame: not recorded
     Sample& s = current_->samples[open.sample];
     s.cpuEnd = platforms::nowNanoseconds();
     if (s.gpuTimed) open.gpu->writeTimestamp(3 + 2 * open.sample);
@@ -103,7 +117,8 @@ void FrameProfiler::setWork(const WorkCounts& work) {
 void FrameProfiler::endFrame(rhi::CommandList& cmd) {
     if (!current_) throw std::logic_error("profiler: endFrame() without beginFrame()");
     if (!stack_.empty())
-        throw std::logic_error("profiler: scope '" + scopes_[stack_.back().scope].path + "' still open at endFrame()");
+        throw std::logic_error("profiler: scope '" + scopes_[stack_.back().scope].path +
+                               "' still open at endFrame()");
     if (gpuSlots_) cmd.writeTimestamp(1);
     current_->cpuEnd = platforms::nowNanoseconds();
     frameCpu_.add(ms(current_->cpuBegin, current_->cpuEnd));
@@ -151,14 +166,17 @@ void FrameProfiler::finishCheck(FrameRecord& r) {
         const Sample& s = r.samples[k];
         const ScopeInfo& info = scopes_[s.scope];
         if (!isGi(info.path)) continue;
-        if (info.depth == 0) c.giMs += r.gpuResolved && s.gpuTimed ? ms(s.gpuBegin, s.gpuEnd) : ms(s.cpuBegin, s.cpuEnd);
+        if (info.depth == 0)
+            c.giMs += r.gpuResolved && s.gpuTimed ? ms(s.gpuBegin, s.gpuEnd) : ms(s.cpuBegin, s.cpuEnd);
         giWork += s.work;
     }
     c.giPredictedX360Ms = predictCost(giWork, x360_.throughput).ms;
     c.giPredictedPs3Ms = predictCost(giWork, ps3_.throughput).ms;
     c.frameOverBudget = c.frameMs > profile_.frameBudgetMs;
     c.giOverBudget = c.giMs > profile_.giBudgetMs;
-    const double predicted = profile_.name == "ps3" ? c.giPredictedPs3Ms : profile_.name == "x360" ? c.giPredictedX360Ms : 0.0;
+    const double predicted = profile_.name == "ps3"    ? c.giPredictedPs3Ms
+                             : profile_.name == "x360" ? c.giPredictedX360Ms
+                                                       : 0.0;
     c.giPredictedOverBudget = predicted > profile_.giBudgetMs;
     lastCheck_ = c;
     ++framesChecked_;

@@ -21,7 +21,9 @@ std::string fixed(double v, int digits = 3) {
     return buf;
 }
 
-std::string mib(uint64_t bytes) { return fixed(double(bytes) / (1024.0 * 1024.0), 3) + " MiB"; }
+std::string mib(uint64_t bytes) {
+    return fixed(double(bytes) / (1024.0 * 1024.0), 3) + " MiB";
+}
 
 std::string jsonEscape(const std::string& s) {
     std::string out;
@@ -41,17 +43,23 @@ struct Row {
     const ScopeInfo* scope;
     SampleStats cpu, gpu;
     CostPrediction x360, ps3;
-    double shareOfFrame, shareOfGi;  // percent of the profile's budgets, on the GPU median when timed
+    double shareOfFrame, shareOfGi; // percent of the profile's budgets, on the GPU median when timed
 };
 
 std::vector<Row> rows(const FrameProfiler& p) {
     std::vector<Row> out;
     for (const ScopeInfo& s : p.scopes()) {
-        Row r{&s, s.cpuMs.stats(), s.gpuMs.stats(), predictCost(s.work, p.x360().throughput),
-              predictCost(s.work, p.ps3().throughput), 0, 0};
+        Row r{&s,
+              s.cpuMs.stats(),
+              s.gpuMs.stats(),
+              predictCost(s.work, p.x360().throughput),
+              predictCost(s.work, p.ps3().throughput),
+              0,
+              0};
         const double t = r.gpu.count ? r.gpu.median : r.cpu.median;
         r.shareOfFrame = p.profile().frameBudgetMs > 0 ? 100.0 * t / p.profile().frameBudgetMs : 0;
-        r.shareOfGi = s.path.starts_with("gi") && p.profile().giBudgetMs > 0 ? 100.0 * t / p.profile().giBudgetMs : 0;
+        r.shareOfGi =
+            s.path.starts_with("gi") && p.profile().giBudgetMs > 0 ? 100.0 * t / p.profile().giBudgetMs : 0;
         out.push_back(r);
     }
     // Depth-first order of the scope tree, so children follow their parent.
@@ -67,31 +75,35 @@ std::vector<Row> rows(const FrameProfiler& p) {
     return ordered;
 }
 
-uint64_t giMemory(const FrameProfiler& p) { return p.allocations().bytesIn("gi"); }
+uint64_t giMemory(const FrameProfiler& p) {
+    return p.allocations().bytesIn("gi");
+}
 
 } // namespace
 
 std::string profileSummaryText(const FrameProfiler& p) {
     std::ostringstream o;
     const auto& prof = p.profile();
-    o << "Frame profile: platform " << prof.name << " (frame budget " << fixed(prof.frameBudgetMs, 2) << " ms, GI "
-      << fixed(prof.giBudgetMs, 2) << " ms, GI memory " << mib(prof.giMemoryBudgetBytes) << ")\n";
-    o << "GPU timing source: " << gpuSourceName(p) << "; frames checked " << p.framesChecked() << ", over budget "
-      << p.framesOverBudget() << "\n";
+    o << "Frame profile: platform " << prof.name << " (frame budget " << fixed(prof.frameBudgetMs, 2)
+      << " ms, GI " << fixed(prof.giBudgetMs, 2) << " ms, GI memory " << mib(prof.giMemoryBudgetBytes)
+      << ")\n";
+    o << "GPU timing source: " << gpuSourceName(p) << "; frames checked " << p.framesChecked()
+      << ", over budget " << p.framesOverBudget() << "\n";
     const SampleStats fc = p.frameCpuMs(), fg = p.frameGpuMs();
     o << "frame: cpu median " << fixed(fc.median) << " ms (p95 " << fixed(fc.p95) << ")";
     if (fg.count) o << ", gpu median " << fixed(fg.median) << " ms (p95 " << fixed(fg.p95) << ")";
     o << "\n\n";
     char line[512];
-    std::snprintf(line, sizeof(line), "%-28s %9s %9s %9s %9s %9s %9s %8s %8s\n", "pass", "cpu med", "gpu last", "gpu med",
-                  "gpu p95", "gpu max", "x360 ms", "ps3 ms", "frame %");
+    std::snprintf(line, sizeof(line), "%-28s %9s %9s %9s %9s %9s %9s %8s %8s\n", "pass", "cpu med",
+                  "gpu last", "gpu med", "gpu p95", "gpu max", "x360 ms", "ps3 ms", "frame %");
     o << line;
     for (const Row& r : rows(p)) {
         const std::string name = std::string(2 * r.scope->depth, ' ') + r.scope->name;
-        std::snprintf(line, sizeof(line), "%-28s %9.3f %9s %9s %9s %9s %9.3f %8.3f %7.1f%%\n", name.c_str(), r.cpu.median,
-                      r.gpu.count ? fixed(r.gpu.last).c_str() : "-", r.gpu.count ? fixed(r.gpu.median).c_str() : "-",
-                      r.gpu.count ? fixed(r.gpu.p95).c_str() : "-", r.gpu.count ? fixed(r.gpu.max).c_str() : "-",
-                      r.x360.ms, r.ps3.ms, r.shareOfFrame);
+        std::snprintf(line, sizeof(line), "%-28s %9.3f %9s %9s %9s %9s %9.3f %8.3f %7.1f%%\n", name.c_str(),
+                      r.cpu.median, r.gpu.count ? fixed(r.gpu.last).c_str() : "-",
+                      r.gpu.count ? fixed(r.gpu.median).c_str() : "-",
+                      r.gpu.count ? fixed(r.gpu.p95).c_str() : "-",
+                      r.gpu.count ? fixed(r.gpu.max).c_str() : "-", r.x360.ms, r.ps3.ms, r.shareOfFrame);
         o << line;
     }
     o << "\nmemory by category (current / peak):\n";
@@ -106,26 +118,29 @@ std::string profileSummaryMarkdown(const FrameProfiler& p) {
     std::ostringstream o;
     const auto& prof = p.profile();
     o << "# Frame profile\n\nPlatform `" << prof.name << "`: frame budget " << fixed(prof.frameBudgetMs, 2)
-      << " ms, GI budget " << fixed(prof.giBudgetMs, 2) << " ms, GI memory budget " << mib(prof.giMemoryBudgetBytes)
-      << ".\nGPU timing source: `" << gpuSourceName(p) << "`. Frames checked: " << p.framesChecked()
-      << ", over budget: " << p.framesOverBudget() << ".\n\n";
-    o << "| pass | timing | cpu median ms | gpu last | gpu mean | gpu median | gpu p95 | gpu max | predicted x360 ms | "
+      << " ms, GI budget " << fixed(prof.giBudgetMs, 2) << " ms, GI memory budget "
+      << mib(prof.giMemoryBudgetBytes) << ".\nGPU timing source: `" << gpuSourceName(p)
+      << "`. Frames checked: " << p.framesChecked() << ", over budget: " << p.framesOverBudget() << ".\n\n";
+    o << "| pass | timing | cpu median ms | gpu last | gpu mean | gpu median | gpu p95 | gpu max | predicted "
+         "x360 ms | "
          "predicted ps3 ms | bottleneck (x360) | share of frame | share of GI budget |\n";
     o << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Row& r : rows(p)) {
         o << "| " << std::string(r.scope->depth * 2, ' ') << r.scope->path << " | "
           << (r.gpu.count ? gpuSourceName(p) : "cpu") << " | " << fixed(r.cpu.median) << " | ";
         if (r.gpu.count)
-            o << fixed(r.gpu.last) << " | " << fixed(r.gpu.mean) << " | " << fixed(r.gpu.median) << " | " << fixed(r.gpu.p95)
-              << " | " << fixed(r.gpu.max) << " | ";
+            o << fixed(r.gpu.last) << " | " << fixed(r.gpu.mean) << " | " << fixed(r.gpu.median) << " | "
+              << fixed(r.gpu.p95) << " | " << fixed(r.gpu.max) << " | ";
         else
             o << "- | - | - | - | - | ";
         o << fixed(r.x360.ms) << " | " << fixed(r.ps3.ms) << " | " << r.x360.bottleneck << " | "
-          << fixed(r.shareOfFrame, 1) << "% | " << (r.shareOfGi > 0 ? fixed(r.shareOfGi, 1) + "%" : "-") << " |\n";
+          << fixed(r.shareOfFrame, 1) << "% | " << (r.shareOfGi > 0 ? fixed(r.shareOfGi, 1) + "%" : "-")
+          << " |\n";
     }
     o << "\n## Memory\n\n| category | current | peak | resources |\n|---|---|---|---|\n";
     for (const auto& [category, usage] : p.allocations().categories())
-        o << "| " << category << " | " << mib(usage.currentBytes) << " | " << mib(usage.peakBytes) << " | " << usage.count << " |\n";
+        o << "| " << category << " | " << mib(usage.currentBytes) << " | " << mib(usage.peakBytes) << " | "
+          << usage.count << " |\n";
     o << "\nGI memory: " << mib(giMemory(p)) << " of " << mib(prof.giMemoryBudgetBytes)
       << (giMemory(p) > prof.giMemoryBudgetBytes ? " (**over budget**)" : "") << ".\n";
     return o.str();
@@ -157,17 +172,22 @@ std::string profileTraceJson(const FrameProfiler& p) {
     const auto us = [&](uint64_t ns) { return fixed(double(ns - std::min(ns, origin)) / 1000.0, 3); };
     const std::string gpuTrack = "GPU (" + gpuSourceName(p) + ")";
     o << "{\"displayTimeUnit\":\"ms\",\"traceEvents\":[\n";
-    o << R"({"name":"process_name","ph":"M","pid":1,"args":{"name":"LPV Engine"}},)" << "\n";
-    o << R"({"name":"thread_name","ph":"M","pid":1,"tid":1,"args":{"name":"CPU"}},)" << "\n";
-    o << R"({"name":"thread_name","ph":"M","pid":1,"tid":2,"args":{"name":")" << jsonEscape(gpuTrack) << "\"}}";
+    o << R"({"name":"process_name","ph":"M","pid":1,"args":{"name":"LPV Engine"}},)"
+      << "\n";
+    o << R"({"name":"thread_name","ph":"M","pid":1,"tid":1,"args":{"name":"CPU"}},)"
+      << "\n";
+    o << R"({"name":"thread_name","ph":"M","pid":1,"tid":2,"args":{"name":")" << jsonEscape(gpuTrack)
+      << "\"}}";
     p.forEachFrame([&](const FrameProfiler::FrameRecord& r) {
         if (!r.cpuEnd) return;
-        o << ",\n{\"name\":\"frame " << r.frame << "\",\"ph\":\"X\",\"pid\":1,\"tid\":1,\"ts\":" << us(r.cpuBegin)
+        o << ",\n{\"name\":\"frame " << r.frame
+          << "\",\"ph\":\"X\",\"pid\":1,\"tid\":1,\"ts\":" << us(r.cpuBegin)
           << ",\"dur\":" << fixed(double(r.cpuEnd - r.cpuBegin) / 1000.0) << "}";
         // GPU times are on the device's clock: place them relative to the frame's CPU start.
         const auto gpuTs = [&](uint64_t t) { return us(r.cpuBegin + (t - r.gpuBegin)); };
         if (r.gpuResolved)
-            o << ",\n{\"name\":\"frame " << r.frame << "\",\"ph\":\"X\",\"pid\":1,\"tid\":2,\"ts\":" << gpuTs(r.gpuBegin)
+            o << ",\n{\"name\":\"frame " << r.frame
+              << "\",\"ph\":\"X\",\"pid\":1,\"tid\":2,\"ts\":" << gpuTs(r.gpuBegin)
               << ",\"dur\":" << fixed(double(r.gpuEnd - r.gpuBegin) / 1000.0) << "}";
         for (uint32_t k = 0; k < r.sampleCount; ++k) {
             const auto& s = r.samples[k];
@@ -175,15 +195,18 @@ std::string profileTraceJson(const FrameProfiler& p) {
             o << ",\n{\"name\":\"" << name << "\",\"ph\":\"X\",\"pid\":1,\"tid\":1,\"ts\":" << us(s.cpuBegin)
               << ",\"dur\":" << fixed(double(s.cpuEnd - s.cpuBegin) / 1000.0) << "}";
             if (r.gpuResolved && s.gpuTimed && s.gpuEnd >= s.gpuBegin)
-                o << ",\n{\"name\":\"" << name << "\",\"ph\":\"X\",\"pid\":1,\"tid\":2,\"ts\":" << gpuTs(s.gpuBegin)
+                o << ",\n{\"name\":\"" << name
+                  << "\",\"ph\":\"X\",\"pid\":1,\"tid\":2,\"ts\":" << gpuTs(s.gpuBegin)
                   << ",\"dur\":" << fixed(double(s.gpuEnd - s.gpuBegin) / 1000.0) << "}";
         }
-        o << ",\n{\"name\":\"memory\",\"ph\":\"C\",\"pid\":1,\"ts\":" << us(r.cpuBegin) << ",\"args\":{\"total_bytes\":"
-          << r.memoryTotal << ",\"gi_bytes\":" << r.memoryGi << "}}";
+        o << ",\n{\"name\":\"memory\",\"ph\":\"C\",\"pid\":1,\"ts\":" << us(r.cpuBegin)
+          << ",\"args\":{\"total_bytes\":" << r.memoryTotal << ",\"gi_bytes\":" << r.memoryGi << "}}";
         if (r.checked)
-            o << ",\n{\"name\":\"budget\",\"ph\":\"C\",\"pid\":1,\"ts\":" << us(r.cpuBegin) << ",\"args\":{\"frame_ms\":"
-              << fixed(r.check.frameMs) << ",\"frame_budget_ms\":" << fixed(p.profile().frameBudgetMs)
-              << ",\"gi_ms\":" << fixed(r.check.giMs) << ",\"gi_budget_ms\":" << fixed(p.profile().giBudgetMs) << "}}";
+            o << ",\n{\"name\":\"budget\",\"ph\":\"C\",\"pid\":1,\"ts\":" << us(r.cpuBegin)
+              << ",\"args\":{\"frame_ms\":" << fixed(r.check.frameMs)
+              << ",\"frame_budget_ms\":" << fixed(p.profile().frameBudgetMs)
+              << ",\"gi_ms\":" << fixed(r.check.giMs) << ",\"gi_budget_ms\":" << fixed(p.profile().giBudgetMs)
+              << "}}";
     });
     o << "\n]}\n";
     return o.str();
@@ -194,12 +217,16 @@ std::string profileChartSvg(const FrameProfiler& p) {
     p.forEachFrame([&](const FrameProfiler::FrameRecord& r) {
         if (r.checked) frames.push_back(&r);
     });
-    const double width = 1000, height = 360, left = 60, top = 30, plotW = width - left - 200, plotH = height - top - 40;
+    const double width = 1000, height = 360, left = 60, top = 30, plotW = width - left - 200,
+                 plotH = height - top - 40;
     double maxMs = p.profile().frameBudgetMs * 1.2;
-    for (const auto* r : frames) maxMs = std::max(maxMs, r->check.frameMs * 1.05);
-    static const char* kColors[] = {"#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f", "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac"};
+    for (const auto* r : frames)
+        maxMs = std::max(maxMs, r->check.frameMs * 1.05);
+    static const char* kColors[] = {"#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f",
+                                    "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac"};
     std::ostringstream o;
-    o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
+    o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
+      << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
     o << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
     o << "<text x=\"" << left << "\" y=\"18\" font-size=\"13\">Per-frame pass times (" << gpuSourceName(p)
       << " where resolved, else CPU), platform " << p.profile().name << "</text>\n";
@@ -211,26 +238,30 @@ std::string profileChartSvg(const FrameProfiler& p) {
         for (uint32_t k = 0; k < r.sampleCount; ++k) {
             const auto& s = r.samples[k];
             if (p.scopes()[s.scope].depth != 0) continue;
-            const double t = r.gpuResolved && s.gpuTimed ? double(s.gpuEnd - s.gpuBegin) / 1e6 : double(s.cpuEnd - s.cpuBegin) / 1e6;
-            o << "<rect x=\"" << fixed(left + double(i) * barW, 2) << "\" y=\"" << fixed(y(acc + t), 2) << "\" width=\""
-              << fixed(std::max(barW - 0.5, 0.5), 2) << "\" height=\"" << fixed(t / maxMs * plotH, 2) << "\" fill=\""
-              << kColors[s.scope % 10] << "\"/>\n";
+            const double t = r.gpuResolved && s.gpuTimed ? double(s.gpuEnd - s.gpuBegin) / 1e6
+                                                         : double(s.cpuEnd - s.cpuBegin) / 1e6;
+            o << "<rect x=\"" << fixed(left + double(i) * barW, 2) << "\" y=\"" << fixed(y(acc + t), 2)
+              << "\" width=\"" << fixed(std::max(barW - 0.5, 0.5), 2) << "\" height=\""
+              << fixed(t / maxMs * plotH, 2) << "\" fill=\"" << kColors[s.scope % 10] << "\"/>\n";
             acc += t;
         }
         const bool over = r.check.frameOverBudget || r.check.giOverBudget || r.check.giPredictedOverBudget;
         if (over)
             o << "<rect x=\"" << fixed(left + double(i) * barW, 2) << "\" y=\"" << top - 6 << "\" width=\""
-              << fixed(std::max(barW - 0.5, 0.5), 2) << "\" height=\"4\" fill=\"red\"><title>frame " << r.frame
-              << " over budget</title></rect>\n";
+              << fixed(std::max(barW - 0.5, 0.5), 2) << "\" height=\"4\" fill=\"red\"><title>frame "
+              << r.frame << " over budget</title></rect>\n";
     }
-    o << "<line x1=\"" << left << "\" x2=\"" << left + plotW << "\" y1=\"" << fixed(y(p.profile().frameBudgetMs), 2)
-      << "\" y2=\"" << fixed(y(p.profile().frameBudgetMs), 2) << "\" stroke=\"red\" stroke-dasharray=\"6 3\"/>\n";
+    o << "<line x1=\"" << left << "\" x2=\"" << left + plotW << "\" y1=\""
+      << fixed(y(p.profile().frameBudgetMs), 2) << "\" y2=\"" << fixed(y(p.profile().frameBudgetMs), 2)
+      << "\" stroke=\"red\" stroke-dasharray=\"6 3\"/>\n";
     o << "<text x=\"" << left + plotW + 4 << "\" y=\"" << fixed(y(p.profile().frameBudgetMs) + 4, 2)
       << "\" fill=\"red\">frame budget " << fixed(p.profile().frameBudgetMs, 1) << " ms</text>\n";
-    o << "<line x1=\"" << left << "\" x2=\"" << left << "\" y1=\"" << top << "\" y2=\"" << top + plotH << "\" stroke=\"black\"/>\n";
+    o << "<line x1=\"" << left << "\" x2=\"" << left << "\" y1=\"" << top << "\" y2=\"" << top + plotH
+      << "\" stroke=\"black\"/>\n";
     for (int t = 0; t <= 4; ++t) {
         const double v = maxMs * t / 4;
-        o << "<text x=\"" << left - 6 << "\" y=\"" << fixed(y(v) + 4, 2) << "\" text-anchor=\"end\">" << fixed(v, 1) << "</text>\n";
+        o << "<text x=\"" << left - 6 << "\" y=\"" << fixed(y(v) + 4, 2) << "\" text-anchor=\"end\">"
+          << fixed(v, 1) << "</text>\n";
     }
     o << "<text x=\"" << left << "\" y=\"" << height - 10 << "\">frames (" << frames.size()
       << "); red marks: over budget; ms on the left axis</text>\n";
@@ -238,8 +269,9 @@ std::string profileChartSvg(const FrameProfiler& p) {
     for (size_t i = 0; i < p.scopes().size(); ++i) {
         if (p.scopes()[i].depth != 0) continue;
         const double ly = top + 16.0 * legend++;
-        o << "<rect x=\"" << left + plotW + 10 << "\" y=\"" << ly + 20 << "\" width=\"10\" height=\"10\" fill=\"" << kColors[i % 10]
-          << "\"/><text x=\"" << left + plotW + 24 << "\" y=\"" << ly + 29 << "\">" << p.scopes()[i].name << "</text>\n";
+        o << "<rect x=\"" << left + plotW + 10 << "\" y=\"" << ly + 20
+          << "\" width=\"10\" height=\"10\" fill=\"" << kColors[i % 10] << "\"/><text x=\""
+          << left + plotW + 24 << "\" y=\"" << ly + 29 << "\">" << p.scopes()[i].name << "</text>\n";
     }
     o << "</svg>\n";
     return o.str();
@@ -248,7 +280,8 @@ std::string profileChartSvg(const FrameProfiler& p) {
 void writeProfileOutputs(const FrameProfiler& p, const std::string& directory) {
     std::error_code ec;
     std::filesystem::create_directories(directory, ec);
-    if (ec) throw std::runtime_error("cannot create profile output directory " + directory + ": " + ec.message());
+    if (ec)
+        throw std::runtime_error("cannot create profile output directory " + directory + ": " + ec.message());
     const std::pair<const char*, std::string> files[] = {{"trace.json", profileTraceJson(p)},
                                                          {"summary.md", profileSummaryMarkdown(p)},
                                                          {"summary.csv", profileSummaryCsv(p)},

@@ -21,7 +21,8 @@ SampleStats SampleWindow::stats() const {
     std::copy_n(samples_.begin(), count_, scratch_.begin());
     std::sort(scratch_.begin(), scratch_.begin() + count_);
     double sum = 0;
-    for (uint32_t i = 0; i < count_; ++i) sum += scratch_[i];
+    for (uint32_t i = 0; i < count_; ++i)
+        sum += scratch_[i];
     s.last = last_;
     s.mean = sum / count_;
     s.median = count_ % 2 ? scratch_[count_ / 2] : 0.5 * (scratch_[count_ / 2 - 1] + scratch_[count_ / 2]);

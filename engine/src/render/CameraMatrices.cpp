@@ -12,7 +12,7 @@ CameraMatrices cameraMatrices(const Camera& camera, float aspect) {
     m.forward = glm::normalize(camera.forward);
     m.view = glm::lookAt(camera.position, camera.position + m.forward, camera.up);
     m.projection = glm::perspectiveRH_ZO(camera.verticalFov, aspect, camera.nearPlane, camera.farPlane);
-    m.projection[1][1] *= -1.0f;  // NDC y = -1 is image row 0, the top
+    m.projection[1][1] *= -1.0f; // NDC y = -1 is image row 0, the top
     m.viewProjection = m.projection * m.view;
     m.invViewProjection = glm::inverse(m.viewProjection);
     return m;

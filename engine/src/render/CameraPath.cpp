@@ -9,9 +9,13 @@
 
 namespace lpv::engine {
 
-std::vector<std::string> cameraPathNames() { return {"orbit", "flythrough"}; }
+std::vector<std::string> cameraPathNames() {
+    return {"orbit", "flythrough"};
+}
 
-bool isCameraPath(std::string_view name) { return name == "orbit" || name == "flythrough"; }
+bool isCameraPath(std::string_view name) {
+    return name == "orbit" || name == "flythrough";
+}
 
 Camera cameraOnPath(std::string_view name, const Bounds& bounds, const Camera& start, float t) {
     Camera cam = start;
@@ -31,7 +35,8 @@ Camera cameraOnPath(std::string_view name, const Bounds& bounds, const Camera& s
         const glm::vec3 side = alongX ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0);
         cam.position = glm::vec3(c.x, bounds.min.y + 1.7f, c.z) + axis * s * glm::dot(size, axis) +
                        side * sway * glm::dot(size, side);
-        cam.forward = glm::normalize(axis + side * 0.3f * std::cos(t * glm::two_pi<float>()) + glm::vec3(0, 0.05f, 0));
+        cam.forward =
+            glm::normalize(axis + side * 0.3f * std::cos(t * glm::two_pi<float>()) + glm::vec3(0, 0.05f, 0));
     } else {
         throw std::invalid_argument("unknown camera path '" + std::string(name) + "' (orbit, flythrough)");
     }

@@ -19,7 +19,8 @@ std::vector<uint8_t> mipChain(const TextureImage& image, uint32_t& levels) {
     std::vector<float> lut(256);
     for (int i = 0; i < 256; ++i) {
         const float c = float(i) / 255.0f;
-        lut[size_t(i)] = image.srgb ? (c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f)) : c;
+        lut[size_t(i)] =
+            image.srgb ? (c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f)) : c;
     }
     const auto encode = [&](float v) {
         v = std::clamp(v, 0.0f, 1.0f);
@@ -52,9 +53,11 @@ std::vector<uint8_t> mipChain(const TextureImage& image, uint32_t& levels) {
     return out;
 }
 
-rhi::TextureHandle solidTexture(rhi::Device& device, const uint8_t rgba[4], rhi::Format format, const char* name) {
-    const rhi::TextureHandle t = device.createTexture(
-        {rhi::TextureKind::Tex2D, format, 1, 1, 1, 1, rhi::kTextureSampled | rhi::kTextureTransfer, name, "scene.textures"});
+rhi::TextureHandle solidTexture(rhi::Device& device, const uint8_t rgba[4], rhi::Format format,
+                                const char* name) {
+    const rhi::TextureHandle t =
+        device.createTexture({rhi::TextureKind::Tex2D, format, 1, 1, 1, 1,
+                              rhi::kTextureSampled | rhi::kTextureTransfer, name, "scene.textures"});
     device.uploadTexture(t, 0, rgba, 4);
     return t;
 }
@@ -75,9 +78,9 @@ GpuScene::GpuScene(rhi::Device& device, const Scene& scene) : device_(device) {
     for (const TextureImage& image : scene.textures) {
         uint32_t levels = 1;
         const std::vector<uint8_t> chain = mipChain(image, levels);
-        const TextureHandle t = device.createTexture({TextureKind::Tex2D, image.srgb ? Format::RGBA8Srgb : Format::RGBA8Unorm,
-                                                      image.width, image.height, 1, levels,
-                                                      kTextureSampled | kTextureTransfer, image.name, "scene.textures"});
+        const TextureHandle t = device.createTexture(
+            {TextureKind::Tex2D, image.srgb ? Format::RGBA8Srgb : Format::RGBA8Unorm, image.width,
+             image.height, 1, levels, kTextureSampled | kTextureTransfer, image.name, "scene.textures"});
         size_t offset = 0;
         uint32_t w = image.width, h = image.height;
         for (uint32_t level = 0; level < levels; ++level) {
@@ -105,8 +108,9 @@ GpuScene::GpuScene(rhi::Device& device, const Scene& scene) : device_(device) {
         lights.push_back(g);
     }
     lightCount_ = uint32_t(std::min<size_t>(lights.size(), kMaxPunctualLights));
-    lights_ = device.createBuffer({sizeof(GpuPunctualLight) * kMaxPunctualLights, kBufferStorage | kBufferTransfer,
-                                   MemoryAccess::GpuOnly, scene.name + " lights", "scene.lights"});
+    lights_ =
+        device.createBuffer({sizeof(GpuPunctualLight) * kMaxPunctualLights, kBufferStorage | kBufferTransfer,
+                             MemoryAccess::GpuOnly, scene.name + " lights", "scene.lights"});
     if (lightCount_) device.uploadBuffer(lights_, 0, lights.data(), lightCount_ * sizeof(GpuPunctualLight));
 
     for (const Instance& inst : scene.instances) {
@@ -130,7 +134,8 @@ GpuScene::GpuScene(rhi::Device& device, const Scene& scene) : device_(device) {
 
 GpuScene::~GpuScene() {
     device_.waitIdle();
-    for (rhi::TextureHandle t : textures_) device_.destroy(t);
+    for (rhi::TextureHandle t : textures_)
+        device_.destroy(t);
     device_.destroy(white_);
     device_.destroy(flatNormal_);
     device_.destroy(sampler_);

@@ -16,13 +16,15 @@
 namespace lpv::engine {
 namespace {
 
-const IntSetting kShadowMapSize{"render.shadow_map_size", 2048, 256, 8192, "Sun shadow map resolution (texels per side)"};
+const IntSetting kShadowMapSize{"render.shadow_map_size", 2048, 256, 8192,
+                                "Sun shadow map resolution (texels per side)"};
 const BoolSetting kSsao{"render.ssao", true, "Screen-space ambient occlusion on the indirect light"};
 const FloatSetting kSsaoRadius{"render.ssao_radius", 0.5, 0.01, 10.0, "SSAO sampling radius in metres"};
 const FloatSetting kSsaoStrength{"render.ssao_strength", 1.0, 0.0, 2.0, "SSAO darkening at full occlusion"};
-const FloatSetting kExposure{"render.exposure", 1.0, 0.001, 1000.0, "Exposure multiplier before tone mapping"};
-const Vec3Setting kAmbient{"render.ambient", {0.3f, 0.32f, 0.36f},
-                           "Constant indirect irradiance used when GI is off (linear RGB)"};
+const FloatSetting kExposure{"render.exposure", 1.0, 0.001, 1000.0,
+                             "Exposure multiplier before tone mapping"};
+const Vec3Setting kAmbient{
+    "render.ambient", {0.3f, 0.32f, 0.36f}, "Constant indirect irradiance used when GI is off (linear RGB)"};
 const EnumSetting<DebugView> kDebugView{"render.debug_view",
                                         DebugView::Final,
                                         {{DebugView::Final, "final"},
@@ -34,8 +36,8 @@ const EnumSetting<DebugView> kDebugView{"render.debug_view",
                                          {DebugView::Indirect, "indirect"}},
                                         "What the frame shows; indirect = linear indirect diffuse only"};
 
-rhi::GraphicsPipelineHandle fullscreenPipeline(rhi::Device& device, const rhi::ShaderBinary& fragment, rhi::Format format,
-                                               const char* name) {
+rhi::GraphicsPipelineHandle fullscreenPipeline(rhi::Device& device, const rhi::ShaderBinary& fragment,
+                                               rhi::Format format, const char* name) {
     rhi::GraphicsPipelineDesc d;
     d.vertex = &shaders::fullscreen_vert;
     d.fragment = &fragment;
@@ -44,7 +46,8 @@ rhi::GraphicsPipelineHandle fullscreenPipeline(rhi::Device& device, const rhi::S
     return device.createPipeline(d);
 }
 
-WorkCounts fullscreenWork(uint64_t pixels, uint64_t texelsPerPixel, uint64_t aluPerPixel, uint64_t bytesPerPixel) {
+WorkCounts fullscreenWork(uint64_t pixels, uint64_t texelsPerPixel, uint64_t aluPerPixel,
+                          uint64_t bytesPerPixel) {
     WorkCounts w;
     w.pixelsShaded = pixels;
     w.texelsRead = pixels * texelsPerPixel;
@@ -81,9 +84,11 @@ Renderer::~Renderer() {
     device_.waitIdle();
     scene_.reset();
     destroyTargets();
-    for (auto p : {gbufferPipeline_, shadowPipeline_, ssaoPipeline_, ssaoBlurPipeline_, lightingPipeline_, tonemapPipeline_})
+    for (auto p : {gbufferPipeline_, shadowPipeline_, ssaoPipeline_, ssaoBlurPipeline_, lightingPipeline_,
+                   tonemapPipeline_})
         device_.destroy(p);
-    for (auto s : {linearClamp_, pointClamp_, shadowCompare_}) device_.destroy(s);
+    for (auto s : {linearClamp_, pointClamp_, shadowCompare_})
+        device_.destroy(s);
 }
 
 void Renderer::createTargets(uint32_t shadowSize) {
@@ -96,21 +101,23 @@ void Renderer::createTargets(uint32_t shadowSize) {
     targets_.normal = target(Format::RGBA16F, 0, "gbuffer normal", "render.gbuffer");
     targets_.emissive = target(Format::RGBA16F, 0, "gbuffer emissive", "render.gbuffer");
     targets_.depth = device_.createTexture({TextureKind::Tex2D, Format::D32F, width_, height_, 1, 1,
-                                            kTextureDepthTarget | kTextureSampled | kTextureTransfer, "gbuffer depth",
-                                            "render.gbuffer"});
+                                            kTextureDepthTarget | kTextureSampled | kTextureTransfer,
+                                            "gbuffer depth", "render.gbuffer"});
     targets_.aoRaw = target(Format::R32F, 0, "ssao raw", "render.ssao");
     targets_.ao = target(Format::R32F, kTextureTransfer, "ssao", "render.ssao");
-    targets_.indirect = target(Format::RGBA16F, kTextureStorage | kTextureTransfer, "indirect irradiance", "render.lighting");
+    targets_.indirect =
+        target(Format::RGBA16F, kTextureStorage | kTextureTransfer, "indirect irradiance", "render.lighting");
     targets_.hdr = target(Format::RGBA16F, kTextureTransfer, "hdr", "render.lighting");
     targets_.output = target(Format::RGBA8Srgb, kTextureTransfer, "output", "render.output");
     shadowSize_ = shadowSize;
-    targets_.shadow = device_.createTexture({TextureKind::Tex2D, Format::D32F, shadowSize, shadowSize, 1, 1,
-                                             kTextureDepthTarget | kTextureSampled, "sun shadow map", "render.shadow"});
+    targets_.shadow =
+        device_.createTexture({TextureKind::Tex2D, Format::D32F, shadowSize, shadowSize, 1, 1,
+                               kTextureDepthTarget | kTextureSampled, "sun shadow map", "render.shadow"});
 }
 
 void Renderer::destroyTargets() {
-    for (auto t : {targets_.albedo, targets_.normal, targets_.emissive, targets_.depth, targets_.aoRaw, targets_.ao,
-                   targets_.indirect, targets_.hdr, targets_.output, targets_.shadow})
+    for (auto t : {targets_.albedo, targets_.normal, targets_.emissive, targets_.depth, targets_.aoRaw,
+                   targets_.ao, targets_.indirect, targets_.hdr, targets_.output, targets_.shadow})
         if (t) device_.destroy(t);
     targets_ = {};
 }
@@ -186,8 +193,9 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         // A settings change, not a steady-state frame: the shadow map is remade at its new size.
         device_.destroy(targets_.shadow);
         shadowSize_ = wantShadow;
-        targets_.shadow = device_.createTexture({TextureKind::Tex2D, Format::D32F, shadowSize_, shadowSize_, 1, 1,
-                                                 kTextureDepthTarget | kTextureSampled, "sun shadow map", "render.shadow"});
+        targets_.shadow =
+            device_.createTexture({TextureKind::Tex2D, Format::D32F, shadowSize_, shadowSize_, 1, 1,
+                                   kTextureDepthTarget | kTextureSampled, "sun shadow map", "render.shadow"});
     }
 
     // Sun shadow fitted to the scene bounds.

@@ -5,9 +5,13 @@
 
 namespace lpv::engine {
 
-std::vector<std::string> builtinSceneNames() { return {"cornell", "atrium"}; }
+std::vector<std::string> builtinSceneNames() {
+    return {"cornell", "atrium"};
+}
 
-bool isBuiltinScene(std::string_view name) { return name == "cornell" || name == "atrium"; }
+bool isBuiltinScene(std::string_view name) {
+    return name == "cornell" || name == "atrium";
+}
 
 Scene buildBuiltinScene(std::string_view name, float detail) {
     if (name == "cornell") return buildCornellBox();

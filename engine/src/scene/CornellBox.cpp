@@ -44,10 +44,12 @@ Scene buildCornellBox() {
 
     b.begin("short box", kBox);
     b.box({-0.825f, 0.0f, -0.825f}, {0.825f, 1.65f, 0.825f});
-    b.finish(glm::rotate(glm::translate(glm::mat4(1.0f), {0.95f, 0.0f, 0.75f}), glm::radians(-17.0f), {0, 1, 0}));
+    b.finish(
+        glm::rotate(glm::translate(glm::mat4(1.0f), {0.95f, 0.0f, 0.75f}), glm::radians(-17.0f), {0, 1, 0}));
     b.begin("tall box", kBox);
     b.box({-0.825f, 0.0f, -0.825f}, {0.825f, 3.3f, 0.825f});
-    b.finish(glm::rotate(glm::translate(glm::mat4(1.0f), {-0.9f, 0.0f, -0.9f}), glm::radians(17.0f), {0, 1, 0}));
+    b.finish(
+        glm::rotate(glm::translate(glm::mat4(1.0f), {-0.9f, 0.0f, -0.9f}), glm::radians(17.0f), {0, 1, 0}));
 
     Light sun;
     sun.name = "sun";

@@ -25,7 +25,8 @@ namespace {
 const char* const kSupportedExtensions[] = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
 
 std::string trimmed(std::string s) {
-    while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+    while (!s.empty() && (s.back() == '\n' || s.back() == ' '))
+        s.pop_back();
     for (char& c : s)
         if (c == '\n') c = ';';
     return s;
@@ -52,15 +53,17 @@ private:
     std::string path_;
     const tinygltf::Model& model_;
     Scene scene_;
-    std::map<std::pair<int, bool>, int32_t> textures_;  // (glTF texture, sRGB) -> scene texture
-    std::vector<std::vector<uint32_t>> primitiveMeshes_;  // glTF mesh -> engine meshes
+    std::map<std::pair<int, bool>, int32_t> textures_;   // (glTF texture, sRGB) -> scene texture
+    std::vector<std::vector<uint32_t>> primitiveMeshes_; // glTF mesh -> engine meshes
 };
 
-const uint8_t* GltfReader::accessorData(int accessorIndex, size_t elementSize, size_t& stride, size_t& count) const {
+const uint8_t* GltfReader::accessorData(int accessorIndex, size_t elementSize, size_t& stride,
+                                        size_t& count) const {
     if (accessorIndex < 0 || size_t(accessorIndex) >= model_.accessors.size())
         fail("accessor " + std::to_string(accessorIndex) + " does not exist");
     const tinygltf::Accessor& a = model_.accessors[size_t(accessorIndex)];
-    if (a.sparse.isSparse) fail("accessor " + std::to_string(accessorIndex) + " is sparse, which is not supported");
+    if (a.sparse.isSparse)
+        fail("accessor " + std::to_string(accessorIndex) + " is sparse, which is not supported");
     if (a.bufferView < 0 || size_t(a.bufferView) >= model_.bufferViews.size())
         fail("accessor " + std::to_string(accessorIndex) + " has no valid bufferView");
     const tinygltf::BufferView& view = model_.bufferViews[size_t(a.bufferView)];
@@ -78,12 +81,13 @@ const uint8_t* GltfReader::accessorData(int accessorIndex, size_t elementSize, s
     return buffer.data.data() + begin;
 }
 
-template <int N> std::vector<glm::vec<N, float>> GltfReader::readFloats(int accessorIndex, const char* what) const {
+template <int N>
+std::vector<glm::vec<N, float>> GltfReader::readFloats(int accessorIndex, const char* what) const {
     const tinygltf::Accessor& a = model_.accessors.at(size_t(accessorIndex));
     const int components = tinygltf::GetNumComponentsInType(uint32_t(a.type));
     if (components != N)
-        fail(std::string(what) + " accessor " + std::to_string(accessorIndex) + " has " + std::to_string(components) +
-             " components, expected " + std::to_string(N));
+        fail(std::string(what) + " accessor " + std::to_string(accessorIndex) + " has " +
+             std::to_string(components) + " components, expected " + std::to_string(N));
     const int componentSize = tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType));
     if (componentSize <= 0) fail(std::string(what) + " accessor has an invalid component type");
     size_t stride = 0, count = 0;
@@ -94,8 +98,12 @@ template <int N> std::vector<glm::vec<N, float>> GltfReader::readFloats(int acce
         for (int c = 0; c < N; ++c) {
             float v = 0.0f;
             switch (a.componentType) {
-            case TINYGLTF_COMPONENT_TYPE_FLOAT: std::memcpy(&v, e + c * 4, 4); break;
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: v = float(e[c]) / 255.0f; break;
+            case TINYGLTF_COMPONENT_TYPE_FLOAT:
+                std::memcpy(&v, e + c * 4, 4);
+                break;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+                v = float(e[c]) / 255.0f;
+                break;
             case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
                 uint16_t u;
                 std::memcpy(&u, e + c * 2, 2);
@@ -123,12 +131,14 @@ std::vector<uint32_t> GltfReader::readIndices(int accessorIndex) const {
     std::vector<uint32_t> out(count);
     for (size_t i = 0; i < count; ++i) {
         const uint8_t* e = data + i * stride;
-        if (size == 1) out[i] = e[0];
+        if (size == 1)
+            out[i] = e[0];
         else if (size == 2) {
             uint16_t u;
             std::memcpy(&u, e, 2);
             out[i] = u;
-        } else std::memcpy(&out[i], e, 4);
+        } else
+            std::memcpy(&out[i], e, 4);
     }
     return out;
 }
@@ -138,16 +148,20 @@ int32_t GltfReader::texture(int gltfTexture, bool srgb, const std::string& mater
     const auto key = std::make_pair(gltfTexture, srgb);
     if (auto it = textures_.find(key); it != textures_.end()) return it->second;
     int32_t result = -1;
-    if (size_t(gltfTexture) >= model_.textures.size()) fail("material '" + materialName + "' uses missing texture " + std::to_string(gltfTexture));
+    if (size_t(gltfTexture) >= model_.textures.size())
+        fail("material '" + materialName + "' uses missing texture " + std::to_string(gltfTexture));
     const int source = model_.textures[size_t(gltfTexture)].source;
-    const tinygltf::Image* image = source >= 0 && size_t(source) < model_.images.size() ? &model_.images[size_t(source)] : nullptr;
+    const tinygltf::Image* image =
+        source >= 0 && size_t(source) < model_.images.size() ? &model_.images[size_t(source)] : nullptr;
     if (!image || image->image.empty() || image->width <= 0 || image->height <= 0) {
-        log::warn(path_ + ": texture " + std::to_string(gltfTexture) + " (" + (image ? image->uri : "no image") +
-                  ") could not be loaded; material '" + materialName + "' uses its flat factor instead");
+        log::warn(path_ + ": texture " + std::to_string(gltfTexture) + " (" +
+                  (image ? image->uri : "no image") + ") could not be loaded; material '" + materialName +
+                  "' uses its flat factor instead");
     } else if (image->bits != 8 || (image->component != 3 && image->component != 4)) {
-        log::warn(path_ + ": texture " + std::to_string(gltfTexture) + " has " + std::to_string(image->component) +
-                  " components of " + std::to_string(image->bits) + " bits; only 8-bit RGB(A) is used, material '" +
-                  materialName + "' uses its flat factor instead");
+        log::warn(path_ + ": texture " + std::to_string(gltfTexture) + " has " +
+                  std::to_string(image->component) + " components of " + std::to_string(image->bits) +
+                  " bits; only 8-bit RGB(A) is used, material '" + materialName +
+                  "' uses its flat factor instead");
     } else {
         TextureImage t;
         t.name = image->name.empty() ? image->uri : image->name;
@@ -158,7 +172,8 @@ int32_t GltfReader::texture(int gltfTexture, bool srgb, const std::string& mater
         const size_t pixels = size_t(t.width) * t.height;
         for (size_t p = 0; p < pixels; ++p)
             for (int c = 0; c < 4; ++c)
-                t.rgba[p * 4 + size_t(c)] = c < image->component ? image->image[p * size_t(image->component) + size_t(c)] : 255;
+                t.rgba[p * 4 + size_t(c)] =
+                    c < image->component ? image->image[p * size_t(image->component) + size_t(c)] : 255;
         result = int32_t(scene_.textures.size());
         scene_.textures.push_back(std::move(t));
     }
@@ -172,15 +187,17 @@ void GltfReader::readMaterials() {
         out.name = m.name;
         const auto& pbr = m.pbrMetallicRoughness;
         if (pbr.baseColorFactor.size() == 4)
-            out.baseColor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2], pbr.baseColorFactor[3]);
+            out.baseColor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2],
+                                      pbr.baseColorFactor[3]);
         out.metallic = float(pbr.metallicFactor);
         out.roughness = float(pbr.roughnessFactor);
         out.baseColorTexture = texture(pbr.baseColorTexture.index, true, m.name);
         out.metallicRoughnessTexture = texture(pbr.metallicRoughnessTexture.index, false, m.name);
         out.normalTexture = texture(m.normalTexture.index, false, m.name);
-        if (m.emissiveFactor.size() == 3) out.emissive = glm::vec3(m.emissiveFactor[0], m.emissiveFactor[1], m.emissiveFactor[2]);
-        if (auto it = m.extensions.find("KHR_materials_emissive_strength"); it != m.extensions.end() &&
-                                                                           it->second.Has("emissiveStrength"))
+        if (m.emissiveFactor.size() == 3)
+            out.emissive = glm::vec3(m.emissiveFactor[0], m.emissiveFactor[1], m.emissiveFactor[2]);
+        if (auto it = m.extensions.find("KHR_materials_emissive_strength");
+            it != m.extensions.end() && it->second.Has("emissiveStrength"))
             out.emissive *= float(it->second.Get("emissiveStrength").GetNumberAsDouble());
         scene_.materials.push_back(out);
     }
@@ -193,40 +210,55 @@ void GltfReader::readMeshes() {
         std::vector<uint32_t> engineMeshes;
         for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
             const tinygltf::Primitive& prim = mesh.primitives[pi];
-            const std::string where = "mesh " + std::to_string(mi) + " '" + mesh.name + "' primitive " + std::to_string(pi);
+            const std::string where =
+                "mesh " + std::to_string(mi) + " '" + mesh.name + "' primitive " + std::to_string(pi);
             if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)
-                fail(where + ": primitive mode " + std::to_string(prim.mode) + " is not supported (triangles only)");
+                fail(where + ": primitive mode " + std::to_string(prim.mode) +
+                     " is not supported (triangles only)");
             const auto pos = prim.attributes.find("POSITION");
             if (pos == prim.attributes.end()) fail(where + ": has no POSITION attribute");
             const auto positions = readFloats<3>(pos->second, "POSITION");
             for (size_t v = 0; v < positions.size(); ++v)
-                if (!std::isfinite(positions[v].x) || !std::isfinite(positions[v].y) || !std::isfinite(positions[v].z))
-                    fail(where + ": vertex " + std::to_string(v) + " has a non-finite position (NaN or infinity)");
+                if (!std::isfinite(positions[v].x) || !std::isfinite(positions[v].y) ||
+                    !std::isfinite(positions[v].z))
+                    fail(where + ": vertex " + std::to_string(v) +
+                         " has a non-finite position (NaN or infinity)");
             std::vector<glm::vec3> normals;
             std::vector<glm::vec2> uvs;
             std::vector<glm::vec4> tangents;
-            if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) normals = readFloats<3>(it->second, "NORMAL");
-            if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) uvs = readFloats<2>(it->second, "TEXCOORD_0");
-            if (auto it = prim.attributes.find("TANGENT"); it != prim.attributes.end()) tangents = readFloats<4>(it->second, "TANGENT");
+            if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end())
+                normals = readFloats<3>(it->second, "NORMAL");
+            if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end())
+                uvs = readFloats<2>(it->second, "TEXCOORD_0");
+            if (auto it = prim.attributes.find("TANGENT"); it != prim.attributes.end())
+                tangents = readFloats<4>(it->second, "TANGENT");
             for (const auto* attr : {&normals})
-                if (!attr->empty() && attr->size() != positions.size()) fail(where + ": NORMAL count differs from POSITION count");
-            if (!uvs.empty() && uvs.size() != positions.size()) fail(where + ": TEXCOORD_0 count differs from POSITION count");
-            if (!tangents.empty() && tangents.size() != positions.size()) fail(where + ": TANGENT count differs from POSITION count");
+                if (!attr->empty() && attr->size() != positions.size())
+                    fail(where + ": NORMAL count differs from POSITION count");
+            if (!uvs.empty() && uvs.size() != positions.size())
+                fail(where + ": TEXCOORD_0 count differs from POSITION count");
+            if (!tangents.empty() && tangents.size() != positions.size())
+                fail(where + ": TANGENT count differs from POSITION count");
 
             std::vector<uint32_t> indices;
-            if (prim.indices >= 0) indices = readIndices(prim.indices);
+            if (prim.indices >= 0)
+                indices = readIndices(prim.indices);
             else
-                for (uint32_t i = 0; i < positions.size(); ++i) indices.push_back(i);
-            if (indices.size() % 3) fail(where + ": index count " + std::to_string(indices.size()) + " is not a multiple of 3");
+                for (uint32_t i = 0; i < positions.size(); ++i)
+                    indices.push_back(i);
+            if (indices.size() % 3)
+                fail(where + ": index count " + std::to_string(indices.size()) + " is not a multiple of 3");
             for (size_t i = 0; i < indices.size(); ++i)
                 if (indices[i] >= positions.size())
-                    fail(where + ": index " + std::to_string(indices[i]) + " at position " + std::to_string(i) +
-                         " is out of range (" + std::to_string(positions.size()) + " vertices)");
+                    fail(where + ": index " + std::to_string(indices[i]) + " at position " +
+                         std::to_string(i) + " is out of range (" + std::to_string(positions.size()) +
+                         " vertices)");
 
             Mesh out;
             out.name = mesh.name;
             out.material = prim.material >= 0 ? uint32_t(prim.material) : 0;
-            if (out.material >= scene_.materials.size()) fail(where + ": material " + std::to_string(prim.material) + " does not exist");
+            if (out.material >= scene_.materials.size())
+                fail(where + ": material " + std::to_string(prim.material) + " does not exist");
             out.firstIndex = uint32_t(scene_.indices.size());
             out.indexCount = uint32_t(indices.size());
             const uint32_t base = uint32_t(scene_.vertices.size());
@@ -241,9 +273,12 @@ void GltfReader::readMeshes() {
             }
             if (normals.empty()) {
                 // Area-weighted vertex normals when the file has none.
-                for (Vertex* v = &scene_.vertices[base]; v != scene_.vertices.data() + scene_.vertices.size(); ++v) v->normal = glm::vec3(0.0f);
+                for (Vertex* v = &scene_.vertices[base]; v != scene_.vertices.data() + scene_.vertices.size();
+                     ++v)
+                    v->normal = glm::vec3(0.0f);
                 for (size_t i = 0; i + 2 < indices.size(); i += 3) {
-                    Vertex &a = scene_.vertices[base + indices[i]], &b = scene_.vertices[base + indices[i + 1]],
+                    Vertex &a = scene_.vertices[base + indices[i]],
+                           &b = scene_.vertices[base + indices[i + 1]],
                            &c = scene_.vertices[base + indices[i + 2]];
                     const glm::vec3 n = glm::cross(b.position - a.position, c.position - a.position);
                     a.normal += n;
@@ -252,10 +287,12 @@ void GltfReader::readMeshes() {
                 }
                 for (size_t v = base; v < scene_.vertices.size(); ++v) {
                     const float len = glm::length(scene_.vertices[v].normal);
-                    scene_.vertices[v].normal = len > 0.0f ? scene_.vertices[v].normal / len : glm::vec3(0, 1, 0);
+                    scene_.vertices[v].normal =
+                        len > 0.0f ? scene_.vertices[v].normal / len : glm::vec3(0, 1, 0);
                 }
             }
-            for (uint32_t i : indices) scene_.indices.push_back(base + i);
+            for (uint32_t i : indices)
+                scene_.indices.push_back(base + i);
             engineMeshes.push_back(uint32_t(scene_.meshes.size()));
             scene_.meshes.push_back(out);
         }
@@ -266,23 +303,29 @@ void GltfReader::readMeshes() {
 glm::mat4 localTransform(const tinygltf::Node& n) {
     if (n.matrix.size() == 16) {
         glm::mat4 m;
-        for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = float(n.matrix[size_t(i)]);
+        for (int i = 0; i < 16; ++i)
+            glm::value_ptr(m)[i] = float(n.matrix[size_t(i)]);
         return m;
     }
     glm::mat4 m(1.0f);
-    if (n.translation.size() == 3) m = glm::translate(m, glm::vec3(n.translation[0], n.translation[1], n.translation[2]));
+    if (n.translation.size() == 3)
+        m = glm::translate(m, glm::vec3(n.translation[0], n.translation[1], n.translation[2]));
     if (n.rotation.size() == 4)
-        m *= glm::mat4_cast(glm::quat(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]), float(n.rotation[2])));
+        m *= glm::mat4_cast(glm::quat(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]),
+                                      float(n.rotation[2])));
     if (n.scale.size() == 3) m = glm::scale(m, glm::vec3(n.scale[0], n.scale[1], n.scale[2]));
     return m;
 }
 
 void GltfReader::visit(int nodeIndex, const glm::mat4& parent) {
-    if (nodeIndex < 0 || size_t(nodeIndex) >= model_.nodes.size()) fail("node " + std::to_string(nodeIndex) + " does not exist");
+    if (nodeIndex < 0 || size_t(nodeIndex) >= model_.nodes.size())
+        fail("node " + std::to_string(nodeIndex) + " does not exist");
     const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
     const glm::mat4 world = parent * localTransform(node);
     if (node.mesh >= 0) {
-        if (size_t(node.mesh) >= primitiveMeshes_.size()) fail("node " + std::to_string(nodeIndex) + " refers to missing mesh " + std::to_string(node.mesh));
+        if (size_t(node.mesh) >= primitiveMeshes_.size())
+            fail("node " + std::to_string(nodeIndex) + " refers to missing mesh " +
+                 std::to_string(node.mesh));
         for (uint32_t m : primitiveMeshes_[size_t(node.mesh)]) {
             Instance inst;
             inst.mesh = m;
@@ -305,14 +348,19 @@ void GltfReader::visit(int nodeIndex, const glm::mat4& parent) {
         }
         scene_.camera = cam;
     }
-    if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end() && it->second.Has("light")) {
+    if (auto it = node.extensions.find("KHR_lights_punctual");
+        it != node.extensions.end() && it->second.Has("light")) {
         const int li = it->second.Get("light").GetNumberAsInt();
-        if (li < 0 || size_t(li) >= model_.lights.size()) fail("node " + std::to_string(nodeIndex) + " refers to missing light " + std::to_string(li));
+        if (li < 0 || size_t(li) >= model_.lights.size())
+            fail("node " + std::to_string(nodeIndex) + " refers to missing light " + std::to_string(li));
         const tinygltf::Light& l = model_.lights[size_t(li)];
         Light out;
         out.name = l.name;
-        out.type = l.type == "directional" ? LightType::Directional : l.type == "spot" ? LightType::Spot : LightType::Point;
-        if (l.type != "directional" && l.type != "spot" && l.type != "point") fail("light " + std::to_string(li) + " has unknown type '" + l.type + "'");
+        out.type = l.type == "directional" ? LightType::Directional
+                   : l.type == "spot"      ? LightType::Spot
+                                           : LightType::Point;
+        if (l.type != "directional" && l.type != "spot" && l.type != "point")
+            fail("light " + std::to_string(li) + " has unknown type '" + l.type + "'");
         if (l.color.size() == 3) out.color = glm::vec3(l.color[0], l.color[1], l.color[2]);
         out.intensity = float(l.intensity);
         out.range = float(l.range);
@@ -322,22 +370,27 @@ void GltfReader::visit(int nodeIndex, const glm::mat4& parent) {
         out.outerConeAngle = float(l.spot.outerConeAngle);
         scene_.lights.push_back(out);
     }
-    for (int child : node.children) visit(child, world);
+    for (int child : node.children)
+        visit(child, world);
 }
 
 Scene GltfReader::read() {
     for (const std::string& ext : model_.extensionsRequired)
-        if (std::find(std::begin(kSupportedExtensions), std::end(kSupportedExtensions), ext) == std::end(kSupportedExtensions))
+        if (std::find(std::begin(kSupportedExtensions), std::end(kSupportedExtensions), ext) ==
+            std::end(kSupportedExtensions))
             fail("requires extension '" + ext + "', which LPV Engine does not support");
     scene_.name = std::filesystem::path(path_).stem().string();
     readMaterials();
     readMeshes();
     if (!model_.scenes.empty()) {
         const size_t s = model_.defaultScene >= 0 ? size_t(model_.defaultScene) : 0;
-        if (s >= model_.scenes.size()) fail("default scene " + std::to_string(model_.defaultScene) + " does not exist");
-        for (int n : model_.scenes[s].nodes) visit(n, glm::mat4(1.0f));
+        if (s >= model_.scenes.size())
+            fail("default scene " + std::to_string(model_.defaultScene) + " does not exist");
+        for (int n : model_.scenes[s].nodes)
+            visit(n, glm::mat4(1.0f));
     } else {
-        for (size_t n = 0; n < model_.nodes.size(); ++n) visit(int(n), glm::mat4(1.0f));
+        for (size_t n = 0; n < model_.nodes.size(); ++n)
+            visit(int(n), glm::mat4(1.0f));
     }
     if (scene_.instances.empty()) fail("has no meshes to draw");
     scene_.updateBounds();

@@ -80,20 +80,23 @@ void MeshBuilder::box(glm::vec3 mn, glm::vec3 mx, bool inside, float uvScale) {
         glm::vec3 o, u, v;
     };
     const Face faces[6] = {
-        {mn, Z, Y},                   // -x
-        {mn + X, Y, Z},               // +x
-        {mn, X, Z},                   // -y
-        {mn + Y, Z, X},               // +y
-        {mn, Y, X},                   // -z
-        {mn + Z, X, Y},               // +z
+        {mn, Z, Y},     // -x
+        {mn + X, Y, Z}, // +x
+        {mn, X, Z},     // -y
+        {mn + Y, Z, X}, // +y
+        {mn, Y, X},     // -z
+        {mn + Z, X, Y}, // +z
     };
     for (const Face& f : faces) {
-        if (inside) quad(f.o, f.v, f.u, 1, 1, uvScale);
-        else quad(f.o, f.u, f.v, 1, 1, uvScale);
+        if (inside)
+            quad(f.o, f.v, f.u, 1, 1, uvScale);
+        else
+            quad(f.o, f.u, f.v, 1, 1, uvScale);
     }
 }
 
-void MeshBuilder::cylinder(glm::vec3 base, float radius, float height, uint32_t segments, uint32_t rings, bool caps) {
+void MeshBuilder::cylinder(glm::vec3 base, float radius, float height, uint32_t segments, uint32_t rings,
+                           bool caps) {
     const float twoPi = glm::two_pi<float>();
     const uint32_t first = uint32_t(scene_.vertices.size());
     for (uint32_t r = 0; r <= rings; ++r)
@@ -101,11 +104,13 @@ void MeshBuilder::cylinder(glm::vec3 base, float radius, float height, uint32_t 
             const float a = twoPi * float(s) / float(segments);
             const glm::vec3 n(std::cos(a), 0.0f, std::sin(a));
             const float y = height * float(r) / float(rings);
-            addVertex({base + n * radius + glm::vec3(0, y, 0), n, {a * radius, y}, glm::vec4(-n.z, 0, n.x, 1)});
+            addVertex(
+                {base + n * radius + glm::vec3(0, y, 0), n, {a * radius, y}, glm::vec4(-n.z, 0, n.x, 1)});
         }
     for (uint32_t r = 0; r < rings; ++r)
         for (uint32_t s = 0; s < segments; ++s) {
-            const uint32_t i0 = first + r * (segments + 1) + s, i1 = i0 + 1, i2 = i0 + segments + 1, i3 = i2 + 1;
+            const uint32_t i0 = first + r * (segments + 1) + s, i1 = i0 + 1, i2 = i0 + segments + 1,
+                           i3 = i2 + 1;
             addTriangleIndices(i0, i2, i3);
             addTriangleIndices(i0, i3, i1);
         }
@@ -121,8 +126,10 @@ void MeshBuilder::cylinder(glm::vec3 base, float radius, float height, uint32_t 
             addVertex({c + o, n, {o.x, o.z}, tangentFor(n)});
         }
         for (uint32_t s = 0; s < segments; ++s) {
-            if (top) addTriangleIndices(center, ring + s + 1, ring + s);
-            else addTriangleIndices(center, ring + s, ring + s + 1);
+            if (top)
+                addTriangleIndices(center, ring + s + 1, ring + s);
+            else
+                addTriangleIndices(center, ring + s, ring + s + 1);
         }
     }
 }
@@ -140,13 +147,16 @@ void MeshBuilder::lathe(glm::vec3 base, const std::vector<glm::vec2>& profile, u
             const float a = twoPi * float(s) / float(segments);
             const glm::vec3 radial(std::cos(a), 0.0f, std::sin(a));
             const glm::vec3 n = glm::normalize(radial * pn.x + glm::vec3(0, pn.y, 0));
-            addVertex({base + radial * profile[r].x + glm::vec3(0, profile[r].y, 0), n,
-                       {float(s) / float(segments) * 4.0f, profile[r].y}, glm::vec4(-radial.z, 0, radial.x, 1)});
+            addVertex({base + radial * profile[r].x + glm::vec3(0, profile[r].y, 0),
+                       n,
+                       {float(s) / float(segments) * 4.0f, profile[r].y},
+                       glm::vec4(-radial.z, 0, radial.x, 1)});
         }
     }
     for (uint32_t r = 0; r + 1 < rows; ++r)
         for (uint32_t s = 0; s < segments; ++s) {
-            const uint32_t i0 = first + r * (segments + 1) + s, i1 = i0 + 1, i2 = i0 + segments + 1, i3 = i2 + 1;
+            const uint32_t i0 = first + r * (segments + 1) + s, i1 = i0 + 1, i2 = i0 + segments + 1,
+                           i3 = i2 + 1;
             addTriangleIndices(i0, i2, i3);
             addTriangleIndices(i0, i3, i1);
         }

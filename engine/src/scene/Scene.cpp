@@ -28,7 +28,8 @@ Bounds Bounds::transformed(const glm::mat4& m) const {
 
 uint64_t Scene::triangleCount() const {
     uint64_t n = 0;
-    for (const Instance& inst : instances) n += meshes[inst.mesh].indexCount / 3;
+    for (const Instance& inst : instances)
+        n += meshes[inst.mesh].indexCount / 3;
     return n;
 }
 

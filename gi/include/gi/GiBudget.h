@@ -15,7 +15,7 @@ namespace lpv::gi {
 
 struct GiResource {
     std::string name;
-    std::string category;  // gi.rsm, gi.vpl, gi.lpv
+    std::string category; // gi.rsm, gi.vpl, gi.lpv
     uint64_t bytes = 0;
 };
 

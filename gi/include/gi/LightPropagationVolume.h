@@ -32,11 +32,14 @@ public:
     // Reads gi.* and prepares the frame: checks the budget (throws GiBudgetError or
     // engine::ConfigError; the previous configuration stays), remakes resources on a change,
     // places the volume.
-    void update(const engine::Config& config, const engine::Renderer& renderer, const engine::CameraMatrices& camera);
+    void update(const engine::Config& config, const engine::Renderer& renderer,
+                const engine::CameraMatrices& camera);
 
-    void renderIndirect(rhi::CommandList& cmd, const engine::CameraMatrices& camera, const engine::GBufferView& gbuffer,
-                        rhi::TextureHandle target, engine::FrameProfiler* profiler) override;
-    void renderDebugOverlay(rhi::CommandList& cmd, const engine::CameraMatrices& camera, rhi::TextureHandle output) override;
+    void renderIndirect(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
+                        const engine::GBufferView& gbuffer, rhi::TextureHandle target,
+                        engine::FrameProfiler* profiler) override;
+    void renderDebugOverlay(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
+                            rhi::TextureHandle output) override;
 
     const LpvSettings& settings() const { return settings_; }
     const VolumeGrid& grid() const { return grid_; }

@@ -16,9 +16,9 @@ struct ShCell {
 };
 
 struct VolumeGrid {
-    glm::vec3 origin{0.0f};  // corner of cell (0,0,0)
+    glm::vec3 origin{0.0f}; // corner of cell (0,0,0)
     float cellSize = 1.0f;
-    uint32_t size = 32;  // cells per axis
+    uint32_t size = 32; // cells per axis
 };
 
 class ShVolume {
@@ -43,7 +43,7 @@ private:
 struct Vpl {
     glm::vec3 position{0.0f};
     glm::vec3 normal{0.0f, 1.0f, 0.0f};
-    glm::vec3 flux{0.0f};  // watts per channel leaving the surfel
+    glm::vec3 flux{0.0f}; // watts per channel leaving the surfel
 };
 
 // The cell a VPL lands in after the half-cell shifts along its normal and toward the light
@@ -51,13 +51,15 @@ struct Vpl {
 bool injectionCell(const VolumeGrid& grid, const Vpl& vpl, glm::vec3 lightDirection, glm::ivec3& cell);
 
 // Adds each VPL as a clamped-cosine lobe of intensity flux / pi around its normal.
-void injectReference(ShVolume& volume, const VolumeGrid& grid, const std::vector<Vpl>& vpls, glm::vec3 lightDirection);
+void injectReference(ShVolume& volume, const VolumeGrid& grid, const std::vector<Vpl>& vpls,
+                     glm::vec3 lightDirection);
 
 // One propagation step: every cell gathers from its 6 neighbours through 5 faces each.
 ShVolume propagateStep(const ShVolume& source);
 
 // `iterations` steps, each propagating the previous step's result (never the initial volume),
 // all accumulated onto the injected volume. `perIteration`, if given, receives each step's L0 total.
-ShVolume propagateReference(const ShVolume& injected, int iterations, std::vector<glm::vec3>* perIteration = nullptr);
+ShVolume propagateReference(const ShVolume& injected, int iterations,
+                            std::vector<glm::vec3>* perIteration = nullptr);
 
 } // namespace lpv::gi

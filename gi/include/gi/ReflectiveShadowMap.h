@@ -21,7 +21,8 @@ public:
     uint32_t size() const { return size_; }
     // Fits the light's projection around `grid`; returns the light view-projection.
     glm::mat4 fit(const VolumeGrid& grid, glm::vec3 lightDirection);
-    void render(rhi::CommandList& cmd, const engine::GpuScene& scene, glm::vec3 lightDirection, glm::vec3 sunIrradiance);
+    void render(rhi::CommandList& cmd, const engine::GpuScene& scene, glm::vec3 lightDirection,
+                glm::vec3 sunIrradiance);
 
     const glm::mat4& lightViewProjection() const { return viewProjection_; }
     float texelArea() const { return texelArea_; }

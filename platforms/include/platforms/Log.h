@@ -13,9 +13,17 @@ using Sink = std::function<void(Level, std::string_view)>;
 Sink setSink(Sink sink);
 void write(Level level, std::string_view message);
 
-inline void debug(std::string_view m) { write(Level::Debug, m); }
-inline void info(std::string_view m) { write(Level::Info, m); }
-inline void warn(std::string_view m) { write(Level::Warning, m); }
-inline void error(std::string_view m) { write(Level::Error, m); }
+inline void debug(std::string_view m) {
+    write(Level::Debug, m);
+}
+inline void info(std::string_view m) {
+    write(Level::Info, m);
+}
+inline void warn(std::string_view m) {
+    write(Level::Warning, m);
+}
+inline void error(std::string_view m) {
+    write(Level::Error, m);
+}
 
 } // namespace lpv::log

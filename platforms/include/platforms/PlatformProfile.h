@@ -12,25 +12,25 @@
 namespace lpv::platforms {
 
 struct Throughput {
-    double aluGflops = 0;     // shader ALU, GFLOP/s
-    double texelRateG = 0;    // filtered texel fetches, G/s
-    double fillRateGpix = 0;  // ROP output, Gpixels/s
-    double memoryGBs = 0;     // main graphics memory bandwidth, GB/s
-    double edramGBs = 0;      // render-target memory (Xbox 360 eDRAM), GB/s; 0 when none
-    double triangleRateM = 0; // triangle setup, M/s
-    bool textureBlocksAlu = false;  // a texture fetch occupies an ALU slot (G70-class pixel pipes)
+    double aluGflops = 0;          // shader ALU, GFLOP/s
+    double texelRateG = 0;         // filtered texel fetches, G/s
+    double fillRateGpix = 0;       // ROP output, Gpixels/s
+    double memoryGBs = 0;          // main graphics memory bandwidth, GB/s
+    double edramGBs = 0;           // render-target memory (Xbox 360 eDRAM), GB/s; 0 when none
+    double triangleRateM = 0;      // triangle setup, M/s
+    bool textureBlocksAlu = false; // a texture fetch occupies an ALU slot (G70-class pixel pipes)
 };
 
 struct PlatformProfile {
     std::string name;
     std::string description;
-    std::string source;  // the file it came from (built-in name or path)
+    std::string source; // the file it came from (built-in name or path)
     double frameBudgetMs = 0;
     double giBudgetMs = 0;
     uint64_t giMemoryBudgetBytes = 0;
     uint64_t gpuMemoryBytes = 0;
     uint32_t maxVolumeSize = 0;
-    std::vector<std::string> shFormats;  // "rgba8", "rgba16f", "rgba32f"
+    std::vector<std::string> shFormats; // "rgba8", "rgba16f", "rgba32f"
     Throughput throughput;
 
     bool allowsShFormat(std::string_view format) const;

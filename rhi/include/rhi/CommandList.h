@@ -21,7 +21,7 @@ enum class IndexType : uint8_t { Uint16, Uint32 };
 struct ColorAttachment {
     TextureHandle texture;
     uint32_t mipLevel = 0;
-    uint32_t layer = 0;  // array layer, or slice of a 3D texture
+    uint32_t layer = 0; // array layer, or slice of a 3D texture
     LoadOp load = LoadOp::Clear;
     std::array<float, 4> clearColor{0.0f, 0.0f, 0.0f, 0.0f};
 };
@@ -37,7 +37,7 @@ struct RenderPassDesc {
     static constexpr uint32_t kMaxColorTargets = 8;
     std::array<ColorAttachment, kMaxColorTargets> colors{};
     uint32_t colorCount = 0;
-    DepthAttachment depth{};  // texture left invalid: no depth
+    DepthAttachment depth{}; // texture left invalid: no depth
     const char* debugName = "render pass";
 };
 
@@ -85,7 +85,7 @@ public:
     // Transfers; only outside a render pass.
     virtual void clearTexture(TextureHandle texture, const std::array<float, 4>& value) = 0;
     virtual void updateBuffer(BufferHandle buffer, uint64_t offset, const void* data, uint32_t size) = 0;
-    virtual void copyTexture(TextureHandle src, TextureHandle dst) = 0;  // same desc, all of mip 0
+    virtual void copyTexture(TextureHandle src, TextureHandle dst) = 0; // same desc, all of mip 0
 
     // GPU timestamp `slot` (< Device::caps().maxTimestampsPerFrame) of this frame; read back with
     // Device::readTimestamps some frames later. See Caps::timestampSource for what it measures.

@@ -17,12 +17,12 @@ namespace lpv::rhi {
 
 // Where GPU timestamps come from. Consumers must show this next to every figure.
 enum class TimestampSource : uint8_t {
-    None,         // no timing at all
-    GpuQueries,   // device timestamps (Vulkan queries, GL_TIMESTAMP): accurate, no stall
-    CpuFinished,  // fallback: the CPU clock read after waiting for all prior GPU work
-                  // (glFinish). Serializes the GPU at every timestamp, so frame totals grow.
-    Simulated,    // null backend: 1 us per recorded command, ready framesInFlight frames later,
-                  // so front-end code can be tested on the same latency rules as a real device
+    None,        // no timing at all
+    GpuQueries,  // device timestamps (Vulkan queries, GL_TIMESTAMP): accurate, no stall
+    CpuFinished, // fallback: the CPU clock read after waiting for all prior GPU work
+                 // (glFinish). Serializes the GPU at every timestamp, so frame totals grow.
+    Simulated,   // null backend: 1 us per recorded command, ready framesInFlight frames later,
+                 // so front-end code can be tested on the same latency rules as a real device
 };
 std::string_view timestampSourceName(TimestampSource s);
 
@@ -35,7 +35,7 @@ struct Caps {
     uint32_t max3DTextureSize = 0;
     uint32_t max2DTextureSize = 0;
     uint32_t maxColorTargets = 0;
-    bool presentation = false;  // a window surface is attached and endFrame() presents
+    bool presentation = false; // a window surface is attached and endFrame() presents
 };
 
 class Device {

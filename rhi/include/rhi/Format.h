@@ -23,10 +23,10 @@ enum class TextureKind : uint8_t { Tex2D, Tex2DArray, Tex3D };
 // Bit flags: what a texture will be used for. Backends pick layouts and memory from these.
 enum TextureUsage : uint32_t {
     kTextureSampled = 1u << 0,
-    kTextureStorage = 1u << 1,      // image load/store from shaders
-    kTextureColorTarget = 1u << 2,  // render target; a 3D or array texture renders per slice
+    kTextureStorage = 1u << 1,     // image load/store from shaders
+    kTextureColorTarget = 1u << 2, // render target; a 3D or array texture renders per slice
     kTextureDepthTarget = 1u << 3,
-    kTextureTransfer = 1u << 4,     // upload, clear, copy and readback
+    kTextureTransfer = 1u << 4, // upload, clear, copy and readback
 };
 
 uint32_t bytesPerPixel(Format f);

@@ -42,12 +42,14 @@ struct BlendState {
     static BlendState opaque() { return {}; }
     // dst += src: light accumulation and volume injection.
     static BlendState additive() {
-        return {true, BlendFactor::One, BlendFactor::One, BlendOp::Add, BlendFactor::One, BlendFactor::One,
+        return {true,         BlendFactor::One, BlendFactor::One,
+                BlendOp::Add, BlendFactor::One, BlendFactor::One,
                 BlendOp::Add};
     }
     static BlendState alpha() {
-        return {true,          BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha, BlendOp::Add,
-                BlendFactor::One, BlendFactor::OneMinusSrcAlpha, BlendOp::Add};
+        return {true,         BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha,
+                BlendOp::Add, BlendFactor::One,      BlendFactor::OneMinusSrcAlpha,
+                BlendOp::Add};
     }
 };
 
@@ -62,7 +64,7 @@ struct GraphicsPipelineDesc {
     bool depthTest = false;
     bool depthWrite = false;
     CompareOp depthCompare = CompareOp::LessOrEqual;
-    float depthBiasConstant = 0.0f;  // both zero: no bias
+    float depthBiasConstant = 0.0f; // both zero: no bias
     float depthBiasSlope = 0.0f;
     std::vector<Format> colorFormats;
     // One entry per color target; a single entry applies to all targets.

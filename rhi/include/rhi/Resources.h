@@ -16,12 +16,12 @@ enum BufferUsage : uint32_t {
     kBufferUniform = 1u << 2,
     kBufferStorage = 1u << 3,
     kBufferIndirect = 1u << 4,
-    kBufferTransfer = 1u << 5,  // upload through updateBuffer/uploadBuffer and readback
+    kBufferTransfer = 1u << 5, // upload through updateBuffer/uploadBuffer and readback
 };
 
 enum class MemoryAccess : uint8_t {
-    GpuOnly,    // device local; written by uploads and shaders
-    HostWrite,  // persistently mapped for CPU writes (mapped() returns the pointer)
+    GpuOnly,   // device local; written by uploads and shaders
+    HostWrite, // persistently mapped for CPU writes (mapped() returns the pointer)
 };
 
 struct BufferDesc {
@@ -37,7 +37,7 @@ struct TextureDesc {
     Format format = Format::RGBA8Unorm;
     uint32_t width = 1;
     uint32_t height = 1;
-    uint32_t depthOrLayers = 1;  // depth for Tex3D, layer count for Tex2DArray
+    uint32_t depthOrLayers = 1; // depth for Tex3D, layer count for Tex2DArray
     uint32_t mipLevels = 1;
     uint32_t usage = kTextureSampled;
     std::string debugName;

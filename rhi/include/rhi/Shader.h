@@ -13,7 +13,7 @@ namespace lpv::rhi {
 enum class ShaderStage : uint8_t { Vertex, Fragment, Compute };
 
 struct ShaderBinary {
-    std::string_view name;  // source file, for error messages and debug names
+    std::string_view name; // source file, for error messages and debug names
     ShaderStage stage = ShaderStage::Vertex;
     std::span<const uint32_t> spirv;
     std::string_view glsl;

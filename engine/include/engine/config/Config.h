@@ -20,7 +20,7 @@ class ConfigError : public std::runtime_error {
 public:
     ConfigError(std::string source, int line, const std::string& message);
     const std::string& source() const { return source_; }
-    int line() const { return line_; }  // 0 when the source has no lines (a --set argument)
+    int line() const { return line_; } // 0 when the source has no lines (a --set argument)
 
 private:
     std::string source_;
@@ -59,7 +59,8 @@ public:
     void set(const SettingDecl& decl, SettingValue value, const std::string& origin);
 
     // Converts text (a --set value or a console line) to a value of the setting's type, or throws.
-    static SettingValue parse(const SettingDecl& decl, std::string_view text, const std::string& source, int line);
+    static SettingValue parse(const SettingDecl& decl, std::string_view text, const std::string& source,
+                              int line);
     // Empty when `value` is acceptable for `decl`, else what was expected.
     static std::string validate(const SettingDecl& decl, const SettingValue& value);
 

@@ -33,11 +33,11 @@ struct SettingDecl {
     std::string name;
     SettingType type = SettingType::Int;
     SettingValue defaultValue;
-    double min = 0.0, max = 0.0;  // Int and Float only; min > max means unbounded
-    std::vector<std::string> choices;  // Enum only
+    double min = 0.0, max = 0.0;      // Int and Float only; min > max means unbounded
+    std::vector<std::string> choices; // Enum only
     std::string help;
     Apply apply = Apply::NextFrame;
-    uint32_t index = 0;  // registration order, the slot in a Config
+    uint32_t index = 0; // registration order, the slot in a Config
 
     // "int in [16, 64]", "one of: rgba8, rgba16f", "vec3": what a value must be.
     std::string expected() const;
@@ -47,7 +47,7 @@ struct SettingDecl {
 class SettingRegistry {
 public:
     static SettingRegistry& global();
-    const SettingDecl& add(SettingDecl decl);  // throws std::logic_error on a duplicate name
+    const SettingDecl& add(SettingDecl decl); // throws std::logic_error on a duplicate name
     const SettingDecl* find(std::string_view name) const;
     // The registered name closest to `name` (edit distance), or empty when nothing is close.
     std::string nearest(std::string_view name) const;
@@ -90,7 +90,8 @@ private:
 
 class StringSetting {
 public:
-    StringSetting(std::string_view name, std::string_view def, std::string_view help, Apply apply = Apply::NextFrame);
+    StringSetting(std::string_view name, std::string_view def, std::string_view help,
+                  Apply apply = Apply::NextFrame);
     const SettingDecl& decl() const { return *decl_; }
 
 private:
@@ -106,8 +107,8 @@ private:
     const SettingDecl* decl_;
 };
 
-const SettingDecl& registerEnumSetting(std::string_view name, std::string_view def, std::vector<std::string> choices,
-                                       std::string_view help, Apply apply);
+const SettingDecl& registerEnumSetting(std::string_view name, std::string_view def,
+                                       std::vector<std::string> choices, std::string_view help, Apply apply);
 
 // An enum setting maps names to values of E; the names are what files and the command line use.
 template <typename E> class EnumSetting {
@@ -127,7 +128,7 @@ public:
     E fromName(const std::string& n) const {
         for (const auto& [value, name] : values_)
             if (n == name) return value;
-        return values_.front().first;  // unreachable: Config only stores declared names
+        return values_.front().first; // unreachable: Config only stores declared names
     }
     const char* nameOf(E e) const {
         for (const auto& [value, name] : values_)

@@ -13,7 +13,7 @@ namespace lpv::engine {
 
 struct CostPrediction {
     double ms = 0.0;
-    const char* bottleneck = "none";  // "alu", "alu+texture", "texture", "memory", "fill", "setup"
+    const char* bottleneck = "none"; // "alu", "alu+texture", "texture", "memory", "fill", "setup"
     double aluMs = 0, textureMs = 0, memoryMs = 0, fillMs = 0, setupMs = 0;
 };
 

@@ -25,8 +25,8 @@
 namespace lpv::engine {
 
 struct ProfilerOptions {
-    uint32_t statsWindow = 120;      // frames the statistics cover
-    uint32_t traceFrames = 1200;     // frames kept for the trace and the chart
+    uint32_t statsWindow = 120;  // frames the statistics cover
+    uint32_t traceFrames = 1200; // frames kept for the trace and the chart
     uint32_t maxScopesPerFrame = 48;
 };
 
@@ -38,17 +38,17 @@ struct ScopeInfo {
     uint32_t depth = 0;
     SampleWindow cpuMs;
     SampleWindow gpuMs;
-    WorkCounts work;  // of the last frame that ran it
+    WorkCounts work; // of the last frame that ran it
     uint64_t lastFrame = 0;
 };
 
 struct FrameBudgetCheck {
-    double frameMs = 0;  // GPU frame time when resolved, else CPU
-    double giMs = 0;     // sum of the top-level "gi" scopes
+    double frameMs = 0; // GPU frame time when resolved, else CPU
+    double giMs = 0;    // sum of the top-level "gi" scopes
     double giPredictedX360Ms = 0, giPredictedPs3Ms = 0;
     bool frameOverBudget = false;
     bool giOverBudget = false;
-    bool giPredictedOverBudget = false;  // console profiles: predicted ms against the GI budget
+    bool giPredictedOverBudget = false; // console profiles: predicted ms against the GI budget
 };
 
 class FrameProfiler {
@@ -102,7 +102,7 @@ public:
     struct Sample {
         uint16_t scope = 0;
         uint64_t cpuBegin = 0, cpuEnd = 0;
-        uint64_t gpuBegin = 0, gpuEnd = 0;  // 0 when not timed or not resolved
+        uint64_t gpuBegin = 0, gpuEnd = 0; // 0 when not timed or not resolved
         bool gpuTimed = false;
         WorkCounts work;
     };
@@ -111,16 +111,17 @@ public:
         uint64_t cpuBegin = 0, cpuEnd = 0;
         uint64_t gpuBegin = 0, gpuEnd = 0;
         bool gpuResolved = false;
-        bool checked = false;  // budget check done (GPU results in, lost, or CPU-only)
+        bool checked = false; // budget check done (GPU results in, lost, or CPU-only)
         uint32_t sampleCount = 0;
-        std::vector<Sample> samples;  // capacity maxScopesPerFrame, sized at construction
+        std::vector<Sample> samples; // capacity maxScopesPerFrame, sized at construction
         uint64_t memoryTotal = 0, memoryGi = 0;
         FrameBudgetCheck check;
     };
     // Recorded frames, oldest first (up to ProfilerOptions::traceFrames).
     template <typename F> void forEachFrame(F&& f) const {
         const uint64_t n = std::min<uint64_t>(recorded_, records_.size());
-        for (uint64_t i = recorded_ - n; i < recorded_; ++i) f(records_[i % records_.size()]);
+        for (uint64_t i = recorded_ - n; i < recorded_; ++i)
+            f(records_[i % records_.size()]);
     }
 
 private:
@@ -134,11 +135,11 @@ private:
     platforms::PlatformProfile x360_, ps3_;
     ProfilerOptions options_;
     rhi::TimestampSource timingSource_;
-    uint32_t gpuSlots_ = 0;  // timestamps per frame we may use
+    uint32_t gpuSlots_ = 0; // timestamps per frame we may use
 
     std::vector<ScopeInfo> scopes_;
     std::vector<FrameRecord> records_;
-    uint64_t recorded_ = 0;  // frames begun
+    uint64_t recorded_ = 0; // frames begun
     FrameRecord* current_ = nullptr;
     struct Open {
         uint16_t scope;

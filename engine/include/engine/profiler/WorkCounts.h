@@ -7,13 +7,13 @@
 namespace lpv::engine {
 
 struct WorkCounts {
-    uint64_t cells = 0;          // volume cells processed (informational)
-    uint64_t texelsRead = 0;     // filtered texture fetches
-    uint64_t texelsWritten = 0;  // texels written through ROPs or image stores
-    uint64_t bytesMoved = 0;     // memory traffic, reads plus writes
-    uint64_t aluOps = 0;         // shader floating-point operations (a MAD counts 2)
-    uint64_t pixelsShaded = 0;   // fragment shader invocations
-    uint64_t primitives = 0;     // triangles or points set up
+    uint64_t cells = 0;         // volume cells processed (informational)
+    uint64_t texelsRead = 0;    // filtered texture fetches
+    uint64_t texelsWritten = 0; // texels written through ROPs or image stores
+    uint64_t bytesMoved = 0;    // memory traffic, reads plus writes
+    uint64_t aluOps = 0;        // shader floating-point operations (a MAD counts 2)
+    uint64_t pixelsShaded = 0;  // fragment shader invocations
+    uint64_t primitives = 0;    // triangles or points set up
 
     WorkCounts& operator+=(const WorkCounts& o) {
         cells += o.cells;
@@ -26,7 +26,8 @@ struct WorkCounts {
         return *this;
     }
     WorkCounts operator*(uint64_t n) const {
-        return {cells * n, texelsRead * n, texelsWritten * n, bytesMoved * n, aluOps * n, pixelsShaded * n, primitives * n};
+        return {cells * n,  texelsRead * n,   texelsWritten * n, bytesMoved * n,
+                aluOps * n, pixelsShaded * n, primitives * n};
     }
     bool empty() const {
         return !(cells | texelsRead | texelsWritten | bytesMoved | aluOps | pixelsShaded | primitives);

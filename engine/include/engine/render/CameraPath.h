@@ -10,7 +10,7 @@
 
 namespace lpv::engine {
 
-std::vector<std::string> cameraPathNames();  // "orbit", "flythrough"
+std::vector<std::string> cameraPathNames(); // "orbit", "flythrough"
 bool isCameraPath(std::string_view name);
 // The camera at time t in [0, 1] along the path. `start` is the scene's own camera (or a default),
 // whose lens settings are kept. Throws std::invalid_argument for an unknown path name.

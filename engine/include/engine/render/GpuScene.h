@@ -18,7 +18,7 @@ struct DrawUniforms {
     glm::mat4 normalMatrix;
     glm::vec4 baseColor;
     glm::vec4 emissive;
-    glm::vec4 material;  // metallic, roughness, has normal map, has base color texture
+    glm::vec4 material; // metallic, roughness, has normal map, has base color texture
 };
 
 // std430 element of `Lights` in lighting.frag.
@@ -32,8 +32,8 @@ struct GpuPunctualLight {
 struct GpuDraw {
     uint32_t firstIndex = 0;
     uint32_t indexCount = 0;
-    rhi::TextureHandle baseColor;  // a 1x1 white texture when the material has none
-    rhi::TextureHandle normal;     // a 1x1 flat normal when the material has none
+    rhi::TextureHandle baseColor; // a 1x1 white texture when the material has none
+    rhi::TextureHandle normal;    // a 1x1 flat normal when the material has none
     DrawUniforms uniforms;
 };
 

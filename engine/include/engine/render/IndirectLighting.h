@@ -12,10 +12,10 @@ namespace lpv::engine {
 class FrameProfiler;
 
 struct GBufferView {
-    rhi::TextureHandle albedo;    // RGBA8 sRGB: albedo, metallic in alpha
-    rhi::TextureHandle normal;    // RGBA16F: world normal, roughness in alpha
-    rhi::TextureHandle depth;     // D32F, sampled
-    rhi::TextureHandle ao;        // R32F, 1 = unoccluded
+    rhi::TextureHandle albedo; // RGBA8 sRGB: albedo, metallic in alpha
+    rhi::TextureHandle normal; // RGBA16F: world normal, roughness in alpha
+    rhi::TextureHandle depth;  // D32F, sampled
+    rhi::TextureHandle ao;     // R32F, 1 = unoccluded
     uint32_t width = 0, height = 0;
 };
 
@@ -24,10 +24,12 @@ public:
     virtual ~IndirectLighting() = default;
     // Writes indirect irradiance (RGBA16F, linear, W/m^2-like units of the sun's) for every pixel
     // into `target`, which the call must fully overwrite.
-    virtual void renderIndirect(rhi::CommandList& cmd, const CameraMatrices& camera, const GBufferView& gbuffer,
-                                rhi::TextureHandle target, FrameProfiler* profiler) = 0;
+    virtual void renderIndirect(rhi::CommandList& cmd, const CameraMatrices& camera,
+                                const GBufferView& gbuffer, rhi::TextureHandle target,
+                                FrameProfiler* profiler) = 0;
     // Draws debug views over the tone-mapped output (RGBA8 sRGB color target); none by default.
-    virtual void renderDebugOverlay(rhi::CommandList& cmd, const CameraMatrices& camera, rhi::TextureHandle output) {
+    virtual void renderDebugOverlay(rhi::CommandList& cmd, const CameraMatrices& camera,
+                                    rhi::TextureHandle output) {
         (void)cmd, (void)camera, (void)output;
     }
 };

@@ -22,8 +22,8 @@ class FrameProfiler;
 enum class DebugView { Final, Albedo, Normals, Depth, Ssao, Shadow, Indirect };
 
 struct SunLight {
-    glm::vec3 direction{0.25f, -1.0f, -0.15f};  // where the light travels
-    glm::vec3 radiance{20.0f};                   // irradiance on a surface facing the sun
+    glm::vec3 direction{0.25f, -1.0f, -0.15f}; // where the light travels
+    glm::vec3 radiance{20.0f};                 // irradiance on a surface facing the sun
 };
 
 // std140 block `Frame` of common.glsl.
@@ -58,11 +58,11 @@ public:
     const GpuScene* scene() const { return scene_.get(); }
 
     // Records one frame's passes into `cmd`. Reads render.* settings.
-    void render(rhi::CommandList& cmd, const CameraMatrices& camera, const Config& config, FrameProfiler* profiler,
-                IndirectLighting* indirect = nullptr);
+    void render(rhi::CommandList& cmd, const CameraMatrices& camera, const Config& config,
+                FrameProfiler* profiler, IndirectLighting* indirect = nullptr);
 
-    rhi::TextureHandle output() const { return targets_.output; }  // RGBA8 sRGB, tone mapped
-    rhi::TextureHandle hdr() const { return targets_.hdr; }        // RGBA16F linear, before tone mapping
+    rhi::TextureHandle output() const { return targets_.output; } // RGBA8 sRGB, tone mapped
+    rhi::TextureHandle hdr() const { return targets_.hdr; }       // RGBA16F linear, before tone mapping
     GBufferView gbuffer() const;
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
@@ -79,8 +79,8 @@ private:
     rhi::Device& device_;
     uint32_t width_, height_, shadowSize_ = 0;
     Targets targets_;
-    rhi::GraphicsPipelineHandle gbufferPipeline_, shadowPipeline_, ssaoPipeline_, ssaoBlurPipeline_, lightingPipeline_,
-        tonemapPipeline_;
+    rhi::GraphicsPipelineHandle gbufferPipeline_, shadowPipeline_, ssaoPipeline_, ssaoBlurPipeline_,
+        lightingPipeline_, tonemapPipeline_;
     rhi::SamplerHandle linearClamp_, pointClamp_, shadowCompare_;
     std::unique_ptr<GpuScene> scene_;
     Bounds bounds_;

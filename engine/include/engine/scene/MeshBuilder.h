@@ -19,11 +19,13 @@ public:
 
     // A quad with corners origin, origin+u, origin+u+v, origin+v; faces along cross(u, v).
     // Subdivided into `su` x `sv` cells.
-    void quad(glm::vec3 origin, glm::vec3 u, glm::vec3 v, uint32_t su = 1, uint32_t sv = 1, float uvScale = 1.0f);
+    void quad(glm::vec3 origin, glm::vec3 u, glm::vec3 v, uint32_t su = 1, uint32_t sv = 1,
+              float uvScale = 1.0f);
     // Axis-aligned box from min to max, faces outward (inward when `inside`).
     void box(glm::vec3 min, glm::vec3 max, bool inside = false, float uvScale = 1.0f);
     // Vertical cylinder (y axis) of `radius`, from y0 to y1, with `segments` sides and caps.
-    void cylinder(glm::vec3 base, float radius, float height, uint32_t segments, uint32_t rings = 1, bool caps = true);
+    void cylinder(glm::vec3 base, float radius, float height, uint32_t segments, uint32_t rings = 1,
+                  bool caps = true);
     // A surface of revolution around the y axis: profile points (radius, y), bottom to top.
     void lathe(glm::vec3 base, const std::vector<glm::vec2>& profile, uint32_t segments);
     // A semicircular arch in the plane spanned by x (width) and y, extruded along z by `depth`:

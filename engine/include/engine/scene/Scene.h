@@ -19,7 +19,7 @@ struct Vertex {
     glm::vec3 position{0.0f};
     glm::vec3 normal{0.0f, 1.0f, 0.0f};
     glm::vec2 uv{0.0f};
-    glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};  // xyz tangent, w handedness
+    glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f}; // xyz tangent, w handedness
 };
 
 struct Bounds {
@@ -38,13 +38,13 @@ struct TextureImage {
     std::string name;
     uint32_t width = 0, height = 0;
     std::vector<uint8_t> rgba;
-    bool srgb = true;  // color data; normal and metallic-roughness maps are linear
+    bool srgb = true; // color data; normal and metallic-roughness maps are linear
 };
 
 struct Material {
     std::string name;
     glm::vec4 baseColor{1.0f};
-    int32_t baseColorTexture = -1;  // index into Scene::textures
+    int32_t baseColorTexture = -1; // index into Scene::textures
     int32_t normalTexture = -1;
     float metallic = 0.0f;
     float roughness = 1.0f;
@@ -58,7 +58,7 @@ struct Mesh {
     uint32_t indexCount = 0;
     int32_t vertexOffset = 0;
     uint32_t material = 0;
-    Bounds bounds;  // object space
+    Bounds bounds; // object space
 };
 
 struct Instance {
@@ -73,10 +73,10 @@ struct Light {
     std::string name;
     LightType type = LightType::Directional;
     glm::vec3 color{1.0f};
-    float intensity = 1.0f;  // lux (directional) or candela (point, spot), as in KHR_lights_punctual
+    float intensity = 1.0f; // lux (directional) or candela (point, spot), as in KHR_lights_punctual
     glm::vec3 position{0.0f};
-    glm::vec3 direction{0.0f, -1.0f, 0.0f};  // where the light travels
-    float range = 0.0f;                       // 0: infinite
+    glm::vec3 direction{0.0f, -1.0f, 0.0f}; // where the light travels
+    float range = 0.0f;                     // 0: infinite
     float innerConeAngle = 0.0f;
     float outerConeAngle = 0.785398f;
 };
@@ -85,7 +85,7 @@ struct Camera {
     glm::vec3 position{0.0f, 1.0f, 5.0f};
     glm::vec3 forward{0.0f, 0.0f, -1.0f};
     glm::vec3 up{0.0f, 1.0f, 0.0f};
-    float verticalFov = 0.8726646f;  // radians (50 degrees)
+    float verticalFov = 0.8726646f; // radians (50 degrees)
     float nearPlane = 0.05f;
     float farPlane = 200.0f;
 };
@@ -100,7 +100,7 @@ struct Scene {
     std::vector<TextureImage> textures;
     std::vector<Light> lights;
     std::optional<Camera> camera;
-    Bounds bounds;  // world space, of all instances
+    Bounds bounds; // world space, of all instances
 
     // Triangles drawn per frame (instances count their mesh every time).
     uint64_t triangleCount() const;

@@ -13,7 +13,8 @@ namespace lpv::engine {
 
 class SceneError : public std::runtime_error {
 public:
-    SceneError(const std::string& path, const std::string& problem) : std::runtime_error(path + ": " + problem) {}
+    SceneError(const std::string& path, const std::string& problem)
+        : std::runtime_error(path + ": " + problem) {}
 };
 
 // Meshes (indexed, triangles), node transforms, materials (base color factor and texture, normal
