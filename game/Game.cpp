@@ -10,6 +10,7 @@
 #include "engine/config/Config.h"
 #include "engine/profiler/FrameProfiler.h"
 #include "engine/profiler/ProfileReport.h"
+#include "engine/profiler/ProfilerOverlay.h"
 #include "engine/render/CameraPath.h"
 #include "engine/render/Renderer.h"
 #include "engine/scene/SceneLoading.h"
@@ -106,6 +107,8 @@ int runGame(const GameOptions& opt) {
     renderer.setScene(scene);
     engine::FrameProfiler profiler(*device, profile);
     gi::LightPropagationVolume lpv(*device, profile);
+    std::unique_ptr<engine::ProfilerOverlay> overlay;
+    if (window) overlay = std::make_unique<engine::ProfilerOverlay>(*device);
     // The gi.* values of the last configuration that fitted the budget, restored when a change
     // made while running does not fit.
     std::vector<std::pair<const engine::SettingDecl*, engine::SettingValue>> lastGoodGi;
@@ -177,6 +180,7 @@ int runGame(const GameOptions& opt) {
         rhi::CommandList& cmd = device->beginFrame();
         profiler.beginFrame(cmd);
         renderer.render(cmd, matrices, config, &profiler, lpv.settings().enabled ? &lpv : nullptr);
+        if (overlay) overlay->draw(cmd, profiler, renderer.output());
         profiler.endFrame(cmd);
         device->endFrame(window ? renderer.output() : rhi::TextureHandle{});
     }

@@ -227,10 +227,8 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
     const auto work = [&](const WorkCounts& w) {
         if (profiler) profiler->setWork(w);
     };
-    auto renderScope = scope("render");
-
     {
-        auto s = scope("shadow");
+        auto s = scope("render.shadow");
         cmd.beginMarker("sun shadow");
         RenderPassDesc pass;
         pass.depth = {targets_.shadow, 0, LoadOp::Clear, 1.0f};
@@ -253,7 +251,7 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         work(w);
     }
     {
-        auto s = scope("gbuffer");
+        auto s = scope("render.gbuffer");
         cmd.beginMarker("gbuffer");
         RenderPassDesc pass;
         pass.colors[0] = {targets_.albedo, 0, 0, LoadOp::Clear, {0, 0, 0, 0}};
@@ -281,7 +279,7 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         work(w);
     }
     {
-        auto s = scope("ssao");
+        auto s = scope("render.ssao");
         cmd.beginMarker("ssao");
         RenderPassDesc pass;
         pass.colors[0] = {targets_.aoRaw, 0, 0, LoadOp::DontCare};
@@ -313,7 +311,7 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         cmd.clearTexture(targets_.indirect, {ambient.x, ambient.y, ambient.z, 0.0f});
     }
     {
-        auto s = scope("lighting");
+        auto s = scope("render.lighting");
         cmd.beginMarker("lighting");
         RenderPassDesc pass;
         pass.colors[0] = {targets_.hdr, 0, 0, LoadOp::DontCare};
@@ -336,7 +334,7 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         work(fullscreenWork(pixels, 7 + 9 * 4, 120 + 40 * scene_->lightCount(), 4 * 8 + 8));
     }
     {
-        auto s = scope("tonemap");
+        auto s = scope("render.tonemap");
         cmd.beginMarker("tone map");
         RenderPassDesc pass;
         pass.colors[0] = {targets_.output, 0, 0, LoadOp::DontCare};
