@@ -1,0 +1,75 @@
+// No heap allocation in a steady-state frame: operator new is counted while frames of the full
+// pipeline (renderer, profiler, LPV) are recorded and submitted, after warm-up frames have filled
+// the caches. Only allocations on the frame's own thread count: lavapipe JIT-compiles shader
+// variants with LLVM on its queue thread, which is the driver's business. Runs without validation
+// layers, whose own bookkeeping allocates on the calling thread.
+#include "../support/TestDevice.h"
+
+#include "engine/config/Config.h"
+#include "engine/profiler/FrameProfiler.h"
+#include "engine/render/Renderer.h"
+#include "engine/scene/BuiltinScenes.h"
+#include "gi/LightPropagationVolume.h"
+#include "platforms/PlatformProfile.h"
+
+#include <doctest/doctest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+namespace {
+thread_local bool gCounting = false;
+std::atomic<uint64_t> gAllocations{0};
+} // namespace
+
+void* operator new(std::size_t size) {
+    if (gCounting) gAllocations.fetch_add(1, std::memory_order_relaxed);
+    if (void* p = std::malloc(size ? size : 1)) return p;
+    throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) { return operator new(size); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+using namespace lpv;
+
+TEST_CASE("steady state: a frame with GI and the profiler allocates nothing") {
+    for (const auto& backend : test::selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            rhi::DeviceConfig config;
+            config.backend = backend.kind;
+            config.glHeadless = backend.glHeadless;
+            config.allowFallback = false;
+            auto device = rhi::createDevice(config);
+            engine::Config settings;
+            settings.applyOverride("gi.enabled=true");
+            settings.applyOverride("gi.cell_size=0.17");
+            const engine::Scene scene = engine::buildCornellBox();
+            engine::Renderer renderer(*device, 160, 120);
+            renderer.setScene(scene);
+            const auto profile = platforms::loadPlatformProfile("pc");
+            engine::FrameProfiler profiler(*device, profile);
+            gi::LightPropagationVolume lpv(*device, profile);
+            const engine::CameraMatrices camera = engine::cameraMatrices(*scene.camera, 160.0f / 120.0f);
+            const auto frame = [&] {
+                lpv.update(settings, renderer, camera);
+                rhi::CommandList& cmd = device->beginFrame();
+                profiler.beginFrame(cmd);
+                renderer.render(cmd, camera, settings, &profiler, &lpv);
+                profiler.endFrame(cmd);
+                device->endFrame();
+            };
+            for (int i = 0; i < 6; ++i) frame();  // warm-up: caches, framebuffers, shader variants
+            gAllocations = 0;
+            gCounting = true;
+            for (int i = 0; i < 4; ++i) frame();
+            gCounting = false;
+            MESSAGE(backend.name << ": " << gAllocations.load() << " allocations in 4 steady-state frames");
+            CHECK(gAllocations.load() == 0);
+            device->waitIdle();
+        }
+    }
+}
