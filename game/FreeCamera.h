@@ -1,10 +1,11 @@
-// The windowed free camera: WASD to move (Q/E down/up, Shift faster), right mouse button to look.
+// The free camera: WASD to move (Q/E down/up, Shift faster), right mouse button to look. Without
+// input (headless) it stays where it is.
 #pragma once
 
 #include "engine/scene/Scene.h"
 
 namespace lpv::platforms {
-class Window;
+class Platform;
 }
 
 namespace lpv::game {
@@ -13,7 +14,7 @@ class FreeCamera {
 public:
     explicit FreeCamera(const engine::Camera& start);
     // Applies this frame's input; returns true when the camera moved.
-    bool update(const platforms::Window& window, float seconds, float speed);
+    bool update(const platforms::Platform& platform, float seconds, float speed);
     const engine::Camera& camera() const { return camera_; }
 
 private:

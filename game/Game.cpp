@@ -18,7 +18,7 @@
 #include "gi/LightPropagationVolume.h"
 #include "platforms/Clock.h"
 #include "platforms/Log.h"
-#include "platforms/Window.h"
+#include "platforms/Platform.h"
 #include "rhi/Device.h"
 
 #include <GLFW/glfw3.h>
@@ -90,57 +90,55 @@ int runGame(const GameOptions& opt) {
               std::to_string(scene.instances.size()) + " instances, " + std::to_string(scene.lights.size()) +
               " lights (" + std::to_string((platforms::nowNanoseconds() - t0) / 1000000) + " ms)");
 
-    std::unique_ptr<platforms::Window> window;
-    if (!opt.headless && platforms::Window::displayAvailable())
-        window = std::make_unique<platforms::Window>(platforms::WindowDesc{width, height, "LPV Engine"});
+    const std::unique_ptr<platforms::Platform> platform =
+        platforms::Platform::create(!opt.headless, platforms::WindowDesc{width, height, "LPV Engine"});
 
     rhi::DeviceConfig deviceConfig = engine::deviceConfigFrom(config);
-    deviceConfig.window = window.get();
+    deviceConfig.window = platform->window();
     t0 = platforms::nowNanoseconds();
     std::unique_ptr<rhi::Device> device = rhi::createDevice(deviceConfig);
     log::info("game: running on backend '" + std::string(rhi::backendName(device->backend())) + "' (" +
               device->caps().deviceName + ", " +
-              std::to_string((platforms::nowNanoseconds() - t0) / 1000000) + " ms to create)" +
-              (window ? ", windowed" : ", headless") + ", platform profile '" + profile.name + "'");
+              std::to_string((platforms::nowNanoseconds() - t0) / 1000000) + " ms to create)" + ", " +
+              platform->name() + ", platform profile '" + profile.name + "'");
 
     engine::Renderer renderer(*device, width, height);
     renderer.setScene(scene);
     engine::FrameProfiler profiler(*device, profile);
     gi::LightPropagationVolume lpv(*device, profile);
+    // The overlay goes on frames that are presented, not on screenshots of headless runs.
     std::unique_ptr<engine::ProfilerOverlay> overlay;
-    if (window) overlay = std::make_unique<engine::ProfilerOverlay>(*device);
+    if (device->caps().presentation) overlay = std::make_unique<engine::ProfilerOverlay>(*device);
     // The gi.* values of the last configuration that fitted the budget, restored when a change
     // made while running does not fit.
     std::vector<std::pair<const engine::SettingDecl*, engine::SettingValue>> lastGoodGi;
     bool firstFrame = true;
     const engine::Camera start = defaultCamera(scene);
     FreeCamera freeCamera(start);
-    std::unique_ptr<Console> console;
-    if (window) console = std::make_unique<Console>();
+    Console console;
 
-    const int frames = opt.frames > 0 ? opt.frames : (window ? 0 : 1);
+    // Until closed when presenting to a window, else one frame unless --frames says otherwise.
+    const int frames = opt.frames > 0 ? opt.frames : (device->caps().presentation ? 0 : 1);
     uint64_t last = platforms::nowNanoseconds();
     for (int frame = 0; frames == 0 || frame < frames; ++frame) {
         const uint64_t now = platforms::nowNanoseconds();
         const float dt = float(now - last) / 1e9f;
         last = now;
-        if (window) {
-            window->pollEvents();
-            if (window->shouldClose() || window->keyPressed(GLFW_KEY_ESCAPE)) break;
-            if (window->keyPressed(GLFW_KEY_F1)) cycle(config, "render.debug_view");
-            if (window->keyPressed(GLFW_KEY_F2)) cycle(config, "gi.debug_view");
-            if (window->keyPressed(GLFW_KEY_G)) toggle(config, "gi.enabled");
-            for (const std::string& line : console->takeLines()) {
-                try {
-                    config.stage(line, "console");
-                } catch (const engine::ConfigError& e) {
-                    log::error(e.what());
-                }
+        platform->pollEvents();
+        if (platform->quitRequested()) break;
+        if (platform->keyPressed(GLFW_KEY_F1)) cycle(config, "render.debug_view");
+        if (platform->keyPressed(GLFW_KEY_F2)) cycle(config, "gi.debug_view");
+        if (platform->keyPressed(GLFW_KEY_G)) toggle(config, "gi.enabled");
+        for (const std::string& line : console.takeLines()) {
+            try {
+                config.stage(line, "console");
+            } catch (const engine::ConfigError& e) {
+                log::error(e.what());
             }
-            uint32_t fw = 0, fh = 0;
-            window->framebufferSize(fw, fh);
-            if (fw == 0 || fh == 0) continue; // minimised
         }
+        uint32_t fw = 0, fh = 0;
+        platform->frameSize(fw, fh);
+        if (fw == 0 || fh == 0) continue; // minimised
         const std::vector<const engine::SettingDecl*> changes = config.applyPending();
         for (const engine::SettingDecl* changed : changes) {
             // The GI's "indirect" view is the renderer's indirect view.
@@ -156,8 +154,8 @@ int runGame(const GameOptions& opt) {
         if (!opt.cameraPath.empty())
             cam = engine::cameraOnPath(opt.cameraPath, scene.bounds, start,
                                        frames > 1 ? float(frame) / float(frames - 1) : 0.0f);
-        else if (window)
-            freeCamera.update(*window, dt, float(config.get(kCameraSpeed))), cam = freeCamera.camera();
+        else if (freeCamera.update(*platform, dt, float(config.get(kCameraSpeed))))
+            cam = freeCamera.camera();
         const engine::CameraMatrices matrices = engine::cameraMatrices(cam, float(width) / float(height));
         try {
             lpv.update(config, renderer, matrices);
@@ -182,7 +180,7 @@ int runGame(const GameOptions& opt) {
         renderer.render(cmd, matrices, config, &profiler, lpv.settings().enabled ? &lpv : nullptr);
         if (overlay) overlay->draw(cmd, profiler, renderer.output());
         profiler.endFrame(cmd);
-        device->endFrame(window ? renderer.output() : rhi::TextureHandle{});
+        device->endFrame(renderer.output());
     }
     device->waitIdle();
 

@@ -1,0 +1,44 @@
+// The platform the game runs on, behind one interface: headless (the GPU context comes from EGL
+// surfaceless or OSMesa, see GlContext.h; Vulkan needs nothing) or windowed (GLFW on X11). Events,
+// input, the clock and file access look the same on both; headless simply has no input and never
+// asks to quit. The game asks for a platform and does not branch on which one it got.
+#pragma once
+
+#include "platforms/Window.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace lpv::platforms {
+
+class Platform {
+public:
+    // Windowed when `wantWindow` and an X display is reachable, headless otherwise.
+    static std::unique_ptr<Platform> create(bool wantWindow, const WindowDesc& window);
+    ~Platform();
+
+    const char* name() const { return window_ ? "windowed (GLFW)" : "headless"; }
+    // The window for the device to present to; null when headless.
+    Window* window() { return window_.get(); }
+
+    void pollEvents();
+    bool quitRequested() const;
+    bool keyDown(int key) const;
+    bool keyPressed(int key) const;
+    void cursorDelta(double& dx, double& dy) const;
+    // The size frames should be rendered at (the window's framebuffer, or the requested size).
+    void frameSize(uint32_t& width, uint32_t& height) const;
+
+    uint64_t nowNanoseconds() const;
+    // Whole-file access; throws std::runtime_error naming the path and the reason.
+    static std::string readFile(const std::string& path);
+    static void writeFile(const std::string& path, const std::string& contents);
+
+private:
+    explicit Platform(std::unique_ptr<Window> window, const WindowDesc& desc);
+    std::unique_ptr<Window> window_;
+    WindowDesc desc_;
+};
+
+} // namespace lpv::platforms
