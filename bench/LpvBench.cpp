@@ -97,13 +97,14 @@ void benchPropagation(const BenchBackend& b, int runs) {
         vpls.data());
     gi::LpvVolumes volumes(*device, s);
     // Baseline volumes: per channel a ping, a pong and an accumulation, RGBA16F.
-    std::array<TextureHandle, 3> ping{}, pong{}, acc{};
+    std::array<TextureHandle, 3> start{}, ping{}, pong{}, acc{};
     for (int c = 0; c < 3; ++c) {
         const auto vol = [&](const char* name) {
             return device->createTexture({TextureKind::Tex3D, Format::RGBA16F, 32, 32, 32, 1,
                                           kTextureStorage | kTextureSampled | kTextureTransfer, name,
                                           "bench"});
         };
+        start[size_t(c)] = vol("baseline start");
         ping[size_t(c)] = vol("baseline ping");
         pong[size_t(c)] = vol("baseline pong");
         acc[size_t(c)] = vol("baseline acc");
@@ -119,12 +120,15 @@ void benchPropagation(const BenchBackend& b, int runs) {
         CommandList& cmd = device->beginFrame();
         const uint64_t frame = device->frameIndex();
         volumes.inject(cmd, vplBuffer, uint32_t(vpls.size()), grid, {0, -1, 0}, 1.0f);
-        for (int c = 0; c < 3; ++c)
+        // The baseline reads images: it starts from copies of the injected volume.
+        for (int c = 0; c < 3; ++c) {
             cmd.copyTexture(volumes.injected()[size_t(c)], acc[size_t(c)]);
+            cmd.copyTexture(volumes.injected()[size_t(c)], start[size_t(c)]);
+        }
         cmd.writeTimestamp(0);
         volumes.propagate(cmd, s.iterations);
         cmd.writeTimestamp(1);
-        const std::array<TextureHandle, 3>* src = &volumes.injected();
+        const std::array<TextureHandle, 3>* src = &start;
         for (uint32_t i = 0; i < s.iterations; ++i) {
             const std::array<TextureHandle, 3>* dst = (i % 2 == 0) ? &ping : &pong;
             for (int c = 0; c < 3; ++c) {
@@ -165,7 +169,7 @@ void benchPropagation(const BenchBackend& b, int runs) {
                 std::string(rhi::timestampSourceName(device->caps().timestampSource)).c_str());
     std::fflush(stdout);
     device->waitIdle();
-    for (const auto* set : {&ping, &pong, &acc})
+    for (const auto* set : {&start, &ping, &pong, &acc})
         for (TextureHandle t : *set)
             device->destroy(t);
     device->destroy(baseline);
