@@ -29,7 +29,12 @@ public:
         if (!context_) throw std::runtime_error("OSMesaCreateContextAttribs (OpenGL 4.5 core) failed");
         makeCurrent();
     }
-    ~OsMesaGlContext() override { OSMesaDestroyContext(context_); }
+    ~OsMesaGlContext() override {
+        // Unbind first so no thread state points at the destroyed context when the next device
+        // (OSMesa or EGL) is made in this process.
+        if (OSMesaGetCurrentContext() == context_) OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
+        OSMesaDestroyContext(context_);
+    }
     void makeCurrent() override {
         if (!OSMesaMakeCurrent(context_, pixel_, GL_UNSIGNED_BYTE, 1, 1))
             throw std::runtime_error("OSMesaMakeCurrent failed");

@@ -1,88 +1,193 @@
-// OpenGL command recording: each call runs on the context in recording order.
-#include "GlDevice.h"
+// Commands of the GL backend, run on the context as they are recorded (see GlCommandList.h).
+// Argument checks mirror the Vulkan backend's so misuse fails the same way on both.
+#include "GlCommandList.h"
 
+#include "GlDevice.h"
 #include "GlFormats.h"
 
 #include "rhi/Error.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace lpv::rhi::gl {
+namespace {
 
-void GlCommandList::reset() {
-    inPass_ = false;
-    graphics_ = nullptr;
-    graphicsHandle_ = {};
-    vertexBuffers_ = {};
-    indexBuffer_ = 0;
+// Vulkan encodes the (linear) clear value of an sRGB image; glClearTexImage copies it unconverted.
+float linearToSrgb(float c) {
+    c = std::clamp(c, 0.0f, 1.0f);
+    return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
-void GlCommandList::requireOutsidePass(const char* what) const {
-    if (inPass_) throw Error(std::string(what) + " inside a render pass");
+GLuint clearUint(float v) {
+    return GLuint(std::max(0.0f, v));
+}
+
+} // namespace
+
+void GlCommandList::begin() {
+    inPass_ = false;
+    markerDepth_ = 0;
+    graphics_ = {};
+    compute_ = {};
+    activeProgram_ = 0;
+    device_.gl().glUseProgram(0);
+    vertexBuffers_ = {};
+    indexBuffer_ = 0;
+    indexOffset_ = 0;
+}
+
+void GlCommandList::finish() {
+    if (inPass_) throw Error("endFrame() inside a render pass: call endRenderPass() first");
+    for (; markerDepth_ > 0; --markerDepth_)
+        device_.gl().glPopDebugGroup();
+}
+
+void GlCommandList::requireFrame(const char* what) const {
+    if (!device_.inFrame()) throw Error(std::string(what) + " outside beginFrame()/endFrame()");
+}
+
+void GlCommandList::requirePass(bool inside, const char* what) const {
+    requireFrame(what);
+    if (inPass_ != inside)
+        throw Error(std::string(what) + (inside ? " outside a render pass" : " inside a render pass"));
+}
+
+void GlCommandList::checkBinding(uint32_t binding, const char* what) const {
+    requireFrame(what);
+    if (binding >= kMaxBindings)
+        throw Error(std::string(what) + ": binding " + std::to_string(binding) +
+                    " >= " + std::to_string(kMaxBindings));
+}
+
+void GlCommandList::useProgram(GLuint program) {
+    if (activeProgram_ == program) return;
+    device_.gl().glUseProgram(program);
+    activeProgram_ = program;
+}
+
+void GlCommandList::restoreDepthMask() {
+    const bool write = graphics_ && device_.graphicsPipelines.contains(graphics_) &&
+                       device_.graphicsPipelines.get(graphics_).desc.depthWrite;
+    device_.gl().glDepthMask(write ? GL_TRUE : GL_FALSE);
 }
 
 void GlCommandList::beginRenderPass(const RenderPassDesc& desc) {
-    requireOutsidePass("beginRenderPass");
-    const Functions& gl = device_.gl();
-    const GLuint fbo = device_.framebufferFor(desc);
-    gl.glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
-    // Clears obey the write masks and the scissor: open them first.
-    gl.glDisable(GL_SCISSOR_TEST);
+    requirePass(false, "beginRenderPass");
+    if (desc.colorCount > RenderPassDesc::kMaxColorTargets)
+        throw Error("beginRenderPass: more than 8 color targets");
+    if (desc.colorCount == 0 && !desc.depth.texture) throw Error("beginRenderPass: no color or depth target");
+
+    GlAttachment colors[RenderPassDesc::kMaxColorTargets];
+    GlAttachment depth;
+    uint32_t width = 0, height = 0;
+    bool first = true;
+    auto checkExtent = [&](const GlTexture& t, uint32_t mip) {
+        if (first) {
+            width = t.width(mip);
+            height = t.height(mip);
+            first = false;
+        } else if (t.width(mip) < width || t.height(mip) < height) {
+            throw Error("beginRenderPass '" + std::string(desc.debugName) + "': target '" + t.desc.debugName +
+                        "' is smaller than the first target");
+        }
+    };
     for (uint32_t i = 0; i < desc.colorCount; ++i) {
-        const ColorAttachment& c = desc.colors[i];
-        if (c.load != LoadOp::Clear) continue;
-        gl.glColorMaski(i, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        if (device_.textures.get(c.texture).desc.format == Format::R32UI) {
-            const GLuint v[4] = {GLuint(c.clearColor[0]), GLuint(c.clearColor[1]), GLuint(c.clearColor[2]),
-                                 GLuint(c.clearColor[3])};
+        const ColorAttachment& a = desc.colors[i];
+        const GlTexture& t = device_.textures.get(a.texture);
+        if (!(t.desc.usage & kTextureColorTarget) || isDepthFormat(t.desc.format))
+            throw Error("beginRenderPass: texture '" + t.desc.debugName + "' is not a color target");
+        if (a.mipLevel >= t.desc.mipLevels || a.layer >= t.depthOrLayers(a.mipLevel))
+            throw Error("beginRenderPass: texture '" + t.desc.debugName + "' has no mip " +
+                        std::to_string(a.mipLevel) + " layer " + std::to_string(a.layer));
+        checkExtent(t, a.mipLevel);
+        colors[i] = {t.id, t.desc.kind != TextureKind::Tex2D, a.mipLevel, a.layer};
+    }
+    if (desc.depth.texture) {
+        const GlTexture& t = device_.textures.get(desc.depth.texture);
+        if (!isDepthFormat(t.desc.format) || !(t.desc.usage & (kTextureDepthTarget | kTextureColorTarget)))
+            throw Error("beginRenderPass: texture '" + t.desc.debugName + "' is not a depth target");
+        if (desc.depth.layer >= t.depthOrLayers(0))
+            throw Error("beginRenderPass: depth texture '" + t.desc.debugName + "' has no layer " +
+                        std::to_string(desc.depth.layer));
+        checkExtent(t, 0);
+        depth = {t.id, t.desc.kind != TextureKind::Tex2D, 0, desc.depth.layer};
+    }
+
+    const Functions& gl = device_.gl();
+    const GLuint fbo = device_.framebuffers().get(colors, desc.colorCount,
+                                                  desc.depth.texture ? &depth : nullptr, desc.debugName);
+    gl.glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, desc.debugName);
+    gl.glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+    // The RHI's rule: viewport and scissor start as the whole first target. Set them before the
+    // clears, which obey the scissor.
+    setViewport({0.0f, 0.0f, float(width), float(height), 0.0f, 1.0f});
+    gl.glEnable(GL_SCISSOR_TEST);
+    gl.glScissor(0, 0, GLsizei(width), GLsizei(height));
+    for (uint32_t i = 0; i < desc.colorCount; ++i) {
+        const ColorAttachment& a = desc.colors[i];
+        if (a.load != LoadOp::Clear) continue; // Load keeps the contents; DontCare may too
+        if (device_.textures.get(a.texture).desc.format == Format::R32UI) {
+            const GLuint v[4] = {clearUint(a.clearColor[0]), clearUint(a.clearColor[1]),
+                                 clearUint(a.clearColor[2]), clearUint(a.clearColor[3])};
             gl.glClearNamedFramebufferuiv(fbo, GL_COLOR, GLint(i), v);
         } else {
-            gl.glClearNamedFramebufferfv(fbo, GL_COLOR, GLint(i), c.clearColor.data());
+            // With GL_FRAMEBUFFER_SRGB on, an sRGB target gets the encoded value, as in Vulkan.
+            gl.glClearNamedFramebufferfv(fbo, GL_COLOR, GLint(i), a.clearColor.data());
         }
     }
     if (desc.depth.texture && desc.depth.load == LoadOp::Clear) {
-        gl.glDepthMask(GL_TRUE);
+        gl.glDepthMask(GL_TRUE); // depth clears obey the write mask
         gl.glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &desc.depth.clearDepth);
+        restoreDepthMask();
     }
-    const TextureHandle first = desc.colorCount ? desc.colors[0].texture : desc.depth.texture;
-    const TextureDesc& d = device_.textures.get(first).desc;
-    const uint32_t mip = desc.colorCount ? desc.colors[0].mipLevel : 0;
-    passWidth_ = std::max(1u, d.width >> mip);
-    passHeight_ = std::max(1u, d.height >> mip);
-    gl.glViewportIndexedf(0, 0, 0, float(passWidth_), float(passHeight_));
-    gl.glDepthRangef(0.0f, 1.0f);
-    gl.glEnable(GL_SCISSOR_TEST);
-    gl.glScissor(0, 0, GLsizei(passWidth_), GLsizei(passHeight_));
-    gl.glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, desc.debugName);
     inPass_ = true;
 }
 
 void GlCommandList::endRenderPass() {
-    if (!inPass_) throw Error("endRenderPass without beginRenderPass");
+    requirePass(true, "endRenderPass");
     const Functions& gl = device_.gl();
-    gl.glPopDebugGroup();
     gl.glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    gl.glPopDebugGroup();
+    // Storage writes of the pass's shaders become visible to everything recorded later.
     gl.glMemoryBarrier(GL_ALL_BARRIER_BITS);
     inPass_ = false;
 }
 
 void GlCommandList::setViewport(const Viewport& vp) {
+    requireFrame("setViewport");
+    // No y-flip: with GL_LOWER_LEFT, NDC y = -1 lands on window row 0, which is memory row 0.
     device_.gl().glViewportIndexedf(0, vp.x, vp.y, vp.width, vp.height);
     device_.gl().glDepthRangef(vp.minDepth, vp.maxDepth);
 }
 
 void GlCommandList::setScissor(int32_t x, int32_t y, uint32_t width, uint32_t height) {
-    device_.gl().glScissor(x, y, GLsizei(width), GLsizei(height));
+    requireFrame("setScissor");
+    // Clipped at the origin like the Vulkan backend's (which must: Vulkan rejects negative offsets).
+    if (x < 0) {
+        const uint32_t cut = uint32_t(-int64_t(x));
+        width = width > cut ? width - cut : 0;
+        x = 0;
+    }
+    if (y < 0) {
+        const uint32_t cut = uint32_t(-int64_t(y));
+        height = height > cut ? height - cut : 0;
+        y = 0;
+    }
+    device_.gl().glScissor(x, y, GLsizei(std::min<uint32_t>(width, 0x7fffffffu)),
+                           GLsizei(std::min<uint32_t>(height, 0x7fffffffu)));
 }
 
 void GlCommandList::bindPipeline(GraphicsPipelineHandle h) {
-    GlGraphicsPipeline& p = device_.graphicsPipelines.get(h);
-    const Functions& gl = device_.gl();
+    requireFrame("bindPipeline");
+    const GlGraphicsPipeline& p = device_.graphicsPipelines.get(h);
     const GraphicsPipelineDesc& d = p.desc;
-    graphics_ = &p;
-    graphicsHandle_ = h;
-    gl.glUseProgram(p.program);
+    const Functions& gl = device_.gl();
+    graphics_ = h;
+    useProgram(p.program);
     gl.glBindVertexArray(p.vao);
+    // GL skips depth writes while the depth test is off; Vulkan does not.
     if (d.depthTest || d.depthWrite) {
         gl.glEnable(GL_DEPTH_TEST);
         gl.glDepthFunc(d.depthTest ? compareFunc(d.depthCompare) : GL_ALWAYS);
@@ -96,8 +201,8 @@ void GlCommandList::bindPipeline(GraphicsPipelineHandle h) {
         gl.glEnable(GL_CULL_FACE);
         gl.glCullFace(d.cull == CullMode::Front ? GL_FRONT : GL_BACK);
     }
-    // Vulkan judges winding with y pointing down the framebuffer and GL with y up, while both put
-    // NDC y = -1 at row 0: the same triangle is counter-clockwise on one and clockwise on the other.
+    // Both APIs put NDC y = -1 at row 0, but Vulkan's winding formula has the opposite sign to
+    // GL's (its framebuffer y points down): the same triangle is CCW on one and CW on the other.
     gl.glFrontFace(d.frontFace == FrontFace::CounterClockwise ? GL_CW : GL_CCW);
     if (d.depthBiasConstant != 0.0f || d.depthBiasSlope != 0.0f) {
         gl.glEnable(GL_POLYGON_OFFSET_FILL);
@@ -106,12 +211,10 @@ void GlCommandList::bindPipeline(GraphicsPipelineHandle h) {
         gl.glDisable(GL_POLYGON_OFFSET_FILL);
     }
     for (uint32_t i = 0; i < RenderPassDesc::kMaxColorTargets; ++i) {
-        gl.glColorMaski(i, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        const BlendState* b =
-            d.blend.empty()
-                ? nullptr
-                : (d.blend.size() == 1 ? &d.blend[0] : (i < d.blend.size() ? &d.blend[i] : nullptr));
-        if (b && b->enabled && i < d.colorFormats.size()) {
+        const BlendState* b = nullptr;
+        if (i < d.colorFormats.size() && !d.blend.empty())
+            b = d.blend.size() == 1 ? &d.blend[0] : &d.blend[i];
+        if (b && b->enabled) {
             gl.glEnablei(GL_BLEND, i);
             gl.glBlendFuncSeparatei(i, blendFactor(b->srcColor), blendFactor(b->dstColor),
                                     blendFactor(b->srcAlpha), blendFactor(b->dstAlpha));
@@ -123,146 +226,203 @@ void GlCommandList::bindPipeline(GraphicsPipelineHandle h) {
 }
 
 void GlCommandList::bindPipeline(ComputePipelineHandle h) {
-    const GlComputePipeline& p = device_.computePipelines.get(h);
-    device_.gl().glUseProgram(p.program);
-    graphics_ = nullptr;
+    requireFrame("bindPipeline");
+    useProgram(device_.computePipelines.get(h).program);
+    compute_ = h;
 }
 
 void GlCommandList::bindVertexBuffer(uint32_t slot, BufferHandle buffer, uint64_t offset) {
-    if (slot >= vertexBuffers_.size())
-        throw Error("vertex buffer slot " + std::to_string(slot) + " out of range");
-    vertexBuffers_[slot] = {device_.buffers.get(buffer).id, offset};
+    requireFrame("bindVertexBuffer");
+    const GlBuffer& b = device_.buffers.get(buffer);
+    if (!(b.desc.usage & kBufferVertex)) throw Error("buffer '" + b.desc.debugName + "' lacks kBufferVertex");
+    if (slot >= kMaxVertexBuffers)
+        throw Error("bindVertexBuffer: slot " + std::to_string(slot) +
+                    " >= " + std::to_string(kMaxVertexBuffers));
+    vertexBuffers_[slot] = {b.id, offset};
 }
 
 void GlCommandList::bindIndexBuffer(BufferHandle buffer, IndexType type, uint64_t offset) {
-    indexBuffer_ = device_.buffers.get(buffer).id;
+    requireFrame("bindIndexBuffer");
+    const GlBuffer& b = device_.buffers.get(buffer);
+    if (!(b.desc.usage & kBufferIndex)) throw Error("buffer '" + b.desc.debugName + "' lacks kBufferIndex");
+    indexBuffer_ = b.id;
     indexType_ = type;
     indexOffset_ = offset;
 }
 
-void GlCommandList::bindUniformBuffer(uint32_t binding, BufferHandle buffer, uint64_t offset, uint64_t size) {
+void GlCommandList::bindBuffer(GLenum target, uint32_t binding, BufferHandle buffer, uint64_t offset,
+                               uint64_t size) {
+    const bool storage = target == GL_SHADER_STORAGE_BUFFER;
+    checkBinding(binding, storage ? "bindStorageBuffer" : "bindUniformBuffer");
     const GlBuffer& b = device_.buffers.get(buffer);
-    device_.gl().glBindBufferRange(GL_UNIFORM_BUFFER, binding, b.id, GLintptr(offset),
-                                   GLsizeiptr(size == kWholeSize ? b.desc.size - offset : size));
+    if (!(b.desc.usage & (storage ? kBufferStorage : kBufferUniform)))
+        throw Error("buffer '" + b.desc.debugName +
+                    (storage ? "' lacks kBufferStorage" : "' lacks kBufferUniform"));
+    if (offset >= b.desc.size) throw Error("buffer '" + b.desc.debugName + "': binding offset past its end");
+    if (size == kWholeSize) size = b.desc.size - offset;
+    if (size > b.desc.size - offset)
+        throw Error("buffer '" + b.desc.debugName + "': bound range exceeds its size");
+    device_.gl().glBindBufferRange(target, binding, b.id, GLintptr(offset), GLsizeiptr(size));
+}
+
+void GlCommandList::bindUniformBuffer(uint32_t binding, BufferHandle buffer, uint64_t offset, uint64_t size) {
+    bindBuffer(GL_UNIFORM_BUFFER, binding, buffer, offset, size);
 }
 
 void GlCommandList::bindStorageBuffer(uint32_t binding, BufferHandle buffer, uint64_t offset, uint64_t size) {
-    const GlBuffer& b = device_.buffers.get(buffer);
-    device_.gl().glBindBufferRange(GL_SHADER_STORAGE_BUFFER, binding, b.id, GLintptr(offset),
-                                   GLsizeiptr(size == kWholeSize ? b.desc.size - offset : size));
+    bindBuffer(GL_SHADER_STORAGE_BUFFER, binding, buffer, offset, size);
 }
 
 void GlCommandList::bindTexture(uint32_t binding, TextureHandle texture, SamplerHandle sampler) {
+    checkBinding(binding, "bindTexture");
+    const GlTexture& t = device_.textures.get(texture);
+    const GlSampler& s = device_.samplers.get(sampler);
+    if (!(t.desc.usage & kTextureSampled))
+        throw Error("texture '" + t.desc.debugName + "' lacks kTextureSampled");
+    // Integer formats have no filtering; a linear sampler would make the texture incomplete.
+    if (t.desc.format == Format::R32UI &&
+        (s.desc.minFilter == Filter::Linear || s.desc.magFilter == Filter::Linear ||
+         (s.desc.mipFilter == Filter::Linear && t.desc.mipLevels > 1)))
+        throw Error("texture '" + t.desc.debugName + "' (r32ui) cannot be sampled with a linear filter");
     const Functions& gl = device_.gl();
-    gl.glBindTextureUnit(binding, device_.textures.get(texture).id);
-    gl.glBindSampler(binding, device_.samplers.get(sampler).id);
+    gl.glBindTextureUnit(binding, t.id);
+    gl.glBindSampler(binding, s.id);
 }
 
 void GlCommandList::bindStorageImage(uint32_t binding, TextureHandle texture, uint32_t mipLevel) {
+    checkBinding(binding, "bindStorageImage");
     const GlTexture& t = device_.textures.get(texture);
+    if (!(t.desc.usage & kTextureStorage))
+        throw Error("texture '" + t.desc.debugName + "' lacks kTextureStorage");
+    if (mipLevel >= t.desc.mipLevels)
+        throw Error("texture '" + t.desc.debugName + "' has no mip " + std::to_string(mipLevel));
+    // Layered: a 3D or array image is bound whole, as a Vulkan storage image view of it is.
     const GLboolean layered = t.desc.kind == TextureKind::Tex2D ? GL_FALSE : GL_TRUE;
     device_.gl().glBindImageTexture(binding, t.id, GLint(mipLevel), layered, 0, GL_READ_WRITE,
                                     glFormat(t.desc.format).internal);
 }
 
 void GlCommandList::pushUniforms(uint32_t binding, const void* data, uint32_t size) {
-    const uint64_t offset = device_.allocateUniforms(data, size);
-    device_.gl().glBindBufferRange(GL_UNIFORM_BUFFER, binding, device_.uniformRing(), GLintptr(offset), size);
+    checkBinding(binding, "pushUniforms");
+    if (!data || size == 0) throw Error("pushUniforms: no data");
+    const uint64_t offset = device_.uniformRing().push(data, size);
+    device_.gl().glBindBufferRange(GL_UNIFORM_BUFFER, binding, device_.uniformRing().buffer(),
+                                   GLintptr(offset), GLsizeiptr(size));
 }
 
-void GlCommandList::prepareDraw() {
-    if (!inPass_) throw Error("draw outside a render pass");
-    if (!graphics_) throw Error("draw without a graphics pipeline");
+GlGraphicsPipeline& GlCommandList::prepareDraw(const char* what) {
+    requirePass(true, what);
+    if (!graphics_) throw Error(std::string(what) + " without a graphics pipeline");
+    GlGraphicsPipeline& p = device_.graphicsPipelines.get(graphics_);
+    useProgram(p.program);
     const Functions& gl = device_.gl();
-    const auto& layouts = graphics_->desc.vertexBuffers;
+    const auto& layouts = p.desc.vertexBuffers;
     for (size_t i = 0; i < layouts.size(); ++i)
-        gl.glVertexArrayVertexBuffer(graphics_->vao, GLuint(i), vertexBuffers_[i].buffer,
+        gl.glVertexArrayVertexBuffer(p.vao, GLuint(i), vertexBuffers_[i].buffer,
                                      GLintptr(vertexBuffers_[i].offset), GLsizei(layouts[i].stride));
+    return p;
 }
 
 void GlCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex,
                          uint32_t firstInstance) {
-    prepareDraw();
+    const GlGraphicsPipeline& p = prepareDraw("draw");
     const Functions& gl = device_.gl();
-    if (graphics_->baseInstanceLocation >= 0)
-        gl.glUniform1i(graphics_->baseInstanceLocation, GLint(firstInstance));
-    gl.glDrawArraysInstancedBaseInstance(primitiveMode(graphics_->desc.topology), GLint(firstVertex),
+    if (p.baseInstanceLocation >= 0) gl.glUniform1i(p.baseInstanceLocation, GLint(firstInstance));
+    gl.glDrawArraysInstancedBaseInstance(primitiveMode(p.desc.topology), GLint(firstVertex),
                                          GLsizei(vertexCount), GLsizei(instanceCount), firstInstance);
 }
 
 void GlCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex,
                                 int32_t vertexOffset, uint32_t firstInstance) {
-    prepareDraw();
+    const GlGraphicsPipeline& p = prepareDraw("drawIndexed");
     if (!indexBuffer_) throw Error("drawIndexed without an index buffer");
     const Functions& gl = device_.gl();
-    gl.glVertexArrayElementBuffer(graphics_->vao, indexBuffer_);
-    if (graphics_->baseInstanceLocation >= 0)
-        gl.glUniform1i(graphics_->baseInstanceLocation, GLint(firstInstance));
-    const uint64_t indexSize = indexType_ == IndexType::Uint16 ? 2 : 4;
-    gl.glDrawElementsInstancedBaseVertexBaseInstance(
-        primitiveMode(graphics_->desc.topology), GLsizei(indexCount),
-        indexType_ == IndexType::Uint16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT,
-        reinterpret_cast<const void*>(uintptr_t(indexOffset_ + uint64_t(firstIndex) * indexSize)),
-        GLsizei(instanceCount), vertexOffset, firstInstance);
+    gl.glVertexArrayElementBuffer(p.vao, indexBuffer_);
+    if (p.baseInstanceLocation >= 0) gl.glUniform1i(p.baseInstanceLocation, GLint(firstInstance));
+    const bool u16 = indexType_ == IndexType::Uint16;
+    const uint64_t byteOffset = indexOffset_ + uint64_t(firstIndex) * (u16 ? 2 : 4);
+    gl.glDrawElementsInstancedBaseVertexBaseInstance(primitiveMode(p.desc.topology), GLsizei(indexCount),
+                                                     u16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT,
+                                                     reinterpret_cast<const void*>(uintptr_t(byteOffset)),
+                                                     GLsizei(instanceCount), vertexOffset, firstInstance);
 }
 
-void GlCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
-    requireOutsidePass("dispatch");
+void GlCommandList::dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) {
+    requirePass(false, "dispatch");
+    if (!compute_) throw Error("dispatch without a compute pipeline");
+    useProgram(device_.computePipelines.get(compute_).program);
     const Functions& gl = device_.gl();
-    gl.glDispatchCompute(x, y, z);
+    gl.glDispatchCompute(groupsX, groupsY, groupsZ);
+    // Storage writes of the dispatch become visible to every later command.
     gl.glMemoryBarrier(GL_ALL_BARRIER_BITS);
 }
 
 void GlCommandList::clearTexture(TextureHandle texture, const std::array<float, 4>& value) {
-    requireOutsidePass("clearTexture");
+    requirePass(false, "clearTexture");
     const GlTexture& t = device_.textures.get(texture);
-    const GlFormat f = glFormat(t.desc.format);
     const Functions& gl = device_.gl();
     for (uint32_t mip = 0; mip < t.desc.mipLevels; ++mip) {
         if (t.desc.format == Format::R32UI) {
-            const GLuint v = GLuint(value[0]);
-            gl.glClearTexImage(t.id, GLint(mip), GL_RED_INTEGER, GL_UNSIGNED_INT, &v);
-        } else if (t.desc.format == Format::D32F) {
+            const GLuint v[4] = {clearUint(value[0]), clearUint(value[1]), clearUint(value[2]),
+                                 clearUint(value[3])};
+            gl.glClearTexImage(t.id, GLint(mip), GL_RGBA_INTEGER, GL_UNSIGNED_INT, v);
+        } else if (isDepthFormat(t.desc.format)) {
             gl.glClearTexImage(t.id, GLint(mip), GL_DEPTH_COMPONENT, GL_FLOAT, &value[0]);
+        } else if (t.desc.format == Format::RGBA8Srgb) {
+            const float encoded[4] = {linearToSrgb(value[0]), linearToSrgb(value[1]), linearToSrgb(value[2]),
+                                      value[3]};
+            gl.glClearTexImage(t.id, GLint(mip), GL_RGBA, GL_FLOAT, encoded);
         } else {
             gl.glClearTexImage(t.id, GLint(mip), GL_RGBA, GL_FLOAT, value.data());
         }
     }
-    (void)f;
     gl.glMemoryBarrier(GL_ALL_BARRIER_BITS);
 }
 
 void GlCommandList::updateBuffer(BufferHandle buffer, uint64_t offset, const void* data, uint32_t size) {
-    requireOutsidePass("updateBuffer");
+    requirePass(false, "updateBuffer");
     const GlBuffer& b = device_.buffers.get(buffer);
-    if (offset + size > b.desc.size)
-        throw Error("updateBuffer: range exceeds buffer '" + b.desc.debugName + "'");
-    device_.gl().glNamedBufferSubData(b.id, GLintptr(offset), size, data);
-}
-
-void GlCommandList::copyTexture(TextureHandle src, TextureHandle dst) {
-    requireOutsidePass("copyTexture");
-    const GlTexture& s = device_.textures.get(src);
-    const GlTexture& d = device_.textures.get(dst);
-    if (s.desc.width != d.desc.width || s.desc.height != d.desc.height ||
-        s.desc.depthOrLayers != d.desc.depthOrLayers)
-        throw Error("copyTexture: '" + s.desc.debugName + "' and '" + d.desc.debugName + "' differ in size");
-    device_.gl().glCopyImageSubData(s.id, s.target, 0, 0, 0, 0, d.id, d.target, 0, 0, 0, 0,
-                                    GLsizei(s.desc.width), GLsizei(s.desc.height),
-                                    GLsizei(s.desc.depthOrLayers));
+    if (!data || size == 0 || size > 65536 || size % 4 != 0 || offset % 4 != 0)
+        throw Error("updateBuffer '" + b.desc.debugName +
+                    "': size must be 4..65536 and offset and size multiples of 4");
+    if (offset > b.desc.size || size > b.desc.size - offset)
+        throw Error("updateBuffer '" + b.desc.debugName + "': range exceeds its size");
+    // In stream: GL orders the update after the draws and dispatches issued before it.
+    device_.gl().glNamedBufferSubData(b.id, GLintptr(offset), GLsizeiptr(size), data);
     device_.gl().glMemoryBarrier(GL_ALL_BARRIER_BITS);
 }
 
+void GlCommandList::copyTexture(TextureHandle src, TextureHandle dst) {
+    requirePass(false, "copyTexture");
+    if (src == dst) throw Error("copyTexture: source and destination are the same texture");
+    const GlTexture& s = device_.textures.get(src);
+    const GlTexture& d = device_.textures.get(dst);
+    if (s.desc.kind != d.desc.kind || s.desc.format != d.desc.format || s.desc.width != d.desc.width ||
+        s.desc.height != d.desc.height || s.desc.depthOrLayers != d.desc.depthOrLayers)
+        throw Error("copyTexture: '" + s.desc.debugName + "' and '" + d.desc.debugName +
+                    "' differ in kind, format or size");
+    const Functions& gl = device_.gl();
+    gl.glCopyImageSubData(s.id, s.target, 0, 0, 0, 0, d.id, d.target, 0, 0, 0, 0, GLsizei(s.desc.width),
+                          GLsizei(s.desc.height), GLsizei(s.desc.depthOrLayers));
+    gl.glMemoryBarrier(GL_ALL_BARRIER_BITS);
+}
+
 void GlCommandList::writeTimestamp(uint32_t slot) {
-    device_.recordTimestamp(slot);
+    requireFrame("writeTimestamp");
+    device_.timestamps().write(device_.frameIndex(), slot);
 }
 
 void GlCommandList::beginMarker(const char* name) {
-    device_.gl().glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, name);
+    requireFrame("beginMarker");
+    device_.gl().glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, name ? name : "");
+    ++markerDepth_;
 }
 
 void GlCommandList::endMarker() {
+    requireFrame("endMarker");
+    if (markerDepth_ == 0) throw Error("endMarker without beginMarker");
     device_.gl().glPopDebugGroup();
+    --markerDepth_;
 }
 
 } // namespace lpv::rhi::gl

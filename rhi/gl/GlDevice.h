@@ -1,103 +1,25 @@
-// The OpenGL 4.5 backend. Commands execute on the context as they are recorded: with one context
-// and one command list per frame, recording order is execution order, which is what a replay
-// would give. Barriers: glMemoryBarrier(ALL) after every dispatch and render pass.
-//
-// Timestamps: GL_TIME_ELAPSED and GL_TIMESTAMP read 0 or garbage on llvmpipe/softpipe
-// (../shared/docs/lpv-notes.md), so there the backend uses TimestampSource::CpuFinished:
-// writeTimestamp() calls glFinish() and reads the CPU clock. Elsewhere GL_TIMESTAMP queries are
-// used, one set per frame slot, read with GL_QUERY_RESULT_AVAILABLE and never waited for.
+// The OpenGL 4.5 core backend's device: owns the context, the loaded entry points, the handle
+// pools and the per-frame machinery (fences, uniform ring, timestamps). Conventions are Vulkan's:
+// glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE) gives depth 0..1, and with no y-flip anywhere NDC
+// y = -1 lands in memory row 0 on both APIs. Only presentation flips (row 0 shows at the top).
 #pragma once
 
+#include "GlCommandList.h"
+#include "GlDebugOutput.h"
+#include "GlFramebuffers.h"
 #include "GlFunctions.h"
+#include "GlResources.h"
+#include "GlTimestamps.h"
+#include "GlUniformRing.h"
 
 #include "../src/HandlePool.h"
 #include "rhi/Backend.h"
 #include "rhi/Device.h"
 
-#include <array>
-#include <map>
 #include <memory>
 #include <vector>
 
 namespace lpv::rhi::gl {
-
-struct GlBuffer {
-    BufferDesc desc;
-    GLuint id = 0;
-    void* mapped = nullptr;
-};
-
-struct GlTexture {
-    TextureDesc desc;
-    GLuint id = 0;
-    GLenum target = 0;
-};
-
-struct GlSampler {
-    GLuint id = 0;
-};
-
-struct GlGraphicsPipeline {
-    GraphicsPipelineDesc desc;
-    GLuint program = 0;
-    GLuint vao = 0;
-    GLint baseInstanceLocation = -1; // SPIRV-Cross's emulation of gl_InstanceIndex's base
-};
-
-struct GlComputePipeline {
-    GLuint program = 0;
-};
-
-class GlDevice;
-
-class GlCommandList final : public CommandList {
-public:
-    explicit GlCommandList(GlDevice& device) : device_(device) {}
-    void reset();
-
-    void beginRenderPass(const RenderPassDesc& desc) override;
-    void endRenderPass() override;
-    void setViewport(const Viewport& vp) override;
-    void setScissor(int32_t x, int32_t y, uint32_t width, uint32_t height) override;
-    void bindPipeline(GraphicsPipelineHandle pipeline) override;
-    void bindPipeline(ComputePipelineHandle pipeline) override;
-    void bindVertexBuffer(uint32_t slot, BufferHandle buffer, uint64_t offset) override;
-    void bindIndexBuffer(BufferHandle buffer, IndexType type, uint64_t offset) override;
-    void bindUniformBuffer(uint32_t binding, BufferHandle buffer, uint64_t offset, uint64_t size) override;
-    void bindStorageBuffer(uint32_t binding, BufferHandle buffer, uint64_t offset, uint64_t size) override;
-    void bindTexture(uint32_t binding, TextureHandle texture, SamplerHandle sampler) override;
-    void bindStorageImage(uint32_t binding, TextureHandle texture, uint32_t mipLevel) override;
-    void pushUniforms(uint32_t binding, const void* data, uint32_t size) override;
-    void draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex,
-              uint32_t firstInstance) override;
-    void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, int32_t vertexOffset,
-                     uint32_t firstInstance) override;
-    void dispatch(uint32_t x, uint32_t y, uint32_t z) override;
-    void clearTexture(TextureHandle texture, const std::array<float, 4>& value) override;
-    void updateBuffer(BufferHandle buffer, uint64_t offset, const void* data, uint32_t size) override;
-    void copyTexture(TextureHandle src, TextureHandle dst) override;
-    void writeTimestamp(uint32_t slot) override;
-    void beginMarker(const char* name) override;
-    void endMarker() override;
-
-private:
-    void requireOutsidePass(const char* what) const;
-    void prepareDraw();
-
-    GlDevice& device_;
-    bool inPass_ = false;
-    uint32_t passWidth_ = 0, passHeight_ = 0;
-    GlGraphicsPipeline* graphics_ = nullptr;
-    GraphicsPipelineHandle graphicsHandle_;
-    struct VertexBinding {
-        GLuint buffer = 0;
-        uint64_t offset = 0;
-    };
-    std::array<VertexBinding, 8> vertexBuffers_{};
-    GLuint indexBuffer_ = 0;
-    uint64_t indexOffset_ = 0;
-    IndexType indexType_ = IndexType::Uint32;
-};
 
 class GlDevice final : public Device {
 public:
@@ -135,12 +57,10 @@ public:
 
     // For the command list.
     const Functions& gl() const { return gl_; }
-    GLuint framebufferFor(const RenderPassDesc& desc);
-    uint64_t allocateUniforms(const void* data, uint32_t size); // returns the ring offset
-    GLuint uniformRing() const { return uniformRing_; }
-    void recordTimestamp(uint32_t slot);
     bool inFrame() const { return inFrame_; }
-    void label(GLenum type, GLuint id, const std::string& name) const;
+    GlFramebufferCache& framebuffers() { return framebuffers_; }
+    GlUniformRing& uniformRing() { return uniformRing_; }
+    GlTimestamps& timestamps() { return timestamps_; }
 
     HandlePool<BufferTag, GlBuffer> buffers;
     HandlePool<TextureTag, GlTexture> textures;
@@ -150,38 +70,29 @@ public:
 
 private:
     void requireOutsideFrame(const char* what) const;
-    static uint64_t mipBytes(const TextureDesc& d, uint32_t mip);
+    const GlTexture& transferTexture(TextureHandle h, uint32_t mip, uint64_t size, const char* what) const;
     GLuint linkProgram(std::initializer_list<const ShaderBinary*> stages, const std::string& name);
+    void present(const GlTexture& source);
+    void releaseAll();
+
+    // Handle bits the allocation record files the backend's own buffers under (never a real handle:
+    // generation 0 is not handed out).
+    static constexpr uint32_t kUniformRingRecord = 0x0000fffeu;
 
     DeviceConfig config_;
     std::unique_ptr<platforms::GlContext> context_;
     Functions gl_;
+    ObjectLabeler label_;
     Caps caps_;
     AllocationRecord allocations_;
     GlCommandList list_;
+    GlFramebufferCache framebuffers_;
+    GlUniformRing uniformRing_;
+    GlTimestamps timestamps_;
+    std::vector<GLsync> fences_; // one per frame in flight: frame F waits for F - framesInFlight
+    GLuint presentFramebuffer_ = 0;
     uint64_t frame_ = 0;
     bool inFrame_ = false;
-
-    GLuint uniformRing_ = 0;
-    uint64_t uniformHead_ = 0;
-    uint64_t uniformAlignment_ = 256;
-
-    // Framebuffers by attachment set, made on first use. Keys hold texture names; destroying a
-    // texture drops the framebuffers that use it.
-    std::map<std::vector<uint64_t>, GLuint> framebuffers_;
-    std::vector<uint64_t> fboKey_;
-    GLuint presentFbo_ = 0;
-
-    struct FrameSlot {
-        uint64_t frame = 0;
-        bool complete = false;
-        GLsync fence = nullptr;
-        std::vector<uint64_t> cpuTimes; // CpuFinished
-        std::vector<GLuint> queries;    // GpuQueries
-        std::vector<bool> written;
-    };
-    std::vector<FrameSlot> slots_;
-    FrameSlot& slot(uint64_t frame) { return slots_[frame % slots_.size()]; }
 };
 
 } // namespace lpv::rhi::gl
