@@ -219,13 +219,15 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
     std::printf(
         "| pass | median ms | p95 ms | predicted x360 ms | predicted ps3 ms |\n|---|---|---|---|---|\n");
     double giMs = 0;
-    for (const engine::ScopeInfo& s : profiler.scopes()) {
+    for (size_t i = 0; i < profiler.scopes().size(); ++i) {
+        const engine::ScopeInfo& s = profiler.scopes()[i];
+        const engine::WorkCounts work = profiler.inclusiveWork(i);
         const engine::SampleStats st = s.gpuMs.count() ? s.gpuMs.stats() : s.cpuMs.stats();
         if (s.depth == 0 && s.name == "gi") giMs = st.median;
         std::printf("| %s%s | %.2f | %.2f | %.3f | %.3f |\n", std::string(2 * s.depth, ' ').c_str(),
                     s.path.c_str(), st.median, st.p95,
-                    engine::predictCost(s.work, profiler.x360().throughput).ms,
-                    engine::predictCost(s.work, profiler.ps3().throughput).ms);
+                    engine::predictCost(work, profiler.x360().throughput).ms,
+                    engine::predictCost(work, profiler.ps3().throughput).ms);
     }
     const engine::SampleStats frame =
         profiler.frameGpuMs().count ? profiler.frameGpuMs() : profiler.frameCpuMs();
@@ -236,6 +238,40 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
         if (usage.currentBytes)
             std::printf(" %s %.2f MiB;", category.c_str(), double(usage.currentBytes) / 1048576.0);
     std::printf("\n");
+    std::fflush(stdout);
+}
+
+// The profiler's own cost: the Cornell box without GI, frames timed on the CPU clock from
+// beginFrame to idle, with no profiler, with CPU scopes only, and with CPU and GPU scopes.
+void benchProfilerOverhead(const BenchBackend& b, int frames) {
+    auto device = makeDevice(b);
+    engine::Config config;
+    const engine::Scene scene = engine::buildBuiltinScene("cornell");
+    engine::Renderer renderer(*device, 1280, 720);
+    renderer.setScene(scene);
+    const engine::CameraMatrices m = engine::cameraMatrices(*scene.camera, 1280.0f / 720.0f);
+    const auto pc = platforms::loadPlatformProfile("pc");
+    engine::ProfilerOptions cpuOnly;
+    cpuOnly.gpuTiming = false;
+    engine::FrameProfiler withGpu(*device, pc), withoutGpu(*device, pc, cpuOnly);
+    const auto run = [&](engine::FrameProfiler* profiler) {
+        std::vector<double> ms;
+        for (int f = 0; f < frames + 2; ++f) {
+            const uint64_t t0 = platforms::nowNanoseconds();
+            rhi::CommandList& cmd = device->beginFrame();
+            if (profiler) profiler->beginFrame(cmd);
+            renderer.render(cmd, m, config, profiler, nullptr);
+            if (profiler) profiler->endFrame(cmd);
+            device->endFrame();
+            device->waitIdle();
+            if (f >= 2) ms.push_back(double(platforms::nowNanoseconds() - t0) / 1e6);
+        }
+        return median(ms);
+    };
+    const double none = run(nullptr), cpu = run(&withoutGpu), gpu = run(&withGpu);
+    std::printf("| %-9s | %8.2f | %8.2f (%+.2f) | %8.2f (%+.2f) | %-16s |\n", b.name.c_str(), none, cpu,
+                cpu - none, gpu, gpu - none,
+                std::string(rhi::timestampSourceName(device->caps().timestampSource)).c_str());
     std::fflush(stdout);
 }
 
@@ -320,6 +356,18 @@ int main(int argc, char** argv) {
                 ++failures;
             }
         }
+    std::printf("\n## Profiler overhead (Cornell box, GI off, 1280x720, median frame ms of %d)\n\n", frames);
+    std::printf(
+        "| backend   | no profiler | CPU scopes (delta) | CPU+GPU scopes (delta) | timing source |\n");
+    std::printf("|---|---|---|---|---|\n");
+    for (const auto& b : backends) {
+        try {
+            benchProfilerOverhead(b, frames);
+        } catch (const std::exception& e) {
+            std::printf("| %-9s | failed: %s\n", b.name.c_str(), e.what());
+            ++failures;
+        }
+    }
     consolePrediction();
     return failures ? 1 : 0;
 }

@@ -21,7 +21,7 @@ FrameProfiler::FrameProfiler(rhi::Device& device, platforms::PlatformProfile pro
       ps3_(platforms::loadPlatformProfile("ps3")), options_(options),
       timingSource_(device.caps().timestampSource), frameCpu_(options.statsWindow),
       frameGpu_(options.statsWindow) {
-    if (timingSource_ != rhi::TimestampSource::None)
+    if (timingSource_ != rhi::TimestampSource::None && options_.gpuTiming)
         gpuSlots_ =
             std::min<uint32_t>(device.caps().maxTimestampsPerFrame, 2 + 2 * options_.maxScopesPerFrame);
     if (gpuSlots_ < 2) {
@@ -105,6 +105,17 @@ void FrameProfiler::closeScope() {
     s.cpuEnd = platforms::nowNanoseconds();
     if (s.gpuTimed) open.gpu->writeTimestamp(3 + 2 * open.sample);
     scopes_[open.scope].cpuMs.add(ms(s.cpuBegin, s.cpuEnd));
+}
+
+WorkCounts FrameProfiler::inclusiveWork(size_t scope) const {
+    WorkCounts w = scopes_[scope].work;
+    for (size_t i = scope + 1; i < scopes_.size(); ++i)
+        for (int32_t p = scopes_[i].parent; p >= 0; p = scopes_[size_t(p)].parent)
+            if (size_t(p) == scope) {
+                w += scopes_[i].work;
+                break;
+            }
+    return w;
 }
 
 void FrameProfiler::setWork(const WorkCounts& work) {

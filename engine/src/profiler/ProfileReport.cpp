@@ -49,11 +49,12 @@ struct Row {
 std::vector<Row> rows(const FrameProfiler& p) {
     std::vector<Row> out;
     for (const ScopeInfo& s : p.scopes()) {
+        const WorkCounts work = p.inclusiveWork(size_t(&s - p.scopes().data()));
         Row r{&s,
               s.cpuMs.stats(),
               s.gpuMs.stats(),
-              predictCost(s.work, p.x360().throughput),
-              predictCost(s.work, p.ps3().throughput),
+              predictCost(work, p.x360().throughput),
+              predictCost(work, p.ps3().throughput),
               0,
               0};
         const double t = r.gpu.count ? r.gpu.median : r.cpu.median;

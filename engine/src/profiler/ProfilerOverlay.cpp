@@ -18,13 +18,15 @@ ProfilerOverlay::ProfilerOverlay(rhi::Device& device) : device_(device) {
     pipeline_ = device.createPipeline(d);
 }
 
-ProfilerOverlay::~ProfilerOverlay() { device_.destroy(pipeline_); }
+ProfilerOverlay::~ProfilerOverlay() {
+    device_.destroy(pipeline_);
+}
 
 void ProfilerOverlay::draw(rhi::CommandList& cmd, const FrameProfiler& profiler, rhi::TextureHandle output) {
     const rhi::TextureDesc& desc = device_.desc(output);
     uniforms_.viewport = glm::vec4(float(desc.width), float(desc.height), 0, 0);
     const float x0 = 12.0f, y0 = 12.0f, barHeight = 10.0f, gap = 3.0f;
-    const float budgetWidth = std::min(400.0f, float(desc.width) * 0.4f);  // pixels for the whole frame budget
+    const float budgetWidth = std::min(400.0f, float(desc.width) * 0.4f); // pixels for the whole frame budget
     const float msToPixels = budgetWidth / float(profiler.profile().frameBudgetMs);
     const bool over = profiler.lastBudgetCheck().frameOverBudget || profiler.lastBudgetCheck().giOverBudget;
     uint32_t n = 0;
@@ -36,7 +38,8 @@ void ProfilerOverlay::draw(rhi::CommandList& cmd, const FrameProfiler& profiler,
         }
     };
     const uint32_t passes = uint32_t(std::min<size_t>(profiler.scopes().size(), kMaxRects - 3));
-    rect({x0 - 4, y0 - 4, budgetWidth * 1.5f + 8, float(passes + 1) * (barHeight + gap) + 8}, {0, 0, 0, 0.55f});
+    rect({x0 - 4, y0 - 4, budgetWidth * 1.5f + 8, float(passes + 1) * (barHeight + gap) + 8},
+         {0, 0, 0, 0.55f});
     // Whole frame, then one bar per pass (children indented by depth).
     const SampleStats frame = profiler.frameGpuMs().count ? profiler.frameGpuMs() : profiler.frameCpuMs();
     rect({x0, y0, std::min(float(frame.median) * msToPixels, budgetWidth * 1.5f), barHeight},
@@ -46,7 +49,8 @@ void ProfilerOverlay::draw(rhi::CommandList& cmd, const FrameProfiler& profiler,
         const SampleStats st = s.gpuMs.count() ? s.gpuMs.stats() : s.cpuMs.stats();
         const float indent = 8.0f * float(s.depth);
         const bool gi = s.path.starts_with("gi");
-        rect({x0 + indent, y0 + float(i + 1) * (barHeight + gap), std::min(float(st.median) * msToPixels, budgetWidth * 1.5f), barHeight},
+        rect({x0 + indent, y0 + float(i + 1) * (barHeight + gap),
+              std::min(float(st.median) * msToPixels, budgetWidth * 1.5f), barHeight},
              gi ? glm::vec4(0.95f, 0.6f, 0.15f, 0.9f) : glm::vec4(0.3f, 0.55f, 0.9f, 0.9f));
     }
     // The frame budget line.

@@ -28,6 +28,7 @@ struct ProfilerOptions {
     uint32_t statsWindow = 120;  // frames the statistics cover
     uint32_t traceFrames = 1200; // frames kept for the trace and the chart
     uint32_t maxScopesPerFrame = 48;
+    bool gpuTiming = true; // false: CPU scopes only, no timestamps written
 };
 
 // A scope name as it appears in reports: the path of nested names ("gi/propagate").
@@ -84,6 +85,9 @@ public:
     void setWork(const WorkCounts& work);
 
     const std::vector<ScopeInfo>& scopes() const { return scopes_; }
+    // A scope's work counts plus those of every scope nested in it (a parent such as "gi" sets
+    // none of its own).
+    WorkCounts inclusiveWork(size_t scope) const;
     const platforms::PlatformProfile& profile() const { return profile_; }
     const platforms::PlatformProfile& x360() const { return x360_; }
     const platforms::PlatformProfile& ps3() const { return ps3_; }
