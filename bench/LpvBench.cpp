@@ -277,8 +277,9 @@ void benchProfilerOverhead(const BenchBackend& b, int frames) {
     };
     double rNone = 0, rCpu = 0, rGpu = 0;
     const double none = run(nullptr, rNone), cpu = run(&withoutGpu, rCpu), gpu = run(&withGpu, rGpu);
-    std::printf("| %-9s | %7.3f / %7.2f | %7.3f / %7.2f | %7.3f / %7.2f | %-16s |\n", b.name.c_str(), rNone, none, rCpu,
-                cpu, rGpu, gpu, std::string(rhi::timestampSourceName(device->caps().timestampSource)).c_str());
+    std::printf("| %-9s | %7.3f / %7.2f | %7.3f / %7.2f | %7.3f / %7.2f | %-16s |\n", b.name.c_str(), rNone,
+                none, rCpu, cpu, rGpu, gpu,
+                std::string(rhi::timestampSourceName(device->caps().timestampSource)).c_str());
     std::fflush(stdout);
 }
 
@@ -364,8 +365,7 @@ int main(int argc, char** argv) {
             }
         }
     std::printf("\n## Profiler overhead (Cornell box, GI off, 1280x720, median frame ms of %d)\n\n", frames);
-    std::printf(
-        "| backend   | no profiler | CPU scopes | CPU+GPU scopes | timing source |\n");
+    std::printf("| backend   | no profiler | CPU scopes | CPU+GPU scopes | timing source |\n");
     std::printf("|---|---|---|---|---|\n");
     for (const auto& b : backends) {
         try {

@@ -56,13 +56,18 @@ void Swapchain::create() {
     std::vector<VkSurfaceFormatKHR> formats(count);
     vkGetPhysicalDeviceSurfaceFormatsKHR(ctx_.physical, ctx_.surface, &count, formats.data());
     if (formats.empty()) throw Error("vulkan: the window surface reports no formats");
+    // An sRGB swapchain: the frame presented is an sRGB texture, and a blit between two sRGB
+    // images keeps its stored values, which is what the GL backend's raw copy shows too. A UNORM
+    // swapchain would receive the decoded (linear) values and show the frame too dark.
     VkSurfaceFormatKHR chosen = formats[0];
-    for (const auto& f : formats)
-        if ((f.format == VK_FORMAT_B8G8R8A8_UNORM || f.format == VK_FORMAT_R8G8B8A8_UNORM) &&
-            f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR) {
-            chosen = f;
-            break;
-        }
+    bool found = false;
+    for (VkFormat wanted : {VK_FORMAT_B8G8R8A8_SRGB, VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_B8G8R8A8_UNORM,
+                            VK_FORMAT_R8G8B8A8_UNORM})
+        for (const auto& f : formats)
+            if (!found && f.format == wanted && f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR) {
+                chosen = f;
+                found = true;
+            }
 
     extent_ = extent;
     if (extent.width == 0 || extent.height == 0) return; // minimised: try again at the next frame

@@ -28,11 +28,21 @@ void* operator new(std::size_t size) {
     if (void* p = std::malloc(size ? size : 1)) return p;
     throw std::bad_alloc();
 }
-void* operator new[](std::size_t size) { return operator new(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void* operator new[](std::size_t size) {
+    return operator new(size);
+}
+void operator delete(void* p) noexcept {
+    std::free(p);
+}
+void operator delete[](void* p) noexcept {
+    std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+    std::free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept {
+    std::free(p);
+}
 
 using namespace lpv;
 
@@ -62,10 +72,12 @@ TEST_CASE("steady state: a frame with GI and the profiler allocates nothing") {
                 profiler.endFrame(cmd);
                 device->endFrame();
             };
-            for (int i = 0; i < 6; ++i) frame();  // warm-up: caches, framebuffers, shader variants
+            for (int i = 0; i < 6; ++i)
+                frame(); // warm-up: caches, framebuffers, shader variants
             gAllocations = 0;
             gCounting = true;
-            for (int i = 0; i < 4; ++i) frame();
+            for (int i = 0; i < 4; ++i)
+                frame();
             gCounting = false;
             MESSAGE(backend.name << ": " << gAllocations.load() << " allocations in 4 steady-state frames");
             CHECK(gAllocations.load() == 0);
