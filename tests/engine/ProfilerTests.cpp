@@ -192,3 +192,20 @@ TEST_CASE("profiler: cost model predictions match hand-computed values") {
     CHECK(predictCost(fill, ps3).ms == doctest::Approx(1.0));
     CHECK(std::string(predictCost(fill, ps3).bottleneck) == "fill");
 }
+
+TEST_CASE("profiler: passes over their budget are flagged in the summary") {
+    auto device = nullDevice();
+    FrameProfiler generous(*device, tinyProfile(100, 100));
+    FrameProfiler tight(*device, tinyProfile(0.002, 0.001)); // 2 us frame, 1 us GI
+    for (FrameProfiler* p : {&generous, &tight})
+        for (int i = 0; i < 4; ++i)
+            frame(*device, *p, 3, 2);
+    CHECK(profileSummaryMarkdown(generous).find("**OVER**") == std::string::npos);
+    const std::string md = profileSummaryMarkdown(tight);
+    // gi/propagate takes 2 us, twice the GI budget; render/gbuffer 3 us, over the frame budget.
+    const auto rowOf = [&](const std::string& pass) {
+        return md.substr(md.find(pass), md.find('\n', md.find(pass)) - md.find(pass));
+    };
+    CHECK(rowOf("gi/propagate").find("**OVER**") != std::string::npos);
+    CHECK(rowOf("render/gbuffer").find("**OVER**") != std::string::npos);
+}

@@ -80,6 +80,10 @@ uint64_t giMemory(const FrameProfiler& p) {
     return p.allocations().bytesIn("gi");
 }
 
+// A pass is over budget when its median alone exceeds the frame budget, or, for GI passes, the
+// GI budget.
+bool overBudget(const Row& r) { return r.shareOfFrame > 100.0 || r.shareOfGi > 100.0; }
+
 } // namespace
 
 std::string profileSummaryText(const FrameProfiler& p) {
@@ -95,16 +99,17 @@ std::string profileSummaryText(const FrameProfiler& p) {
     if (fg.count) o << ", gpu median " << fixed(fg.median) << " ms (p95 " << fixed(fg.p95) << ")";
     o << "\n\n";
     char line[512];
-    std::snprintf(line, sizeof(line), "%-28s %9s %9s %9s %9s %9s %9s %8s %8s\n", "pass", "cpu med",
-                  "gpu last", "gpu med", "gpu p95", "gpu max", "x360 ms", "ps3 ms", "frame %");
+    std::snprintf(line, sizeof(line), "%-28s %9s %9s %9s %9s %9s %9s %8s %8s %s\n", "pass", "cpu med",
+                  "gpu last", "gpu med", "gpu p95", "gpu max", "x360 ms", "ps3 ms", "frame %", "budget");
     o << line;
     for (const Row& r : rows(p)) {
         const std::string name = std::string(2 * r.scope->depth, ' ') + r.scope->name;
-        std::snprintf(line, sizeof(line), "%-28s %9.3f %9s %9s %9s %9s %9.3f %8.3f %7.1f%%\n", name.c_str(),
-                      r.cpu.median, r.gpu.count ? fixed(r.gpu.last).c_str() : "-",
+        std::snprintf(line, sizeof(line), "%-28s %9.3f %9s %9s %9s %9s %9.3f %8.3f %7.1f%% %s\n",
+                      name.c_str(), r.cpu.median, r.gpu.count ? fixed(r.gpu.last).c_str() : "-",
                       r.gpu.count ? fixed(r.gpu.median).c_str() : "-",
                       r.gpu.count ? fixed(r.gpu.p95).c_str() : "-",
-                      r.gpu.count ? fixed(r.gpu.max).c_str() : "-", r.x360.ms, r.ps3.ms, r.shareOfFrame);
+                      r.gpu.count ? fixed(r.gpu.max).c_str() : "-", r.x360.ms, r.ps3.ms, r.shareOfFrame,
+                      overBudget(r) ? "OVER" : "ok");
         o << line;
     }
     o << "\nmemory by category (current / peak):\n";
@@ -124,8 +129,8 @@ std::string profileSummaryMarkdown(const FrameProfiler& p) {
       << "`. Frames checked: " << p.framesChecked() << ", over budget: " << p.framesOverBudget() << ".\n\n";
     o << "| pass | timing | cpu median ms | gpu last | gpu mean | gpu median | gpu p95 | gpu max | predicted "
          "x360 ms | "
-         "predicted ps3 ms | bottleneck (x360) | share of frame | share of GI budget |\n";
-    o << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+         "predicted ps3 ms | bottleneck (x360) | share of frame | share of GI budget | budget |\n";
+    o << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Row& r : rows(p)) {
         o << "| " << std::string(r.scope->depth * 2, ' ') << r.scope->path << " | "
           << (r.gpu.count ? gpuSourceName(p) : "cpu") << " | " << fixed(r.cpu.median) << " | ";
@@ -136,7 +141,7 @@ std::string profileSummaryMarkdown(const FrameProfiler& p) {
             o << "- | - | - | - | - | ";
         o << fixed(r.x360.ms) << " | " << fixed(r.ps3.ms) << " | " << r.x360.bottleneck << " | "
           << fixed(r.shareOfFrame, 1) << "% | " << (r.shareOfGi > 0 ? fixed(r.shareOfGi, 1) + "%" : "-")
-          << " |\n";
+          << " | " << (overBudget(r) ? "**OVER**" : "ok") << " |\n";
     }
     o << "\n## Memory\n\n| category | current | peak | resources |\n|---|---|---|---|\n";
     for (const auto& [category, usage] : p.allocations().categories())
