@@ -46,6 +46,23 @@ rhi::GraphicsPipelineHandle fullscreenPipeline(rhi::Device& device, const rhi::S
     return device.createPipeline(d);
 }
 
+// One fullscreen triangle into `target` with the frame's uniforms at binding 0; `bind` binds the
+// pass's own inputs.
+template <typename Bind>
+void fullscreenPass(rhi::CommandList& cmd, rhi::TextureHandle target, rhi::GraphicsPipelineHandle pipeline,
+                    const char* name, const FrameUniforms& frame, Bind&& bind) {
+    rhi::RenderPassDesc pass;
+    pass.colors[0] = {target, 0, 0, rhi::LoadOp::DontCare};
+    pass.colorCount = 1;
+    pass.debugName = name;
+    cmd.beginRenderPass(pass);
+    cmd.bindPipeline(pipeline);
+    cmd.pushUniforms(0, &frame, sizeof(frame));
+    bind();
+    cmd.draw(3);
+    cmd.endRenderPass();
+}
+
 WorkCounts fullscreenWork(uint64_t pixels, uint64_t texelsPerPixel, uint64_t aluPerPixel,
                           uint64_t bytesPerPixel) {
     WorkCounts w;
@@ -281,25 +298,12 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
     {
         auto s = scope("render.ssao");
         cmd.beginMarker("ssao");
-        RenderPassDesc pass;
-        pass.colors[0] = {targets_.aoRaw, 0, 0, LoadOp::DontCare};
-        pass.colorCount = 1;
-        pass.debugName = "ssao";
-        cmd.beginRenderPass(pass);
-        cmd.bindPipeline(ssaoPipeline_);
-        cmd.pushUniforms(0, &frame_, sizeof(frame_));
-        cmd.bindTexture(1, targets_.depth, pointClamp_);
-        cmd.bindTexture(2, targets_.normal, pointClamp_);
-        cmd.draw(3);
-        cmd.endRenderPass();
-        pass.colors[0] = {targets_.ao, 0, 0, LoadOp::DontCare};
-        pass.debugName = "ssao blur";
-        cmd.beginRenderPass(pass);
-        cmd.bindPipeline(ssaoBlurPipeline_);
-        cmd.pushUniforms(0, &frame_, sizeof(frame_));
-        cmd.bindTexture(1, targets_.aoRaw, pointClamp_);
-        cmd.draw(3);
-        cmd.endRenderPass();
+        fullscreenPass(cmd, targets_.aoRaw, ssaoPipeline_, "ssao", frame_, [&] {
+            cmd.bindTexture(1, targets_.depth, pointClamp_);
+            cmd.bindTexture(2, targets_.normal, pointClamp_);
+        });
+        fullscreenPass(cmd, targets_.ao, ssaoBlurPipeline_, "ssao blur", frame_,
+                       [&] { cmd.bindTexture(1, targets_.aoRaw, pointClamp_); });
         cmd.endMarker();
         WorkCounts w = fullscreenWork(pixels, 2 + 16 + 16, 16 * 40, 4 * 34);
         w += fullscreenWork(pixels, 16, 16, 4 * 17);
@@ -313,39 +317,24 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
     {
         auto s = scope("render.lighting");
         cmd.beginMarker("lighting");
-        RenderPassDesc pass;
-        pass.colors[0] = {targets_.hdr, 0, 0, LoadOp::DontCare};
-        pass.colorCount = 1;
-        pass.debugName = "lighting";
-        cmd.beginRenderPass(pass);
-        cmd.bindPipeline(lightingPipeline_);
-        cmd.pushUniforms(0, &frame_, sizeof(frame_));
-        cmd.bindTexture(1, targets_.albedo, pointClamp_);
-        cmd.bindTexture(2, targets_.normal, pointClamp_);
-        cmd.bindTexture(3, targets_.emissive, pointClamp_);
-        cmd.bindTexture(4, targets_.depth, pointClamp_);
-        cmd.bindTexture(5, targets_.shadow, shadowCompare_);
-        cmd.bindTexture(6, targets_.ao, pointClamp_);
-        cmd.bindTexture(7, targets_.indirect, pointClamp_);
-        cmd.bindStorageBuffer(8, scene_->lights());
-        cmd.draw(3);
-        cmd.endRenderPass();
+        fullscreenPass(cmd, targets_.hdr, lightingPipeline_, "lighting", frame_, [&] {
+            cmd.bindTexture(1, targets_.albedo, pointClamp_);
+            cmd.bindTexture(2, targets_.normal, pointClamp_);
+            cmd.bindTexture(3, targets_.emissive, pointClamp_);
+            cmd.bindTexture(4, targets_.depth, pointClamp_);
+            cmd.bindTexture(5, targets_.shadow, shadowCompare_);
+            cmd.bindTexture(6, targets_.ao, pointClamp_);
+            cmd.bindTexture(7, targets_.indirect, pointClamp_);
+            cmd.bindStorageBuffer(8, scene_->lights());
+        });
         cmd.endMarker();
         work(fullscreenWork(pixels, 7 + 9 * 4, 120 + 40 * scene_->lightCount(), 4 * 8 + 8));
     }
     {
         auto s = scope("render.tonemap");
         cmd.beginMarker("tone map");
-        RenderPassDesc pass;
-        pass.colors[0] = {targets_.output, 0, 0, LoadOp::DontCare};
-        pass.colorCount = 1;
-        pass.debugName = "tone map";
-        cmd.beginRenderPass(pass);
-        cmd.bindPipeline(tonemapPipeline_);
-        cmd.pushUniforms(0, &frame_, sizeof(frame_));
-        cmd.bindTexture(1, targets_.hdr, pointClamp_);
-        cmd.draw(3);
-        cmd.endRenderPass();
+        fullscreenPass(cmd, targets_.output, tonemapPipeline_, "tone map", frame_,
+                       [&] { cmd.bindTexture(1, targets_.hdr, pointClamp_); });
         cmd.endMarker();
         work(fullscreenWork(pixels, 1, 20, 8 + 4));
     }
