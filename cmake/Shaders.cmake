@@ -40,12 +40,13 @@ function(lpv_add_shaders)
     set(cpp ${out_dir}/${name}.cpp)
     add_custom_command(
       OUTPUT ${spv} ${glsl} ${cpp}
-      COMMAND ${GLSLANG_VALIDATOR} --quiet -V --target-env vulkan1.3 ${include_flags} -o ${spv} ${abs}
+      COMMAND ${GLSLANG_VALIDATOR} --quiet -V --target-env vulkan1.3 ${include_flags} --depfile ${spv}.d -o ${spv} ${abs}
       COMMAND ${SPIRV_CROSS_EXE} --version 450 --no-es --output ${glsl} ${spv}
       COMMAND ${CMAKE_COMMAND} -DSPV=${spv} -DGLSL=${glsl} -DOUT=${cpp} -DSYMBOL=${symbol}
               -DNAME=${name} -DSTAGE=${stage} -DNAMESPACE=${ARG_NAMESPACE} -P ${LPV_EMBED_SCRIPT}
       DEPENDS ${abs} ${LPV_EMBED_SCRIPT}
-      IMPLICIT_DEPENDS CXX ${abs}
+      # glslang lists the #included files, so editing a shared .glsl rebuilds its users.
+      DEPFILE ${spv}.d
       COMMENT "Compiling shader ${name}"
       VERBATIM)
     list(APPEND generated ${cpp})
