@@ -82,7 +82,9 @@ uint64_t giMemory(const FrameProfiler& p) {
 
 // A pass is over budget when its median alone exceeds the frame budget, or, for GI passes, the
 // GI budget.
-bool overBudget(const Row& r) { return r.shareOfFrame > 100.0 || r.shareOfGi > 100.0; }
+bool overBudget(const Row& r) {
+    return r.shareOfFrame > 100.0 || r.shareOfGi > 100.0;
+}
 
 } // namespace
 
