@@ -1,6 +1,7 @@
 // Commands of the GL backend, run on the context as they are recorded (see GlCommandList.h).
 // Argument checks mirror the Vulkan backend's so misuse fails the same way on both.
 #include "GlCommandList.h"
+#include "../src/DescValidation.h"
 
 #include "GlDevice.h"
 #include "GlFormats.h"
@@ -165,16 +166,7 @@ void GlCommandList::setViewport(const Viewport& vp) {
 void GlCommandList::setScissor(int32_t x, int32_t y, uint32_t width, uint32_t height) {
     requireFrame("setScissor");
     // Clipped at the origin like the Vulkan backend's (which must: Vulkan rejects negative offsets).
-    if (x < 0) {
-        const uint32_t cut = uint32_t(-int64_t(x));
-        width = width > cut ? width - cut : 0;
-        x = 0;
-    }
-    if (y < 0) {
-        const uint32_t cut = uint32_t(-int64_t(y));
-        height = height > cut ? height - cut : 0;
-        y = 0;
-    }
+    clipScissorToOrigin(x, y, width, height);
     device_.gl().glScissor(x, y, GLsizei(std::min<uint32_t>(width, 0x7fffffffu)),
                            GLsizei(std::min<uint32_t>(height, 0x7fffffffu)));
 }

@@ -1,6 +1,7 @@
 // Buffers, textures and samplers of the GL backend. Deleting a GL object that queued commands
 // still use is safe: the driver keeps it alive until they finish, which is the deferral the RHI
 // asks of destroy().
+#include "../src/DescValidation.h"
 #include "GlDevice.h"
 #include "GlFormats.h"
 
@@ -30,25 +31,7 @@ BufferHandle GlDevice::createBuffer(const BufferDesc& desc, const void* initialD
 }
 
 TextureHandle GlDevice::createTexture(const TextureDesc& desc) {
-    const std::string where = "texture '" + desc.debugName + "'";
-    if (desc.width == 0 || desc.height == 0 || desc.depthOrLayers == 0) throw Error(where + ": zero extent");
-    if (desc.format == Format::Undefined) throw Error(where + ": undefined format");
-    if (desc.kind == TextureKind::Tex2D && desc.depthOrLayers != 1)
-        throw Error(where + ": a 2D texture has depthOrLayers 1");
-    uint32_t maxMips = 1;
-    for (uint32_t s =
-             std::max({desc.width, desc.height, desc.kind == TextureKind::Tex3D ? desc.depthOrLayers : 1u});
-         s > 1; s >>= 1)
-        ++maxMips;
-    if (desc.mipLevels == 0 || desc.mipLevels > maxMips)
-        throw Error(where + ": mipLevels " + std::to_string(desc.mipLevels) + " (1.." +
-                    std::to_string(maxMips) + ")");
-    const uint32_t maxExtent =
-        desc.kind == TextureKind::Tex3D ? caps_.max3DTextureSize : caps_.max2DTextureSize;
-    if (desc.width > maxExtent || desc.height > maxExtent ||
-        (desc.kind == TextureKind::Tex3D && desc.depthOrLayers > maxExtent))
-        throw Error(where + ": " + std::to_string(desc.width) + "x" + std::to_string(desc.height) + "x" +
-                    std::to_string(desc.depthOrLayers) + " exceeds the device's limits");
+    validateTextureDesc(desc, caps_);
 
     const GlFormat f = glFormat(desc.format);
     GlTexture t;

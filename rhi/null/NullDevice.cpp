@@ -5,6 +5,7 @@
 // 1 us of "GPU time", and a frame's results become readable once the frame is complete, which is
 // when frame + framesInFlight begins (the real backends' fence rule) or after waitIdle().
 #include "../src/BackendFactory.h"
+#include "../src/DescValidation.h"
 #include "../src/HandlePool.h"
 
 #include "rhi/Error.h"
@@ -99,8 +100,7 @@ public:
         return h;
     }
     TextureHandle createTexture(const TextureDesc& desc) override {
-        if (desc.width == 0 || desc.height == 0 || desc.depthOrLayers == 0)
-            throw Error("texture '" + desc.debugName + "': zero extent");
+        validateTextureDesc(desc, caps_);
         const TextureHandle h = textures.insert({desc});
         allocations_.add(ResourceType::Texture, h.bits,
                          {ResourceType::Texture, desc.debugName, desc.category, textureBytes(desc)});

@@ -1,5 +1,6 @@
 // Command recording for the Vulkan backend.
 #include "VkCommandList.h"
+#include "../src/DescValidation.h"
 
 #include "VkBarriers.h"
 #include "VkFormats.h"
@@ -179,16 +180,7 @@ void VulkanCommandList::setViewport(const Viewport& vp) {
 void VulkanCommandList::setScissor(int32_t x, int32_t y, uint32_t width, uint32_t height) {
     requireFrame("setScissor");
     // Vulkan rejects negative offsets; clip the rectangle to the framebuffer's origin instead.
-    if (x < 0) {
-        const uint32_t cut = uint32_t(-int64_t(x));
-        width = width > cut ? width - cut : 0;
-        x = 0;
-    }
-    if (y < 0) {
-        const uint32_t cut = uint32_t(-int64_t(y));
-        height = height > cut ? height - cut : 0;
-        y = 0;
-    }
+    clipScissorToOrigin(x, y, width, height);
     const VkRect2D r{{x, y}, {width, height}};
     vkCmdSetScissor(cmd_, 0, 1, &r);
 }

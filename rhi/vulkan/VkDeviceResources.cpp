@@ -1,5 +1,6 @@
 // Creation and destruction of buffers, textures, samplers and pipelines. Each buffer and image has
 // its own dedicated VkDeviceMemory: the engine makes few, large resources.
+#include "../src/DescValidation.h"
 #include "VkCheck.h"
 #include "VkFormats.h"
 #include "VkPipelines.h"
@@ -120,19 +121,8 @@ BufferHandle VulkanDevice::createBuffer(const BufferDesc& desc, const void* init
 }
 
 TextureHandle VulkanDevice::createTexture(const TextureDesc& desc) {
+    validateTextureDesc(desc, caps_);
     const std::string where = "texture '" + desc.debugName + "'";
-    if (desc.width == 0 || desc.height == 0 || desc.depthOrLayers == 0) throw Error(where + ": zero extent");
-    if (desc.format == Format::Undefined) throw Error(where + ": undefined format");
-    if (desc.kind == TextureKind::Tex2D && desc.depthOrLayers != 1)
-        throw Error(where + ": a 2D texture has depthOrLayers 1");
-    uint32_t maxMips = 1;
-    for (uint32_t s =
-             std::max({desc.width, desc.height, desc.kind == TextureKind::Tex3D ? desc.depthOrLayers : 1u});
-         s > 1; s >>= 1)
-        ++maxMips;
-    if (desc.mipLevels == 0 || desc.mipLevels > maxMips)
-        throw Error(where + ": mipLevels " + std::to_string(desc.mipLevels) + " (1.." +
-                    std::to_string(maxMips) + ")");
     if (desc.mipLevels > 16) throw Error(where + ": more than 16 mip levels");
 
     const VkDevice device = ctx_->device;

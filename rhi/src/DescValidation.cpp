@@ -1,0 +1,46 @@
+// Shared argument checks.
+#include "DescValidation.h"
+
+#include "rhi/Error.h"
+
+#include <algorithm>
+#include <string>
+
+namespace lpv::rhi {
+
+void validateTextureDesc(const TextureDesc& desc, const Caps& caps) {
+    const std::string where = "texture '" + desc.debugName + "'";
+    if (desc.width == 0 || desc.height == 0 || desc.depthOrLayers == 0) throw Error(where + ": zero extent");
+    if (desc.format == Format::Undefined) throw Error(where + ": undefined format");
+    if (desc.kind == TextureKind::Tex2D && desc.depthOrLayers != 1)
+        throw Error(where + ": a 2D texture has depthOrLayers 1");
+    uint32_t maxMips = 1;
+    for (uint32_t s =
+             std::max({desc.width, desc.height, desc.kind == TextureKind::Tex3D ? desc.depthOrLayers : 1u});
+         s > 1; s >>= 1)
+        ++maxMips;
+    if (desc.mipLevels == 0 || desc.mipLevels > maxMips)
+        throw Error(where + ": mipLevels " + std::to_string(desc.mipLevels) + " (1.." +
+                    std::to_string(maxMips) + ")");
+    const uint32_t maxExtent =
+        desc.kind == TextureKind::Tex3D ? caps.max3DTextureSize : caps.max2DTextureSize;
+    if (maxExtent && (desc.width > maxExtent || desc.height > maxExtent ||
+                      (desc.kind == TextureKind::Tex3D && desc.depthOrLayers > maxExtent)))
+        throw Error(where + ": " + std::to_string(desc.width) + "x" + std::to_string(desc.height) + "x" +
+                    std::to_string(desc.depthOrLayers) + " exceeds the device's limits");
+}
+
+void clipScissorToOrigin(int32_t& x, int32_t& y, uint32_t& width, uint32_t& height) {
+    if (x < 0) {
+        const uint32_t cut = uint32_t(-int64_t(x));
+        width = width > cut ? width - cut : 0;
+        x = 0;
+    }
+    if (y < 0) {
+        const uint32_t cut = uint32_t(-int64_t(y));
+        height = height > cut ? height - cut : 0;
+        y = 0;
+    }
+}
+
+} // namespace lpv::rhi

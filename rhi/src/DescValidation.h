@@ -1,0 +1,18 @@
+// Argument checks every backend makes the same way, so misuse gives one message whatever the API.
+#pragma once
+
+#include "rhi/Device.h"
+
+#include <cstdint>
+
+namespace lpv::rhi {
+
+// Throws rhi::Error naming the texture when its extent, format, kind or mip count is invalid or
+// beyond the device's limits.
+void validateTextureDesc(const TextureDesc& desc, const Caps& caps);
+
+// Clips a scissor rectangle to the framebuffer's origin: Vulkan rejects negative offsets, and GL
+// must cut the same pixels.
+void clipScissorToOrigin(int32_t& x, int32_t& y, uint32_t& width, uint32_t& height);
+
+} // namespace lpv::rhi
