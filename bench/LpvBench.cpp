@@ -9,6 +9,7 @@
 //     CryEngine 3 console setup (32^3, 128^2 RSM, 6 iterations, RGBA8).
 //
 //   lpv_bench [--backends=vulkan,gl-egl,gl-osmesa] [--runs=N] [--frames=N] [--scenes=cornell,atrium]
+//             [--parts=propagation,frames,profiler,console]
 #include "BenchShaders.h"
 
 #include "engine/config/Config.h"
@@ -313,6 +314,7 @@ int main(int argc, char** argv) {
         {"gl-osmesa", rhi::BackendKind::OpenGL, rhi::GlHeadless::OSMesa}};
     std::vector<std::string> scenes = {"cornell", "atrium"};
     int runs = 5, frames = 12;
+    std::string parts = "propagation,frames,profiler,console";
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         const auto list = [&](const std::string& value) {
@@ -327,6 +329,8 @@ int main(int argc, char** argv) {
             runs = std::max(1, std::atoi(a.c_str() + 7));
         else if (a.rfind("--frames=", 0) == 0)
             frames = std::max(1, std::atoi(a.c_str() + 9));
+        else if (a.rfind("--parts=", 0) == 0)
+            parts = a.substr(8);
         else if (a.rfind("--scenes=", 0) == 0)
             scenes = list(a.substr(9));
         else if (a.rfind("--backends=", 0) == 0) {
@@ -337,44 +341,53 @@ int main(int argc, char** argv) {
             backends = chosen;
         } else {
             std::fprintf(stderr,
-                         "usage: %s [--backends=...] [--runs=N] [--frames=N] [--scenes=cornell,atrium]\n",
+                         "usage: %s [--backends=...] [--runs=N] [--frames=N] [--scenes=cornell,atrium]\n"
+                         "          [--parts=propagation,frames,profiler,console]\n",
                          argv[0]);
             return 2;
         }
     }
-    std::printf("## Propagation, 32^3 x 8 iterations, RGBA16F (median of %d, ms)\n\n", runs);
-    std::printf("| backend   | shipped ms | baseline ms | speedup | max rel diff | timing source    |\n");
-    std::printf("|-----------|------------|------------|---------|-----------|------------------|\n");
+    const auto want = [&](const char* part) { return parts.find(part) != std::string::npos; };
     int failures = 0;
-    for (const auto& b : backends) {
-        try {
-            benchPropagation(b, runs);
-        } catch (const std::exception& e) {
-            std::printf("| %-9s | failed: %s\n", b.name.c_str(), e.what());
-            ++failures;
-        }
-    }
-    std::printf("\n## Frames (GI on, %d frames, median)\n", frames);
-    for (const std::string& scene : scenes)
+    if (want("propagation")) {
+        std::printf("## Propagation, 32^3 x 8 iterations, RGBA16F (median of %d, ms)\n\n", runs);
+        std::printf("| backend   | shipped ms | baseline ms | speedup | max rel diff | timing source    |\n");
+        std::printf("|-----------|------------|------------|---------|-----------|------------------|\n");
         for (const auto& b : backends) {
             try {
-                benchFrames(b, scene, frames);
+                benchPropagation(b, runs);
             } catch (const std::exception& e) {
-                std::printf("%s on %s failed: %s\n", scene.c_str(), b.name.c_str(), e.what());
+                std::printf("| %-9s | failed: %s\n", b.name.c_str(), e.what());
                 ++failures;
             }
         }
-    std::printf("\n## Profiler overhead (Cornell box, GI off, 1280x720, median frame ms of %d)\n\n", frames);
-    std::printf("| backend   | no profiler | CPU scopes | CPU+GPU scopes | timing source |\n");
-    std::printf("|---|---|---|---|---|\n");
-    for (const auto& b : backends) {
-        try {
-            benchProfilerOverhead(b, frames);
-        } catch (const std::exception& e) {
-            std::printf("| %-9s | failed: %s\n", b.name.c_str(), e.what());
-            ++failures;
+    }
+    if (want("frames")) {
+        std::printf("\n## Frames (GI on, %d frames, median)\n", frames);
+        for (const std::string& scene : scenes)
+            for (const auto& b : backends) {
+                try {
+                    benchFrames(b, scene, frames);
+                } catch (const std::exception& e) {
+                    std::printf("%s on %s failed: %s\n", scene.c_str(), b.name.c_str(), e.what());
+                    ++failures;
+                }
+            }
+    }
+    if (want("profiler")) {
+        std::printf("\n## Profiler overhead (Cornell box, GI off, 1280x720, median frame ms of %d)\n\n",
+                    frames);
+        std::printf("| backend   | no profiler | CPU scopes | CPU+GPU scopes | timing source |\n");
+        std::printf("|---|---|---|---|---|\n");
+        for (const auto& b : backends) {
+            try {
+                benchProfilerOverhead(b, frames);
+            } catch (const std::exception& e) {
+                std::printf("| %-9s | failed: %s\n", b.name.c_str(), e.what());
+                ++failures;
+            }
         }
     }
-    consolePrediction();
+    if (want("console")) consolePrediction();
     return failures ? 1 : 0;
 }

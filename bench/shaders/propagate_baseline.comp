@@ -30,7 +30,7 @@ void main() {
         vec3 d = vec3(offsets[a]);
         // Far face.
         float farSolidAngle = 0.4006696846;
-        result += shCosineLobe(d) * (farSolidAngle / PI) * max(0.0, shEvaluate(sh, d));
+        result += shCosineLobe(d) * (farSolidAngle / PI) * shEvaluate(sh, d);
         // Side faces: the two axes perpendicular to d, both signs.
         vec3 helper = abs(d.x) > 0.5 ? vec3(0, 1, 0) : vec3(1, 0, 0);
         vec3 u = normalize(cross(d, helper));
@@ -39,7 +39,7 @@ void main() {
         for (int f = 0; f < 4; ++f) {
             float sideSolidAngle = 0.4234413544;
             vec3 toFace = d + 0.5 * sides[f];
-            result += shCosineLobe(sides[f]) * (sideSolidAngle / PI) * max(0.0, shEvaluate(sh, toFace));
+            result += shCosineLobe(sides[f]) * (sideSolidAngle / PI) * shEvaluate(sh, toFace);
         }
     }
     imageStore(dst, cell, result);

@@ -1,92 +1,192 @@
-// The shipped propagation kernel (included by propagate_<format>.comp, which defines SH_FORMAT).
+// The shipped propagation kernel, included by propagate_<format>.glsl (SH_FORMAT, the packed
+// texels that carry a cell's 12 coefficients between iterations, and their packing), compiled
+// once per iteration role (gi/CMakeLists.txt): FROM_INJECTION on the first iteration, TO_RESULT on
+// the last. Roles are compile-time because a CPU rasterizer runs both sides of a uniform branch.
 //
-// One thread per destination cell and all three colour channels, in 8x8x1 groups (faster than
-// 4x4x4 on this driver, lpv-notes). The 6 x 5 face geometry is compile-time constant: every face's
-// evaluation direction has three non-zero basis terms and every re-emission lobe two, so after
-// unrolling the compiler folds the zeros and a face costs a 3-term dot, a clamp and a 2-term
-// update. Iteration 0 reads the float injection volume and also writes the accumulation as
-// injected + propagated, so no separate copy pass is needed.
+// Why it looks like this (figures in the README):
+// - Propagation is linear in the SH coefficients: the five faces a neighbour lights, each
+//   evaluated toward its face and re-emitted as a cosine lobe, sum to one sparse 4x4 matrix per
+//   direction (constants below, derived in PropagationScheme.h). A neighbour costs 6 multiply-adds
+//   per channel instead of five 3-term dots, clamps and lobe updates.
+// - Linearity also folds the accumulation into the iteration (Horner's rule): with x the injected
+//   volume, y0 = x and y(k+1) = x + P y(k), so y(N) = x + Px + ... + P^N x is the accumulated
+//   result. No accumulation texture is read or written until the last iteration stores y(N).
+// - Memory operations dominate on every device we measured (a CPU rasterizer pays about the same
+//   per texel fetch or store whatever its size), so each thread owns a 2x2 column of cells and
+//   walks it along z: the z neighbours come from registers, the x/y neighbours inside the 2x2
+//   from registers, and only the 8 cells around it are fetched per step (3 fetched cells per
+//   output cell instead of 6). Partial sums travel packed (fewer, wider fetches and stores).
 #include "lpv_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(binding = 0, std140) uniform Propagate {
-    ivec4 grid;    // x: cells per axis, y: 1 on the first iteration, z: source is rgba8-encoded
-    vec4 encode;   // x: rgba8 range (|coefficient| stored as v * 2 - 1 times range)
+    ivec4 grid;  // x: cells per axis, y: cells per thread along z
+    vec4 encode; // x: rgba8 range
 } params;
-layout(binding = 1) uniform sampler3D srcRed;
-layout(binding = 2) uniform sampler3D srcGreen;
-layout(binding = 3) uniform sampler3D srcBlue;
-layout(binding = 4, SH_FORMAT) uniform writeonly image3D dstRed;
-layout(binding = 5, SH_FORMAT) uniform writeonly image3D dstGreen;
-layout(binding = 6, SH_FORMAT) uniform writeonly image3D dstBlue;
-layout(binding = 7, SH_FORMAT) uniform image3D accRed;
-layout(binding = 8, SH_FORMAT) uniform image3D accGreen;
-layout(binding = 9, SH_FORMAT) uniform image3D accBlue;
-
-const float FAR_W = 0.4006696846 / PI;   // far-face solid angle / pi
-const float SIDE_W = 0.4234413544 / PI;  // side-face solid angle / pi
-const float AX = 0.894427191;            // 2 / sqrt(5)
-const float LAT = 0.447213595;           // 1 / sqrt(5)
-
-const ivec3 AXES[6] = ivec3[6](ivec3(1, 0, 0), ivec3(-1, 0, 0), ivec3(0, 1, 0), ivec3(0, -1, 0), ivec3(0, 0, 1),
-                               ivec3(0, 0, -1));
-
-vec4 decode(vec4 v) { return params.grid.z != 0 ? (v * 2.0 - 1.0) * params.encode.x : v; }
-#ifdef SH_ENCODED
-vec4 encodeSh(vec4 v) { return clamp(v / params.encode.x * 0.5 + 0.5, 0.0, 1.0); }
-vec4 decodeStored(vec4 v) { return (v * 2.0 - 1.0) * params.encode.x; }
+layout(binding = 1) uniform sampler3D injectedRed;
+layout(binding = 2) uniform sampler3D injectedGreen;
+layout(binding = 3) uniform sampler3D injectedBlue;
+#ifndef FROM_INJECTION
+layout(binding = 4) uniform usampler3D src0;
+#if PACKED_TEXELS > 1
+layout(binding = 5) uniform usampler3D src1;
+#endif
+#if PACKED_TEXELS > 2
+layout(binding = 6) uniform usampler3D src2;
+#endif
+#endif
+#ifdef TO_RESULT
+layout(binding = 10, SH_FORMAT) uniform writeonly image3D resultRed;
+layout(binding = 11, SH_FORMAT) uniform writeonly image3D resultGreen;
+layout(binding = 12, SH_FORMAT) uniform writeonly image3D resultBlue;
 #else
-vec4 encodeSh(vec4 v) { return v; }
-vec4 decodeStored(vec4 v) { return v; }
+layout(binding = 7, PACKED0_FORMAT) uniform writeonly uimage3D dst0;
+#if PACKED_TEXELS > 1
+layout(binding = 8, PACKED1_FORMAT) uniform writeonly uimage3D dst1;
+#endif
+#if PACKED_TEXELS > 2
+layout(binding = 9, PACKED2_FORMAT) uniform writeonly uimage3D dst2;
+#endif
 #endif
 
+struct Sh3 {
+    vec4 r, g, b;
+};
+// Defined by the format's .comp file.
+vec4 encodeSh(vec4 v);
+Sh3 unpackCell(uvec4 t0, uvec4 t1, uvec4 t2);
+void packCell(Sh3 v, out uvec4 t0, out uvec4 t1, out uvec4 t2);
+
+// The transfer from a neighbour one cell away along axis e (PropagationScheme.h): with p the
+// source at cell - e (light travelling +e) and m the source at cell + e (travelling -e), and a the
+// coefficient of e's axis, the cell gains
+//   [0] += KA (p0 + m0) + KB (pa - ma),  [a] += KC (p0 - m0) + KD (pa + ma),
+//   [other two] += KE (p + m).
+const float FAR_W = 0.4006696846 / PI;  // far-face solid angle / pi
+const float SIDE_W = 0.4234413544 / PI; // side-face solid angle / pi
+const float AX = 0.894427191;           // 2 / sqrt(5): side-face direction along the axis
+const float LAT = 0.447213595;          // 1 / sqrt(5): and across it
+const float KA = SH_COS_C0 * SH_Y0 * (FAR_W + 4.0 * SIDE_W);
+const float KB = SH_COS_C0 * SH_Y1 * (FAR_W + 4.0 * AX * SIDE_W);
+const float KC = SH_COS_C1 * SH_Y0 * FAR_W;
+const float KD = SH_COS_C1 * SH_Y1 * FAR_W;
+const float KE = 2.0 * SH_COS_C1 * SH_Y1 * LAT * SIDE_W;
+
+// Coefficient order (Y00, y, z, x): x is [3], y is [1], z is [2].
+vec4 transferX(vec4 p, vec4 m) {
+    return vec4(KA * (p.x + m.x) + KB * (p.w - m.w), KE * (p.y + m.y), KE * (p.z + m.z),
+                KC * (p.x - m.x) + KD * (p.w + m.w));
+}
+vec4 transferY(vec4 p, vec4 m) {
+    return vec4(KA * (p.x + m.x) + KB * (p.y - m.y), KC * (p.x - m.x) + KD * (p.y + m.y), KE * (p.z + m.z),
+                KE * (p.w + m.w));
+}
+vec4 transferZ(vec4 p, vec4 m) {
+    return vec4(KA * (p.x + m.x) + KB * (p.z - m.z), KE * (p.y + m.y), KC * (p.x - m.x) + KD * (p.z + m.z),
+                KE * (p.w + m.w));
+}
+
+// What a cell receives from its six neighbours (mx: the neighbour at cell - x, px: at cell + x...).
+Sh3 gather(Sh3 mx, Sh3 px, Sh3 my, Sh3 py, Sh3 mz, Sh3 pz) {
+    Sh3 o;
+    o.r = transferX(mx.r, px.r) + transferY(my.r, py.r) + transferZ(mz.r, pz.r);
+    o.g = transferX(mx.g, px.g) + transferY(my.g, py.g) + transferZ(mz.g, pz.g);
+    o.b = transferX(mx.b, px.b) + transferY(my.b, py.b) + transferZ(mz.b, pz.b);
+    return o;
+}
+
+Sh3 add(Sh3 a, Sh3 b) { return Sh3(a.r + b.r, a.g + b.g, a.b + b.b); }
+
+// The injection volume at a cell (zero outside the volume; the coordinate is clamped first so no
+// fetch is ever out of range).
+Sh3 loadInjected(ivec3 c, int n) {
+    const float inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n))) ? 1.0 : 0.0;
+    const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
+    return Sh3(texelFetch(injectedRed, k, 0) * inside, texelFetch(injectedGreen, k, 0) * inside,
+               texelFetch(injectedBlue, k, 0) * inside);
+}
+
+// The previous iteration's partial sum at a cell (zero outside the volume).
+Sh3 loadSource(ivec3 c, int n) {
+#ifdef FROM_INJECTION
+    return loadInjected(c, n);
+#else
+    const bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
+    const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
+    uvec4 t0 = texelFetch(src0, k, 0), t1 = uvec4(0u), t2 = uvec4(0u);
+#if PACKED_TEXELS > 1
+    t1 = texelFetch(src1, k, 0);
+#endif
+#if PACKED_TEXELS > 2
+    t2 = texelFetch(src2, k, 0);
+#endif
+    if (!inside) return Sh3(vec4(0.0), vec4(0.0), vec4(0.0));
+    return unpackCell(t0, t1, t2);
+#endif
+}
+
+void storeCell(ivec3 c, int n, Sh3 v) {
+    if (any(greaterThanEqual(c, ivec3(n)))) return; // odd sizes: the 2x2 column may stick out
+#ifdef TO_RESULT
+    imageStore(resultRed, c, encodeSh(v.r));
+    imageStore(resultGreen, c, encodeSh(v.g));
+    imageStore(resultBlue, c, encodeSh(v.b));
+#else
+    uvec4 t0, t1, t2;
+    packCell(v, t0, t1, t2);
+    imageStore(dst0, c, t0);
+#if PACKED_TEXELS > 1
+    imageStore(dst1, c, t1);
+#endif
+#if PACKED_TEXELS > 2
+    imageStore(dst2, c, t2);
+#endif
+#endif
+}
+
 void main() {
-    ivec3 cell = ivec3(gl_GlobalInvocationID);
-    int n = params.grid.x;
-    if (any(greaterThanEqual(cell, ivec3(n)))) return;
-    vec4 r = vec4(0.0), g = vec4(0.0), b = vec4(0.0);
-    for (int a = 0; a < 6; ++a) {
-        ivec3 nb = cell - AXES[a];
-        if (any(lessThan(nb, ivec3(0))) || any(greaterThanEqual(nb, ivec3(n)))) continue;
-        vec4 sr = decode(texelFetch(srcRed, nb, 0));
-        vec4 sg = decode(texelFetch(srcGreen, nb, 0));
-        vec4 sb = decode(texelFetch(srcBlue, nb, 0));
-        vec3 d = vec3(AXES[a]);
-        int axis = a / 2;
-        vec3 u = axis == 0 ? vec3(0, 1, 0) : vec3(1, 0, 0);
-        vec3 v = axis == 2 ? vec3(0, 1, 0) : vec3(0, 0, 1);
-        // Far face: evaluated along d, re-emitted along d.
-        vec4 basis = shBasis(d);
-        vec4 lobe = shCosineLobe(d) * FAR_W;
-        r += lobe * max(0.0, dot(sr, basis));
-        g += lobe * max(0.0, dot(sg, basis));
-        b += lobe * max(0.0, dot(sb, basis));
-        // Side faces: evaluated toward the face centre, re-emitted along the face normal.
-        vec3 sides[4] = vec3[4](u, -u, v, -v);
-        for (int f = 0; f < 4; ++f) {
-            vec4 sbasis = shBasis(AX * d + LAT * sides[f]);
-            vec4 slobe = shCosineLobe(sides[f]) * SIDE_W;
-            r += slobe * max(0.0, dot(sr, sbasis));
-            g += slobe * max(0.0, dot(sg, sbasis));
-            b += slobe * max(0.0, dot(sb, sbasis));
-        }
+    const int n = params.grid.x;
+    const ivec2 o = ivec2(gl_GlobalInvocationID.xy) * 2; // the 2x2 column: o, o+x, o+y, o+x+y
+    const int z0 = int(gl_GlobalInvocationID.z) * params.grid.y;
+    if (o.x >= n || o.y >= n || z0 >= n) return;
+    const int z1 = min(z0 + params.grid.y, n);
+    // The column's cells below, at and above the current slice: 0 = (0,0), 1 = (1,0), 2 = (0,1),
+    // 3 = (1,1) relative to o.
+    Sh3 below0 = loadSource(ivec3(o, z0 - 1), n), below1 = loadSource(ivec3(o + ivec2(1, 0), z0 - 1), n);
+    Sh3 below2 = loadSource(ivec3(o + ivec2(0, 1), z0 - 1), n), below3 = loadSource(ivec3(o + ivec2(1, 1), z0 - 1), n);
+    Sh3 at0 = loadSource(ivec3(o, z0), n), at1 = loadSource(ivec3(o + ivec2(1, 0), z0), n);
+    Sh3 at2 = loadSource(ivec3(o + ivec2(0, 1), z0), n), at3 = loadSource(ivec3(o + ivec2(1, 1), z0), n);
+    for (int z = z0; z < z1; ++z) {
+        const Sh3 above0 = loadSource(ivec3(o, z + 1), n), above1 = loadSource(ivec3(o + ivec2(1, 0), z + 1), n);
+        const Sh3 above2 = loadSource(ivec3(o + ivec2(0, 1), z + 1), n);
+        const Sh3 above3 = loadSource(ivec3(o + ivec2(1, 1), z + 1), n);
+        // The ring around the column in this slice: left, right, bottom (-y) and top (+y).
+        const Sh3 left0 = loadSource(ivec3(o + ivec2(-1, 0), z), n), left2 = loadSource(ivec3(o + ivec2(-1, 1), z), n);
+        const Sh3 right1 = loadSource(ivec3(o + ivec2(2, 0), z), n), right3 = loadSource(ivec3(o + ivec2(2, 1), z), n);
+        const Sh3 bottom0 = loadSource(ivec3(o + ivec2(0, -1), z), n);
+        const Sh3 bottom1 = loadSource(ivec3(o + ivec2(1, -1), z), n);
+        const Sh3 top2 = loadSource(ivec3(o + ivec2(0, 2), z), n), top3 = loadSource(ivec3(o + ivec2(1, 2), z), n);
+
+        Sh3 out0 = gather(left0, at1, bottom0, at2, below0, above0);
+        Sh3 out1 = gather(at0, right1, bottom1, at3, below1, above1);
+        Sh3 out2 = gather(left2, at3, at0, top2, below2, above2);
+        Sh3 out3 = gather(at2, right3, at1, top3, below3, above3);
+        // + x: on the first iteration the source is x itself; later it is read from the injection.
+#ifdef FROM_INJECTION
+        out0 = add(out0, at0), out1 = add(out1, at1), out2 = add(out2, at2), out3 = add(out3, at3);
+#else
+        out0 = add(out0, loadInjected(ivec3(o, z), n));
+        out1 = add(out1, loadInjected(ivec3(o + ivec2(1, 0), z), n));
+        out2 = add(out2, loadInjected(ivec3(o + ivec2(0, 1), z), n));
+        out3 = add(out3, loadInjected(ivec3(o + ivec2(1, 1), z), n));
+#endif
+        storeCell(ivec3(o, z), n, out0);
+        storeCell(ivec3(o + ivec2(1, 0), z), n, out1);
+        storeCell(ivec3(o + ivec2(0, 1), z), n, out2);
+        storeCell(ivec3(o + ivec2(1, 1), z), n, out3);
+
+        below0 = at0, below1 = at1, below2 = at2, below3 = at3;
+        at0 = above0, at1 = above1, at2 = above2, at3 = above3;
     }
-    imageStore(dstRed, cell, encodeSh(r));
-    imageStore(dstGreen, cell, encodeSh(g));
-    imageStore(dstBlue, cell, encodeSh(b));
-    vec4 ar, ag, ab;
-    if (params.grid.y != 0) {
-        // First iteration: the accumulation starts from the injected volume (float, unencoded).
-        ar = texelFetch(srcRed, cell, 0);
-        ag = texelFetch(srcGreen, cell, 0);
-        ab = texelFetch(srcBlue, cell, 0);
-    } else {
-        ar = decodeStored(imageLoad(accRed, cell));
-        ag = decodeStored(imageLoad(accGreen, cell));
-        ab = decodeStored(imageLoad(accBlue, cell));
-    }
-    imageStore(accRed, cell, encodeSh(ar + r));
-    imageStore(accGreen, cell, encodeSh(ag + g));
-    imageStore(accBlue, cell, encodeSh(ab + b));
 }

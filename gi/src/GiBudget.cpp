@@ -1,6 +1,7 @@
 // GI resource plan and its check against the platform profile.
 #include "gi/GiBudget.h"
 
+#include "gi/LpvVolumes.h"
 #include "rhi/Format.h"
 
 #include <cstdio>
@@ -13,14 +14,17 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
     const uint64_t shBytes = rhi::bytesPerPixel(shTextureFormat(s.shFormat));
     // Injection blends in float: 32-bit floats for rgba32f volumes, half floats otherwise.
     const uint64_t injectBytes = s.shFormat == ShFormat::Rgba32f ? 16 : 8;
+    uint64_t packedBytes = 0;
+    for (uint32_t t = 0; t < packedTexelCount(s.shFormat); ++t)
+        packedBytes += rhi::bytesPerPixel(packedTexelFormat(s.shFormat, t));
     return {
         {"rsm depth", "gi.rsm", rsm * 4},
         {"rsm normal", "gi.rsm", rsm * 8},
         {"rsm flux", "gi.rsm", rsm * 8},
         {"vpl buffer", "gi.vpl", uint64_t(s.vplCount) * 48},
         {"injection volume (3 SH textures)", "gi.lpv", 3 * cells * injectBytes},
-        {"propagation ping (3 SH textures)", "gi.lpv", 3 * cells * shBytes},
-        {"propagation pong (3 SH textures)", "gi.lpv", 3 * cells * shBytes},
+        {"propagation partial sums, ping (packed)", "gi.lpv", cells * packedBytes},
+        {"propagation partial sums, pong (packed)", "gi.lpv", cells * packedBytes},
         {"accumulation (3 SH textures)", "gi.lpv", 3 * cells * shBytes},
     };
 }

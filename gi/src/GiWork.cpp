@@ -2,6 +2,7 @@
 // writes, times the threads dispatched (or points/pixels drawn).
 #include "gi/GiWork.h"
 
+#include "gi/LpvVolumes.h"
 #include "rhi/Format.h"
 
 namespace lpv::gi {
@@ -43,6 +44,28 @@ WorkCounts injectWork(const LpvSettings& s) {
 }
 
 WorkCounts propagateWork(const LpvSettings& s) {
+    // The shipped kernel (propagate_body.glsl): per cell and iteration, 3 fetched cells of packed
+    // partial sums (the 2x2 column's ring and the slice above; the rest come from registers), the
+    // injected x (3 texels), one packed store (3 texels on the last iteration, 1 per channel).
+    const uint64_t cells = uint64_t(s.gridSize) * s.gridSize * s.gridSize;
+    const uint64_t packed = packedTexelCount(s.shFormat);
+    uint64_t packedBytes = 0;
+    for (uint32_t t = 0; t < packed; ++t)
+        packedBytes += rhi::bytesPerPixel(packedTexelFormat(s.shFormat, t));
+    const uint64_t injectBytes = s.shFormat == ShFormat::Rgba32f ? 16 : 8;
+    WorkCounts one;
+    one.cells = cells;
+    one.texelsRead = cells * (3 * packed + 3);
+    one.texelsWritten = cells * packed;
+    // 6 neighbours x 3 channels x (6 multiply-adds + 4 sums of the +-e pair), the x term, and the
+    // unpacking of 4 cells' and packing of one cell's 12 coefficients.
+    one.aluOps = cells * (6 * 3 * 10 + 12 + 5 * 12);
+    // Each packed texel comes from memory about once (texture cache), x once, one store.
+    one.bytesMoved = cells * (packedBytes + 3 * injectBytes + packedBytes);
+    return one * s.iterations;
+}
+
+WorkCounts gatherPropagationWork(const LpvSettings& s) {
     const uint64_t cells = uint64_t(s.gridSize) * s.gridSize * s.gridSize;
     const uint64_t bpp = rhi::bytesPerPixel(shTextureFormat(s.shFormat));
     WorkCounts one;

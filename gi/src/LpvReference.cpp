@@ -66,11 +66,13 @@ ShVolume propagateStep(const ShVolume& src) {
                         const PropagationFace& face = faces[size_t(a)][size_t(f)];
                         const glm::vec4 basis = shBasis(face.evalDirection);
                         // Flux through the face, re-emitted as a cosine lobe of intensity flux / pi.
+                        // Not clamped at zero: the negative part of an L1 lobe travels too, which
+                        // keeps the step linear and energy-conserving (PropagationScheme.h).
                         const float w = face.solidAngle / kPi;
                         const glm::vec4& lobe = lobes[size_t(a)][size_t(f)];
-                        out.r += lobe * (w * std::max(0.0f, glm::dot(in.r, basis)));
-                        out.g += lobe * (w * std::max(0.0f, glm::dot(in.g, basis)));
-                        out.b += lobe * (w * std::max(0.0f, glm::dot(in.b, basis)));
+                        out.r += lobe * (w * glm::dot(in.r, basis));
+                        out.g += lobe * (w * glm::dot(in.g, basis));
+                        out.b += lobe * (w * glm::dot(in.b, basis));
                     }
                 }
             }

@@ -5,6 +5,9 @@
 
 #include <glm/vec4.hpp>
 
+#include <algorithm>
+#include <string>
+
 namespace lpv::gi {
 namespace {
 
@@ -20,19 +23,49 @@ struct PropagateUniforms {
     glm::vec4 encode;
 };
 
-const rhi::ShaderBinary& propagateShader(ShFormat f) {
-    switch (f) {
-    case ShFormat::Rgba8:
-        return shaders::propagate_rgba8_comp;
-    case ShFormat::Rgba32f:
-        return shaders::propagate_rgba32f_comp;
-    case ShFormat::Rgba16f:
-        break;
-    }
-    return shaders::propagate_rgba16f_comp;
+// Iteration roles: first reads the injection, last writes the result, only does both.
+enum Role { kFirst, kNext, kLast, kOnly };
+
+const rhi::ShaderBinary& propagateShader(ShFormat f, int role) {
+    using namespace shaders;
+    static const rhi::ShaderBinary* const table[3][4] = {
+        {&propagate_rgba8_first_comp, &propagate_rgba8_next_comp, &propagate_rgba8_last_comp,
+         &propagate_rgba8_only_comp},
+        {&propagate_rgba16f_first_comp, &propagate_rgba16f_next_comp, &propagate_rgba16f_last_comp,
+         &propagate_rgba16f_only_comp},
+        {&propagate_rgba32f_first_comp, &propagate_rgba32f_next_comp, &propagate_rgba32f_last_comp,
+         &propagate_rgba32f_only_comp}};
+    const int row = f == ShFormat::Rgba8 ? 0 : f == ShFormat::Rgba16f ? 1 : 2;
+    return *table[row][role];
+}
+
+// Threads along z per 2x2 column: a CPU rasterizer runs one workgroup per host thread and pays
+// for every fetch, so there each thread walks a long column (its z neighbours then come from
+// registers) with just enough workgroups to keep every thread busy; a GPU wants many short ones.
+uint32_t columnLength(uint32_t n, uint32_t concurrentWorkgroups) {
+    if (concurrentWorkgroups == 0) return 1;
+    const uint32_t columnGroups = ((n + 15) / 16) * ((n + 15) / 16);
+    const uint32_t slabs = std::max(1u, (2 * concurrentWorkgroups + columnGroups - 1) / columnGroups);
+    return std::max(1u, (n + slabs - 1) / slabs);
 }
 
 } // namespace
+
+uint32_t packedTexelCount(ShFormat f) {
+    switch (f) {
+    case ShFormat::Rgba8:
+        return 1;
+    case ShFormat::Rgba32f:
+        return 3;
+    case ShFormat::Rgba16f:
+        break;
+    }
+    return 2;
+}
+
+rhi::Format packedTexelFormat(ShFormat f, uint32_t texel) {
+    return f == ShFormat::Rgba16f && texel == 1 ? rhi::Format::RG32UI : rhi::Format::RGBA32UI;
+}
 
 LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings)
     : device_(device), settings_(settings) {
@@ -47,10 +80,15 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings)
                                          std::string("lpv ") + what + " " + channels[c], "gi.lpv"});
         };
         inject_[size_t(c)] = volume(injectFormat, kTextureColorTarget | kTextureSampled, "injection");
-        ping_[size_t(c)] = volume(shFormat, kTextureStorage | kTextureSampled, "ping");
-        pong_[size_t(c)] = volume(shFormat, kTextureStorage | kTextureSampled, "pong");
         accum_[size_t(c)] = volume(shFormat, kTextureStorage | kTextureSampled, "accumulated");
     }
+    for (uint32_t t = 0; t < packedTexelCount(settings.shFormat); ++t)
+        for (uint32_t p = 0; p < 2; ++p)
+            partial_[p][t] = device.createTexture(
+                {TextureKind::Tex3D, packedTexelFormat(settings.shFormat, t), n, n, n, 1,
+                 kTextureStorage | kTextureSampled | kTextureTransfer,
+                 std::string(p ? "lpv partial sum pong " : "lpv partial sum ping ") + std::to_string(t),
+                 "gi.lpv"});
     GraphicsPipelineDesc d;
     d.vertex = &shaders::inject_vert;
     d.fragment = &shaders::inject_frag;
@@ -59,18 +97,22 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings)
     d.blend = {BlendState::additive()};
     d.debugName = "lpv inject";
     injectPipeline_ = device.createPipeline(d);
-    propagatePipeline_ =
-        device.createPipeline(ComputePipelineDesc{&propagateShader(settings.shFormat), "lpv propagate"});
+    const char* roleNames[4] = {"lpv propagate first", "lpv propagate", "lpv propagate last",
+                                "lpv propagate once"};
+    for (int role = 0; role < 4; ++role)
+        propagatePipelines_[size_t(role)] = device.createPipeline(
+            ComputePipelineDesc{&propagateShader(settings.shFormat, role), roleNames[role]});
     pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
 }
 
 LpvVolumes::~LpvVolumes() {
     device_.waitIdle();
-    for (const auto* set : {&inject_, &ping_, &pong_, &accum_})
+    for (const auto* set : {&inject_, &accum_, &partial_[0], &partial_[1]})
         for (rhi::TextureHandle t : *set)
-            device_.destroy(t);
+            if (t) device_.destroy(t);
     device_.destroy(injectPipeline_);
-    device_.destroy(propagatePipeline_);
+    for (rhi::ComputePipelineHandle p : propagatePipelines_)
+        device_.destroy(p);
     device_.destroy(pointSampler_);
 }
 
@@ -106,21 +148,27 @@ void LpvVolumes::inject(rhi::CommandList& cmd, rhi::BufferHandle vpls, uint32_t 
 
 void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations) {
     const uint32_t n = settings_.gridSize;
-    const std::array<rhi::TextureHandle, 3>* src = &inject_;
+    const uint32_t column = columnLength(n, device_.caps().concurrentWorkgroups);
+    const uint32_t texels = packedTexelCount(settings_.shFormat);
+    PropagateUniforms u;
+    u.grid = glm::ivec4(int(n), int(column), 0, 0);
+    u.encode = glm::vec4(settings_.rgba8Range, 0, 0, 0);
+    // y(0) is the injection volume; y(k+1) = x + P y(k) goes to partial_[k % 2]; the last
+    // iteration writes y(N), the accumulated result, into accum_.
     for (uint32_t i = 0; i < iterations; ++i) {
-        const std::array<rhi::TextureHandle, 3>* dst = (i % 2 == 0) ? &ping_ : &pong_;
-        PropagateUniforms u;
-        u.grid = glm::ivec4(int(n), i == 0 ? 1 : 0, (i > 0 && encoded()) ? 1 : 0, 0);
-        u.encode = glm::vec4(settings_.rgba8Range, 0, 0, 0);
-        cmd.bindPipeline(propagatePipeline_);
+        const bool first = i == 0, last = i + 1 == iterations;
+        const int role = first && last ? kOnly : first ? kFirst : last ? kLast : kNext;
+        cmd.bindPipeline(propagatePipelines_[size_t(role)]);
         cmd.pushUniforms(0, &u, sizeof(u));
         for (uint32_t c = 0; c < 3; ++c) {
-            cmd.bindTexture(1 + c, (*src)[c], pointSampler_);
-            cmd.bindStorageImage(4 + c, (*dst)[c]);
-            cmd.bindStorageImage(7 + c, accum_[c]);
+            cmd.bindTexture(1 + c, inject_[c], pointSampler_);
+            if (last) cmd.bindStorageImage(10 + c, accum_[c]);
         }
-        cmd.dispatch((n + 7) / 8, (n + 7) / 8, n);
-        src = dst;
+        for (uint32_t t = 0; t < texels; ++t) {
+            if (!first) cmd.bindTexture(4 + t, partial_[(i + 1) % 2][t], pointSampler_);
+            if (!last) cmd.bindStorageImage(7 + t, partial_[i % 2][t]);
+        }
+        cmd.dispatch((n + 15) / 16, (n + 15) / 16, (n + column - 1) / column);
     }
 }
 

@@ -1,6 +1,8 @@
 // Face geometry of the propagation scheme.
 #include "gi/PropagationScheme.h"
 
+#include "gi/ShBasis.h"
+
 namespace lpv::gi {
 
 std::array<PropagationFace, 5> propagationFaces(int axis) {
@@ -15,6 +17,14 @@ std::array<PropagationFace, 5> propagationFaces(int axis) {
     for (int i = 0; i < 4; ++i)
         faces[size_t(i) + 1] = {kSideAxial * d + kSideLateral * sides[i], sides[i], kSideFaceSolidAngle};
     return faces;
+}
+
+AxisTransfer axisTransfer() {
+    // Far face: W_F lobe(e) basis(e)^T. Side faces in +-q: their lobes' L0 terms add, their q
+    // terms differ in sign twice and add too; the lateral parts of the evaluation cancel.
+    const float wf = kFarFaceSolidAngle / kPi, ws = kSideFaceSolidAngle / kPi;
+    return {kCosLobeC0 * kShY0 * (wf + 4.0f * ws), kCosLobeC0 * kShY1 * (wf + 4.0f * kSideAxial * ws),
+            kCosLobeC1 * kShY0 * wf, kCosLobeC1 * kShY1 * wf, 2.0f * kCosLobeC1 * kShY1 * kSideLateral * ws};
 }
 
 } // namespace lpv::gi

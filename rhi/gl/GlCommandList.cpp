@@ -129,7 +129,7 @@ void GlCommandList::beginRenderPass(const RenderPassDesc& desc) {
     for (uint32_t i = 0; i < desc.colorCount; ++i) {
         const ColorAttachment& a = desc.colors[i];
         if (a.load != LoadOp::Clear) continue; // Load keeps the contents; DontCare may too
-        if (device_.textures.get(a.texture).desc.format == Format::R32UI) {
+        if (isIntegerFormat(device_.textures.get(a.texture).desc.format)) {
             const GLuint v[4] = {clearUint(a.clearColor[0]), clearUint(a.clearColor[1]),
                                  clearUint(a.clearColor[2]), clearUint(a.clearColor[3])};
             gl.glClearNamedFramebufferuiv(fbo, GL_COLOR, GLint(i), v);
@@ -272,10 +272,11 @@ void GlCommandList::bindTexture(uint32_t binding, TextureHandle texture, Sampler
     if (!(t.desc.usage & kTextureSampled))
         throw Error("texture '" + t.desc.debugName + "' lacks kTextureSampled");
     // Integer formats have no filtering; a linear sampler would make the texture incomplete.
-    if (t.desc.format == Format::R32UI &&
+    if (isIntegerFormat(t.desc.format) &&
         (s.desc.minFilter == Filter::Linear || s.desc.magFilter == Filter::Linear ||
          (s.desc.mipFilter == Filter::Linear && t.desc.mipLevels > 1)))
-        throw Error("texture '" + t.desc.debugName + "' (r32ui) cannot be sampled with a linear filter");
+        throw Error("texture '" + t.desc.debugName + "' (" + std::string(formatName(t.desc.format)) +
+                    ") cannot be sampled with a linear filter");
     const Functions& gl = device_.gl();
     gl.glBindTextureUnit(binding, t.id);
     gl.glBindSampler(binding, s.id);
@@ -354,7 +355,7 @@ void GlCommandList::clearTexture(TextureHandle texture, const std::array<float, 
     const GlTexture& t = device_.textures.get(texture);
     const Functions& gl = device_.gl();
     for (uint32_t mip = 0; mip < t.desc.mipLevels; ++mip) {
-        if (t.desc.format == Format::R32UI) {
+        if (isIntegerFormat(t.desc.format)) {
             const GLuint v[4] = {clearUint(value[0]), clearUint(value[1]), clearUint(value[2]),
                                  clearUint(value[3])};
             gl.glClearTexImage(t.id, GLint(mip), GL_RGBA_INTEGER, GL_UNSIGNED_INT, v);

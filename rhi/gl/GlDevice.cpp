@@ -2,6 +2,7 @@
 #include "GlDevice.h"
 
 #include "../src/BackendFactory.h"
+#include "../src/CpuRasterizer.h"
 #include "platforms/Log.h"
 #include "rhi/Error.h"
 
@@ -59,6 +60,7 @@ GlDevice::GlDevice(const DeviceConfig& config, std::unique_ptr<platforms::GlCont
         std::min({glInteger(gl_, GL_MAX_DRAW_BUFFERS), glInteger(gl_, GL_MAX_COLOR_ATTACHMENTS),
                   RenderPassDesc::kMaxColorTargets});
     caps_.presentation = context_->hasDefaultFramebuffer();
+    if (isCpuRasterizer(caps_.deviceName)) caps_.concurrentWorkgroups = cpuRasterizerThreads();
 
     const uint64_t region = std::max(config.uniformRingBytes, 256u);
     uniformRing_.create(gl_, region, config.framesInFlight);

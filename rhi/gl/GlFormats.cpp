@@ -21,6 +21,10 @@ GlFormat glFormat(Format f) {
         return {GL_R32F, GL_RED, GL_FLOAT};
     case Format::R32UI:
         return {GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT};
+    case Format::RG32UI:
+        return {GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT};
+    case Format::RGBA32UI:
+        return {GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT};
     case Format::D32F:
         return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT};
     case Format::Undefined:

@@ -33,7 +33,7 @@ void GlDevice::endFrame(TextureHandle presentTexture) {
     list_.finish();
     if (presentTexture) {
         const GlTexture& source = textures.get(presentTexture);
-        if (source.desc.format == Format::R32UI || isDepthFormat(source.desc.format))
+        if (isIntegerFormat(source.desc.format) || isDepthFormat(source.desc.format))
             throw Error("endFrame: texture '" + source.desc.debugName + "' (" +
                         std::string(formatName(source.desc.format)) + ") cannot be presented");
         if (context_->hasDefaultFramebuffer()) present(source);

@@ -1,6 +1,8 @@
 // Timestamp ring of the GL backend; the choice of clock is explained in GlTimestamps.h.
 #include "GlTimestamps.h"
 
+#include "../src/CpuRasterizer.h"
+
 #include "platforms/Clock.h"
 #include "rhi/Error.h"
 
@@ -10,9 +12,7 @@
 namespace lpv::rhi::gl {
 
 TimestampSource GlTimestamps::sourceFor(std::string_view renderer) {
-    const bool software = renderer.find("llvmpipe") != std::string_view::npos ||
-                          renderer.find("softpipe") != std::string_view::npos;
-    return software ? TimestampSource::CpuFinished : TimestampSource::GpuQueries;
+    return isCpuRasterizer(renderer) ? TimestampSource::CpuFinished : TimestampSource::GpuQueries;
 }
 
 void GlTimestamps::create(const Functions& gl, TimestampSource source, uint32_t perFrame, uint32_t sets) {

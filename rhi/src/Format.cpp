@@ -17,7 +17,10 @@ uint32_t bytesPerPixel(Format f) {
         return 4;
     case Format::RGBA16F:
         return 8;
+    case Format::RG32UI:
+        return 8;
     case Format::RGBA32F:
+    case Format::RGBA32UI:
         return 16;
     case Format::Undefined:
         return 0;
@@ -27,6 +30,10 @@ uint32_t bytesPerPixel(Format f) {
 
 bool isDepthFormat(Format f) {
     return f == Format::D32F;
+}
+
+bool isIntegerFormat(Format f) {
+    return f == Format::R32UI || f == Format::RG32UI || f == Format::RGBA32UI;
 }
 
 std::string_view formatName(Format f) {
@@ -47,6 +54,10 @@ std::string_view formatName(Format f) {
         return "r32f";
     case Format::R32UI:
         return "r32ui";
+    case Format::RG32UI:
+        return "rg32ui";
+    case Format::RGBA32UI:
+        return "rgba32ui";
     case Format::D32F:
         return "d32f";
     }

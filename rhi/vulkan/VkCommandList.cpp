@@ -114,7 +114,7 @@ void VulkanCommandList::beginRenderPass(const RenderPassDesc& desc) {
         c.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
         c.loadOp = toVkLoadOp(a.load);
         c.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        if (t.desc.format == Format::R32UI) {
+        if (isIntegerFormat(t.desc.format)) {
             for (int k = 0; k < 4; ++k)
                 c.clearValue.color.uint32[k] = uint32_t(std::max(0.0f, a.clearColor[k]));
         } else {
@@ -249,10 +249,11 @@ void VulkanCommandList::bindTexture(uint32_t binding, TextureHandle texture, Sam
     if (!(t.desc.usage & kTextureSampled))
         throw Error("texture '" + t.desc.debugName + "' lacks kTextureSampled");
     // Integer formats have no filtering in Vulkan (or GL); a linear sampler would read garbage.
-    if (t.desc.format == Format::R32UI &&
+    if (isIntegerFormat(t.desc.format) &&
         (smp.desc.minFilter == Filter::Linear || smp.desc.magFilter == Filter::Linear ||
          (smp.desc.mipFilter == Filter::Linear && t.desc.mipLevels > 1)))
-        throw Error("texture '" + t.desc.debugName + "' (r32ui) cannot be sampled with a linear filter");
+        throw Error("texture '" + t.desc.debugName + "' (" + std::string(formatName(t.desc.format)) +
+                    ") cannot be sampled with a linear filter");
     s.kind = BoundKind::Texture;
     s.image = {smp.sampler, t.sampledView, t.home};
 }
@@ -352,7 +353,7 @@ void VulkanCommandList::clearTexture(TextureHandle texture, const std::array<flo
         vkCmdClearDepthStencilImage(cmd_, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &v, 1, &range);
     } else {
         VkClearColorValue v{};
-        if (t.desc.format == Format::R32UI) {
+        if (isIntegerFormat(t.desc.format)) {
             for (int k = 0; k < 4; ++k)
                 v.uint32[k] = uint32_t(std::max(0.0f, value[k]));
         } else {

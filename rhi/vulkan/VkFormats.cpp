@@ -23,6 +23,10 @@ VkFormat toVkFormat(Format f) {
         return VK_FORMAT_R32_SFLOAT;
     case Format::R32UI:
         return VK_FORMAT_R32_UINT;
+    case Format::RG32UI:
+        return VK_FORMAT_R32G32_UINT;
+    case Format::RGBA32UI:
+        return VK_FORMAT_R32G32B32A32_UINT;
     case Format::D32F:
         return VK_FORMAT_D32_SFLOAT;
     case Format::Undefined:

@@ -6,6 +6,7 @@
 #include "VkCheck.h"
 
 #include "../src/BackendFactory.h"
+#include "../src/CpuRasterizer.h"
 
 #include "platforms/Log.h"
 
@@ -50,6 +51,8 @@ VulkanDevice::VulkanDevice(const DeviceConfig& config) : config_(config) {
         caps_.max2DTextureSize = limits.maxImageDimension2D;
         caps_.maxColorTargets = std::min(limits.maxColorAttachments, RenderPassDesc::kMaxColorTargets);
         caps_.presentation = config.window != nullptr;
+        if (ctx_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
+            caps_.concurrentWorkgroups = cpuRasterizerThreads();
 
         timestamps_.create(*ctx_, timestamps, config.framesInFlight + 1, config.maxTimestampsPerFrame);
         createFrames();
@@ -272,7 +275,7 @@ void VulkanDevice::endFrame(TextureHandle present) {
     uint32_t imageIndex = 0;
     if (present) {
         VulkanTexture& source = textures.get(present);
-        if (source.desc.format == Format::R32UI || isDepthFormat(source.desc.format))
+        if (isIntegerFormat(source.desc.format) || isDepthFormat(source.desc.format))
             throw Error("endFrame: texture '" + source.desc.debugName + "' (" +
                         std::string(formatName(source.desc.format)) + ") cannot be presented");
         if (swapchain_) {

@@ -72,58 +72,69 @@ TEST_CASE("gi: GPU injection and propagation match the CPU reference") {
     const Case cases[] = {{gi::ShFormat::Rgba32f, 1e-4f, 1e-4f},
                           {gi::ShFormat::Rgba16f, 2e-3f, 4e-3f},
                           {gi::ShFormat::Rgba8, 2e-3f, 0.05f}};
+    // The kernel's iteration roles (first, next, last; or one iteration doing both) and a grid
+    // whose 2x2 columns stick out of the volume.
+    struct Shape {
+        uint32_t n;
+        int iterations;
+    };
+    const Shape shapes[] = {{16, 4}, {17, 1}};
     const std::vector<gi::Vpl> vpls = testVpls();
-    const gi::VolumeGrid grid{{0.0f, 0.0f, 0.0f}, 0.5f, 16};
     const glm::vec3 light(0.0f, -1.0f, 0.0f);
-    gi::ShVolume injected(16);
-    gi::injectReference(injected, grid, vpls, light);
-    const gi::ShVolume propagated = gi::propagateReference(injected, 4);
-    for (const auto& backend : selectedBackends()) {
-        for (const Case& c : cases) {
-            SUBCASE((backend.name + " " + std::string(gi::shFormatName(c.format))).c_str()) {
-                TestDevice device(backend);
-                gi::LpvSettings s;
-                s.gridSize = 16;
-                s.shFormat = c.format;
-                // Range of the rgba8 encoding: the largest coefficient the accumulation reaches.
-                s.rgba8Range = 1.05f * [&] {
-                    float m = 0;
-                    for (const gi::ShCell& cell : propagated.cells())
-                        for (int k = 0; k < 4; ++k)
-                            m = std::max(
-                                {m, std::fabs(cell.r[k]), std::fabs(cell.g[k]), std::fabs(cell.b[k])});
-                    return m;
-                }();
-                std::vector<GpuVpl> gpuVpls;
-                for (const gi::Vpl& v : vpls)
-                    gpuVpls.push_back(
-                        {glm::vec4(v.position, 1), glm::vec4(v.normal, 0), glm::vec4(v.flux, 0)});
-                const rhi::BufferHandle buffer = device->createBuffer(
-                    {gpuVpls.size() * sizeof(GpuVpl), rhi::kBufferStorage | rhi::kBufferTransfer,
-                     rhi::MemoryAccess::GpuOnly, "test vpls", "test"},
-                    gpuVpls.data());
-                {
-                    gi::LpvVolumes volumes(*device, s);
-                    rhi::CommandList& cmd = device->beginFrame();
-                    volumes.inject(cmd, buffer, uint32_t(vpls.size()), grid, light, 1.0f);
-                    volumes.propagate(cmd, 4);
-                    device->endFrame();
-                    device->waitIdle();
-                    std::array<Image, 3> inj, acc;
-                    for (int ch = 0; ch < 3; ++ch) {
-                        inj[size_t(ch)] = readImage(*device, volumes.injected()[size_t(ch)]);
-                        acc[size_t(ch)] = readImage(*device, volumes.accumulated()[size_t(ch)]);
+    for (const Shape& shape : shapes) {
+        const gi::VolumeGrid grid{{0.0f, 0.0f, 0.0f}, 0.5f, shape.n};
+        gi::ShVolume injected(shape.n);
+        gi::injectReference(injected, grid, vpls, light);
+        const gi::ShVolume propagated = gi::propagateReference(injected, shape.iterations);
+        for (const auto& backend : selectedBackends()) {
+            for (const Case& c : cases) {
+                SUBCASE((backend.name + " " + std::string(gi::shFormatName(c.format)) + " " +
+                         std::to_string(shape.n) + "^3 x " + std::to_string(shape.iterations))
+                            .c_str()) {
+                    TestDevice device(backend);
+                    gi::LpvSettings s;
+                    s.gridSize = shape.n;
+                    s.shFormat = c.format;
+                    // Range of the rgba8 encoding: the largest coefficient the accumulation reaches.
+                    s.rgba8Range = 1.05f * [&] {
+                        float m = 0;
+                        for (const gi::ShCell& cell : propagated.cells())
+                            for (int k = 0; k < 4; ++k)
+                                m = std::max(
+                                    {m, std::fabs(cell.r[k]), std::fabs(cell.g[k]), std::fabs(cell.b[k])});
+                        return m;
+                    }();
+                    std::vector<GpuVpl> gpuVpls;
+                    for (const gi::Vpl& v : vpls)
+                        gpuVpls.push_back(
+                            {glm::vec4(v.position, 1), glm::vec4(v.normal, 0), glm::vec4(v.flux, 0)});
+                    const rhi::BufferHandle buffer = device->createBuffer(
+                        {gpuVpls.size() * sizeof(GpuVpl), rhi::kBufferStorage | rhi::kBufferTransfer,
+                         rhi::MemoryAccess::GpuOnly, "test vpls", "test"},
+                        gpuVpls.data());
+                    {
+                        gi::LpvVolumes volumes(*device, s);
+                        rhi::CommandList& cmd = device->beginFrame();
+                        volumes.inject(cmd, buffer, uint32_t(vpls.size()), grid, light, 1.0f);
+                        volumes.propagate(cmd, uint32_t(shape.iterations));
+                        device->endFrame();
+                        device->waitIdle();
+                        std::array<Image, 3> inj, acc;
+                        for (int ch = 0; ch < 3; ++ch) {
+                            inj[size_t(ch)] = readImage(*device, volumes.injected()[size_t(ch)]);
+                            acc[size_t(ch)] = readImage(*device, volumes.accumulated()[size_t(ch)]);
+                        }
+                        const float injErr = relativeError(injected, inj, false, 0);
+                        const float accErr = relativeError(propagated, acc, volumes.encoded(), s.rgba8Range);
+                        MESSAGE(backend.name << " " << gi::shFormatName(c.format) << ": injection error "
+                                             << injErr << ", after " << shape.iterations << " iterations "
+                                             << accErr << " (relative to the largest coefficient)");
+                        CHECK(injErr <= c.injectTolerance);
+                        CHECK(accErr <= c.propagateTolerance);
                     }
-                    const float injErr = relativeError(injected, inj, false, 0);
-                    const float accErr = relativeError(propagated, acc, volumes.encoded(), s.rgba8Range);
-                    MESSAGE(backend.name << " " << gi::shFormatName(c.format) << ": injection error "
-                                         << injErr << ", after 4 iterations " << accErr
-                                         << " (relative to the largest coefficient)");
-                    CHECK(injErr <= c.injectTolerance);
-                    CHECK(accErr <= c.propagateTolerance);
+                    device->destroy(buffer);
+                    device.expectSilent();
                 }
-                device->destroy(buffer);
-                device.expectSilent();
             }
         }
     }

@@ -1,6 +1,7 @@
 // The light propagation volume itself: injection of VPLs into a float volume (points drawn per
-// slice with additive blending), then N propagation iterations ping-ponging between two volumes
-// and accumulating into a third, all in gi.sh_format. Three SH textures (R, G, B) per volume.
+// slice with additive blending), then N propagation iterations whose partial sums ping-pong
+// between two packed volumes, the last writing the accumulated volume in gi.sh_format. Three SH
+// textures (R, G, B) for the injection and the accumulation.
 #pragma once
 
 #include "gi/LpvReference.h"
@@ -10,6 +11,11 @@
 #include <array>
 
 namespace lpv::gi {
+
+// Between iterations propagation keeps a cell's 12 coefficients packed in 1 (rgba8), 2 (rgba16f)
+// or 3 (rgba32f) unsigned-integer texels: fewer, wider fetches (see propagate_body.glsl).
+uint32_t packedTexelCount(ShFormat f);
+rhi::Format packedTexelFormat(ShFormat f, uint32_t texel);
 
 class LpvVolumes {
 public:
@@ -25,7 +31,8 @@ public:
     // {vec4 position (w: valid), vec4 normal, vec4 flux}).
     void inject(rhi::CommandList& cmd, rhi::BufferHandle vpls, uint32_t vplCount, const VolumeGrid& grid,
                 glm::vec3 lightDirection, float intensity);
-    // Propagates `iterations` times from the injection volume, accumulating into accumulated().
+    // Propagates `iterations` (>= 1) times from the injection volume; accumulated() then holds the
+    // injected volume plus every iteration's propagated light.
     void propagate(rhi::CommandList& cmd, uint32_t iterations);
 
     const std::array<rhi::TextureHandle, 3>& injected() const { return inject_; }
@@ -37,9 +44,11 @@ public:
 private:
     rhi::Device& device_;
     LpvSettings settings_;
-    std::array<rhi::TextureHandle, 3> inject_, ping_, pong_, accum_;
+    std::array<rhi::TextureHandle, 3> inject_, accum_;
+    // Partial sums between iterations, ping and pong, packed (packedTexelCount texels per cell).
+    std::array<std::array<rhi::TextureHandle, 3>, 2> partial_{};
     rhi::GraphicsPipelineHandle injectPipeline_;
-    rhi::ComputePipelineHandle propagatePipeline_;
+    std::array<rhi::ComputePipelineHandle, 4> propagatePipelines_{}; // by iteration role
     rhi::SamplerHandle pointSampler_;
 };
 

@@ -15,6 +15,8 @@ enum class Format : uint8_t {
     RG16F,
     R32F,
     R32UI,
+    RG32UI,   // packed data (e.g. pairs of halves), no filtering
+    RGBA32UI, // packed data, no filtering
     D32F,
 };
 
@@ -31,6 +33,8 @@ enum TextureUsage : uint32_t {
 
 uint32_t bytesPerPixel(Format f);
 bool isDepthFormat(Format f);
+// Unsigned-integer formats: read and written as uint, never filtered, cleared with integer values.
+bool isIntegerFormat(Format f);
 std::string_view formatName(Format f);
 
 } // namespace lpv::rhi
