@@ -39,16 +39,6 @@ const rhi::ShaderBinary& propagateShader(ShFormat f, int role) {
     return *table[row][role];
 }
 
-// Threads along z per 2x2 column: a CPU rasterizer runs one workgroup per host thread and pays
-// for every fetch, so there each thread walks a long column (its z neighbours then come from
-// registers) with just enough workgroups to keep every thread busy; a GPU wants many short ones.
-uint32_t columnLength(uint32_t n, uint32_t concurrentWorkgroups) {
-    if (concurrentWorkgroups == 0) return 1;
-    const uint32_t columnGroups = ((n + 15) / 16) * ((n + 15) / 16);
-    const uint32_t slabs = std::max(1u, (2 * concurrentWorkgroups + columnGroups - 1) / columnGroups);
-    return std::max(1u, (n + slabs - 1) / slabs);
-}
-
 } // namespace
 
 uint32_t packedTexelCount(ShFormat f) {
@@ -63,12 +53,22 @@ uint32_t packedTexelCount(ShFormat f) {
     return 2;
 }
 
+uint32_t propagationColumnLength(uint32_t n, uint32_t concurrentWorkgroups) {
+    if (concurrentWorkgroups == 0) return 1;
+    const uint32_t columnGroups = ((n + 15) / 16) * ((n + 15) / 16);
+    const uint32_t slabs = std::max(1u, (2 * concurrentWorkgroups + columnGroups - 1) / columnGroups);
+    return std::max(1u, (n + slabs - 1) / slabs);
+}
+
 rhi::Format packedTexelFormat(ShFormat f, uint32_t texel) {
     return f == ShFormat::Rgba16f && texel == 1 ? rhi::Format::RG32UI : rhi::Format::RGBA32UI;
 }
 
-LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings)
-    : device_(device), settings_(settings) {
+LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_t columnLength)
+    : device_(device), settings_(settings),
+      columnLength_(columnLength
+                        ? columnLength
+                        : propagationColumnLength(settings.gridSize, device.caps().concurrentWorkgroups)) {
     using namespace rhi;
     const uint32_t n = settings.gridSize;
     const Format injectFormat = settings.shFormat == ShFormat::Rgba32f ? Format::RGBA32F : Format::RGBA16F;
@@ -148,7 +148,7 @@ void LpvVolumes::inject(rhi::CommandList& cmd, rhi::BufferHandle vpls, uint32_t 
 
 void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations) {
     const uint32_t n = settings_.gridSize;
-    const uint32_t column = columnLength(n, device_.caps().concurrentWorkgroups);
+    const uint32_t column = columnLength_;
     const uint32_t texels = packedTexelCount(settings_.shFormat);
     PropagateUniforms u;
     u.grid = glm::ivec4(int(n), int(column), 0, 0);

@@ -74,11 +74,13 @@ TEST_CASE("gi: GPU injection and propagation match the CPU reference") {
                           {gi::ShFormat::Rgba8, 2e-3f, 0.05f}};
     // The kernel's iteration roles (first, next, last; or one iteration doing both) and a grid
     // whose 2x2 columns stick out of the volume.
+    // columnLength: 0 = the device's choice; 1 = what GPUs get; 5 = slabs that do not divide n.
     struct Shape {
         uint32_t n;
         int iterations;
+        uint32_t columnLength;
     };
-    const Shape shapes[] = {{16, 4}, {17, 1}};
+    const Shape shapes[] = {{16, 4, 0}, {17, 1, 0}, {16, 3, 1}, {17, 2, 5}};
     const std::vector<gi::Vpl> vpls = testVpls();
     const glm::vec3 light(0.0f, -1.0f, 0.0f);
     for (const Shape& shape : shapes) {
@@ -89,7 +91,8 @@ TEST_CASE("gi: GPU injection and propagation match the CPU reference") {
         for (const auto& backend : selectedBackends()) {
             for (const Case& c : cases) {
                 SUBCASE((backend.name + " " + std::string(gi::shFormatName(c.format)) + " " +
-                         std::to_string(shape.n) + "^3 x " + std::to_string(shape.iterations))
+                         std::to_string(shape.n) + "^3 x " + std::to_string(shape.iterations) + " column " +
+                         std::to_string(shape.columnLength))
                             .c_str()) {
                     TestDevice device(backend);
                     gi::LpvSettings s;
@@ -113,7 +116,7 @@ TEST_CASE("gi: GPU injection and propagation match the CPU reference") {
                          rhi::MemoryAccess::GpuOnly, "test vpls", "test"},
                         gpuVpls.data());
                     {
-                        gi::LpvVolumes volumes(*device, s);
+                        gi::LpvVolumes volumes(*device, s, shape.columnLength);
                         rhi::CommandList& cmd = device->beginFrame();
                         volumes.inject(cmd, buffer, uint32_t(vpls.size()), grid, light, 1.0f);
                         volumes.propagate(cmd, uint32_t(shape.iterations));

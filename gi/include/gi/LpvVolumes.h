@@ -17,9 +17,17 @@ namespace lpv::gi {
 uint32_t packedTexelCount(ShFormat f);
 rhi::Format packedTexelFormat(ShFormat f, uint32_t texel);
 
+// Cells per propagation thread along z for an n^3 volume: a CPU rasterizer runs one workgroup per
+// host thread and pays for every fetch, so there each thread walks a long column (its z
+// neighbours then come from registers) with just enough workgroups to keep every thread busy; a
+// GPU (concurrentWorkgroups 0) wants many short ones.
+uint32_t propagationColumnLength(uint32_t n, uint32_t concurrentWorkgroups);
+
 class LpvVolumes {
 public:
-    LpvVolumes(rhi::Device& device, const LpvSettings& settings);
+    // `columnLength`: cells each propagation thread walks along z; 0 picks it from the device
+    // (propagationColumnLength). Tests pin it to cover the shapes other devices get.
+    LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_t columnLength = 0);
     ~LpvVolumes();
     LpvVolumes(const LpvVolumes&) = delete;
     LpvVolumes& operator=(const LpvVolumes&) = delete;
@@ -44,6 +52,7 @@ public:
 private:
     rhi::Device& device_;
     LpvSettings settings_;
+    uint32_t columnLength_;
     std::array<rhi::TextureHandle, 3> inject_, accum_;
     // Partial sums between iterations, ping and pong, packed (packedTexelCount texels per cell).
     std::array<std::array<rhi::TextureHandle, 3>, 2> partial_{};
