@@ -50,6 +50,11 @@ layout(binding = 9, PACKED2_FORMAT) uniform writeonly uimage3D dst2;
 #endif
 #endif
 
+#ifdef OCCLUSION
+// Per cell: the transmittance of its -x, -y, -z faces (GeometryVolume).
+layout(binding = 19) uniform sampler3D faceTransmittance;
+#endif
+
 struct Sh3 {
     vec4 r, g, b;
 };
@@ -87,8 +92,17 @@ vec4 transferZ(vec4 p, vec4 m) {
                 KE * (p.w + m.w));
 }
 
-// What a cell receives from its six neighbours (mx: the neighbour at cell - x, px: at cell + x...).
-Sh3 gather(Sh3 mx, Sh3 px, Sh3 my, Sh3 py, Sh3 mz, Sh3 pz) {
+Sh3 scale(Sh3 a, float k) { return Sh3(a.r * k, a.g * k, a.b * k); }
+
+// What a cell receives from its six neighbours (mx: the neighbour at cell - x, px: at cell + x...),
+// each attenuated by the face it crosses: `lower` holds the cell's own -x, -y, -z faces, `upper`
+// the +x, +y, +z ones (the next cells' lower faces). Linear still: the factors do not depend on
+// the light.
+Sh3 gather(Sh3 mx, Sh3 px, Sh3 my, Sh3 py, Sh3 mz, Sh3 pz, vec3 lower, vec3 upper) {
+#ifdef OCCLUSION
+    mx = scale(mx, lower.x), px = scale(px, upper.x), my = scale(my, lower.y), py = scale(py, upper.y);
+    mz = scale(mz, lower.z), pz = scale(pz, upper.z);
+#endif
     Sh3 o;
     o.r = transferX(mx.r, px.r) + transferY(my.r, py.r) + transferZ(mz.r, pz.r);
     o.g = transferX(mx.g, px.g) + transferY(my.g, py.g) + transferZ(mz.g, pz.g);
@@ -145,6 +159,17 @@ void storeCell(ivec3 c, int n, Sh3 v) {
 #endif
 }
 
+// Face transmittance of a cell; 1 outside the volume (nothing comes from there anyway).
+vec3 faces(ivec3 c, int n) {
+#ifdef OCCLUSION
+    const bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
+    const vec3 t = texelFetch(faceTransmittance, clamp(c, ivec3(0), ivec3(n - 1)), 0).xyz;
+    return inside ? t : vec3(1.0);
+#else
+    return vec3(1.0);
+#endif
+}
+
 void main() {
     const int n = params.grid.x;
     const ivec2 o = ivec2(gl_GlobalInvocationID.xy) * 2; // the 2x2 column: o, o+x, o+y, o+x+y
@@ -157,6 +182,8 @@ void main() {
     Sh3 below2 = loadSource(ivec3(o + ivec2(0, 1), z0 - 1), n), below3 = loadSource(ivec3(o + ivec2(1, 1), z0 - 1), n);
     Sh3 at0 = loadSource(ivec3(o, z0), n), at1 = loadSource(ivec3(o + ivec2(1, 0), z0), n);
     Sh3 at2 = loadSource(ivec3(o + ivec2(0, 1), z0), n), at3 = loadSource(ivec3(o + ivec2(1, 1), z0), n);
+    vec3 face0 = faces(ivec3(o, z0), n), face1 = faces(ivec3(o + ivec2(1, 0), z0), n);
+    vec3 face2 = faces(ivec3(o + ivec2(0, 1), z0), n), face3 = faces(ivec3(o + ivec2(1, 1), z0), n);
     for (int z = z0; z < z1; ++z) {
         const Sh3 above0 = loadSource(ivec3(o, z + 1), n), above1 = loadSource(ivec3(o + ivec2(1, 0), z + 1), n);
         const Sh3 above2 = loadSource(ivec3(o + ivec2(0, 1), z + 1), n);
@@ -168,10 +195,16 @@ void main() {
         const Sh3 bottom1 = loadSource(ivec3(o + ivec2(1, -1), z), n);
         const Sh3 top2 = loadSource(ivec3(o + ivec2(0, 2), z), n), top3 = loadSource(ivec3(o + ivec2(1, 2), z), n);
 
-        Sh3 out0 = gather(left0, at1, bottom0, at2, below0, above0);
-        Sh3 out1 = gather(at0, right1, bottom1, at3, below1, above1);
-        Sh3 out2 = gather(left2, at3, at0, top2, below2, above2);
-        Sh3 out3 = gather(at2, right3, at1, top3, below3, above3);
+        const vec3 faceAbove0 = faces(ivec3(o, z + 1), n), faceAbove1 = faces(ivec3(o + ivec2(1, 0), z + 1), n);
+        const vec3 faceAbove2 = faces(ivec3(o + ivec2(0, 1), z + 1), n);
+        const vec3 faceAbove3 = faces(ivec3(o + ivec2(1, 1), z + 1), n);
+        const vec3 faceRight1 = faces(ivec3(o + ivec2(2, 0), z), n), faceRight3 = faces(ivec3(o + ivec2(2, 1), z), n);
+        const vec3 faceTop2 = faces(ivec3(o + ivec2(0, 2), z), n), faceTop3 = faces(ivec3(o + ivec2(1, 2), z), n);
+
+        Sh3 out0 = gather(left0, at1, bottom0, at2, below0, above0, face0, vec3(face1.x, face2.y, faceAbove0.z));
+        Sh3 out1 = gather(at0, right1, bottom1, at3, below1, above1, face1, vec3(faceRight1.x, face3.y, faceAbove1.z));
+        Sh3 out2 = gather(left2, at3, at0, top2, below2, above2, face2, vec3(face3.x, faceTop2.y, faceAbove2.z));
+        Sh3 out3 = gather(at2, right3, at1, top3, below3, above3, face3, vec3(faceRight3.x, faceTop3.y, faceAbove3.z));
         // + x: on the first iteration the source is x itself; later it is read from the injection.
 #ifdef FROM_INJECTION
         out0 = add(out0, at0), out1 = add(out1, at1), out2 = add(out2, at2), out3 = add(out3, at3);
@@ -188,5 +221,6 @@ void main() {
 
         below0 = at0, below1 = at1, below2 = at2, below3 = at3;
         at0 = above0, at1 = above1, at2 = above2, at3 = above3;
+        face0 = faceAbove0, face1 = faceAbove1, face2 = faceAbove2, face3 = faceAbove3;
     }
 }

@@ -17,7 +17,8 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
     uint64_t packedBytes = 0;
     for (uint32_t t = 0; t < packedTexelCount(s.shFormat); ++t)
         packedBytes += rhi::bytesPerPixel(packedTexelFormat(s.shFormat, t));
-    return {
+    const uint64_t gvCells = uint64_t(s.gridSize + 1) * (s.gridSize + 1) * (s.gridSize + 1);
+    std::vector<GiResource> out = {
         {"rsm depth", "gi.rsm", rsm * 4},
         {"rsm normal", "gi.rsm", rsm * 8},
         {"rsm flux", "gi.rsm", rsm * 8},
@@ -27,6 +28,11 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
         {"propagation partial sums, pong (packed)", "gi.lpv", cells * packedBytes},
         {"accumulation (3 SH textures)", "gi.lpv", 3 * cells * shBytes},
     };
+    if (s.occlusion) {
+        out.push_back({"geometry volume coverage", "gi.gv", gvCells * 8});
+        out.push_back({"face transmittance", "gi.gv", cells * 4});
+    }
+    return out;
 }
 
 uint64_t giBytes(const std::vector<GiResource>& resources) {

@@ -79,6 +79,23 @@ WorkCounts gatherPropagationWork(const LpvSettings& s) {
     return one * s.iterations;
 }
 
+WorkCounts occlusionWork(const LpvSettings& s, uint64_t cameraSamples) {
+    const uint64_t slices = s.gridSize + 1;
+    const uint64_t surfels = s.vplCount + cameraSamples;
+    const uint64_t cells = uint64_t(s.gridSize) * s.gridSize * s.gridSize;
+    WorkCounts w;
+    // Every surfel is submitted once per slice (camera ones fetch depth and normal); one slice
+    // keeps it. Then 12 coverage fetches and one store per LPV cell.
+    w.primitives = surfels * slices;
+    w.aluOps = w.primitives * 25 + cells * 20;
+    w.pixelsShaded = surfels;
+    w.texelsRead = cameraSamples * 2 * slices + cells * 12;
+    w.texelsWritten = surfels + cells;
+    w.bytesMoved = w.primitives * 48 + surfels * 16 + cells * (12 * 8 + 4);
+    w.cells = cells;
+    return w;
+}
+
 WorkCounts lookupWork(const LpvSettings& s, uint64_t pixels) {
     WorkCounts w;
     w.pixelsShaded = pixels;

@@ -7,6 +7,7 @@
 #include "gi/GiBudget.h"
 #include "gi/GiWork.h"
 
+#include <cmath>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -100,6 +101,7 @@ void LightPropagationVolume::release() {
     device_.waitIdle();
     rsm_.reset();
     volumes_.reset();
+    geometry_.reset();
     if (vpls_) device_.destroy(vpls_);
     vpls_ = {};
     made_ = false;
@@ -109,6 +111,7 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     release();
     rsm_ = std::make_unique<ReflectiveShadowMap>(device_, s.rsmSize);
     volumes_ = std::make_unique<LpvVolumes>(device_, s);
+    if (s.occlusion) geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize);
     vpls_ = device_.createBuffer({uint64_t(s.vplCount) * 48, rhi::kBufferStorage | rhi::kBufferTransfer,
                                   rhi::MemoryAccess::GpuOnly, "vpls", "gi.vpl"});
     made_ = true;
@@ -118,8 +121,8 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
                                     const engine::CameraMatrices& camera) {
     const LpvSettings s = readLpvSettings(config);
     renderer_ = &renderer;
-    const bool resized =
-        !made_ || s.rsmSize != settings_.rsmSize || s.vplCount != settings_.vplCount || !volumes_->matches(s);
+    const bool resized = !made_ || s.rsmSize != settings_.rsmSize || s.vplCount != settings_.vplCount ||
+                         !volumes_->matches(s) || s.occlusion != (geometry_ != nullptr);
     if (s.enabled && resized) {
         checkGiBudget(s, profile_); // throws before anything changes
         remake(s);
@@ -168,6 +171,25 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         cmd.dispatch((side + 7) / 8, (side + 7) / 8, 1);
         work(vplClusterWork(settings_));
     }
+    if (geometry_) {
+        auto s = scope("occlusion");
+        GeometrySources src;
+        src.vpls = vpls_;
+        src.vplCount = settings_.vplCount;
+        const float texelsPerVpl = float(rsm_->size() / side) * float(rsm_->size() / side);
+        src.vplArea = rsm_->texelArea() * texelsPerVpl;
+        src.lightDirection = lightDir;
+        src.depth = gbuffer.depth;
+        src.normal = gbuffer.normal;
+        src.invViewProjection = camera.invViewProjection;
+        src.cameraPosition = camera.position;
+        // A camera sample's spacing as an angle: (pixels between samples) x (angle per pixel).
+        const float tanHalfFov = 1.0f / std::abs(camera.projection[1][1]);
+        src.sampleFootprint = float(gbuffer.width) / float(GeometryVolume::kCameraSamplesPerRow) * 2.0f *
+                              tanHalfFov / float(gbuffer.height);
+        geometry_->build(cmd, grid_, src);
+        work(occlusionWork(settings_, geometry_->cameraSampleCount(gbuffer.width, gbuffer.height)));
+    }
     {
         auto s = scope("inject");
         volumes_->inject(cmd, vpls_, settings_.vplCount, grid_, lightDir, settings_.intensity);
@@ -175,7 +197,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     }
     {
         auto s = scope("propagate");
-        volumes_->propagate(cmd, settings_.iterations);
+        volumes_->propagate(cmd, settings_.iterations,
+                            geometry_ ? geometry_->faceTransmittance() : rhi::TextureHandle{});
         work(propagateWork(settings_));
     }
     {

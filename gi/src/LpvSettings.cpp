@@ -37,6 +37,9 @@ const engine::FloatSetting kRgba8Range{
     "Largest SH coefficient an rgba8 volume stores (values are range-encoded)"};
 const engine::BoolSetting kDamping{"gi.damping", true,
                                    "Anisotropic damping of light arriving through surfaces"};
+const engine::BoolSetting kOcclusion{
+    "gi.occlusion", true,
+    "Geometry volume from the RSM and camera depth attenuates propagation (stops leaks through walls)"};
 const engine::IntSetting kDebugSlice{"gi.debug_slice", 16, 0, 63,
                                      "Volume slice (z) shown by gi.debug_view=volume_slice"};
 
@@ -60,6 +63,7 @@ LpvSettings readLpvSettings(const engine::Config& config) {
     s.debugSlice = uint32_t(config.get(kDebugSlice));
     s.rgba8Range = float(config.get(kRgba8Range));
     s.damping = config.get(kDamping);
+    s.occlusion = config.get(kOcclusion);
     const uint32_t side = s.vplGridSide();
     if (side * side != s.vplCount || s.rsmSize % side != 0)
         throw engine::ConfigError(config.origin(kVplCount.decl()), 0,

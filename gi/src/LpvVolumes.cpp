@@ -26,17 +26,20 @@ struct PropagateUniforms {
 // Iteration roles: first reads the injection, last writes the result, only does both.
 enum Role { kFirst, kNext, kLast, kOnly };
 
-const rhi::ShaderBinary& propagateShader(ShFormat f, int role) {
+const rhi::ShaderBinary& propagateShader(ShFormat f, bool occluded, int role) {
     using namespace shaders;
-    static const rhi::ShaderBinary* const table[3][4] = {
-        {&propagate_rgba8_first_comp, &propagate_rgba8_next_comp, &propagate_rgba8_last_comp,
-         &propagate_rgba8_only_comp},
-        {&propagate_rgba16f_first_comp, &propagate_rgba16f_next_comp, &propagate_rgba16f_last_comp,
-         &propagate_rgba16f_only_comp},
-        {&propagate_rgba32f_first_comp, &propagate_rgba32f_next_comp, &propagate_rgba32f_last_comp,
-         &propagate_rgba32f_only_comp}};
+#define LPV_ROLES(format, suffix)                                                                            \
+    {                                                                                                        \
+        &propagate_##format##_first##suffix##_comp, &propagate_##format##_next##suffix##_comp,               \
+            &propagate_##format##_last##suffix##_comp, &propagate_##format##_only##suffix##_comp             \
+    }
+    static const rhi::ShaderBinary* const table[3][2][4] = {
+        {LPV_ROLES(rgba8, ), LPV_ROLES(rgba8, _occluded)},
+        {LPV_ROLES(rgba16f, ), LPV_ROLES(rgba16f, _occluded)},
+        {LPV_ROLES(rgba32f, ), LPV_ROLES(rgba32f, _occluded)}};
+#undef LPV_ROLES
     const int row = f == ShFormat::Rgba8 ? 0 : f == ShFormat::Rgba16f ? 1 : 2;
-    return *table[row][role];
+    return *table[row][occluded ? 1 : 0][role];
 }
 
 } // namespace
@@ -99,9 +102,10 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
     injectPipeline_ = device.createPipeline(d);
     const char* roleNames[4] = {"lpv propagate first", "lpv propagate", "lpv propagate last",
                                 "lpv propagate once"};
-    for (int role = 0; role < 4; ++role)
-        propagatePipelines_[size_t(role)] = device.createPipeline(
-            ComputePipelineDesc{&propagateShader(settings.shFormat, role), roleNames[role]});
+    for (int occluded = 0; occluded < 2; ++occluded)
+        for (int role = 0; role < 4; ++role)
+            propagatePipelines_[size_t(occluded)][size_t(role)] = device.createPipeline(ComputePipelineDesc{
+                &propagateShader(settings.shFormat, occluded != 0, role), roleNames[role]});
     pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
 }
 
@@ -111,8 +115,9 @@ LpvVolumes::~LpvVolumes() {
         for (rhi::TextureHandle t : *set)
             if (t) device_.destroy(t);
     device_.destroy(injectPipeline_);
-    for (rhi::ComputePipelineHandle p : propagatePipelines_)
-        device_.destroy(p);
+    for (const auto& set : propagatePipelines_)
+        for (rhi::ComputePipelineHandle p : set)
+            device_.destroy(p);
     device_.destroy(pointSampler_);
 }
 
@@ -146,7 +151,7 @@ void LpvVolumes::inject(rhi::CommandList& cmd, rhi::BufferHandle vpls, uint32_t 
     }
 }
 
-void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations) {
+void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::TextureHandle faceTransmittance) {
     const uint32_t n = settings_.gridSize;
     const uint32_t column = columnLength_;
     const uint32_t texels = packedTexelCount(settings_.shFormat);
@@ -158,8 +163,9 @@ void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations) {
     for (uint32_t i = 0; i < iterations; ++i) {
         const bool first = i == 0, last = i + 1 == iterations;
         const int role = first && last ? kOnly : first ? kFirst : last ? kLast : kNext;
-        cmd.bindPipeline(propagatePipelines_[size_t(role)]);
+        cmd.bindPipeline(propagatePipelines_[faceTransmittance ? 1 : 0][size_t(role)]);
         cmd.pushUniforms(0, &u, sizeof(u));
+        if (faceTransmittance) cmd.bindTexture(19, faceTransmittance, pointSampler_);
         for (uint32_t c = 0; c < 3; ++c) {
             cmd.bindTexture(1 + c, inject_[c], pointSampler_);
             if (last) cmd.bindStorageImage(10 + c, accum_[c]);

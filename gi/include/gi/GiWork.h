@@ -20,6 +20,8 @@ engine::WorkCounts propagateWork(const LpvSettings& s);
 // calibrated against the published console times with these counts, since that is the kernel
 // those times measured.
 engine::WorkCounts gatherPropagationWork(const LpvSettings& s);
+// The geometry volume: light and camera surfels drawn per slice, then the face transmittance.
+engine::WorkCounts occlusionWork(const LpvSettings& s, uint64_t cameraSamples);
 engine::WorkCounts lookupWork(const LpvSettings& s, uint64_t pixels);
 
 } // namespace lpv::gi

@@ -9,6 +9,7 @@
 
 #include "engine/render/IndirectLighting.h"
 #include "engine/render/Renderer.h"
+#include "gi/GeometryVolume.h"
 #include "gi/LpvReference.h"
 #include "gi/LpvSettings.h"
 #include "gi/LpvVolumes.h"
@@ -45,6 +46,7 @@ public:
     const VolumeGrid& grid() const { return grid_; }
     const LpvVolumes* volumes() const { return volumes_.get(); }
     const ReflectiveShadowMap* rsm() const { return rsm_.get(); }
+    const GeometryVolume* geometry() const { return geometry_.get(); }
     rhi::BufferHandle vplBuffer() const { return vpls_; }
 
 private:
@@ -59,6 +61,7 @@ private:
     const engine::Renderer* renderer_ = nullptr;
     std::unique_ptr<ReflectiveShadowMap> rsm_;
     std::unique_ptr<LpvVolumes> volumes_;
+    std::unique_ptr<GeometryVolume> geometry_;
     rhi::BufferHandle vpls_;
     rhi::ComputePipelineHandle clusterPipeline_;
     rhi::GraphicsPipelineHandle lookupPipeline_, slicePipeline_, pointsPipeline_;

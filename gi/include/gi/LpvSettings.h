@@ -26,6 +26,7 @@ struct LpvSettings {
     uint32_t debugSlice = 16;
     float rgba8Range = 2.0f;
     bool damping = true;
+    bool occlusion = true; // geometry volume attenuates propagation
 
     // Side of the VPL grid the RSM is clustered into (sqrt of vplCount).
     uint32_t vplGridSide() const;

@@ -40,8 +40,9 @@ public:
     void inject(rhi::CommandList& cmd, rhi::BufferHandle vpls, uint32_t vplCount, const VolumeGrid& grid,
                 glm::vec3 lightDirection, float intensity);
     // Propagates `iterations` (>= 1) times from the injection volume; accumulated() then holds the
-    // injected volume plus every iteration's propagated light.
-    void propagate(rhi::CommandList& cmd, uint32_t iterations);
+    // injected volume plus every iteration's propagated light. With `faceTransmittance`
+    // (GeometryVolume), the flux through every face is attenuated by it.
+    void propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::TextureHandle faceTransmittance = {});
 
     const std::array<rhi::TextureHandle, 3>& injected() const { return inject_; }
     const std::array<rhi::TextureHandle, 3>& accumulated() const { return accum_; }
@@ -57,7 +58,8 @@ private:
     // Partial sums between iterations, ping and pong, packed (packedTexelCount texels per cell).
     std::array<std::array<rhi::TextureHandle, 3>, 2> partial_{};
     rhi::GraphicsPipelineHandle injectPipeline_;
-    std::array<rhi::ComputePipelineHandle, 4> propagatePipelines_{}; // by iteration role
+    // By occlusion (without, with) and iteration role.
+    std::array<std::array<rhi::ComputePipelineHandle, 4>, 2> propagatePipelines_{};
     rhi::SamplerHandle pointSampler_;
 };
 

@@ -1,0 +1,56 @@
+// The geometry volume (GV) of the occlusion pass: surfels from the light's view (every VPL is the
+// RSM block it clusters) and from the camera's depth buffer (a grid of G-buffer samples) are added
+// into a volume whose cells are centred on the LPV's cell corners, then turned into the
+// transmittance of every LPV cell face that propagation multiplies its flux by (fuzzy blocking,
+// Kaplanyan & Dachsbacher 2010). See gv_common.glsl for what a cell holds.
+#pragma once
+
+#include "gi/LpvReference.h"
+#include "rhi/Device.h"
+
+#include <glm/mat4x4.hpp>
+
+namespace lpv::gi {
+
+struct GeometrySources {
+    rhi::BufferHandle vpls; // the frame's VPLs (LightPropagationVolume's layout)
+    uint32_t vplCount = 0;
+    float vplArea = 0.0f; // RSM area per VPL across the light (m^2)
+    glm::vec3 lightDirection{0.0f, -1.0f, 0.0f};
+    rhi::TextureHandle depth;  // camera depth (D32F); none: light surfels only
+    rhi::TextureHandle normal; // camera world normals
+    glm::mat4 invViewProjection{1.0f};
+    glm::vec3 cameraPosition{0.0f};
+    float sampleFootprint = 0.0f; // camera sample spacing per metre of distance (radians)
+};
+
+class GeometryVolume {
+public:
+    // Camera samples per row of the depth buffer (rows follow its aspect).
+    static constexpr uint32_t kCameraSamplesPerRow = 96;
+
+    GeometryVolume(rhi::Device& device, uint32_t lpvSize);
+    ~GeometryVolume();
+    GeometryVolume(const GeometryVolume&) = delete;
+    GeometryVolume& operator=(const GeometryVolume&) = delete;
+
+    // Clears and refills the volume for `grid` (the LPV's placement), then computes the face
+    // transmittance.
+    void build(rhi::CommandList& cmd, const VolumeGrid& grid, const GeometrySources& sources);
+
+    // Per LPV cell: transmittance of its -x, -y, -z faces (RGBA8, xyz).
+    rhi::TextureHandle faceTransmittance() const { return faces_; }
+    // Per GV cell: projected coverage along x, y, z; w: surfel count (RGBA16F, lpvSize + 1 cells).
+    rhi::TextureHandle coverage() const { return coverage_; }
+    uint32_t cameraSampleCount(uint32_t width, uint32_t height) const;
+
+private:
+    rhi::Device& device_;
+    uint32_t lpvSize_;
+    rhi::TextureHandle coverage_, faces_;
+    rhi::GraphicsPipelineHandle vplPipeline_, cameraPipeline_;
+    rhi::ComputePipelineHandle facesPipeline_;
+    rhi::SamplerHandle pointSampler_;
+};
+
+} // namespace lpv::gi

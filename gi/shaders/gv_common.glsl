@@ -1,0 +1,34 @@
+// Shared by the geometry-volume shaders: the volume's placement and how a surfel is stored.
+//
+// The geometry volume (GV) holds, per cell, how much surface it contains as seen along each axis:
+// (sum of area x |n.x|, |n.y|, |n.z|) / cell area. Its cells are centred on the LPV's cell corners
+// (offset half a cell), so the four around a face of an LPV cell say how much of that face is
+// covered. We keep this projected coverage instead of the papers' SH L1 blocking lobe because
+// propagation only ever asks along an axis, and an L1 lobe cannot hold a two-sided surface: the
+// two faces of a thin wall, one seen by the light and one by the camera, would cancel.
+#ifndef LPV_GV_COMMON_GLSL
+#define LPV_GV_COMMON_GLSL
+
+layout(binding = 0, std140) uniform GeometryInject {
+    vec4 gridOrigin;   // xyz: corner of LPV cell 0 (= centre of GV cell 0); w: cell size
+    vec4 lightDirection; // xyz: where the light travels; w: RSM area per VPL (m^2, across the light)
+    mat4 invViewProjection; // camera surfels: clip -> world
+    vec4 camera;       // xyz: camera position; w: a sample's footprint per metre of distance
+    ivec4 grid;        // x: GV cells per axis, y: slice being drawn, z: VPL count, w: samples per row
+} gv;
+
+// Where a surfel lands: the GV cell whose centre (an LPV corner) is nearest, if it is in the
+// slice being drawn, as a point position; else a position outside the clip volume.
+vec4 surfelPosition(vec3 p) {
+    ivec3 c = ivec3(floor((p - gv.gridOrigin.xyz) / gv.gridOrigin.w + 0.5));
+    int n = gv.grid.x;
+    bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n))) && c.z == gv.grid.y;
+    return inside ? vec4((vec2(c.xy) + 0.5) / float(n) * 2.0 - 1.0, 0.0, 1.0) : vec4(-4.0, -4.0, 0.0, 1.0);
+}
+
+// A surfel's projected coverage along the axes, in units of one cell face.
+vec3 surfelCoverage(vec3 normal, float area) {
+    return abs(normal) * area / (gv.gridOrigin.w * gv.gridOrigin.w);
+}
+
+#endif

@@ -1,0 +1,25 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Geometry volume from the light's view: every VPL is also a surfel (the RSM block it clusters),
+// drawn once per GV slice like the radiance injection. Its area is the block's area across the
+// light divided by the cosine to the light (clamped, so grazing blocks do not explode).
+#include "gv_common.glsl"
+
+struct Vpl {
+    vec4 position;
+    vec4 normal;
+    vec4 flux;
+};
+layout(binding = 1, std430) readonly buffer Vpls {
+    Vpl vpls[];
+};
+
+layout(location = 0) flat out vec3 vCoverage;
+
+void main() {
+    Vpl v = vpls[gl_VertexIndex];
+    float cosLight = max(abs(dot(v.normal.xyz, gv.lightDirection.xyz)), 0.25);
+    vCoverage = surfelCoverage(v.normal.xyz, gv.lightDirection.w / cosLight);
+    gl_PointSize = 1.0;
+    gl_Position = v.position.w > 0.0 ? surfelPosition(v.position.xyz) : vec4(-4.0, -4.0, 0.0, 1.0);
+}

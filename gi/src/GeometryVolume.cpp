@@ -1,0 +1,107 @@
+// The occlusion pass: surfels into the geometry volume, then face transmittance.
+#include "gi/GeometryVolume.h"
+
+#include "GiShaders.h"
+
+#include <glm/vec4.hpp>
+
+#include <algorithm>
+
+namespace lpv::gi {
+namespace {
+
+struct InjectUniforms {
+    glm::vec4 gridOrigin;
+    glm::vec4 lightDirection;
+    glm::mat4 invViewProjection;
+    glm::vec4 camera;
+    glm::ivec4 grid;
+};
+
+} // namespace
+
+GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize) : device_(device), lpvSize_(lpvSize) {
+    using namespace rhi;
+    const uint32_t g = lpvSize + 1;
+    coverage_ = device.createTexture({TextureKind::Tex3D, Format::RGBA16F, g, g, g, 1,
+                                      kTextureColorTarget | kTextureSampled | kTextureTransfer, "gv coverage",
+                                      "gi.gv"});
+    faces_ = device.createTexture({TextureKind::Tex3D, Format::RGBA8Unorm, lpvSize, lpvSize, lpvSize, 1,
+                                   kTextureStorage | kTextureSampled | kTextureTransfer,
+                                   "gv face transmittance", "gi.gv"});
+    GraphicsPipelineDesc d;
+    d.vertex = &shaders::gv_vpl_vert;
+    d.fragment = &shaders::gv_inject_frag;
+    d.topology = PrimitiveTopology::PointList;
+    d.colorFormats = {Format::RGBA16F};
+    d.blend = {BlendState::additive()};
+    d.debugName = "gv inject light surfels";
+    vplPipeline_ = device.createPipeline(d);
+    d.vertex = &shaders::gv_camera_vert;
+    d.debugName = "gv inject camera surfels";
+    cameraPipeline_ = device.createPipeline(d);
+    facesPipeline_ = device.createPipeline(ComputePipelineDesc{&shaders::gv_faces_comp, "gv faces"});
+    pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
+}
+
+GeometryVolume::~GeometryVolume() {
+    device_.waitIdle();
+    device_.destroy(coverage_);
+    device_.destroy(faces_);
+    device_.destroy(vplPipeline_);
+    device_.destroy(cameraPipeline_);
+    device_.destroy(facesPipeline_);
+    device_.destroy(pointSampler_);
+}
+
+uint32_t GeometryVolume::cameraSampleCount(uint32_t width, uint32_t height) const {
+    const uint32_t cols = kCameraSamplesPerRow;
+    const uint32_t rows = std::max(1u, (cols * height + width / 2) / std::max(1u, width));
+    return cols * rows;
+}
+
+void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const GeometrySources& src) {
+    using namespace rhi;
+    cmd.clearTexture(coverage_, {0, 0, 0, 0});
+    const uint32_t g = lpvSize_ + 1;
+    InjectUniforms u;
+    u.gridOrigin = glm::vec4(grid.origin, grid.cellSize);
+    u.lightDirection = glm::vec4(src.lightDirection, src.vplArea);
+    u.invViewProjection = src.invViewProjection;
+    u.camera = glm::vec4(src.cameraPosition, src.sampleFootprint);
+    uint32_t cameraSamples = 0;
+    if (src.depth) {
+        const TextureDesc& d = device_.desc(src.depth);
+        cameraSamples = cameraSampleCount(d.width, d.height);
+    }
+    for (uint32_t slice = 0; slice < g; ++slice) {
+        RenderPassDesc pass;
+        pass.colors[0] = {coverage_, 0, slice, LoadOp::Load};
+        pass.colorCount = 1;
+        pass.debugName = "gv inject slice";
+        cmd.beginRenderPass(pass);
+        u.grid = glm::ivec4(int(g), int(slice), int(src.vplCount), int(kCameraSamplesPerRow));
+        if (src.vplCount > 0) {
+            cmd.bindPipeline(vplPipeline_);
+            cmd.pushUniforms(0, &u, sizeof(u));
+            cmd.bindStorageBuffer(1, src.vpls);
+            cmd.draw(src.vplCount);
+        }
+        if (cameraSamples > 0) {
+            cmd.bindPipeline(cameraPipeline_);
+            cmd.pushUniforms(0, &u, sizeof(u));
+            cmd.bindTexture(1, src.depth, pointSampler_);
+            cmd.bindTexture(2, src.normal, pointSampler_);
+            cmd.draw(cameraSamples);
+        }
+        cmd.endRenderPass();
+    }
+    const glm::ivec4 faceGrid(int(lpvSize_), 0, 0, 0);
+    cmd.bindPipeline(facesPipeline_);
+    cmd.pushUniforms(0, &faceGrid, sizeof(faceGrid));
+    cmd.bindTexture(1, coverage_, pointSampler_);
+    cmd.bindStorageImage(2, faces_);
+    cmd.dispatch((lpvSize_ + 3) / 4, (lpvSize_ + 3) / 4, (lpvSize_ + 3) / 4);
+}
+
+} // namespace lpv::gi

@@ -1,0 +1,113 @@
+// Occlusion on each backend: a thin wall between a lit area and a dark room. The wall's surfels go
+// into the geometry volume; with occlusion the light that reaches the room must be at most 10% of
+// what reaches it without.
+#include "../support/Image.h"
+#include "../support/TestDevice.h"
+#include "gi/GeometryVolume.h"
+#include "gi/LpvVolumes.h"
+
+#include <doctest/doctest.h>
+#include <glm/geometric.hpp>
+#include <glm/vec4.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+using namespace lpv;
+using namespace lpv::test;
+
+namespace {
+
+struct GpuVpl {
+    glm::vec4 position, normal, flux;
+};
+
+// 16^3 cells of 0.5 m from the origin. The wall is the plane x = 4 m (between cells 7 and 8),
+// across the whole volume; the lit area is the floor strip x in 0.5 .. 3.5 m; the room is x >= 4.5 m.
+constexpr uint32_t kCells = 16;
+constexpr float kCell = 0.5f, kWallX = 4.0f, kSpacing = 0.25f;
+
+std::vector<GpuVpl> scene() {
+    std::vector<GpuVpl> v;
+    // Lit floor: bright VPLs facing up.
+    for (float x = 0.5f; x <= 3.5f; x += kSpacing)
+        for (float z = 0.25f; z < 8.0f; z += kSpacing)
+            v.push_back({{x, 0.3f, z, 1}, {0, 1, 0, 0}, {0.05f, 0.05f, 0.05f, 0}});
+    // The wall's lit face, facing the lit area: reflects a little and, as a surfel, blocks.
+    for (float y = 0.125f; y < 8.0f; y += kSpacing)
+        for (float z = 0.125f; z < 8.0f; z += kSpacing)
+            v.push_back({{kWallX - 0.01f, y, z, 1}, {-1, 0, 0, 0}, {0.01f, 0.01f, 0.01f, 0}});
+    return v;
+}
+
+// The light in the room: the L0 coefficients of every room cell, all channels.
+float roomLight(rhi::Device& device, const gi::LpvVolumes& volumes) {
+    float sum = 0.0f;
+    for (int ch = 0; ch < 3; ++ch) {
+        const Image img = readImage(device, volumes.accumulated()[size_t(ch)]);
+        for (uint32_t z = 0; z < kCells; ++z)
+            for (uint32_t y = 0; y < kCells; ++y)
+                for (uint32_t x = 9; x < kCells; ++x) // cell 9 starts at 4.5 m
+                    sum += std::max(0.0f, img.at(x, y, z).x);
+    }
+    return sum;
+}
+
+} // namespace
+
+TEST_CASE("gi: a thin wall keeps the light of a lit area out of a dark room (occlusion)") {
+    const std::vector<GpuVpl> vpls = scene();
+    const gi::VolumeGrid grid{{0.0f, 0.0f, 0.0f}, kCell, kCells};
+    const glm::vec3 light = glm::normalize(glm::vec3(1.0f, -1.0f, 0.0f));
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            gi::LpvSettings s;
+            s.gridSize = kCells;
+            s.shFormat = gi::ShFormat::Rgba32f;
+            const rhi::BufferHandle buffer = device->createBuffer(
+                {vpls.size() * sizeof(GpuVpl), rhi::kBufferStorage | rhi::kBufferTransfer,
+                 rhi::MemoryAccess::GpuOnly, "test vpls", "test"},
+                vpls.data());
+            float open = 0.0f, walled = 0.0f, wallCoverage = 0.0f;
+            {
+                gi::LpvVolumes volumes(*device, s);
+                gi::GeometryVolume geometry(*device, kCells);
+                for (bool occlusion : {false, true}) {
+                    rhi::CommandList& cmd = device->beginFrame();
+                    gi::GeometrySources src;
+                    src.vpls = buffer;
+                    src.vplCount = uint32_t(vpls.size());
+                    // Every surfel stands for kSpacing^2 of surface; the wall faces the light's x.
+                    src.vplArea = kSpacing * kSpacing * std::abs(glm::dot(light, glm::vec3(1, 0, 0)));
+                    src.lightDirection = light;
+                    geometry.build(cmd, grid, src);
+                    volumes.inject(cmd, buffer, uint32_t(vpls.size()), grid, light, 1.0f);
+                    volumes.propagate(cmd, 8,
+                                      occlusion ? geometry.faceTransmittance() : rhi::TextureHandle{});
+                    device->endFrame();
+                    device->waitIdle();
+                    (occlusion ? walled : open) = roomLight(*device, volumes);
+                }
+                // The faces in the wall's plane: cell 8's -x faces, away from the volume's edges.
+                const Image faces = readImage(*device, geometry.faceTransmittance());
+                for (uint32_t z = 1; z + 1 < kCells; ++z)
+                    for (uint32_t y = 1; y + 1 < kCells; ++y)
+                        wallCoverage += 1.0f - faces.at(8, y, z).x;
+                wallCoverage /= float((kCells - 2) * (kCells - 2));
+                // Faces elsewhere are open (the floor surfels only cover faces along y).
+                CHECK(faces.at(4, 5, 5).x == doctest::Approx(1.0f));
+                CHECK(faces.at(12, 5, 5).x == doctest::Approx(1.0f));
+            }
+            MESSAGE(backend.name << ": light in the room without occlusion " << open << ", with " << walled
+                                 << " (" << 100.0f * walled / open << "%); wall faces covered "
+                                 << wallCoverage);
+            REQUIRE(open > 0.0f);
+            CHECK(wallCoverage > 0.9f);
+            CHECK(walled <= 0.10f * open);
+            device->destroy(buffer);
+            device.expectSilent();
+        }
+    }
+}
