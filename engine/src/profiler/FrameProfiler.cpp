@@ -171,24 +171,27 @@ void FrameProfiler::resolveGpu() {
 void FrameProfiler::finishCheck(FrameRecord& r) {
     r.checked = true;
     FrameBudgetCheck& c = r.check;
+    c.frame = r.frame;
     c.frameMs = r.gpuResolved ? ms(r.gpuBegin, r.gpuEnd) : ms(r.cpuBegin, r.cpuEnd);
-    WorkCounts giWork;
     for (uint32_t k = 0; k < r.sampleCount; ++k) {
         const Sample& s = r.samples[k];
         const ScopeInfo& info = scopes_[s.scope];
         if (!isGi(info.path)) continue;
         if (info.depth == 0)
             c.giMs += r.gpuResolved && s.gpuTimed ? ms(s.gpuBegin, s.gpuEnd) : ms(s.cpuBegin, s.cpuEnd);
-        giWork += s.work;
+        // Passes run one after another, each as long as its own busiest unit: predict each, then
+        // add (as the cost model's calibration does), rather than predicting the frame's summed work.
+        if (s.work.empty()) continue;
+        c.giPredictedX360Ms += predictCost(s.work, x360_.throughput).ms;
+        c.giPredictedPs3Ms += predictCost(s.work, ps3_.throughput).ms;
     }
-    c.giPredictedX360Ms = predictCost(giWork, x360_.throughput).ms;
-    c.giPredictedPs3Ms = predictCost(giWork, ps3_.throughput).ms;
     c.frameOverBudget = c.frameMs > profile_.frameBudgetMs;
     c.giOverBudget = c.giMs > profile_.giBudgetMs;
     const double predicted = profile_.name == "ps3"    ? c.giPredictedPs3Ms
                              : profile_.name == "x360" ? c.giPredictedX360Ms
                                                        : 0.0;
     c.giPredictedOverBudget = predicted > profile_.giBudgetMs;
+    c.giBudgetedMs = profile_.name == "ps3" || profile_.name == "x360" ? predicted : c.giMs;
     lastCheck_ = c;
     ++framesChecked_;
     if (c.frameOverBudget || c.giOverBudget || c.giPredictedOverBudget) ++framesOverBudget_;

@@ -44,9 +44,12 @@ struct ScopeInfo {
 };
 
 struct FrameBudgetCheck {
+    uint64_t frame = 0; // the device frame these figures are of
     double frameMs = 0; // GPU frame time when resolved, else CPU
     double giMs = 0;    // sum of the top-level "gi" scopes
     double giPredictedX360Ms = 0, giPredictedPs3Ms = 0;
+    // The GI time the budget is held to: predicted on the x360 and ps3 profiles, else giMs.
+    double giBudgetedMs = 0;
     bool frameOverBudget = false;
     bool giOverBudget = false;
     bool giPredictedOverBudget = false; // console profiles: predicted ms against the GI budget
