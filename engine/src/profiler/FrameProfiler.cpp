@@ -31,6 +31,7 @@ FrameProfiler::FrameProfiler(rhi::Device& device, platforms::PlatformProfile pro
     records_.resize(std::max<uint32_t>(options_.traceFrames, 8));
     for (FrameRecord& r : records_)
         r.samples.resize(options_.maxScopesPerFrame);
+    notes_.resize(std::max<uint32_t>(options_.maxNotes, 2));
     stack_.reserve(64);
     scopes_.reserve(256);
     timestampScratch_.resize(gpuSlots_);
@@ -73,6 +74,13 @@ void FrameProfiler::beginFrame(rhi::CommandList& cmd) {
     r.memoryGi = device_.allocations().bytesIn("gi");
     r.check = {};
     current_ = &r;
+    // Notes made since the last frame ended belong to this one.
+    for (uint32_t i = 0; i < pendingNotes_; ++i) {
+        Note& n = notes_[(noted_ - 1 - i) % notes_.size()];
+        n.frame = r.frame;
+        n.cpuTime = r.cpuBegin;
+    }
+    pendingNotes_ = 0;
     if (gpuSlots_) cmd.writeTimestamp(0);
 }
 
@@ -123,6 +131,30 @@ void FrameProfiler::setWork(const WorkCounts& work) {
     const Open& open = stack_.back();
     scopes_[open.scope].work = work;
     if (open.sample != UINT32_MAX) current_->samples[open.sample].work = work;
+}
+
+void FrameProfiler::note(std::string_view topic, std::string_view text) {
+    if (!current_ && pendingNotes_ + 1 >= notes_.size()) {
+        ++pendingLost_; // a flood between two frames: keep the first ones and a slot for the last frame's
+        return;
+    }
+    Note& n = notes_[noted_ % notes_.size()];
+    ++noted_;
+    const auto copy = [](std::string_view from, auto& to) {
+        const size_t length = std::min(from.size(), to.size() - 1);
+        std::copy_n(from.data(), length, to.data());
+        to[length] = '\0';
+    };
+    copy(topic, n.topicBuffer);
+    copy(text, n.textBuffer);
+    if (current_) {
+        n.frame = current_->frame;
+        n.cpuTime = platforms::nowNanoseconds();
+    } else {
+        n.frame = 0;
+        n.cpuTime = 0;
+        ++pendingNotes_;
+    }
 }
 
 void FrameProfiler::endFrame(rhi::CommandList& cmd) {
