@@ -3,6 +3,7 @@
 #pragma once
 
 #include "engine/config/Config.h"
+#include "gi/GiBudgetPolicy.h"
 #include "rhi/Format.h"
 
 #include <cstdint>
@@ -26,6 +27,7 @@ struct LpvSettings {
     uint32_t debugSlice = 16;
     float rgba8Range = 2.0f;
     bool damping = true;
+    GiBudgetPolicy budgetPolicy = GiBudgetPolicy::Fixed;
 
     // Side of the VPL grid the RSM is clustered into (sqrt of vplCount).
     uint32_t vplGridSide() const;
