@@ -8,13 +8,19 @@
 // reported, since no time knob frees memory. Under fixed it changes nothing and reports.
 //
 // It works on a plain struct of knobs and on figures the caller measures (or predicts) per frame,
-// so it knows nothing about GPUs or cascades' implementation. Per frame, before recording GI:
+// so it knows nothing about GPUs or cascades' implementation. Per frame, before recording GI
+// (`frame` = device.frameIndex() + 1 before beginFrame(), the index the profiler will record):
 //
+//   const LpvSettings configured = readLpvSettings(config);   // as configured, never the output
 //   const GiSchedule& s = scheduler.schedule(frame, giFrameCost(profiler), giBudgetOf(profile),
-//                                            giLoadOf(settings, cascades), settings.budgetPolicy);
-//   applyGiLoad(s.load, settings);          // iterations, rsm size
+//                                            giLoadOf(configured, cascades), configured.budgetPolicy);
+//   LpvSettings effective = configured;
+//   applyGiLoad(s.load, effective);         // iterations, rsm size
 //   ... update cascade c only when s.updatesCascade(c) ...
 //   for (const GiChange& c : s.changes()) profiler.note(kGiBudgetNoteTopic, c.text());
+//
+// Feed it the configured knobs each frame, not what it returned: a change of the configured load
+// starts over from it.
 //
 // Nothing here allocates after construction: changes are written into fixed-size buffers.
 #pragma once
