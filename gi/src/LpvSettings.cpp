@@ -64,6 +64,7 @@ LpvSettings readLpvSettings(const engine::Config& config) {
     s.rgba8Range = float(config.get(kRgba8Range));
     s.damping = config.get(kDamping);
     s.occlusion = config.get(kOcclusion);
+    s.budgetPolicy = readGiBudgetPolicy(config);
     const uint32_t side = s.vplGridSide();
     if (side * side != s.vplCount || s.rsmSize % side != 0)
         throw engine::ConfigError(config.origin(kVplCount.decl()), 0,

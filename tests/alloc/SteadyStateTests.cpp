@@ -9,6 +9,7 @@
 #include "engine/profiler/FrameProfiler.h"
 #include "engine/render/Renderer.h"
 #include "engine/scene/BuiltinScenes.h"
+#include "gi/GiScheduler.h"
 #include "gi/LightPropagationVolume.h"
 #include "platforms/PlatformProfile.h"
 
@@ -84,4 +85,50 @@ TEST_CASE("steady state: a frame with GI and the profiler allocates nothing") {
             device->waitIdle();
         }
     }
+}
+
+TEST_CASE("steady state: the GI budget scheduler and the profiler's notes allocate nothing") {
+    rhi::DeviceConfig config;
+    config.backend = rhi::BackendKind::Null;
+    auto device = rhi::createDevice(config);
+    const auto profile = platforms::loadPlatformProfile("x360");
+    engine::FrameProfiler profiler(*device, profile);
+    gi::GiBudgetScheduler scheduler;
+    gi::GiLoad configured;
+    configured.cascades = 3;
+    gi::GiLoad load = configured;
+    uint64_t changes = 0;
+    // GI's time follows the load; the budget is tight, then loose, so steps are taken and given
+    // back (and noted) while allocations are counted.
+    const auto frame = [&](double budgetMs) {
+        const uint64_t index = device->frameIndex() + 1;
+        std::optional<gi::GiFrameCost> cost = gi::giFrameCost(profiler);
+        if (cost) cost->ms = 0.4 * load.iterations; // about the load of that frame
+        const gi::GiSchedule& s = scheduler.schedule(index, cost, {budgetMs, profile.giMemoryBudgetBytes},
+                                                     configured, gi::GiBudgetPolicy::Adapt);
+        for (const gi::GiChange& c : s.changes())
+            profiler.note(gi::kGiBudgetNoteTopic, c.text());
+        changes += s.changes().size();
+        load = s.load;
+        rhi::CommandList& cmd = device->beginFrame();
+        profiler.beginFrame(cmd);
+        {
+            auto gi = profiler.scope("gi", &cmd);
+            cmd.dispatch(1);
+        }
+        profiler.endFrame(cmd);
+        device->endFrame();
+    };
+    for (int i = 0; i < 4; ++i)
+        frame(2.0);
+    gAllocations = 0;
+    gCounting = true;
+    for (int i = 0; i < 80; ++i)
+        frame(2.0);
+    for (int i = 0; i < 300; ++i)
+        frame(10.0);
+    gCounting = false;
+    MESSAGE(changes << " schedule changes noted, " << gAllocations.load() << " allocations");
+    CHECK(changes >= 4);
+    CHECK(gAllocations.load() == 0);
 }

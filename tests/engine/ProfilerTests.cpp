@@ -11,6 +11,9 @@
 
 #include <set>
 #include <stdexcept>
+#include <string>
+#include <tuple>
+#include <vector>
 
 using namespace lpv;
 using namespace lpv::engine;
@@ -208,4 +211,104 @@ TEST_CASE("profiler: passes over their budget are flagged in the summary") {
     };
     CHECK(rowOf("gi/propagate").find("**OVER**") != std::string::npos);
     CHECK(rowOf("render/gbuffer").find("**OVER**") != std::string::npos);
+}
+
+TEST_CASE("profiler: notes belong to their frame and reach every report") {
+    auto device = nullDevice();
+    ProfilerOptions options;
+    options.maxNotes = 4;
+    FrameProfiler profiler(*device, tinyProfile(100, 100), options);
+    frame(*device, profiler, 1, 1);
+    CHECK(profileSummaryMarkdown(profiler).find("| frame | note |") ==
+          std::string::npos); // no notes, no section
+
+    profiler.note("GI budget changes", "made between frames"); // goes to the next frame
+    uint64_t noted = 0;
+    profiler.forEachNote([&](const FrameProfiler::Note&) { ++noted; });
+    CHECK(noted == 0); // not yet placed in a frame
+    rhi::CommandList& cmd = device->beginFrame();
+    profiler.beginFrame(cmd);
+    const uint64_t second = device->frameIndex();
+    profiler.note("other topic", std::string(500, 'x')); // cut to fit
+    profiler.endFrame(cmd);
+    device->endFrame();
+
+    std::vector<std::tuple<uint64_t, std::string, std::string>> notes;
+    profiler.forEachNote([&](const FrameProfiler::Note& n) {
+        notes.emplace_back(n.frame, std::string(n.topic()), std::string(n.text()));
+    });
+    REQUIRE(notes.size() == 2);
+    CHECK(notes[0] ==
+          std::tuple(second, std::string("GI budget changes"), std::string("made between frames")));
+    CHECK(std::get<0>(notes[1]) == second);
+    CHECK(std::get<2>(notes[1]) == std::string(FrameProfiler::Note::kTextBytes - 1, 'x'));
+
+    const std::string md = profileSummaryMarkdown(profiler);
+    CHECK(md.find("## GI budget changes\n\n| frame | note |\n|---|---|\n| " + std::to_string(second) +
+                  " | made between frames |") != std::string::npos);
+    CHECK(md.find("## other topic") != std::string::npos);
+    CHECK(profileSummaryText(profiler).find("GI budget changes:\n  frame " + std::to_string(second) +
+                                            ": made between frames") != std::string::npos);
+    CHECK(profileSummaryCsv(profiler).find("\nframe,topic,note\n" + std::to_string(second) +
+                                           ",\"GI budget changes\",\"made between frames\"") !=
+          std::string::npos);
+    const auto trace = nlohmann::json::parse(profileTraceJson(profiler));
+    int instants = 0;
+    for (const auto& e : trace.at("traceEvents"))
+        if (e.at("ph") == "i") {
+            ++instants;
+            CHECK(e.at("args").at("frame").get<uint64_t>() == second);
+        }
+    CHECK(instants == 2);
+
+    // The newest maxNotes are kept; the report says how many gave way.
+    for (int i = 0; i < 5; ++i) {
+        rhi::CommandList& c = device->beginFrame();
+        profiler.beginFrame(c);
+        profiler.note("GI budget changes", "note " + std::to_string(i));
+        profiler.endFrame(c);
+        device->endFrame();
+    }
+    std::vector<std::string> kept;
+    profiler.forEachNote([&](const FrameProfiler::Note& n) { kept.emplace_back(n.text()); });
+    CHECK(kept == std::vector<std::string>{"note 1", "note 2", "note 3", "note 4"});
+    CHECK(profiler.notesDropped() == 3);
+    CHECK(profileSummaryText(profiler).find("(3 older notes dropped)") != std::string::npos);
+}
+
+TEST_CASE("profiler: the predicted GI time adds up its passes, and names the frame it is of") {
+    auto device = nullDevice();
+    FrameProfiler profiler(*device, platforms::loadPlatformProfile("x360"));
+    // Two passes bound by different units: 1 ms of ALU, then 1 ms of texture fetches on Xenos.
+    // Passes run one after the other, so 2 ms; a roofline of their summed work would say 1 ms.
+    const auto giFrame = [&] {
+        rhi::CommandList& cmd = device->beginFrame();
+        profiler.beginFrame(cmd);
+        {
+            auto gi = profiler.scope("gi", &cmd);
+            {
+                auto a = profiler.scope("propagate", &cmd);
+                WorkCounts w;
+                w.aluOps = 240'000'000;
+                profiler.setWork(w);
+            }
+            auto b = profiler.scope("lookup", &cmd);
+            WorkCounts w;
+            w.texelsRead = 8'000'000;
+            profiler.setWork(w);
+        }
+        profiler.endFrame(cmd);
+        device->endFrame();
+        return device->frameIndex();
+    };
+    const uint64_t first = giFrame();
+    for (int i = 0; i < 3; ++i)
+        giFrame();
+    REQUIRE(profiler.framesChecked() >= 1);
+    const FrameBudgetCheck& check = profiler.lastBudgetCheck();
+    CHECK(check.frame >= first);
+    CHECK(check.frame < device->frameIndex());
+    CHECK(check.giPredictedX360Ms == doctest::Approx(2.0));
+    CHECK(check.giBudgetedMs == doctest::Approx(2.0)); // x360: held to the predicted time
+    CHECK(check.giPredictedOverBudget == false);       // 2 ms of a 3.3 ms budget
 }

@@ -31,6 +31,7 @@ FrameProfiler::FrameProfiler(rhi::Device& device, platforms::PlatformProfile pro
     records_.resize(std::max<uint32_t>(options_.traceFrames, 8));
     for (FrameRecord& r : records_)
         r.samples.resize(options_.maxScopesPerFrame);
+    notes_.resize(std::max<uint32_t>(options_.maxNotes, 2));
     stack_.reserve(64);
     scopes_.reserve(256);
     timestampScratch_.resize(gpuSlots_);
@@ -73,6 +74,13 @@ void FrameProfiler::beginFrame(rhi::CommandList& cmd) {
     r.memoryGi = device_.allocations().bytesIn("gi");
     r.check = {};
     current_ = &r;
+    // Notes made since the last frame ended belong to this one.
+    for (uint32_t i = 0; i < pendingNotes_; ++i) {
+        Note& n = notes_[(noted_ - 1 - i) % notes_.size()];
+        n.frame = r.frame;
+        n.cpuTime = r.cpuBegin;
+    }
+    pendingNotes_ = 0;
     if (gpuSlots_) cmd.writeTimestamp(0);
 }
 
@@ -125,6 +133,30 @@ void FrameProfiler::setWork(const WorkCounts& work) {
     if (open.sample != UINT32_MAX) current_->samples[open.sample].work = work;
 }
 
+void FrameProfiler::note(std::string_view topic, std::string_view text) {
+    if (!current_ && pendingNotes_ + 1 >= notes_.size()) {
+        ++pendingLost_; // a flood between two frames: keep the first ones and a slot for the last frame's
+        return;
+    }
+    Note& n = notes_[noted_ % notes_.size()];
+    ++noted_;
+    const auto copy = [](std::string_view from, auto& to) {
+        const size_t length = std::min(from.size(), to.size() - 1);
+        std::copy_n(from.data(), length, to.data());
+        to[length] = '\0';
+    };
+    copy(topic, n.topicBuffer);
+    copy(text, n.textBuffer);
+    if (current_) {
+        n.frame = current_->frame;
+        n.cpuTime = platforms::nowNanoseconds();
+    } else {
+        n.frame = 0;
+        n.cpuTime = 0;
+        ++pendingNotes_;
+    }
+}
+
 void FrameProfiler::endFrame(rhi::CommandList& cmd) {
     if (!current_) throw std::logic_error("profiler: endFrame() without beginFrame()");
     if (!stack_.empty())
@@ -171,24 +203,27 @@ void FrameProfiler::resolveGpu() {
 void FrameProfiler::finishCheck(FrameRecord& r) {
     r.checked = true;
     FrameBudgetCheck& c = r.check;
+    c.frame = r.frame;
     c.frameMs = r.gpuResolved ? ms(r.gpuBegin, r.gpuEnd) : ms(r.cpuBegin, r.cpuEnd);
-    WorkCounts giWork;
     for (uint32_t k = 0; k < r.sampleCount; ++k) {
         const Sample& s = r.samples[k];
         const ScopeInfo& info = scopes_[s.scope];
         if (!isGi(info.path)) continue;
         if (info.depth == 0)
             c.giMs += r.gpuResolved && s.gpuTimed ? ms(s.gpuBegin, s.gpuEnd) : ms(s.cpuBegin, s.cpuEnd);
-        giWork += s.work;
+        // Passes run one after another, each as long as its own busiest unit: predict each, then
+        // add (as the cost model's calibration does), rather than predicting the frame's summed work.
+        if (s.work.empty()) continue;
+        c.giPredictedX360Ms += predictCost(s.work, x360_.throughput).ms;
+        c.giPredictedPs3Ms += predictCost(s.work, ps3_.throughput).ms;
     }
-    c.giPredictedX360Ms = predictCost(giWork, x360_.throughput).ms;
-    c.giPredictedPs3Ms = predictCost(giWork, ps3_.throughput).ms;
     c.frameOverBudget = c.frameMs > profile_.frameBudgetMs;
     c.giOverBudget = c.giMs > profile_.giBudgetMs;
     const double predicted = profile_.name == "ps3"    ? c.giPredictedPs3Ms
                              : profile_.name == "x360" ? c.giPredictedX360Ms
                                                        : 0.0;
     c.giPredictedOverBudget = predicted > profile_.giBudgetMs;
+    c.giBudgetedMs = profile_.name == "ps3" || profile_.name == "x360" ? predicted : c.giMs;
     lastCheck_ = c;
     ++framesChecked_;
     if (c.frameOverBudget || c.giOverBudget || c.giPredictedOverBudget) ++framesOverBudget_;

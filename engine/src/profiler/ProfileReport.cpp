@@ -11,6 +11,7 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace lpv::engine {
 namespace {
@@ -32,6 +33,17 @@ std::string jsonEscape(const std::string& s) {
         if (static_cast<unsigned char>(c) < 0x20) continue;
         out += c;
     }
+    return out;
+}
+
+std::string xmlEscape(const std::string& s) {
+    std::string out;
+    for (char c : s)
+        out += c == '<'   ? "&lt;"
+               : c == '>' ? "&gt;"
+               : c == '&' ? "&amp;"
+               : c == '"' ? "&quot;"
+                          : std::string(1, c);
     return out;
 }
 
@@ -86,6 +98,37 @@ bool overBudget(const Row& r) {
     return r.shareOfFrame > 100.0 || r.shareOfGi > 100.0;
 }
 
+// Notes grouped by topic, topics in the order they first appear.
+using NoteGroups = std::vector<std::pair<std::string, std::vector<const FrameProfiler::Note*>>>;
+NoteGroups notesByTopic(const FrameProfiler& p) {
+    NoteGroups groups;
+    p.forEachNote([&](const FrameProfiler::Note& n) {
+        auto it =
+            std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return g.first == n.topic(); });
+        if (it == groups.end()) it = groups.insert(groups.end(), {std::string(n.topic()), {}});
+        it->second.push_back(&n);
+    });
+    return groups;
+}
+
+std::string droppedNotes(const FrameProfiler& p) {
+    return p.notesDropped() ? "(" + std::to_string(p.notesDropped()) + " older notes dropped)\n" : "";
+}
+
+std::string csvQuote(std::string_view s) {
+    std::string out = "\"";
+    for (char c : s)
+        out += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return out + "\"";
+}
+
+std::string markdownCell(std::string_view s) {
+    std::string out;
+    for (char c : s)
+        out += c == '|' ? std::string("\\|") : std::string(1, c);
+    return out;
+}
+
 } // namespace
 
 std::string profileSummaryText(const FrameProfiler& p) {
@@ -119,6 +162,12 @@ std::string profileSummaryText(const FrameProfiler& p) {
         o << "  " << category << ": " << mib(usage.currentBytes) << " / " << mib(usage.peakBytes) << "\n";
     o << "  GI total: " << mib(giMemory(p)) << " of " << mib(prof.giMemoryBudgetBytes) << " budget"
       << (giMemory(p) > prof.giMemoryBudgetBytes ? " (OVER BUDGET)" : "") << "\n";
+    for (const auto& [topic, notes] : notesByTopic(p)) {
+        o << "\n" << topic << ":\n";
+        for (const auto* n : notes)
+            o << "  frame " << n->frame << ": " << n->text() << "\n";
+    }
+    o << droppedNotes(p);
     return o.str();
 }
 
@@ -151,6 +200,12 @@ std::string profileSummaryMarkdown(const FrameProfiler& p) {
           << usage.count << " |\n";
     o << "\nGI memory: " << mib(giMemory(p)) << " of " << mib(prof.giMemoryBudgetBytes)
       << (giMemory(p) > prof.giMemoryBudgetBytes ? " (**over budget**)" : "") << ".\n";
+    for (const auto& [topic, notes] : notesByTopic(p)) {
+        o << "\n## " << topic << "\n\n| frame | note |\n|---|---|\n";
+        for (const auto* n : notes)
+            o << "| " << n->frame << " | " << markdownCell(n->text()) << " |\n";
+    }
+    if (p.notesDropped()) o << "\n" << droppedNotes(p);
     return o.str();
 }
 
@@ -168,6 +223,11 @@ std::string profileSummaryCsv(const FrameProfiler& p) {
     o << "\ncategory,current_bytes,peak_bytes,resources\n";
     for (const auto& [category, usage] : p.allocations().categories())
         o << category << "," << usage.currentBytes << "," << usage.peakBytes << "," << usage.count << "\n";
+    bool header = false;
+    p.forEachNote([&](const FrameProfiler::Note& n) {
+        if (!std::exchange(header, true)) o << "\nframe,topic,note\n";
+        o << n.frame << "," << csvQuote(n.topic()) << "," << csvQuote(n.text()) << "\n";
+    });
     return o.str();
 }
 
@@ -216,6 +276,15 @@ std::string profileTraceJson(const FrameProfiler& p) {
               << ",\"gi_ms\":" << fixed(r.check.giMs) << ",\"gi_budget_ms\":" << fixed(p.profile().giBudgetMs)
               << "}}";
     });
+    // Notes as global instant events (a vertical line across the tracks), the text as the name.
+    p.forEachNote([&](const FrameProfiler::Note& n) {
+        if (n.cpuTime < origin) return; // its frame is no longer in the trace
+        o << ",\n{\"name\":\"" << jsonEscape(std::string(n.text())) << "\",\"cat\":\""
+          << jsonEscape(std::string(n.topic()))
+          << "\",\"ph\":\"i\",\"s\":\"g\",\"pid\":1,\"tid\":1,\"ts\":" << us(n.cpuTime)
+          << ",\"args\":{\"frame\":" << n.frame << ",\"topic\":\"" << jsonEscape(std::string(n.topic()))
+          << "\"}}";
+    });
     o << "\n]}\n";
     return o.str();
 }
@@ -238,6 +307,11 @@ std::string profileChartSvg(const FrameProfiler& p) {
     o << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
     o << "<text x=\"" << left << "\" y=\"18\" font-size=\"13\">Per-frame pass times (" << gpuSourceName(p)
       << " where resolved, else CPU), platform " << p.profile().name << "</text>\n";
+    std::map<uint64_t, std::string> notesOfFrame;
+    p.forEachNote([&](const FrameProfiler::Note& n) {
+        std::string& t = notesOfFrame[n.frame];
+        t += (t.empty() ? "" : "; ") + std::string(n.text());
+    });
     const double barW = frames.empty() ? 1 : plotW / double(frames.size());
     const auto y = [&](double v) { return top + plotH - v / maxMs * plotH; };
     for (size_t i = 0; i < frames.size(); ++i) {
@@ -258,6 +332,11 @@ std::string profileChartSvg(const FrameProfiler& p) {
             o << "<rect x=\"" << fixed(left + double(i) * barW, 2) << "\" y=\"" << top - 6 << "\" width=\""
               << fixed(std::max(barW - 0.5, 0.5), 2) << "\" height=\"4\" fill=\"red\"><title>frame "
               << r.frame << " over budget</title></rect>\n";
+        if (const auto note = notesOfFrame.find(r.frame); note != notesOfFrame.end())
+            o << "<rect x=\"" << fixed(left + double(i) * barW, 2) << "\" y=\"" << top + plotH + 2
+              << "\" width=\"" << fixed(std::max(barW - 0.5, 0.5), 2)
+              << "\" height=\"4\" fill=\"#4e79a7\"><title>frame " << r.frame << ": "
+              << xmlEscape(note->second) << "</title></rect>\n";
     }
     o << "<line x1=\"" << left << "\" x2=\"" << left + plotW << "\" y1=\""
       << fixed(y(p.profile().frameBudgetMs), 2) << "\" y2=\"" << fixed(y(p.profile().frameBudgetMs), 2)
@@ -272,7 +351,7 @@ std::string profileChartSvg(const FrameProfiler& p) {
           << fixed(v, 1) << "</text>\n";
     }
     o << "<text x=\"" << left << "\" y=\"" << height - 10 << "\">frames (" << frames.size()
-      << "); red marks: over budget; ms on the left axis</text>\n";
+      << "); red marks: over budget; blue marks: notes (hover); ms on the left axis</text>\n";
     int legend = 0;
     for (size_t i = 0; i < p.scopes().size(); ++i) {
         if (p.scopes()[i].depth != 0) continue;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "engine/config/Config.h"
+#include "gi/GiBudgetPolicy.h"
 #include "rhi/Format.h"
 
 #include <cstdint>
@@ -27,6 +28,7 @@ struct LpvSettings {
     float rgba8Range = 2.0f;
     bool damping = true;
     bool occlusion = true; // geometry volume attenuates propagation
+    GiBudgetPolicy budgetPolicy = GiBudgetPolicy::Fixed;
 
     // Side of the VPL grid the RSM is clustered into (sqrt of vplCount).
     uint32_t vplGridSide() const;

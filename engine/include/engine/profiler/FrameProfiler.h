@@ -17,6 +17,8 @@
 #include "platforms/PlatformProfile.h"
 #include "rhi/Device.h"
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -28,7 +30,8 @@ struct ProfilerOptions {
     uint32_t statsWindow = 120;  // frames the statistics cover
     uint32_t traceFrames = 1200; // frames kept for the trace and the chart
     uint32_t maxScopesPerFrame = 48;
-    bool gpuTiming = true; // false: CPU scopes only, no timestamps written
+    uint32_t maxNotes = 256; // notes kept (the newest), see FrameProfiler::note()
+    bool gpuTiming = true;   // false: CPU scopes only, no timestamps written
 };
 
 // A scope name as it appears in reports: the path of nested names ("gi/propagate").
@@ -44,9 +47,12 @@ struct ScopeInfo {
 };
 
 struct FrameBudgetCheck {
+    uint64_t frame = 0; // the device frame these figures are of
     double frameMs = 0; // GPU frame time when resolved, else CPU
     double giMs = 0;    // sum of the top-level "gi" scopes
     double giPredictedX360Ms = 0, giPredictedPs3Ms = 0;
+    // The GI time the budget is held to: predicted on the x360 and ps3 profiles, else giMs.
+    double giBudgetedMs = 0;
     bool frameOverBudget = false;
     bool giOverBudget = false;
     bool giPredictedOverBudget = false; // console profiles: predicted ms against the GI budget
@@ -83,6 +89,10 @@ public:
     [[nodiscard]] Scope scope(std::string_view name, rhi::CommandList* gpu = nullptr);
     // Work counts of the innermost open scope in this frame (replaces earlier counts of this frame).
     void setWork(const WorkCounts& work);
+    // A short line about this frame for the report, such as what a scheduler changed and why
+    // (topic "GI budget changes"). Between endFrame() and beginFrame() it goes to the next frame.
+    // Copied into fixed-size storage: long texts are cut, the oldest notes give way.
+    void note(std::string_view topic, std::string_view text);
 
     const std::vector<ScopeInfo>& scopes() const { return scopes_; }
     // A scope's work counts plus those of every scope nested in it (a parent such as "gi" sets
@@ -121,6 +131,27 @@ public:
         uint64_t memoryTotal = 0, memoryGi = 0;
         FrameBudgetCheck check;
     };
+    struct Note {
+        static constexpr size_t kTopicBytes = 32, kTextBytes = 192;
+        uint64_t frame = 0;
+        uint64_t cpuTime = 0; // when it was noted (the frame's start for notes made before it)
+        std::array<char, kTopicBytes> topicBuffer{};
+        std::array<char, kTextBytes> textBuffer{};
+        std::string_view topic() const { return topicBuffer.data(); }
+        std::string_view text() const { return textBuffer.data(); }
+    };
+    // Notes kept, oldest first; notesDropped() older ones gave way.
+    template <typename F> void forEachNote(F&& f) const {
+        // Pending notes sit in the ring too, so they take slots from the finished ones.
+        const uint64_t n = std::min<uint64_t>(noted_ - pendingNotes_, notes_.size() - pendingNotes_);
+        for (uint64_t i = noted_ - pendingNotes_ - n; i < noted_ - pendingNotes_; ++i)
+            f(notes_[i % notes_.size()]);
+    }
+    uint64_t notesDropped() const {
+        const uint64_t done = noted_ - pendingNotes_, kept = notes_.size() - pendingNotes_;
+        return (done > kept ? done - kept : 0) + pendingLost_;
+    }
+
     // Recorded frames, oldest first (up to ProfilerOptions::traceFrames).
     template <typename F> void forEachFrame(F&& f) const {
         const uint64_t n = std::min<uint64_t>(recorded_, records_.size());
@@ -152,6 +183,10 @@ private:
     };
     std::vector<Open> stack_;
     std::vector<uint64_t> timestampScratch_;
+    std::vector<Note> notes_;   // ring
+    uint64_t noted_ = 0;        // notes ever made
+    uint32_t pendingNotes_ = 0; // the newest ones, made before their frame began
+    uint64_t pendingLost_ = 0;  // notes that found the ring full of pending ones
     SampleWindow frameCpu_, frameGpu_;
     FrameBudgetCheck lastCheck_;
     uint64_t framesOverBudget_ = 0, framesChecked_ = 0, gpuLost_ = 0;

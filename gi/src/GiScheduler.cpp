@@ -1,0 +1,364 @@
+// The budget scheduler: the ladder of steps, when to take one and when to give it back, and the
+// line the report shows for each.
+#include "gi/GiScheduler.h"
+
+#include "engine/profiler/FrameProfiler.h"
+#include "gi/LpvSettings.h"
+#include "platforms/PlatformProfile.h"
+
+#include <algorithm>
+#include <cstdarg>
+#include <cstdio>
+
+namespace lpv::gi {
+namespace {
+
+const engine::EnumSetting<GiBudgetPolicy> kBudgetPolicy{
+    "gi.budget_policy",
+    GiBudgetPolicy::Fixed,
+    {{GiBudgetPolicy::Fixed, "fixed"}, {GiBudgetPolicy::Adapt, "adapt"}},
+    "GI over the platform budget: fixed only reports it; adapt updates coarse cascades less often, then "
+    "lowers iterations, then the RSM size"};
+
+double mib(uint64_t bytes) {
+    return double(bytes) / (1024.0 * 1024.0);
+}
+
+__attribute__((format(printf, 2, 3))) void writeText(GiChange& change, const char* format, ...) {
+    va_list args;
+    va_start(args, format);
+    std::vsnprintf(change.textBuffer.data(), change.textBuffer.size(), format, args);
+    va_end(args);
+}
+
+// What a knob at a value reads as in the report: "coarse cascades every 2 frames", "rsm 128".
+struct KnobText {
+    std::array<char, 48> text{};
+    KnobText(GiKnob knob, uint32_t value) {
+        switch (knob) {
+        case GiKnob::CoarseUpdateInterval:
+            if (value == 1)
+                std::snprintf(text.data(), text.size(), "coarse cascades every frame");
+            else
+                std::snprintf(text.data(), text.size(), "coarse cascades every %u frames", value);
+            break;
+        case GiKnob::Iterations:
+            std::snprintf(text.data(), text.size(), "iterations %u", value);
+            break;
+        case GiKnob::RsmSize:
+            std::snprintf(text.data(), text.size(), "rsm %u", value);
+            break;
+        case GiKnob::None:
+            break;
+        }
+    }
+    const char* c_str() const { return text.data(); }
+};
+
+void setKnob(GiLoad& load, GiKnob knob, uint32_t value) {
+    switch (knob) {
+    case GiKnob::CoarseUpdateInterval:
+        load.coarseUpdateInterval = value;
+        break;
+    case GiKnob::Iterations:
+        load.iterations = value;
+        break;
+    case GiKnob::RsmSize:
+        load.rsmSize = value;
+        break;
+    case GiKnob::None:
+        break;
+    }
+}
+
+} // namespace
+
+GiBudgetPolicy readGiBudgetPolicy(const engine::Config& config) {
+    return config.get(kBudgetPolicy);
+}
+
+std::string_view giBudgetPolicyName(GiBudgetPolicy policy) {
+    return kBudgetPolicy.nameOf(policy);
+}
+
+GiLoad giLoadOf(const LpvSettings& settings, uint32_t cascades) {
+    GiLoad load;
+    load.cascades = std::max(cascades, 1u);
+    load.iterations = settings.iterations;
+    load.rsmSize = settings.rsmSize;
+    load.vplGridSide = std::max(settings.vplGridSide(), 1u);
+    return load;
+}
+
+void applyGiLoad(const GiLoad& load, LpvSettings& settings) {
+    settings.iterations = load.iterations;
+    settings.rsmSize = load.rsmSize;
+}
+
+bool cascadeUpdatedOn(const GiLoad& load, uint32_t cascade, uint64_t frame) {
+    if (cascade == 0 || load.cascades <= 1 || load.coarseUpdateInterval <= 1) return true;
+    const uint32_t k = load.coarseUpdateInterval;
+    // Spread the coarse cascades evenly over the k frames of a cycle.
+    const uint32_t phase = ((cascade - 1) * k) / (load.cascades - 1);
+    return frame % k == phase % k;
+}
+
+uint32_t coarseUpdatesInBusiestFrame(uint32_t cascades, uint32_t interval) {
+    if (cascades <= 1) return 0;
+    GiLoad load;
+    load.cascades = cascades;
+    load.coarseUpdateInterval = std::max(interval, 1u);
+    uint32_t busiest = 0;
+    for (uint32_t f = 0; f < load.coarseUpdateInterval; ++f) {
+        uint32_t n = 0;
+        for (uint32_t c = 1; c < cascades; ++c)
+            n += cascadeUpdatedOn(load, c, f) ? 1 : 0;
+        busiest = std::max(busiest, n);
+    }
+    return busiest;
+}
+
+GiBudget giBudgetOf(const platforms::PlatformProfile& profile) {
+    return {profile.giBudgetMs, profile.giMemoryBudgetBytes};
+}
+
+std::optional<GiFrameCost> giFrameCost(const engine::FrameProfiler& profiler) {
+    if (profiler.framesChecked() == 0) return std::nullopt;
+    const engine::FrameBudgetCheck& check = profiler.lastBudgetCheck();
+    return GiFrameCost{check.frame, check.giBudgetedMs, profiler.allocations().bytesIn("gi")};
+}
+
+GiBudgetScheduler::GiBudgetScheduler(GiSchedulerLimits limits) : limits_(limits) {}
+
+const GiSchedule& GiBudgetScheduler::schedule(uint64_t frame, const std::optional<GiFrameCost>& cost,
+                                              const GiBudget& budget, const GiLoad& configured,
+                                              GiBudgetPolicy policy) {
+    result_.changeCount_ = 0;
+    result_.frame = frame;
+    if (!started_ || !(configured == configured_) || policy != policy_) {
+        start(frame, configured, policy);
+    } else if (cost && cost->frame >= loadSince_ && (!lastMeasured_ || cost->frame > *lastMeasured_)) {
+        lastMeasured_ = cost->frame;
+        // A cycle is judged by its worst frame: the one that updates the most coarse cascades.
+        cyclePeakMs_ = std::max(cyclePeakMs_, cost->ms);
+        cyclePeakBytes_ = std::max(cyclePeakBytes_, cost->bytes);
+        if (++cycleFrames_ >= cycleLength()) {
+            const double ms = cyclePeakMs_;
+            const uint64_t bytes = cyclePeakBytes_;
+            cyclePeakMs_ = 0;
+            cyclePeakBytes_ = 0;
+            cycleFrames_ = 0;
+            judge(frame, ms, bytes, budget);
+        }
+    }
+    result_.load = load_;
+    result_.policy = policy_;
+    result_.stepsInEffect = stepCount_;
+    return result_;
+}
+
+void GiBudgetScheduler::start(uint64_t frame, const GiLoad& configured, GiBudgetPolicy policy) {
+    const bool wasReduced = started_ && stepCount_ > 0;
+    started_ = true;
+    configured_ = configured;
+    policy_ = policy;
+    stepCount_ = 0;
+    rsmLowersMemory_ = true;
+    timeOverReported_ = memoryOverReported_ = floorReported_ = false;
+    timeWithinFrames_ = memoryWithinFrames_ = 0;
+    result_.timeOverBudget = result_.memoryOverBudget = false;
+    setLoad(frame, configured);
+    if (wasReduced)
+        if (GiChange* c = addChange(GiKnob::None, 0, 0, true))
+            writeText(*c, "configured load again (%s, %s, %s): gi settings or gi.budget_policy changed",
+                      KnobText(GiKnob::CoarseUpdateInterval, configured.coarseUpdateInterval).c_str(),
+                      KnobText(GiKnob::Iterations, configured.iterations).c_str(),
+                      KnobText(GiKnob::RsmSize, configured.rsmSize).c_str());
+}
+
+void GiBudgetScheduler::setLoad(uint64_t frame, const GiLoad& load) {
+    load_ = load;
+    loadSince_ = frame;
+    cyclePeakMs_ = 0;
+    cyclePeakBytes_ = 0;
+    cycleFrames_ = 0;
+    overCycles_ = 0;
+    calmFrames_ = 0;
+}
+
+uint32_t GiBudgetScheduler::cycleLength() const {
+    return load_.cascades > 1 ? std::max(load_.coarseUpdateInterval, 1u) : 1u;
+}
+
+GiChange* GiBudgetScheduler::addChange(GiKnob knob, uint32_t from, uint32_t to, bool restore) {
+    if (result_.changeCount_ == GiSchedule::kMaxChanges) return nullptr;
+    GiChange& c = result_.changes_[result_.changeCount_++];
+    c.knob = knob;
+    c.from = from;
+    c.to = to;
+    c.restore = restore;
+    c.textBuffer[0] = '\0';
+    return &c;
+}
+
+void GiBudgetScheduler::judge(uint64_t frame, double ms, uint64_t bytes, const GiBudget& budget) {
+    const bool timeOver = budget.ms > 0 && ms > budget.ms;
+    const bool memoryOver = budget.bytes > 0 && bytes > budget.bytes;
+    result_.timeOverBudget = timeOver;
+    result_.memoryOverBudget = memoryOver;
+    timeWithinFrames_ = timeOver ? 0 : timeWithinFrames_ + cycleLength();
+    memoryWithinFrames_ = memoryOver ? 0 : memoryWithinFrames_ + cycleLength();
+    if (stepCount_ > 0 && !steps_[stepCount_ - 1].afterKnown) {
+        // The first judged cycle after a step says what the step was worth.
+        Step& top = steps_[stepCount_ - 1];
+        top.msAfter = ms;
+        top.bytesAfter = bytes;
+        top.afterKnown = true;
+        if (top.forMemory && bytes >= top.bytesBefore) rsmLowersMemory_ = false;
+    }
+    if (policy_ == GiBudgetPolicy::Fixed) {
+        reportStates(true, timeOver, memoryOver, ms, bytes, budget);
+        return;
+    }
+
+    Step step;
+    // Only a smaller RSM frees memory; the other knobs save time alone.
+    if (memoryOver && rsmLowersMemory_ && rsmStep(step)) {
+        step.forMemory = true;
+        take(frame, step, ms, bytes, budget);
+        return;
+    }
+    reportStates(false, timeOver, memoryOver, ms, bytes, budget);
+
+    if (timeOver) {
+        calmFrames_ = 0;
+        if (++overCycles_ < limits_.overBudgetCycles) return;
+        overCycles_ = 0;
+        if (nextTimeStep(step)) {
+            take(frame, step, ms, bytes, budget);
+        } else if (!floorReported_) {
+            floorReported_ = true;
+            if (GiChange* c = addChange(GiKnob::None, 0, 0, false))
+                writeText(*c, "GI %.2f ms > %.2f ms budget with every knob at its floor (%s, %s, %s)", ms,
+                          budget.ms,
+                          KnobText(GiKnob::CoarseUpdateInterval, load_.coarseUpdateInterval).c_str(),
+                          KnobText(GiKnob::Iterations, load_.iterations).c_str(),
+                          KnobText(GiKnob::RsmSize, load_.rsmSize).c_str());
+        }
+        return;
+    }
+    overCycles_ = 0;
+    if (timeWithinFrames_ >= limits_.restoreAfterFrames) floorReported_ = false;
+
+    const bool calm = budget.ms <= 0 || ms < limits_.restoreBelow * budget.ms;
+    if (!calm || stepCount_ == 0) {
+        calmFrames_ = 0;
+        return;
+    }
+    calmFrames_ += cycleLength();
+    if (calmFrames_ < limits_.restoreAfterFrames) return;
+    // Expect the step back to cost what it saved when it was taken, in proportion.
+    const Step& top = steps_[stepCount_ - 1];
+    const double expectedMs = top.msAfter > 0 ? ms * top.msBefore / top.msAfter : top.msBefore;
+    const uint64_t freed = top.bytesBefore > top.bytesAfter ? top.bytesBefore - top.bytesAfter : 0;
+    if (budget.ms > 0 && expectedMs > limits_.restoreFit * budget.ms) return;
+    // A step that freed memory comes back only if that memory fits again.
+    if (freed > 0 && budget.bytes > 0 && bytes + freed > budget.bytes) return;
+    giveBack(frame, ms, expectedMs, budget);
+}
+
+// A state is reported when it begins, and its end only once it has lasted restoreAfterFrames, so a
+// figure hovering at the budget does not fill the report.
+void GiBudgetScheduler::reportStates(bool reportTime, bool timeOver, bool memoryOver, double ms,
+                                     uint64_t bytes, const GiBudget& budget) {
+    const bool fixed = policy_ == GiBudgetPolicy::Fixed;
+    const bool timeEnded = timeOverReported_ && timeWithinFrames_ >= limits_.restoreAfterFrames;
+    if (reportTime && ((timeOver && !timeOverReported_) || timeEnded)) {
+        timeOverReported_ = timeOver;
+        if (GiChange* c = addChange(GiKnob::None, 0, 0, false)) {
+            if (timeOver)
+                writeText(*c, "GI %.2f ms > %.2f ms budget (gi.budget_policy=fixed: nothing changed)", ms,
+                          budget.ms);
+            else
+                writeText(*c, "GI %.2f ms within the %.2f ms budget for %u frames", ms, budget.ms,
+                          timeWithinFrames_);
+        }
+    }
+    const bool memoryEnded = memoryOverReported_ && memoryWithinFrames_ >= limits_.restoreAfterFrames;
+    if ((memoryOver && !memoryOverReported_) || memoryEnded) {
+        memoryOverReported_ = memoryOver;
+        if (GiChange* c = addChange(GiKnob::None, 0, 0, false)) {
+            if (!memoryOver)
+                writeText(*c, "GI memory %.2f MiB within the %.2f MiB budget for %u frames", mib(bytes),
+                          mib(budget.bytes), memoryWithinFrames_);
+            else if (fixed)
+                writeText(*c,
+                          "GI memory %.2f MiB > %.2f MiB budget (gi.budget_policy=fixed: nothing changed)",
+                          mib(bytes), mib(budget.bytes));
+            else
+                writeText(*c,
+                          "GI memory %.2f MiB > %.2f MiB budget and no time knob frees more (lower "
+                          "gi.cascades, gi.grid_size or gi.sh_format)",
+                          mib(bytes), mib(budget.bytes));
+        }
+    }
+}
+
+bool GiBudgetScheduler::nextTimeStep(Step& step) const {
+    if (load_.cascades > 1) {
+        // A longer interval only helps when the busiest frame then updates fewer coarse cascades:
+        // with two coarse cascades, every 4 frames has the same worst frame as every 2.
+        const uint32_t now = coarseUpdatesInBusiestFrame(load_.cascades, load_.coarseUpdateInterval);
+        for (uint32_t k = std::max(load_.coarseUpdateInterval, 1u) * 2; k <= limits_.maxCoarseUpdateInterval;
+             k *= 2)
+            if (coarseUpdatesInBusiestFrame(load_.cascades, k) < now) {
+                step = {GiKnob::CoarseUpdateInterval, load_.coarseUpdateInterval, k};
+                return true;
+            }
+    }
+    if (load_.iterations > limits_.minIterations) {
+        step = {GiKnob::Iterations, load_.iterations, load_.iterations - 1};
+        return true;
+    }
+    return rsmStep(step);
+}
+
+bool GiBudgetScheduler::rsmStep(Step& step) const {
+    const uint32_t half = load_.rsmSize / 2;
+    if (half < limits_.minRsmSize || half % std::max(load_.vplGridSide, 1u) != 0) return false;
+    step = {GiKnob::RsmSize, load_.rsmSize, half};
+    return true;
+}
+
+void GiBudgetScheduler::take(uint64_t frame, Step step, double ms, uint64_t bytes, const GiBudget& budget) {
+    if (stepCount_ == kMaxSteps) return; // the ladder is shorter than the stack
+    step.msBefore = ms;
+    step.bytesBefore = bytes;
+    steps_[stepCount_++] = step;
+    GiLoad next = load_;
+    setKnob(next, step.knob, step.to);
+    setLoad(frame, next);
+    if (GiChange* c = addChange(step.knob, step.from, step.to, false)) {
+        if (step.forMemory)
+            writeText(*c, "%s (was %u): GI memory %.2f MiB > %.2f MiB budget",
+                      KnobText(step.knob, step.to).c_str(), step.from, mib(bytes), mib(budget.bytes));
+        else
+            writeText(*c, "%s (was %u): GI %.2f ms > %.2f ms budget", KnobText(step.knob, step.to).c_str(),
+                      step.from, ms, budget.ms);
+    }
+}
+
+void GiBudgetScheduler::giveBack(uint64_t frame, double ms, double expectedMs, const GiBudget& budget) {
+    const Step step = steps_[--stepCount_];
+    const uint32_t calmFrames = calmFrames_;
+    GiLoad next = load_;
+    setKnob(next, step.knob, step.from);
+    setLoad(frame, next);
+    if (GiChange* c = addChange(step.knob, step.to, step.from, true))
+        writeText(
+            *c, "restored %s (was %u): GI %.2f ms < %.0f%% of %.2f ms budget for %u frames, %.2f ms expected",
+            KnobText(step.knob, step.from).c_str(), step.to, ms, limits_.restoreBelow * 100.0, budget.ms,
+            calmFrames, expectedMs);
+}
+
+} // namespace lpv::gi

@@ -1,0 +1,81 @@
+// The predicted console cost and the memory of a cascaded GI frame, for the budget scheduler's
+// tests: the stand-in for cascades, which are not written yet. Every cascade updated this frame
+// draws its own RSM, clusters it into VPLs, injects and propagates (gi/GiWork.h work counts); the
+// lookup runs once. Pass times come from the console cost model and add up, as in the cost
+// model's calibration test (tests/gi/LpvReferenceTests.cpp).
+#pragma once
+
+#include "engine/profiler/CostModel.h"
+#include "gi/GiBudget.h"
+#include "gi/GiScheduler.h"
+#include "gi/GiWork.h"
+#include "gi/LpvSettings.h"
+#include "platforms/PlatformProfile.h"
+
+#include <array>
+
+namespace lpv::test {
+
+struct ConsoleGiCost {
+    gi::LpvSettings base;             // grid, format, VPL count shared by every cascade
+    platforms::Throughput throughput; // of the console profile
+    uint64_t sceneTriangles = 100000; // as in the calibration test
+    uint64_t pixels = 1280 * 720;
+
+    gi::LpvSettings settingsOf(const gi::GiLoad& load) const {
+        gi::LpvSettings s = base;
+        gi::applyGiLoad(load, s);
+        return s;
+    }
+    // The passes one cascade runs when it updates.
+    std::array<engine::WorkCounts, 4> cascadePasses(const gi::GiLoad& load) const {
+        const gi::LpvSettings s = settingsOf(load);
+        return {gi::rsmWork(s, sceneTriangles), gi::vplClusterWork(s), gi::injectWork(s),
+                gi::propagateWork(s)};
+    }
+    engine::WorkCounts lookupPass(const gi::GiLoad& load) const {
+        return gi::lookupWork(settingsOf(load), pixels);
+    }
+
+    double passMs(const engine::WorkCounts& w) const { return engine::predictCost(w, throughput).ms; }
+    double cascadeMs(const gi::GiLoad& load) const {
+        double ms = 0;
+        for (const auto& w : cascadePasses(load))
+            ms += passMs(w);
+        return ms;
+    }
+    // Predicted ms of GI on `frame`: the cascades due that frame, and the lookup.
+    double frameMs(const gi::GiLoad& load, uint64_t frame) const {
+        double ms = passMs(lookupPass(load));
+        for (uint32_t c = 0; c < load.cascades; ++c)
+            if (gi::cascadeUpdatedOn(load, c, frame)) ms += cascadeMs(load);
+        return ms;
+    }
+    // The worst frame of a coarse update cycle.
+    double peakMs(const gi::GiLoad& load) const {
+        double peak = 0;
+        for (uint64_t f = 0; f < 4 * load.coarseUpdateInterval; ++f)
+            peak = peak > frameMs(load, f) ? peak : frameMs(load, f);
+        return peak;
+    }
+    // Every cascade keeps its volumes and its RSM (gi/GiBudget.h's resource plan per cascade).
+    uint64_t bytes(const gi::GiLoad& load) const {
+        return gi::giBytes(gi::giResources(settingsOf(load))) * load.cascades;
+    }
+};
+
+// The expensive setup of the tests: 3 cascades of 32^3, 8 iterations, RSM 256, RGBA8 (the only
+// format the x360 profile allows), 1024 VPLs (a 32x32 grid, so every RSM size down to 64 divides).
+inline ConsoleGiCost x360Cascades(gi::GiLoad& configured) {
+    ConsoleGiCost cost;
+    cost.base.gridSize = 32;
+    cost.base.shFormat = gi::ShFormat::Rgba8;
+    cost.base.vplCount = 1024;
+    cost.base.iterations = 8;
+    cost.base.rsmSize = 256;
+    cost.throughput = platforms::loadPlatformProfile("x360").throughput;
+    configured = gi::giLoadOf(cost.base, 3);
+    return cost;
+}
+
+} // namespace lpv::test

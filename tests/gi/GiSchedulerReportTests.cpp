@@ -1,0 +1,132 @@
+// The budget scheduler as a game would run it: frames on the null device, each GI pass a profiler
+// scope with its work counts, the scheduler fed the profiler's predicted Xbox 360 GI time (which
+// arrives frames late, as GPU results do), and its changes noted in the profiler's report.
+#include "ConsoleGiCost.h"
+
+#include "engine/profiler/FrameProfiler.h"
+#include "engine/profiler/ProfileReport.h"
+#include "gi/GiScheduler.h"
+#include "rhi/Device.h"
+
+#include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+using namespace lpv;
+using namespace lpv::gi;
+
+namespace {
+
+std::unique_ptr<rhi::Device> nullDevice() {
+    rhi::DeviceConfig config;
+    config.backend = rhi::BackendKind::Null;
+    config.framesInFlight = 2;
+    return rhi::createDevice(config);
+}
+
+// One frame's GI as scopes: every cascade due this frame runs its passes, then the lookup.
+void recordGi(engine::FrameProfiler& profiler, rhi::CommandList& cmd, const test::ConsoleGiCost& cost,
+              const GiSchedule& s) {
+    static const char* kCascades[] = {"cascade0", "cascade1", "cascade2", "cascade3"};
+    static const char* kPasses[] = {"rsm", "vpl", "inject", "propagate"};
+    auto gi = profiler.scope("gi", &cmd);
+    for (uint32_t c = 0; c < s.load.cascades; ++c) {
+        if (!s.updatesCascade(c)) continue;
+        auto cascade = profiler.scope(kCascades[c], &cmd);
+        const auto passes = cost.cascadePasses(s.load);
+        for (size_t p = 0; p < passes.size(); ++p) {
+            auto pass = profiler.scope(kPasses[p], &cmd);
+            profiler.setWork(passes[p]);
+            cmd.dispatch(1);
+        }
+    }
+    auto lookup = profiler.scope("lookup", &cmd);
+    profiler.setWork(cost.lookupPass(s.load));
+}
+
+} // namespace
+
+TEST_CASE("gi budget report: the profiler's report names each change, its frame and its reason") {
+    GiLoad configured;
+    const test::ConsoleGiCost cost = test::x360Cascades(configured);
+    auto device = nullDevice();
+    const auto x360 = platforms::loadPlatformProfile("x360");
+    engine::FrameProfiler profiler(*device, x360);
+    GiBudgetScheduler scheduler;
+    // The x360's 3 MiB holds one cascade, not three: this test is about time, the null device
+    // allocates no GI memory, so the memory budget holds.
+    const GiBudget budget = giBudgetOf(x360);
+
+    std::vector<std::pair<uint64_t, std::string>> noted;
+    const GiSchedule* s = nullptr;
+    for (int i = 0; i < 150; ++i) {
+        const uint64_t frame = device->frameIndex() + 1;
+        s = &scheduler.schedule(frame, giFrameCost(profiler), budget, configured, GiBudgetPolicy::Adapt);
+        for (const GiChange& c : s->changes()) {
+            profiler.note(kGiBudgetNoteTopic, c.text()); // before beginFrame: goes to `frame`
+            noted.emplace_back(frame, std::string(c.text()));
+        }
+        rhi::CommandList& cmd = device->beginFrame();
+        profiler.beginFrame(cmd);
+        recordGi(profiler, cmd, cost, *s);
+        profiler.endFrame(cmd);
+        device->endFrame();
+    }
+    device->waitIdle();
+
+    // The profiler's own check of the newest frames: the predicted console GI time is in budget.
+    const engine::FrameBudgetCheck& check = profiler.lastBudgetCheck();
+    MESSAGE("last checked frame " << check.frame << ": predicted x360 GI " << check.giPredictedX360Ms
+                                  << " ms");
+    CHECK(check.giBudgetedMs == check.giPredictedX360Ms);
+    double latePeak = 0;
+    uint64_t checkedLate = 0;
+    profiler.forEachFrame([&](const engine::FrameProfiler::FrameRecord& r) {
+        if (r.checked && r.frame > 100) {
+            latePeak = std::max(latePeak, r.check.giPredictedX360Ms);
+            ++checkedLate;
+        }
+    });
+    REQUIRE(checkedLate > 20);
+    CHECK(latePeak <= x360.giBudgetMs);
+    CHECK_FALSE(profiler.lastBudgetCheck().giPredictedOverBudget);
+    // And the configured load was over it, so the scheduler had something to do.
+    CHECK(cost.peakMs(configured) > x360.giBudgetMs);
+
+    REQUIRE(noted.size() >= 2);
+    CHECK(noted[0].second.find("coarse cascades every 2 frames (was 1): GI ") == 0);
+    CHECK(noted[1].second.find("iterations 7 (was 8): GI ") == 0);
+
+    // Each note is in the profiler under its frame ...
+    std::vector<std::pair<uint64_t, std::string>> kept;
+    profiler.forEachNote([&](const engine::FrameProfiler::Note& n) {
+        CHECK(n.topic() == kGiBudgetNoteTopic);
+        kept.emplace_back(n.frame, std::string(n.text()));
+    });
+    CHECK(kept == noted);
+    // ... in the summaries ...
+    const std::string md = engine::profileSummaryMarkdown(profiler);
+    const size_t section = md.find("## GI budget changes");
+    REQUIRE(section != std::string::npos);
+    const std::string text = engine::profileSummaryText(profiler);
+    const std::string csv = engine::profileSummaryCsv(profiler);
+    for (const auto& [frame, note] : noted) {
+        INFO(note);
+        CHECK(md.find("| " + std::to_string(frame) + " | " + note + " |", section) != std::string::npos);
+        CHECK(text.find("frame " + std::to_string(frame) + ": " + note) != std::string::npos);
+        CHECK(csv.find(std::to_string(frame) + ",\"GI budget changes\",\"" + note + "\"") !=
+              std::string::npos);
+    }
+    // ... and in the trace, as instant events carrying the frame.
+    const auto trace = nlohmann::json::parse(engine::profileTraceJson(profiler));
+    std::vector<std::pair<uint64_t, std::string>> events;
+    for (const auto& e : trace.at("traceEvents"))
+        if (e.at("ph") == "i") {
+            CHECK(e.at("cat") == "GI budget changes");
+            events.emplace_back(e.at("args").at("frame").get<uint64_t>(), e.at("name").get<std::string>());
+        }
+    CHECK(events == noted);
+    CHECK(engine::profileChartSvg(profiler).find("blue marks: notes") != std::string::npos);
+}

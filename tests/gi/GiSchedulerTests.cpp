@@ -1,0 +1,315 @@
+// The GI budget scheduler on the console cost model: an expensive cascaded setup is brought under
+// the Xbox 360 budget by the documented steps in the documented order, fixed changes nothing,
+// a loose budget gets every step back in reverse order, and nothing flips back and forth.
+#include "ConsoleGiCost.h"
+
+#include "gi/GiScheduler.h"
+
+#include <doctest/doctest.h>
+
+#include <string>
+#include <vector>
+
+using namespace lpv;
+using namespace lpv::gi;
+
+namespace {
+
+struct Logged {
+    uint64_t frame;
+    GiChange change;
+};
+
+// Runs `frames` frames: each is scheduled with the previous frame's cost, then "runs" and is
+// costed with `costOf(load, frame)` (predicted, so it is known at once).
+struct Run {
+    GiBudgetScheduler scheduler;
+    GiLoad configured;
+    GiBudgetPolicy policy = GiBudgetPolicy::Adapt;
+    std::optional<GiFrameCost> last;
+    uint64_t frame = 1;
+    std::vector<Logged> log;
+    std::vector<double> ms; // per frame
+
+    template <typename CostOf> const GiSchedule& frames(uint32_t n, const GiBudget& budget, CostOf&& costOf) {
+        const GiSchedule* s = nullptr;
+        for (uint32_t i = 0; i < n; ++i, ++frame) {
+            s = &scheduler.schedule(frame, last, budget, configured, policy);
+            for (const GiChange& c : s->changes())
+                log.push_back({frame, c});
+            const auto [t, bytes] = costOf(s->load, frame);
+            last = GiFrameCost{frame, t, bytes};
+            ms.push_back(t);
+        }
+        return *s;
+    }
+    std::vector<Logged> steps(bool restore) const {
+        std::vector<Logged> out;
+        for (const Logged& l : log)
+            if (l.change.knob != GiKnob::None && l.change.restore == restore) out.push_back(l);
+        return out;
+    }
+};
+
+int rank(GiKnob k) {
+    return k == GiKnob::CoarseUpdateInterval ? 0 : k == GiKnob::Iterations ? 1 : 2;
+}
+
+bool contains(std::string_view text, std::string_view part) {
+    return text.find(part) != std::string_view::npos;
+}
+
+} // namespace
+
+TEST_CASE("gi budget: the cascade update pattern staggers coarse cascades") {
+    GiLoad load;
+    load.cascades = 3;
+    load.coarseUpdateInterval = 2;
+    // Cascade 0 every frame; the two coarse ones on alternate frames.
+    for (uint64_t f = 0; f < 8; ++f) {
+        CHECK(cascadeUpdatedOn(load, 0, f));
+        CHECK(cascadeUpdatedOn(load, 1, f) == (f % 2 == 0));
+        CHECK(cascadeUpdatedOn(load, 2, f) == (f % 2 == 1));
+    }
+    CHECK(coarseUpdatesInBusiestFrame(3, 1) == 2);
+    CHECK(coarseUpdatesInBusiestFrame(3, 2) == 1);
+    CHECK(coarseUpdatesInBusiestFrame(3, 4) == 1);
+    CHECK(coarseUpdatesInBusiestFrame(4, 2) == 2);
+    CHECK(coarseUpdatesInBusiestFrame(4, 4) == 1);
+    CHECK(coarseUpdatesInBusiestFrame(2, 4) == 1);
+    CHECK(coarseUpdatesInBusiestFrame(1, 4) == 0);
+    // Every coarse cascade still updates once per cycle.
+    for (uint32_t cascades = 2; cascades <= 4; ++cascades)
+        for (uint32_t k : {1u, 2u, 4u}) {
+            load.cascades = cascades;
+            load.coarseUpdateInterval = k;
+            for (uint32_t c = 1; c < cascades; ++c) {
+                int updates = 0;
+                for (uint64_t f = 0; f < k; ++f)
+                    updates += cascadeUpdatedOn(load, c, f) ? 1 : 0;
+                CHECK(updates == 1);
+            }
+        }
+}
+
+TEST_CASE("gi budget: adapt brings 3 cascades under the x360 budget in the documented order") {
+    Run run;
+    const test::ConsoleGiCost cost = test::x360Cascades(run.configured);
+    const auto x360 = platforms::loadPlatformProfile("x360");
+    // Time is the subject here: memory budget set to what the setup needs (3 cascades do not fit
+    // the x360's 3 MiB; the memory test below covers that).
+    const uint64_t bytes = cost.bytes(run.configured);
+    const auto costOf = [&](const GiLoad& l, uint64_t f) { return std::pair(cost.frameMs(l, f), bytes); };
+
+    SUBCASE("the x360 budget: coarse cascades every 2 frames, then iterations") {
+        const GiBudget budget{x360.giBudgetMs, bytes};
+        const double before = cost.peakMs(run.configured);
+        MESSAGE("configured: predicted " << before << " ms on the worst frame, budget " << budget.ms
+                                         << " ms");
+        REQUIRE(before > budget.ms);
+        const GiSchedule& s = run.frames(120, budget, costOf);
+        const double after = cost.peakMs(s.load);
+        MESSAGE("scheduled: coarse every " << s.load.coarseUpdateInterval << ", " << s.load.iterations
+                                           << " iterations, rsm " << s.load.rsmSize << ": " << after
+                                           << " ms");
+        CHECK(after <= budget.ms);
+        for (size_t f = 60; f < run.ms.size(); ++f)
+            CHECK(run.ms[f] <= budget.ms);
+        const auto steps = run.steps(false);
+        REQUIRE(steps.size() >= 2);
+        CHECK(steps.front().change.knob == GiKnob::CoarseUpdateInterval);
+        CHECK(steps.front().change.to == 2);
+        CHECK(s.load.coarseUpdateInterval == 2); // 4 would not lighten the worst frame of 2 coarse cascades
+        CHECK(s.load.iterations < run.configured.iterations);
+        CHECK(run.steps(true).empty());
+    }
+    SUBCASE("a tighter budget reaches the RSM, after the iterations reached their floor") {
+        // Just under what coarse cascades every 2 frames and the fewest iterations cost.
+        GiLoad floor = run.configured;
+        floor.coarseUpdateInterval = 2;
+        floor.iterations = run.scheduler.limits().minIterations;
+        const GiBudget budget{0.97 * cost.peakMs(floor), bytes};
+        const GiSchedule& s = run.frames(200, budget, costOf);
+        CHECK(cost.peakMs(s.load) <= budget.ms);
+        CHECK(s.load.rsmSize < run.configured.rsmSize);
+        CHECK(s.load.iterations == run.scheduler.limits().minIterations);
+        const auto steps = run.steps(false);
+        REQUIRE(steps.size() >= 3);
+        for (size_t i = 1; i < steps.size(); ++i)
+            CHECK(rank(steps[i - 1].change.knob) <= rank(steps[i].change.knob));
+        CHECK(steps.back().change.knob == GiKnob::RsmSize);
+    }
+    // Every step is named, with the reason, in its note.
+    for (const Logged& l : run.log) {
+        INFO(l.change.text());
+        const std::string_view t = l.change.text();
+        if (l.change.knob == GiKnob::CoarseUpdateInterval)
+            CHECK(contains(t, "coarse cascades every 2 frames (was 1)"));
+        if (l.change.knob == GiKnob::Iterations)
+            CHECK(contains(t, "iterations " + std::to_string(l.change.to) + " (was " +
+                                  std::to_string(l.change.from)));
+        if (l.change.knob == GiKnob::RsmSize)
+            CHECK(
+                contains(t, "rsm " + std::to_string(l.change.to) + " (was " + std::to_string(l.change.from)));
+        CHECK(contains(t, "ms budget"));
+    }
+}
+
+TEST_CASE("gi budget: fixed changes nothing and reports the overage once") {
+    Run run;
+    run.policy = GiBudgetPolicy::Fixed;
+    const test::ConsoleGiCost cost = test::x360Cascades(run.configured);
+    const auto x360 = platforms::loadPlatformProfile("x360");
+    const GiBudget budget{x360.giBudgetMs, cost.bytes(run.configured)};
+    const GiSchedule& s = run.frames(100, budget, [&](const GiLoad& l, uint64_t f) {
+        return std::pair(cost.frameMs(l, f), budget.bytes);
+    });
+    CHECK(s.load == run.configured);
+    CHECK(s.stepsInEffect == 0);
+    CHECK(s.timeOverBudget);
+    REQUIRE(run.log.size() == 1);
+    CHECK(run.log[0].change.knob == GiKnob::None);
+    CHECK(
+        contains(run.log[0].change.text(), "ms > 3.30 ms budget (gi.budget_policy=fixed: nothing changed)"));
+}
+
+TEST_CASE("gi budget: a loose budget gets every step back, in reverse order, and then stays") {
+    Run run;
+    const test::ConsoleGiCost cost = test::x360Cascades(run.configured);
+    const uint64_t bytes = cost.bytes(run.configured);
+    const auto costOf = [&](const GiLoad& l, uint64_t f) { return std::pair(cost.frameMs(l, f), bytes); };
+    run.frames(200, GiBudget{3.2, bytes}, costOf);
+    const auto taken = run.steps(false);
+    REQUIRE(taken.size() >= 3);
+    const size_t logged = run.log.size();
+
+    // A game moving from the console profile to a PC-class one: 10 ms for GI.
+    const GiSchedule& s = run.frames(600, GiBudget{10.0, bytes}, costOf);
+    CHECK(s.load == run.configured);
+    CHECK(s.stepsInEffect == 0);
+    const auto given = run.steps(true);
+    REQUIRE(given.size() == taken.size());
+    for (size_t i = 0; i < given.size(); ++i) {
+        const GiChange& back = given[i].change;
+        const GiChange& step = taken[taken.size() - 1 - i].change;
+        CHECK(back.knob == step.knob);
+        CHECK(back.from == step.to);
+        CHECK(back.to == step.from);
+        CHECK(contains(back.text(), "restored"));
+    }
+    // Nothing but the restores was logged, and the last restore came long before the end.
+    CHECK(run.log.size() == logged + given.size());
+    CHECK(given.back().frame < run.frame - 100);
+}
+
+TEST_CASE("gi budget: a step worth more than the restore margin is not given back and taken again") {
+    // Synthetic costs with one big step: iterations at their floor, the RSM dominating. At rsm 128
+    // GI is at 38% of the budget, far under the 80% mark, but rsm 256 would be 113%.
+    Run run;
+    run.configured.iterations = 4;
+    run.configured.rsmSize = 256;
+    const auto costOf = [](const GiLoad& l, uint64_t) {
+        const double r = l.rsmSize / 256.0;
+        return std::pair(0.5 + 4.0 * r * r, uint64_t(1000));
+    };
+    const GiSchedule& s = run.frames(400, GiBudget{4.0, 0}, costOf);
+    CHECK(s.load.rsmSize == 128);
+    CHECK(run.log.size() == 1); // one step, never undone
+    CHECK(run.steps(true).empty());
+}
+
+TEST_CASE("gi budget: noisy measured times settle instead of oscillating") {
+    // Measured times on this machine vary +-20-40% run to run; here +-25% around the predicted
+    // cost. 1.26 x the floor's cost leaves room for a level whose noisy worst frame fits; at 1.04 x
+    // even the floor (every knob at its limit) goes over on noisy frames, which is reported once,
+    // not on every such frame.
+    for (const double budgetOfFloor : {1.26, 1.04}) {
+        CAPTURE(budgetOfFloor);
+        Run run;
+        const test::ConsoleGiCost cost = test::x360Cascades(run.configured);
+        GiLoad floor = run.configured;
+        floor.coarseUpdateInterval = 2;
+        floor.iterations = run.scheduler.limits().minIterations;
+        floor.rsmSize = run.scheduler.limits().minRsmSize;
+        const double budgetMs = budgetOfFloor * cost.peakMs(floor);
+        const uint64_t bytes = cost.bytes(run.configured);
+        uint32_t seed = 12345;
+        const auto costOf = [&](const GiLoad& l, uint64_t f) {
+            seed = seed * 1664525u + 1013904223u;
+            const double noise = 1.0 + 0.5 * (double(seed >> 8) / double(1u << 24) - 0.5);
+            return std::pair(cost.frameMs(l, f) * noise, bytes);
+        };
+        run.frames(1000, GiBudget{budgetMs, bytes}, costOf);
+        size_t lateSteps = 0, reports = 0;
+        for (const Logged& l : run.log) {
+            lateSteps += l.frame > 300 && l.change.knob != GiKnob::None ? 1 : 0;
+            reports += l.change.knob == GiKnob::None ? 1 : 0;
+        }
+        MESSAGE(run.log.size() << " notes in 1000 noisy frames, " << lateSteps << " steps after frame 300");
+        CHECK(lateSteps <= 2);
+        CHECK(run.steps(true).size() <= 2);
+        CHECK(reports <= 1);
+    }
+}
+
+TEST_CASE("gi budget: memory over budget lowers the RSM, then says no knob frees more") {
+    Run run;
+    const test::ConsoleGiCost cost = test::x360Cascades(run.configured);
+    const auto x360 = platforms::loadPlatformProfile("x360");
+    const GiBudget budget = giBudgetOf(x360);
+    const auto costOf = [&](const GiLoad& l, uint64_t f) {
+        return std::pair(cost.frameMs(l, f), cost.bytes(l));
+    };
+    REQUIRE(cost.bytes(run.configured) > budget.bytes);
+    const GiSchedule& s = run.frames(200, budget, costOf);
+    CHECK(s.memoryOverBudget);
+    CHECK(s.load.rsmSize == run.scheduler.limits().minRsmSize);
+    CHECK(cost.bytes(s.load) < cost.bytes(run.configured));
+    CHECK(cost.peakMs(s.load) <= budget.ms); // time is still held
+    const auto steps = run.steps(false);
+    REQUIRE(steps.size() >= 2);
+    // The RSM halvings come first, for memory, and say so.
+    CHECK(steps[0].change.knob == GiKnob::RsmSize);
+    CHECK(contains(steps[0].change.text(), "rsm 128 (was 256): GI memory"));
+    CHECK(steps[1].change.knob == GiKnob::RsmSize);
+    int reports = 0;
+    for (const Logged& l : run.log)
+        if (l.change.knob == GiKnob::None) {
+            ++reports;
+            CHECK(contains(l.change.text(), "MiB budget and no time knob frees more"));
+        }
+    CHECK(reports == 1);
+    CHECK(run.steps(true).empty());
+
+    // With time to spare the time steps come back, but not the RSM: its memory would not fit.
+    const GiSchedule& loose = run.frames(600, GiBudget{10.0, budget.bytes}, costOf);
+    CHECK(loose.load.coarseUpdateInterval == 1);
+    CHECK(loose.load.iterations == run.configured.iterations);
+    CHECK(loose.load.rsmSize == run.scheduler.limits().minRsmSize);
+    for (const Logged& l : run.steps(true))
+        CHECK(l.change.knob != GiKnob::RsmSize);
+}
+
+TEST_CASE("gi budget: a configuration change starts over from the configured load") {
+    Run run;
+    const test::ConsoleGiCost cost = test::x360Cascades(run.configured);
+    const auto costOf = [&](const GiLoad& l, uint64_t f) {
+        return std::pair(cost.frameMs(l, f), uint64_t(0));
+    };
+    run.frames(100, GiBudget{3.3, 0}, costOf);
+    REQUIRE(run.scheduler.schedule(run.frame, run.last, GiBudget{3.3, 0}, run.configured, run.policy)
+                .stepsInEffect > 0);
+    run.configured.iterations = 6;
+    const GiSchedule& s =
+        run.scheduler.schedule(run.frame + 1, run.last, GiBudget{3.3, 0}, run.configured, run.policy);
+    CHECK(s.load == run.configured);
+    REQUIRE(s.changes().size() == 1);
+    CHECK(contains(s.changes()[0].text(), "configured load again"));
+    // Cascades that do not exist are never scheduled less often.
+    Run single;
+    single.configured = run.configured;
+    single.configured.cascades = 1;
+    const GiSchedule& one = single.frames(100, GiBudget{0.5, 0}, costOf);
+    CHECK(one.load.coarseUpdateInterval == 1);
+    CHECK(one.load.iterations == single.scheduler.limits().minIterations);
+}
