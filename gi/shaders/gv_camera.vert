@@ -1,14 +1,15 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Geometry volume from the camera's view: a regular grid of G-buffer samples, each a surfel of
-// the area its samples' spacing covers at its distance (divided by the cosine to the view,
-// clamped). Catches what the light does not see: walls in shadow, surfaces facing away from it.
+// Geometry volume from the camera's view: a regular grid of G-buffer samples, each marking its
+// cell as holding a surface of its orientation (gv_inject.frag says why not its area). Catches
+// what the light does not see: walls in shadow, surfaces facing away from it.
 #include "gv_common.glsl"
 
 layout(binding = 1) uniform sampler2D gbufferDepth;
 layout(binding = 2) uniform sampler2D gbufferNormal;
 
 layout(location = 0) flat out vec3 vCoverage;
+layout(location = 1) flat out int vFromCamera;
 
 void main() {
     ivec2 size = textureSize(gbufferDepth, 0);
@@ -22,11 +23,8 @@ void main() {
     // Clip space has y pointing down the image and depth 0..1 (engine/render/CameraMatrices.h).
     vec4 world = gv.invViewProjection * vec4(uv.x * 2.0 - 1.0, uv.y * 2.0 - 1.0, depth, 1.0);
     vec3 p = world.xyz / world.w;
-    vec3 toCamera = gv.camera.xyz - p;
-    float dist = length(toCamera);
-    float cosView = max(abs(dot(normal, toCamera / max(dist, 1e-6))), 0.25);
-    float side = gv.camera.w * dist;
-    vCoverage = surfelCoverage(normalize(normal), side * side / cosView);
+    vCoverage = abs(normalize(normal));
+    vFromCamera = 1;
     gl_PointSize = 1.0;
     bool valid = sampleIndex.y < rows && depth < 1.0 && dot(normal, normal) > 0.25;
     gl_Position = valid ? surfelPosition(p) : vec4(-4.0, -4.0, 0.0, 1.0);

@@ -1,7 +1,8 @@
 // Shared by the geometry-volume shaders: the volume's placement and how a surfel is stored.
 //
 // The geometry volume (GV) holds, per cell, how much surface it contains as seen along each axis:
-// (sum of area x |n.x|, |n.y|, |n.z|) / cell area. Its cells are centred on the LPV's cell corners
+// from the light's surfels (sum of area x |n.x|, |n.y|, |n.z|) / cell area, and from the
+// camera's, the largest |n| of a surface seen there. Its cells are centred on the LPV's cell corners
 // (offset half a cell), so the four around a face of an LPV cell say how much of that face is
 // covered. We keep this projected coverage instead of the papers' SH L1 blocking lobe because
 // propagation only ever asks along an axis, and an L1 lobe cannot hold a two-sided surface: the
@@ -13,7 +14,7 @@ layout(binding = 0, std140) uniform GeometryInject {
     vec4 gridOrigin;   // xyz: corner of LPV cell 0 (= centre of GV cell 0); w: cell size
     vec4 lightDirection; // xyz: where the light travels; w: RSM area per VPL (m^2, across the light)
     mat4 invViewProjection; // camera surfels: clip -> world
-    vec4 camera;       // xyz: camera position; w: a sample's footprint per metre of distance
+    vec4 camera;       // xyz: camera position
     ivec4 grid;        // x: GV cells per axis, y: slice being drawn, z: VPL count, w: samples per row
 } gv;
 

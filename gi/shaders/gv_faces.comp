@@ -7,10 +7,14 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0, std140) uniform Faces {
     ivec4 grid; // x: LPV cells per axis (the GV has one more)
 } params;
-layout(binding = 1) uniform sampler3D coverage;
+layout(binding = 1) uniform sampler3D lightCoverage;
 layout(binding = 2, rgba8) uniform writeonly image3D transmittance;
+layout(binding = 3) uniform sampler3D cameraCoverage;
 
-vec3 gv(ivec3 c) { return texelFetch(coverage, c, 0).xyz; }
+// A GV cell's coverage: the light's estimate, or the camera's where that sees more.
+vec3 gv(ivec3 c) {
+    return max(min(texelFetch(lightCoverage, c, 0).xyz, vec3(1.0)), texelFetch(cameraCoverage, c, 0).xyz);
+}
 
 void main() {
     ivec3 c = ivec3(gl_GlobalInvocationID);

@@ -1,6 +1,15 @@
 #version 450
-// Adds a surfel's projected coverage to its geometry-volume cell (additive blending).
+// Adds a surfel to its geometry-volume cell. Light surfels carry their projected area (target 0,
+// additive: the RSM samples the surfaces evenly, so areas add up); camera surfels only say "a
+// surface with this orientation passes through here" (target 1, max blending): their density
+// follows the screen, so summing their areas would make the coverage change whenever the camera
+// moves; the max does not.
 layout(location = 0) flat in vec3 vCoverage;
-layout(location = 0) out vec4 outCoverage;
+layout(location = 1) flat in int vFromCamera;
+layout(location = 0) out vec4 outLightCoverage;
+layout(location = 1) out vec4 outCameraCoverage;
 
-void main() { outCoverage = vec4(vCoverage, 1.0); }
+void main() {
+    outLightCoverage = vFromCamera != 0 ? vec4(0.0) : vec4(vCoverage, 1.0);
+    outCameraCoverage = vFromCamera != 0 ? vec4(vCoverage, 1.0) : vec4(0.0);
+}

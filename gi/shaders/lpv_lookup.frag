@@ -5,36 +5,89 @@
 // the cell's cross-section to turn intensity into radiance. Anisotropic damping: when the field
 // grows into the surface (light that arrives from behind it, through the wall), the lookup is
 // scaled down by the relative directional derivative along the normal.
+//
+// Cascades: the finest cascade that holds the point answers; in a band inside its border (a
+// quarter of its half-extent, CryEngine's e_GIBlendRatio) it fades into the next coarser one, so
+// the irradiance is continuous across cascade borders.
 #include "lpv_common.glsl"
 
 layout(binding = 0, std140) uniform Lookup {
     mat4 invViewProjection;
-    vec4 gridOrigin;  // xyz: corner of cell 0, w: cell size
-    ivec4 grid;       // x: cells per axis, y: volumes are rgba8-encoded, z: damping on
-    vec4 encode;      // x: rgba8 range
-    vec4 intensity;   // x: gi.intensity (already applied at injection), y: damping strength
+    vec4 gridOrigin[4]; // per cascade: xyz corner of cell 0, w: cell size
+    ivec4 grid;         // x: cells per axis, y: volumes are rgba8-encoded, z: damping on, w: cascades
+    vec4 encode;        // x: rgba8 range, y: blend band (fraction of the half-extent)
+    vec4 intensity;     // x: gi.intensity (already applied at injection), y: damping strength
 } lookup;
 layout(binding = 1) uniform sampler2D depthTexture;
 layout(binding = 2) uniform sampler2D normalTexture;
-layout(binding = 3) uniform sampler3D lpvRed;
-layout(binding = 4) uniform sampler3D lpvGreen;
-layout(binding = 5) uniform sampler3D lpvBlue;
+// Cascade c's R, G, B volumes at bindings 3 + 3c .. 5 + 3c (unused cascades bound to cascade 0).
+layout(binding = 3) uniform sampler3D lpv0r;
+layout(binding = 4) uniform sampler3D lpv0g;
+layout(binding = 5) uniform sampler3D lpv0b;
+layout(binding = 6) uniform sampler3D lpv1r;
+layout(binding = 7) uniform sampler3D lpv1g;
+layout(binding = 8) uniform sampler3D lpv1b;
+layout(binding = 9) uniform sampler3D lpv2r;
+layout(binding = 10) uniform sampler3D lpv2g;
+layout(binding = 11) uniform sampler3D lpv2b;
+layout(binding = 12) uniform sampler3D lpv3r;
+layout(binding = 13) uniform sampler3D lpv3g;
+layout(binding = 14) uniform sampler3D lpv3b;
 
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outIrradiance;
 
 vec4 decode(vec4 v) { return lookup.grid.y != 0 ? (v * 2.0 - 1.0) * lookup.encode.x : v; }
 
-vec3 irradianceAt(vec3 p, vec3 n) {
-    float extent = lookup.gridOrigin.w * float(lookup.grid.x);
-    vec3 uvw = (p - lookup.gridOrigin.xyz) / extent;
+// The intensity of cascade c at uvw integrated against `lobe`, per channel.
+vec3 project(int c, vec3 uvw, vec4 lobe) {
+    if (c == 0) return vec3(dot(decode(texture(lpv0r, uvw)), lobe), dot(decode(texture(lpv0g, uvw)), lobe),
+                            dot(decode(texture(lpv0b, uvw)), lobe));
+    if (c == 1) return vec3(dot(decode(texture(lpv1r, uvw)), lobe), dot(decode(texture(lpv1g, uvw)), lobe),
+                            dot(decode(texture(lpv1b, uvw)), lobe));
+    if (c == 2) return vec3(dot(decode(texture(lpv2r, uvw)), lobe), dot(decode(texture(lpv2g, uvw)), lobe),
+                            dot(decode(texture(lpv2b, uvw)), lobe));
+    return vec3(dot(decode(texture(lpv3r, uvw)), lobe), dot(decode(texture(lpv3g, uvw)), lobe),
+                dot(decode(texture(lpv3b, uvw)), lobe));
+}
+
+vec3 uvwIn(int c, vec3 p) {
+    return (p - lookup.gridOrigin[c].xyz) / (lookup.gridOrigin[c].w * float(lookup.grid.x));
+}
+
+vec3 irradianceAt(int c, vec3 p, vec3 n) {
+    vec3 uvw = uvwIn(c, p);
     if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) return vec3(0.0);
     // Incoming light travels against n: integrate against the lobe around -n.
-    vec4 lobe = shCosineLobe(-n);
-    vec3 e = vec3(dot(decode(texture(lpvRed, uvw)), lobe), dot(decode(texture(lpvGreen, uvw)), lobe),
-                  dot(decode(texture(lpvBlue, uvw)), lobe));
-    float area = lookup.gridOrigin.w * lookup.gridOrigin.w;
+    vec3 e = project(c, uvw, shCosineLobe(-n));
+    float area = lookup.gridOrigin[c].w * lookup.gridOrigin[c].w;
     return max(e, vec3(0.0)) / area;
+}
+
+// Cascade c's irradiance at surface point p: half a cell out along n, damped.
+vec3 surfaceIrradiance(int c, vec3 p, vec3 n) {
+    float cell = lookup.gridOrigin[c].w;
+    vec3 front = irradianceAt(c, p + 0.5 * cell * n, n);
+    vec3 e = front;
+    if (lookup.grid.z != 0) {
+        vec3 behind = irradianceAt(c, p - 0.5 * cell * n, n);
+        float f = dot(front, vec3(0.2126, 0.7152, 0.0722));
+        float bk = dot(behind, vec3(0.2126, 0.7152, 0.0722));
+        float growth = max(bk - f, 0.0) / max(bk, 1e-6);
+        e *= clamp(1.0 - lookup.intensity.y * growth, 0.0, 1.0);
+    }
+    return e;
+}
+
+// How far inside cascade c's usable region p is, 0 at its border and 1 at the band's inner edge
+// (negative outside). The usable region stops a cell short of the volume, so the half-cell offsets
+// and trilinear filtering stay inside.
+float insideness(int c, vec3 p) {
+    vec3 uvw = uvwIn(c, p);
+    float margin = 1.0 / float(lookup.grid.x);
+    vec3 d = min(uvw - margin, (1.0 - margin) - uvw); // distance to the nearer border, per axis
+    float nearest = min(d.x, min(d.y, d.z));
+    return nearest / max(lookup.encode.y * (0.5 - margin), 1e-6);
 }
 
 void main() {
@@ -47,15 +100,19 @@ void main() {
     vec4 world = lookup.invViewProjection * clip;
     vec3 p = world.xyz / world.w;
     vec3 n = normalize(textureLod(normalTexture, vUv, 0.0).xyz);
-    float cell = lookup.gridOrigin.w;
-    vec3 front = irradianceAt(p + 0.5 * cell * n, n);
-    vec3 e = front;
-    if (lookup.grid.z != 0) {
-        vec3 behind = irradianceAt(p - 0.5 * cell * n, n);
-        float f = dot(front, vec3(0.2126, 0.7152, 0.0722));
-        float bk = dot(behind, vec3(0.2126, 0.7152, 0.0722));
-        float growth = max(bk - f, 0.0) / max(bk, 1e-6);
-        e *= clamp(1.0 - lookup.intensity.y * growth, 0.0, 1.0);
+    int cascades = lookup.grid.w;
+    vec3 e = vec3(0.0);
+    for (int c = 0; c < cascades; ++c) {
+        float w = insideness(c, p);
+        if (w <= 0.0 && c + 1 < cascades) continue; // outside this one: a coarser one answers
+        vec3 fine = surfaceIrradiance(c, p, n);
+        if (w >= 1.0 || c + 1 == cascades) {
+            e = fine;
+        } else {
+            float t = smoothstep(0.0, 1.0, w);
+            e = mix(surfaceIrradiance(c + 1, p, n), fine, t);
+        }
+        break;
     }
     outIrradiance = vec4(e, 0.0);
 }

@@ -22,8 +22,14 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(binding = 0, std140) uniform Propagate {
     ivec4 grid;  // x: cells per axis, y: cells per thread along z
-    vec4 encode; // x: rgba8 range
+    vec4 encode; // x: rgba8 range, y: handoff scale (0: none), z: 1 when the coarse volume is encoded
+    vec4 handoff; // xyz: the coarse volume's uvw at cell (0,0,0)'s centre; w: uvw per cell
 } params;
+// Cascade handoff: outside this volume the neighbours are the next coarser cascade's result,
+// so light from beyond the border flows in (Kaplanyan & Dachsbacher 2010).
+layout(binding = 20) uniform sampler3D coarseRed;
+layout(binding = 21) uniform sampler3D coarseGreen;
+layout(binding = 22) uniform sampler3D coarseBlue;
 layout(binding = 1) uniform sampler3D injectedRed;
 layout(binding = 2) uniform sampler3D injectedGreen;
 layout(binding = 3) uniform sampler3D injectedBlue;
@@ -112,16 +118,30 @@ Sh3 gather(Sh3 mx, Sh3 px, Sh3 my, Sh3 py, Sh3 mz, Sh3 pz, vec3 lower, vec3 uppe
 
 Sh3 add(Sh3 a, Sh3 b) { return Sh3(a.r + b.r, a.g + b.g, a.b + b.b); }
 
-// The injection volume at a cell (zero outside the volume; the coordinate is clamped first so no
-// fetch is ever out of range).
-Sh3 loadInjected(ivec3 c, int n) {
-    const float inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n))) ? 1.0 : 0.0;
-    const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
-    return Sh3(texelFetch(injectedRed, k, 0) * inside, texelFetch(injectedGreen, k, 0) * inside,
-               texelFetch(injectedBlue, k, 0) * inside);
+// A cell outside the volume: the coarser cascade's result there, in this cascade's units (the
+// intensity of a cell scales with its cross-section), or nothing for the coarsest cascade.
+Sh3 outside(ivec3 c) {
+    if (params.encode.y == 0.0) return Sh3(vec4(0.0), vec4(0.0), vec4(0.0));
+    const vec3 uvw = params.handoff.xyz + vec3(c) * params.handoff.w;
+    vec4 r = textureLod(coarseRed, uvw, 0.0), g = textureLod(coarseGreen, uvw, 0.0);
+    vec4 b = textureLod(coarseBlue, uvw, 0.0);
+    if (params.encode.z != 0.0) {
+        r = (r * 2.0 - 1.0) * params.encode.x, g = (g * 2.0 - 1.0) * params.encode.x;
+        b = (b * 2.0 - 1.0) * params.encode.x;
+    }
+    return Sh3(r * params.encode.y, g * params.encode.y, b * params.encode.y);
 }
 
-// The previous iteration's partial sum at a cell (zero outside the volume).
+// The injection volume at a cell, or outside() beyond the volume (the coordinate is clamped first
+// so no fetch is ever out of range).
+Sh3 loadInjected(ivec3 c, int n) {
+    const bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
+    const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
+    const Sh3 v = Sh3(texelFetch(injectedRed, k, 0), texelFetch(injectedGreen, k, 0), texelFetch(injectedBlue, k, 0));
+    return inside ? v : outside(c);
+}
+
+// The previous iteration's partial sum at a cell (outside() beyond the volume).
 Sh3 loadSource(ivec3 c, int n) {
 #ifdef FROM_INJECTION
     return loadInjected(c, n);
@@ -135,7 +155,7 @@ Sh3 loadSource(ivec3 c, int n) {
 #if PACKED_TEXELS > 2
     t2 = texelFetch(src2, k, 0);
 #endif
-    if (!inside) return Sh3(vec4(0.0), vec4(0.0), vec4(0.0));
+    if (!inside) return outside(c);
     return unpackCell(t0, t1, t2);
 #endif
 }

@@ -23,9 +23,14 @@ struct InjectUniforms {
 GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize) : device_(device), lpvSize_(lpvSize) {
     using namespace rhi;
     const uint32_t g = lpvSize + 1;
-    coverage_ = device.createTexture({TextureKind::Tex3D, Format::RGBA16F, g, g, g, 1,
+    // 8 bits are enough: the faces use coverage up to 1 (a cell face fully covered), and additive
+    // blending into a unorm target saturates there by itself.
+    coverage_ = device.createTexture({TextureKind::Tex3D, Format::RGBA8Unorm, g, g, g, 1,
                                       kTextureColorTarget | kTextureSampled | kTextureTransfer, "gv coverage",
                                       "gi.gv"});
+    cameraCoverage_ = device.createTexture({TextureKind::Tex3D, Format::RGBA8Unorm, g, g, g, 1,
+                                            kTextureColorTarget | kTextureSampled | kTextureTransfer,
+                                            "gv camera coverage", "gi.gv"});
     faces_ = device.createTexture({TextureKind::Tex3D, Format::RGBA8Unorm, lpvSize, lpvSize, lpvSize, 1,
                                    kTextureStorage | kTextureSampled | kTextureTransfer,
                                    "gv face transmittance", "gi.gv"});
@@ -33,8 +38,10 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize) : device_(
     d.vertex = &shaders::gv_vpl_vert;
     d.fragment = &shaders::gv_inject_frag;
     d.topology = PrimitiveTopology::PointList;
-    d.colorFormats = {Format::RGBA16F};
-    d.blend = {BlendState::additive()};
+    d.colorFormats = {Format::RGBA8Unorm, Format::RGBA8Unorm};
+    BlendState max = BlendState::additive();
+    max.colorOp = max.alphaOp = BlendOp::Max;
+    d.blend = {BlendState::additive(), max};
     d.debugName = "gv inject light surfels";
     vplPipeline_ = device.createPipeline(d);
     d.vertex = &shaders::gv_camera_vert;
@@ -47,6 +54,7 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize) : device_(
 GeometryVolume::~GeometryVolume() {
     device_.waitIdle();
     device_.destroy(coverage_);
+    device_.destroy(cameraCoverage_);
     device_.destroy(faces_);
     device_.destroy(vplPipeline_);
     device_.destroy(cameraPipeline_);
@@ -63,12 +71,13 @@ uint32_t GeometryVolume::cameraSampleCount(uint32_t width, uint32_t height) cons
 void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const GeometrySources& src) {
     using namespace rhi;
     cmd.clearTexture(coverage_, {0, 0, 0, 0});
+    cmd.clearTexture(cameraCoverage_, {0, 0, 0, 0});
     const uint32_t g = lpvSize_ + 1;
     InjectUniforms u;
     u.gridOrigin = glm::vec4(grid.origin, grid.cellSize);
     u.lightDirection = glm::vec4(src.lightDirection, src.vplArea);
     u.invViewProjection = src.invViewProjection;
-    u.camera = glm::vec4(src.cameraPosition, src.sampleFootprint);
+    u.camera = glm::vec4(src.cameraPosition, 0.0f);
     uint32_t cameraSamples = 0;
     if (src.depth) {
         const TextureDesc& d = device_.desc(src.depth);
@@ -77,7 +86,8 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
     for (uint32_t slice = 0; slice < g; ++slice) {
         RenderPassDesc pass;
         pass.colors[0] = {coverage_, 0, slice, LoadOp::Load};
-        pass.colorCount = 1;
+        pass.colors[1] = {cameraCoverage_, 0, slice, LoadOp::Load};
+        pass.colorCount = 2;
         pass.debugName = "gv inject slice";
         cmd.beginRenderPass(pass);
         u.grid = glm::ivec4(int(g), int(slice), int(src.vplCount), int(kCameraSamplesPerRow));
@@ -101,6 +111,7 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
     cmd.pushUniforms(0, &faceGrid, sizeof(faceGrid));
     cmd.bindTexture(1, coverage_, pointSampler_);
     cmd.bindStorageImage(2, faces_);
+    cmd.bindTexture(3, cameraCoverage_, pointSampler_);
     cmd.dispatch((lpvSize_ + 3) / 4, (lpvSize_ + 3) / 4, (lpvSize_ + 3) / 4);
 }
 

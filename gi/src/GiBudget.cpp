@@ -5,6 +5,7 @@
 #include "rhi/Format.h"
 
 #include <cstdio>
+#include <string>
 
 namespace lpv::gi {
 
@@ -28,8 +29,13 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
         {"propagation partial sums, pong (packed)", "gi.lpv", cells * packedBytes},
         {"accumulation (3 SH textures)", "gi.lpv", 3 * cells * shBytes},
     };
+    // Every further cascade keeps its own result; the scratch volumes above serve them in turn.
+    for (uint32_t c = 1; c < s.cascades; ++c)
+        out.push_back({"accumulation, cascade " + std::to_string(c) + " (3 SH textures)", "gi.lpv",
+                       3 * cells * shBytes});
     if (s.occlusion) {
-        out.push_back({"geometry volume coverage", "gi.gv", gvCells * 8});
+        out.push_back({"geometry volume coverage, light surfels", "gi.gv", gvCells * 4});
+        out.push_back({"geometry volume coverage, camera surfels", "gi.gv", gvCells * 4});
         out.push_back({"face transmittance", "gi.gv", cells * 4});
     }
     return out;

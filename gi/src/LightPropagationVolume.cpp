@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <string>
 
 namespace lpv::gi {
 namespace {
@@ -25,7 +26,7 @@ struct ClusterUniforms {
 
 struct LookupUniforms {
     glm::mat4 invViewProjection;
-    glm::vec4 gridOrigin;
+    glm::vec4 gridOrigin[4];
     glm::ivec4 grid;
     glm::vec4 encode;
     glm::vec4 intensity;
@@ -99,6 +100,10 @@ LightPropagationVolume::~LightPropagationVolume() {
 
 void LightPropagationVolume::release() {
     device_.waitIdle();
+    for (size_t c = 1; c < cascades_.size(); ++c)
+        for (rhi::TextureHandle t : cascades_[c].result)
+            device_.destroy(t);
+    cascades_.clear();
     rsm_.reset();
     volumes_.reset();
     geometry_.reset();
@@ -111,6 +116,10 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     release();
     rsm_ = std::make_unique<ReflectiveShadowMap>(device_, s.rsmSize);
     volumes_ = std::make_unique<LpvVolumes>(device_, s);
+    cascades_.resize(s.cascades);
+    cascades_[0].result = volumes_->accumulated();
+    for (uint32_t c = 1; c < s.cascades; ++c)
+        cascades_[c].result = volumes_->createResult("lpv cascade " + std::to_string(c));
     if (s.occlusion) geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize);
     vpls_ = device_.createBuffer({uint64_t(s.vplCount) * 48, rhi::kBufferStorage | rhi::kBufferTransfer,
                                   rhi::MemoryAccess::GpuOnly, "vpls", "gi.vpl"});
@@ -128,7 +137,13 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
         remake(s);
     }
     settings_ = s;
-    grid_ = placeVolume(s, camera.position, camera.forward, renderer.sceneBounds());
+    LpvSettings level = s;
+    for (Cascade& c : cascades_) {
+        c.grid = placeVolume(level, camera.position, camera.forward, renderer.sceneBounds());
+        level.cellSize *= 2.0f;
+    }
+    grid_ = cascades_.empty() ? placeVolume(s, camera.position, camera.forward, renderer.sceneBounds())
+                              : cascades_[0].grid;
 }
 
 void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
@@ -150,64 +165,82 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     const glm::vec3 lightDir = glm::normalize(sun.direction);
     auto giScope = scope("gi");
     cmd.beginMarker("gi");
-    {
-        auto s = scope("rsm");
-        rsm_->fit(grid_, lightDir);
-        rsm_->render(cmd, *renderer_->scene(), lightDir, sun.radiance);
-        work(rsmWork(settings_, renderer_->scene()->triangleCount()));
-    }
+    static const char* const kCascadeScopes[4] = {"cascade0", "cascade1", "cascade2", "cascade3"};
     const uint32_t side = settings_.vplGridSide();
-    {
-        auto s = scope("vpl");
-        ClusterUniforms u;
-        u.invLightViewProjection = glm::inverse(rsm_->lightViewProjection());
-        u.sizes = glm::ivec4(int(rsm_->size()), int(side), int(rsm_->size() / side), 0);
-        cmd.bindPipeline(clusterPipeline_);
-        cmd.pushUniforms(0, &u, sizeof(u));
-        cmd.bindTexture(1, rsm_->depth(), pointSampler_);
-        cmd.bindTexture(2, rsm_->normal(), pointSampler_);
-        cmd.bindTexture(3, rsm_->flux(), pointSampler_);
-        cmd.bindStorageBuffer(4, vpls_);
-        cmd.dispatch((side + 7) / 8, (side + 7) / 8, 1);
-        work(vplClusterWork(settings_));
-    }
-    if (geometry_) {
-        auto s = scope("occlusion");
-        GeometrySources src;
-        src.vpls = vpls_;
-        src.vplCount = settings_.vplCount;
-        const float texelsPerVpl = float(rsm_->size() / side) * float(rsm_->size() / side);
-        src.vplArea = rsm_->texelArea() * texelsPerVpl;
-        src.lightDirection = lightDir;
-        src.depth = gbuffer.depth;
-        src.normal = gbuffer.normal;
-        src.invViewProjection = camera.invViewProjection;
-        src.cameraPosition = camera.position;
-        // A camera sample's spacing as an angle: (pixels between samples) x (angle per pixel).
-        const float tanHalfFov = 1.0f / std::abs(camera.projection[1][1]);
-        src.sampleFootprint = float(gbuffer.width) / float(GeometryVolume::kCameraSamplesPerRow) * 2.0f *
-                              tanHalfFov / float(gbuffer.height);
-        geometry_->build(cmd, grid_, src);
-        work(occlusionWork(settings_, geometry_->cameraSampleCount(gbuffer.width, gbuffer.height)));
-    }
-    {
-        auto s = scope("inject");
-        volumes_->inject(cmd, vpls_, settings_.vplCount, grid_, lightDir, settings_.intensity);
-        work(injectWork(settings_));
-    }
-    {
-        auto s = scope("propagate");
-        volumes_->propagate(cmd, settings_.iterations,
-                            geometry_ ? geometry_->faceTransmittance() : rhi::TextureHandle{});
-        work(propagateWork(settings_));
+    // Coarsest first: each finer cascade takes the light from beyond its border from the one
+    // around it (CascadeHandoff).
+    for (uint32_t c = uint32_t(cascades_.size()); c-- > 0;) {
+        auto cascadeScope = scope(kCascadeScopes[c]);
+        const VolumeGrid& grid = cascades_[c].grid;
+        {
+            auto s = scope("rsm");
+            rsm_->fit(grid, lightDir);
+            // Objects smaller than a cell of this cascade are left to the finer ones.
+            rsm_->render(cmd, *renderer_->scene(), lightDir, sun.radiance, c == 0 ? 0.0f : grid.cellSize);
+            work(rsmWork(settings_, renderer_->scene()->triangleCount()));
+        }
+        {
+            auto s = scope("vpl");
+            ClusterUniforms u;
+            u.invLightViewProjection = glm::inverse(rsm_->lightViewProjection());
+            u.sizes = glm::ivec4(int(rsm_->size()), int(side), int(rsm_->size() / side), 0);
+            cmd.bindPipeline(clusterPipeline_);
+            cmd.pushUniforms(0, &u, sizeof(u));
+            cmd.bindTexture(1, rsm_->depth(), pointSampler_);
+            cmd.bindTexture(2, rsm_->normal(), pointSampler_);
+            cmd.bindTexture(3, rsm_->flux(), pointSampler_);
+            cmd.bindStorageBuffer(4, vpls_);
+            cmd.dispatch((side + 7) / 8, (side + 7) / 8, 1);
+            work(vplClusterWork(settings_));
+        }
+        if (geometry_) {
+            auto s = scope("occlusion");
+            GeometrySources src;
+            src.vpls = vpls_;
+            src.vplCount = settings_.vplCount;
+            const float texelsPerVpl = float(rsm_->size() / side) * float(rsm_->size() / side);
+            src.vplArea = rsm_->texelArea() * texelsPerVpl;
+            src.lightDirection = lightDir;
+            // Camera surfels in the finest cascade only: there a G-buffer sample is small next to
+            // a cell and the coverage is stable as the camera moves; in a coarse cell one sample
+            // of a small or partly seen surface would mark the whole cell, and whether one lands
+            // there changes with every camera move.
+            if (c == 0) {
+                src.depth = gbuffer.depth;
+                src.normal = gbuffer.normal;
+            }
+            src.invViewProjection = camera.invViewProjection;
+            src.cameraPosition = camera.position;
+            geometry_->build(cmd, grid, src);
+            work(occlusionWork(settings_, geometry_->cameraSampleCount(gbuffer.width, gbuffer.height)));
+        }
+        {
+            auto s = scope("inject");
+            volumes_->inject(cmd, vpls_, settings_.vplCount, grid, lightDir, settings_.intensity);
+            work(injectWork(settings_));
+        }
+        {
+            auto s = scope("propagate");
+            CascadeHandoff handoff;
+            if (c + 1 < cascades_.size()) handoff = {cascades_[c + 1].result, cascades_[c + 1].grid, grid};
+            volumes_->propagate(cmd, settings_.iterations,
+                                geometry_ ? geometry_->faceTransmittance() : rhi::TextureHandle{},
+                                &cascades_[c].result, c + 1 < cascades_.size() ? &handoff : nullptr);
+            work(propagateWork(settings_));
+        }
     }
     {
         auto s = scope("lookup");
         LookupUniforms u;
         u.invViewProjection = camera.invViewProjection;
-        u.gridOrigin = glm::vec4(grid_.origin, grid_.cellSize);
-        u.grid = glm::ivec4(int(grid_.size), volumes_->encoded() ? 1 : 0, settings_.damping ? 1 : 0, 0);
-        u.encode = glm::vec4(volumes_->encodeRange(), 0, 0, 0);
+        for (uint32_t c = 0; c < 4; ++c) {
+            const VolumeGrid& g = cascades_[std::min<size_t>(c, cascades_.size() - 1)].grid;
+            u.gridOrigin[c] = glm::vec4(g.origin, g.cellSize);
+        }
+        u.grid = glm::ivec4(int(grid_.size), volumes_->encoded() ? 1 : 0, settings_.damping ? 1 : 0,
+                            int(cascades_.size()));
+        // Blend band: a quarter of a cascade's half-extent (CryEngine's e_GIBlendRatio 0.25).
+        u.encode = glm::vec4(volumes_->encodeRange(), 0.25f, 0, 0);
         u.intensity = glm::vec4(settings_.intensity, 1.0f, 0, 0);
         RenderPassDesc pass;
         pass.colors[0] = {target, 0, 0, LoadOp::DontCare};
@@ -218,8 +251,11 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         cmd.pushUniforms(0, &u, sizeof(u));
         cmd.bindTexture(1, gbuffer.depth, pointSampler_);
         cmd.bindTexture(2, gbuffer.normal, pointSampler_);
-        for (uint32_t c = 0; c < 3; ++c)
-            cmd.bindTexture(3 + c, volumes_->accumulated()[c], linearSampler_);
+        for (uint32_t c = 0; c < 4; ++c)
+            for (uint32_t ch = 0; ch < 3; ++ch)
+                cmd.bindTexture(3 + 3 * c + ch,
+                                cascades_[std::min<size_t>(c, cascades_.size() - 1)].result[ch],
+                                linearSampler_);
         cmd.draw(3);
         cmd.endRenderPass();
         work(lookupWork(settings_, uint64_t(gbuffer.width) * gbuffer.height));

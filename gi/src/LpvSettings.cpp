@@ -12,6 +12,8 @@ const engine::BoolSetting kEnabled{"gi.enabled", false,
 const engine::IntSetting kGridSize{"gi.grid_size", 32, 16, 64, "LPV cells per axis"};
 const engine::FloatSetting kCellSize{"gi.cell_size", 0.25, 0.01, 100.0,
                                      "LPV cell size in metres (volume = grid x cell)"};
+const engine::IntSetting kCascades{"gi.cascades", 3, 1, 4,
+                                   "Nested volumes, each twice the extent of the previous (cascaded LPV)"};
 const engine::IntSetting kIterations{"gi.iterations", 8, 1, 64, "Propagation iterations per frame"};
 const engine::IntSetting kRsmSize{"gi.rsm_size", 256, 32, 2048,
                                   "Reflective shadow map resolution (texels per side)"};
@@ -53,6 +55,7 @@ LpvSettings readLpvSettings(const engine::Config& config) {
     LpvSettings s;
     s.enabled = config.get(kEnabled);
     s.gridSize = uint32_t(config.get(kGridSize));
+    s.cascades = uint32_t(config.get(kCascades));
     s.cellSize = float(config.get(kCellSize));
     s.iterations = uint32_t(config.get(kIterations));
     s.rsmSize = uint32_t(config.get(kRsmSize));

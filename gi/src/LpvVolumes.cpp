@@ -21,6 +21,7 @@ struct InjectUniforms {
 struct PropagateUniforms {
     glm::ivec4 grid;
     glm::vec4 encode;
+    glm::vec4 handoff;
 };
 
 // Iteration roles: first reads the injection, last writes the result, only does both.
@@ -107,6 +108,9 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
             propagatePipelines_[size_t(occluded)][size_t(role)] = device.createPipeline(ComputePipelineDesc{
                 &propagateShader(settings.shFormat, occluded != 0, role), roleNames[role]});
     pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
+    SamplerDesc linear;
+    linear.mipFilter = Filter::Nearest;
+    linearSampler_ = device.createSampler(linear);
 }
 
 LpvVolumes::~LpvVolumes() {
@@ -119,6 +123,7 @@ LpvVolumes::~LpvVolumes() {
         for (rhi::ComputePipelineHandle p : set)
             device_.destroy(p);
     device_.destroy(pointSampler_);
+    device_.destroy(linearSampler_);
 }
 
 bool LpvVolumes::matches(const LpvSettings& s) const {
@@ -151,13 +156,35 @@ void LpvVolumes::inject(rhi::CommandList& cmd, rhi::BufferHandle vpls, uint32_t 
     }
 }
 
-void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::TextureHandle faceTransmittance) {
+std::array<rhi::TextureHandle, 3> LpvVolumes::createResult(const std::string& name) const {
+    using namespace rhi;
+    const uint32_t n = settings_.gridSize;
+    const char* channels[3] = {"red", "green", "blue"};
+    std::array<TextureHandle, 3> out{};
+    for (int c = 0; c < 3; ++c)
+        out[size_t(c)] = device_.createTexture({TextureKind::Tex3D, shTextureFormat(settings_.shFormat), n, n,
+                                                n, 1, kTextureStorage | kTextureSampled | kTextureTransfer,
+                                                name + " " + channels[c], "gi.lpv"});
+    return out;
+}
+
+void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::TextureHandle faceTransmittance,
+                           const std::array<rhi::TextureHandle, 3>* result, const CascadeHandoff* handoff) {
+    const std::array<rhi::TextureHandle, 3>& target = result ? *result : accum_;
     const uint32_t n = settings_.gridSize;
     const uint32_t column = columnLength_;
     const uint32_t texels = packedTexelCount(settings_.shFormat);
     PropagateUniforms u;
     u.grid = glm::ivec4(int(n), int(column), 0, 0);
-    u.encode = glm::vec4(settings_.rgba8Range, 0, 0, 0);
+    u.encode = glm::vec4(settings_.rgba8Range, 0, encoded() ? 1 : 0, 0);
+    if (handoff) {
+        const float coarseExtent = handoff->coarseGrid.cellSize * float(handoff->coarseGrid.size);
+        const glm::vec3 firstCentre = handoff->fineGrid.origin + 0.5f * handoff->fineGrid.cellSize;
+        u.handoff = glm::vec4((firstCentre - handoff->coarseGrid.origin) / coarseExtent,
+                              handoff->fineGrid.cellSize / coarseExtent);
+        const float ratio = handoff->fineGrid.cellSize / handoff->coarseGrid.cellSize;
+        u.encode.y = ratio * ratio;
+    }
     // y(0) is the injection volume; y(k+1) = x + P y(k) goes to partial_[k % 2]; the last
     // iteration writes y(N), the accumulated result, into accum_.
     for (uint32_t i = 0; i < iterations; ++i) {
@@ -166,9 +193,12 @@ void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::Text
         cmd.bindPipeline(propagatePipelines_[faceTransmittance ? 1 : 0][size_t(role)]);
         cmd.pushUniforms(0, &u, sizeof(u));
         if (faceTransmittance) cmd.bindTexture(19, faceTransmittance, pointSampler_);
+        // Without a handoff the coarse volume is never read; any 3D texture satisfies the binding.
+        for (uint32_t c = 0; c < 3; ++c)
+            cmd.bindTexture(20 + c, handoff ? handoff->coarse[c] : inject_[c], linearSampler_);
         for (uint32_t c = 0; c < 3; ++c) {
             cmd.bindTexture(1 + c, inject_[c], pointSampler_);
-            if (last) cmd.bindStorageImage(10 + c, accum_[c]);
+            if (last) cmd.bindStorageImage(10 + c, target[c]);
         }
         for (uint32_t t = 0; t < texels; ++t) {
             if (!first) cmd.bindTexture(4 + t, partial_[(i + 1) % 2][t], pointSampler_);

@@ -74,7 +74,7 @@ glm::mat4 ReflectiveShadowMap::fit(const VolumeGrid& grid, glm::vec3 lightDirect
 }
 
 void ReflectiveShadowMap::render(rhi::CommandList& cmd, const engine::GpuScene& scene,
-                                 glm::vec3 lightDirection, glm::vec3 sunIrradiance) {
+                                 glm::vec3 lightDirection, glm::vec3 sunIrradiance, float minObjectSize) {
     using namespace rhi;
     RsmUniforms u;
     u.lightViewProjection = viewProjection_;
@@ -92,6 +92,7 @@ void ReflectiveShadowMap::render(rhi::CommandList& cmd, const engine::GpuScene& 
     cmd.bindVertexBuffer(0, scene.vertices());
     cmd.bindIndexBuffer(scene.indices(), IndexType::Uint32);
     for (const engine::GpuDraw& d : scene.draws()) {
+        if (d.worldSize < minObjectSize) continue;
         cmd.pushUniforms(1, &d.uniforms, sizeof(d.uniforms));
         cmd.bindTexture(2, d.baseColor, scene.materialSampler());
         cmd.drawIndexed(d.indexCount, 1, d.firstIndex);

@@ -29,8 +29,8 @@ bool CornellFrame::pixelOf(glm::vec3 world, uint32_t& x, uint32_t& y) const {
 }
 
 CornellFrame renderCornell(rhi::Device& device, const std::vector<std::string>& settings,
-                           std::optional<glm::vec3> sunDirection, uint32_t width, uint32_t height,
-                           int frames) {
+                           std::optional<glm::vec3> sunDirection, uint32_t width, uint32_t height, int frames,
+                           glm::vec3 cameraOffset) {
     engine::Config config;
     for (const std::string& s : settings)
         config.applyOverride(s, "test");
@@ -43,7 +43,9 @@ CornellFrame renderCornell(rhi::Device& device, const std::vector<std::string>& 
         renderer.setScene(f.scene);
         if (sunDirection) renderer.sun().direction = glm::normalize(*sunDirection);
         gi::LightPropagationVolume lpv(device, platforms::loadPlatformProfile("pc"));
-        f.camera = engine::cameraMatrices(*f.scene.camera, float(width) / float(height));
+        engine::Camera camera = *f.scene.camera;
+        camera.position += cameraOffset;
+        f.camera = engine::cameraMatrices(camera, float(width) / float(height));
         for (int i = 0; i < frames; ++i) {
             lpv.update(config, renderer, f.camera);
             rhi::CommandList& cmd = device.beginFrame();
@@ -55,6 +57,14 @@ CornellFrame renderCornell(rhi::Device& device, const std::vector<std::string>& 
         f.output = readImage(device, renderer.output());
         f.hdr = readImage(device, renderer.hdr());
         f.depth = readImage(device, renderer.gbuffer().depth);
+        if (lpv.settings().enabled)
+            for (uint32_t c = 0; c < lpv.cascadeCount(); ++c) {
+                f.cascadeGrids.push_back(lpv.cascadeGrid(c));
+                std::array<Image, 3> v;
+                for (uint32_t ch = 0; ch < 3; ++ch)
+                    v[ch] = readImage(device, lpv.cascadeResult(c)[ch]);
+                f.cascadeVolumes.push_back(std::move(v));
+            }
     }
     return f;
 }

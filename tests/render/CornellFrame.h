@@ -6,10 +6,12 @@
 
 #include "engine/render/CameraMatrices.h"
 #include "engine/scene/Scene.h"
+#include "gi/LpvReference.h"
 #include "rhi/Device.h"
 
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,6 +25,9 @@ struct CornellFrame {
     engine::CameraMatrices camera;
     engine::Scene scene;
     uint32_t width = 0, height = 0;
+    // With GI on: every cascade's placement and result volumes (R, G, B; RGBA16F unless encoded).
+    std::vector<gi::VolumeGrid> cascadeGrids;
+    std::vector<std::array<Image, 3>> cascadeVolumes;
 
     // The pixel a world point lands on; false when off screen or hidden behind other geometry.
     bool pixelOf(glm::vec3 world, uint32_t& x, uint32_t& y) const;
@@ -31,7 +36,7 @@ struct CornellFrame {
 // `settings`: key=value overrides (e.g. "render.debug_view=ssao", "gi.enabled=true").
 CornellFrame renderCornell(rhi::Device& device, const std::vector<std::string>& settings,
                            std::optional<glm::vec3> sunDirection = std::nullopt, uint32_t width = 320,
-                           uint32_t height = 240, int frames = 1);
+                           uint32_t height = 240, int frames = 1, glm::vec3 cameraOffset = glm::vec3(0.0f));
 
 float luminance(glm::vec4 c);
 

@@ -21,13 +21,12 @@ struct GeometrySources {
     rhi::TextureHandle normal; // camera world normals
     glm::mat4 invViewProjection{1.0f};
     glm::vec3 cameraPosition{0.0f};
-    float sampleFootprint = 0.0f; // camera sample spacing per metre of distance (radians)
 };
 
 class GeometryVolume {
 public:
     // Camera samples per row of the depth buffer (rows follow its aspect).
-    static constexpr uint32_t kCameraSamplesPerRow = 96;
+    static constexpr uint32_t kCameraSamplesPerRow = 160;
 
     GeometryVolume(rhi::Device& device, uint32_t lpvSize);
     ~GeometryVolume();
@@ -40,14 +39,16 @@ public:
 
     // Per LPV cell: transmittance of its -x, -y, -z faces (RGBA8, xyz).
     rhi::TextureHandle faceTransmittance() const { return faces_; }
-    // Per GV cell: projected coverage along x, y, z; w: surfel count (RGBA16F, lpvSize + 1 cells).
-    rhi::TextureHandle coverage() const { return coverage_; }
+    // Per GV cell (lpvSize + 1 per axis): projected coverage along x, y, z from the light's
+    // surfels and from the camera's (RGBA8 each).
+    rhi::TextureHandle lightCoverage() const { return coverage_; }
+    rhi::TextureHandle cameraCoverage() const { return cameraCoverage_; }
     uint32_t cameraSampleCount(uint32_t width, uint32_t height) const;
 
 private:
     rhi::Device& device_;
     uint32_t lpvSize_;
-    rhi::TextureHandle coverage_, faces_;
+    rhi::TextureHandle coverage_, cameraCoverage_, faces_;
     rhi::GraphicsPipelineHandle vplPipeline_, cameraPipeline_;
     rhi::ComputePipelineHandle facesPipeline_;
     rhi::SamplerHandle pointSampler_;

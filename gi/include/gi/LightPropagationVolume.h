@@ -16,7 +16,9 @@
 #include "gi/ReflectiveShadowMap.h"
 #include "platforms/PlatformProfile.h"
 
+#include <array>
 #include <memory>
+#include <vector>
 
 namespace lpv::gi {
 
@@ -43,7 +45,11 @@ public:
                             rhi::TextureHandle output) override;
 
     const LpvSettings& settings() const { return settings_; }
+    // The finest cascade's placement (cascade(c) for the others).
     const VolumeGrid& grid() const { return grid_; }
+    uint32_t cascadeCount() const { return uint32_t(cascades_.size()); }
+    const VolumeGrid& cascadeGrid(uint32_t c) const { return cascades_[c].grid; }
+    const std::array<rhi::TextureHandle, 3>& cascadeResult(uint32_t c) const { return cascades_[c].result; }
     const LpvVolumes* volumes() const { return volumes_.get(); }
     const ReflectiveShadowMap* rsm() const { return rsm_.get(); }
     const GeometryVolume* geometry() const { return geometry_.get(); }
@@ -58,6 +64,13 @@ private:
     LpvSettings settings_;
     bool made_ = false;
     VolumeGrid grid_;
+    // Cascade 0 is the finest; each further one has cells twice the size. Scratch (RSM, VPLs,
+    // geometry, injection and partial sums) is shared: cascades are built one after another.
+    struct Cascade {
+        VolumeGrid grid;
+        std::array<rhi::TextureHandle, 3> result{}; // cascade 0: volumes_->accumulated()
+    };
+    std::vector<Cascade> cascades_;
     const engine::Renderer* renderer_ = nullptr;
     std::unique_ptr<ReflectiveShadowMap> rsm_;
     std::unique_ptr<LpvVolumes> volumes_;

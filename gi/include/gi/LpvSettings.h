@@ -17,7 +17,8 @@ enum class GiDebugView { None, VolumeSlice, Vpls, Indirect };
 struct LpvSettings {
     bool enabled = false;
     uint32_t gridSize = 32;
-    float cellSize = 0.25f;
+    float cellSize = 0.25f; // of the finest cascade; each further cascade doubles it
+    uint32_t cascades = 3;
     uint32_t iterations = 8;
     uint32_t rsmSize = 256;
     uint32_t vplCount = 4096;

@@ -9,6 +9,7 @@
 #include "rhi/Device.h"
 
 #include <array>
+#include <string>
 
 namespace lpv::gi {
 
@@ -22,6 +23,12 @@ rhi::Format packedTexelFormat(ShFormat f, uint32_t texel);
 // neighbours then come from registers) with just enough workgroups to keep every thread busy; a
 // GPU (concurrentWorkgroups 0) wants many short ones.
 uint32_t propagationColumnLength(uint32_t n, uint32_t concurrentWorkgroups);
+
+// Light from beyond a cascade's border: the next coarser cascade's result and both placements.
+struct CascadeHandoff {
+    std::array<rhi::TextureHandle, 3> coarse;
+    VolumeGrid coarseGrid, fineGrid;
+};
 
 class LpvVolumes {
 public:
@@ -42,7 +49,15 @@ public:
     // Propagates `iterations` (>= 1) times from the injection volume; accumulated() then holds the
     // injected volume plus every iteration's propagated light. With `faceTransmittance`
     // (GeometryVolume), the flux through every face is attenuated by it.
-    void propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::TextureHandle faceTransmittance = {});
+    // `result`: where the last iteration writes (a set from createResult(), e.g. another
+    // cascade's); accumulated() when null. `handoff`: outside the volume, neighbours read the
+    // coarser cascade's result (in this volume's units) instead of nothing.
+    void propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::TextureHandle faceTransmittance = {},
+                   const std::array<rhi::TextureHandle, 3>* result = nullptr,
+                   const CascadeHandoff* handoff = nullptr);
+    // A further set of result volumes (3 SH textures in gi.sh_format, sampled by the lookup).
+    // The injection and partial-sum volumes are scratch, shared by every cascade; results persist.
+    std::array<rhi::TextureHandle, 3> createResult(const std::string& name) const;
 
     const std::array<rhi::TextureHandle, 3>& injected() const { return inject_; }
     const std::array<rhi::TextureHandle, 3>& accumulated() const { return accum_; }
@@ -60,7 +75,7 @@ private:
     rhi::GraphicsPipelineHandle injectPipeline_;
     // By occlusion (without, with) and iteration role.
     std::array<std::array<rhi::ComputePipelineHandle, 4>, 2> propagatePipelines_{};
-    rhi::SamplerHandle pointSampler_;
+    rhi::SamplerHandle pointSampler_, linearSampler_;
 };
 
 } // namespace lpv::gi

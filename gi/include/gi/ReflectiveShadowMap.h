@@ -21,8 +21,10 @@ public:
     uint32_t size() const { return size_; }
     // Fits the light's projection around `grid`; returns the light view-projection.
     glm::mat4 fit(const VolumeGrid& grid, glm::vec3 lightDirection);
+    // Draws the objects at least `minObjectSize` m across: a coarse cascade leaves out what is
+    // small next to its cells (a finer cascade carries it).
     void render(rhi::CommandList& cmd, const engine::GpuScene& scene, glm::vec3 lightDirection,
-                glm::vec3 sunIrradiance);
+                glm::vec3 sunIrradiance, float minObjectSize = 0.0f);
 
     const glm::mat4& lightViewProjection() const { return viewProjection_; }
     float texelArea() const { return texelArea_; }

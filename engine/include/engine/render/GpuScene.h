@@ -34,6 +34,7 @@ struct GpuDraw {
     uint32_t indexCount = 0;
     rhi::TextureHandle baseColor; // a 1x1 white texture when the material has none
     rhi::TextureHandle normal;    // a 1x1 flat normal when the material has none
+    float worldSize = 0.0f;       // largest side of the world bounds (m): size filters use it
     DrawUniforms uniforms;
 };
 

@@ -1,0 +1,160 @@
+// Cascades on each backend, read back from the GPU volumes of Cornell box frames: the irradiance
+// of a static scene does not move when the camera moves by less than a cell, and the lookup's
+// blend between cascades is continuous across a cascade's border.
+#include "../render/CornellFrame.h"
+#include "../support/TestDevice.h"
+
+#include "gi/ShBasis.h"
+
+#include <doctest/doctest.h>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+using namespace lpv;
+using namespace lpv::test;
+
+namespace {
+
+const std::vector<std::string> kGi = {"gi.enabled=true", "gi.cell_size=0.17", "render.ssao=false",
+                                      "gi.sh_format=rgba32f"};
+
+// Trilinear SH of one channel at p (cell-centred samples, clamped to the volume).
+glm::vec4 sampleSh(const Image& img, const gi::VolumeGrid& g, glm::vec3 p) {
+    const glm::vec3 t = (p - g.origin) / g.cellSize - 0.5f;
+    const glm::ivec3 base = glm::ivec3(glm::floor(t));
+    const glm::vec3 f = t - glm::vec3(base);
+    glm::vec4 sum(0.0f);
+    for (int k = 0; k < 8; ++k) {
+        const glm::ivec3 o(k & 1, (k >> 1) & 1, (k >> 2) & 1);
+        const glm::ivec3 c = glm::clamp(base + o, glm::ivec3(0), glm::ivec3(int(g.size) - 1));
+        const glm::vec3 w = glm::mix(1.0f - f, f, glm::vec3(o));
+        sum += img.at(uint32_t(c.x), uint32_t(c.y), uint32_t(c.z)) * (w.x * w.y * w.z);
+    }
+    return sum;
+}
+
+// Cascade c's irradiance (luminance) at surface point p with normal n, as the lookup computes it
+// (half a cell out along n, without damping).
+float irradiance(const CornellFrame& f, size_t c, glm::vec3 p, glm::vec3 n) {
+    const gi::VolumeGrid& g = f.cascadeGrids[c];
+    const glm::vec3 q = p + 0.5f * g.cellSize * n;
+    const glm::vec4 lobe = gi::shCosineLobe(-n);
+    const float scale = 1.0f / (g.cellSize * g.cellSize);
+    const float r = std::max(0.0f, glm::dot(sampleSh(f.cascadeVolumes[c][0], g, q), lobe)) * scale;
+    const float gr = std::max(0.0f, glm::dot(sampleSh(f.cascadeVolumes[c][1], g, q), lobe)) * scale;
+    const float b = std::max(0.0f, glm::dot(sampleSh(f.cascadeVolumes[c][2], g, q), lobe)) * scale;
+    return 0.2126f * r + 0.7152f * gr + 0.0722f * b;
+}
+
+// The lookup's insideness (lpv_lookup.frag): 0 at a cascade's usable border, 1 a blend band in.
+float insideness(const gi::VolumeGrid& g, glm::vec3 p) {
+    const glm::vec3 uvw = (p - g.origin) / (g.cellSize * float(g.size));
+    const float margin = 1.0f / float(g.size);
+    const glm::vec3 d = glm::min(uvw - margin, (1.0f - margin) - uvw);
+    return std::min({d.x, d.y, d.z}) / (0.25f * (0.5f - margin));
+}
+
+// Distance (in cells) from p to the cascade's border, negative outside.
+float cellsInside(const gi::VolumeGrid& g, glm::vec3 p) {
+    const glm::vec3 t = (p - g.origin) / g.cellSize;
+    const glm::vec3 d = glm::min(t, glm::vec3(float(g.size)) - t);
+    return std::min({d.x, d.y, d.z});
+}
+
+} // namespace
+
+TEST_CASE("gi: moving the camera by less than a cell leaves the irradiance unchanged (cascades)") {
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            const CornellFrame a = renderCornell(*device, kGi);
+            REQUIRE(a.cascadeGrids.size() == 3);
+            // A third of a finest cell sideways and a fifth of one forward.
+            const float cell = a.cascadeGrids[0].cellSize;
+            const CornellFrame b = renderCornell(*device, kGi, std::nullopt, 320, 240, 1,
+                                                 glm::vec3(0.33f * cell, 0.0f, -0.2f * cell));
+            for (size_t c = 0; c < a.cascadeGrids.size(); ++c) {
+                // Points of a horizontal plane through the room, at least two cells inside the cascade in
+                // both frames.
+                std::vector<std::pair<float, float>> pairs;
+                float peak = 0.0f;
+                for (float x = -2.5f; x <= 2.5f; x += 0.25f)
+                    for (float z = -2.5f; z <= 2.5f; z += 0.25f) {
+                        const glm::vec3 p(x, 1.5f, z);
+                        if (cellsInside(a.cascadeGrids[c], p) < 2.0f ||
+                            cellsInside(b.cascadeGrids[c], p) < 2.0f)
+                            continue;
+                        pairs.push_back({irradiance(a, c, p, {0, 1, 0}), irradiance(b, c, p, {0, 1, 0})});
+                        peak = std::max(peak, pairs.back().first);
+                    }
+                REQUIRE(!pairs.empty());
+                REQUIRE(peak > 0.0f);
+                float worst = 0.0f;
+                for (const auto& [ea, eb] : pairs)
+                    worst = std::max(worst, std::fabs(ea - eb) / peak);
+                MESSAGE(backend.name << " cascade " << c << ": " << pairs.size()
+                                     << " floor points, largest change " << 100.0f * worst
+                                     << "% of the peak; origin moved by "
+                                     << glm::length(b.cascadeGrids[c].origin - a.cascadeGrids[c].origin) /
+                                            a.cascadeGrids[c].cellSize
+                                     << " cells");
+                CHECK(worst <= 0.01f);
+            }
+            device.expectSilent();
+        }
+    }
+}
+
+TEST_CASE("gi: the irradiance is continuous across a cascade border") {
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            // 0.1 m cells: the finest cascade (3.2 m) ends inside the room, between its centre and
+            // the sunlit floor by the red wall; its light from there is handed in by cascade 1.
+            std::vector<std::string> settings = kGi;
+            settings.push_back("gi.cell_size=0.1");
+            const CornellFrame f = renderCornell(*device, settings);
+            REQUIRE(f.cascadeGrids.size() == 3);
+            const gi::VolumeGrid& fine = f.cascadeGrids[0];
+            const float border = fine.origin.x + fine.cellSize; // the usable region's -x edge
+            REQUIRE(border > -2.0f);
+            // From the room's middle in -x, across the border, toward the sunlit floor, in 1 cm
+            // steps, half a metre above the floor: the lookup's blend of cascade 0 into cascade 1,
+            // and each cascade alone.
+            std::vector<float> blended, fineOnly, coarseOnly;
+            float peak = 0.0f;
+            for (float x = 0.0f; x >= border - 0.5f; x -= 0.01f) {
+                const glm::vec3 p(x, 0.5f, 1.4f);
+                const float w = insideness(fine, p);
+                const float e0 = irradiance(f, 0, p, {0, 1, 0}), e1 = irradiance(f, 1, p, {0, 1, 0});
+                blended.push_back(w >= 1.0f   ? e0
+                                  : w <= 0.0f ? e1
+                                              : glm::mix(e1, e0, glm::smoothstep(0.0f, 1.0f, w)));
+                fineOnly.push_back(w > 0.0f ? e0 : blended.back());
+                coarseOnly.push_back(e1);
+                peak = std::max(peak, blended.back());
+            }
+            REQUIRE(peak > 0.0f);
+            const auto largestStep = [](const std::vector<float>& v) {
+                float worst = 0.0f;
+                for (size_t i = 1; i < v.size(); ++i)
+                    worst = std::max(worst, std::fabs(v[i] - v[i - 1]));
+                return worst;
+            };
+            const float natural = largestStep(coarseOnly);
+            const float blend = largestStep(blended), hard = largestStep(fineOnly);
+            MESSAGE(backend.name << ": largest 1 cm step, in % of the line's peak: " << 100.0f * blend / peak
+                                 << " blended, " << 100.0f * natural / peak << " in cascade 1 alone, "
+                                 << 100.0f * hard / peak
+                                 << " switching to cascade 1 at the border without a blend");
+            // Stated tolerance: the blend adds at most 1% of the peak per cm to the steepest
+            // change of the coarse cascade's own field.
+            CHECK(blend <= natural + 0.01f * peak);
+            device.expectSilent();
+        }
+    }
+}
