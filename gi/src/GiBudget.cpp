@@ -1,6 +1,7 @@
 // GI resource plan and its check against the platform profile.
 #include "gi/GiBudget.h"
 
+#include "gi/PointLightInjection.h"
 #include "rhi/Format.h"
 
 #include <cstdio>
@@ -22,6 +23,7 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
         {"propagation ping (3 SH textures)", "gi.lpv", 3 * cells * shBytes},
         {"propagation pong (3 SH textures)", "gi.lpv", 3 * cells * shBytes},
         {"accumulation (3 SH textures)", "gi.lpv", 3 * cells * shBytes},
+        {"analytic light buffer", "gi.lights", PointLightInjection::kBufferBytes},
     };
 }
 

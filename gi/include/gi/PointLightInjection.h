@@ -1,0 +1,62 @@
+// Many small point and spot lights in the LPV without an RSM each: every frame the lights that
+// reach the volume are packed into a GPU buffer made once (kMaxLights of them), and one compute
+// dispatch over the volume's cells adds each light, already propagated, to the accumulated SH
+// volumes (the formula is in gi/AnalyticLight.h). It runs after the propagation, so the lights are
+// not propagated a second time. Setting: gi.analytic_lights.
+#pragma once
+
+#include "engine/config/Config.h"
+#include "engine/profiler/WorkCounts.h"
+#include "engine/scene/Scene.h"
+#include "gi/AnalyticLight.h"
+#include "gi/LpvSettings.h"
+#include "gi/LpvVolumes.h"
+#include "rhi/Device.h"
+
+#include <array>
+#include <span>
+
+namespace lpv::gi {
+
+// gi.analytic_lights.
+bool analyticLightsEnabled(const engine::Config& config);
+
+class PointLightInjection {
+public:
+    // As many as the renderer's punctual-light buffer holds (engine::GpuScene::kMaxPunctualLights).
+    static constexpr uint32_t kMaxLights = 1024;
+    static constexpr uint64_t kBufferBytes = kMaxLights * sizeof(AnalyticLight);
+    // One CommandList::updateBuffer call uploads the whole buffer.
+    static_assert(kBufferBytes <= 65536);
+
+    // Made with the volumes: the pipeline matches `settings.shFormat`.
+    PointLightInjection(rhi::Device& device, const LpvSettings& settings);
+    ~PointLightInjection();
+    PointLightInjection(const PointLightInjection&) = delete;
+    PointLightInjection& operator=(const PointLightInjection&) = delete;
+
+    // Packs the point and spot lights of `lights` that reach `grid` (the first kMaxLights of them;
+    // directional lights are the RSM's), scaled by `intensityScale` (gi.intensity), uploads them and
+    // adds them to volumes.accumulated(). Call after the propagation. Returns the lights added.
+    uint32_t inject(rhi::CommandList& cmd, std::span<const engine::Light> lights, const LpvVolumes& volumes,
+                    const VolumeGrid& grid, float intensityScale);
+
+    // What the last inject() uploaded.
+    std::span<const AnalyticLight> lights() const { return {staged_.data(), count_}; }
+    // Sum over those lights of the cells inside their range (at most the volume's cells each).
+    uint64_t reachedCells() const { return reachedCells_; }
+
+private:
+    rhi::Device& device_;
+    rhi::Format format_;
+    rhi::BufferHandle buffer_;
+    rhi::ComputePipelineHandle pipeline_;
+    std::array<AnalyticLight, kMaxLights> staged_{};
+    uint32_t count_ = 0;
+    uint64_t reachedCells_ = 0;
+};
+
+// Work of one inject() that added `lightCount` lights reaching `reachedCells` cells in all.
+engine::WorkCounts analyticLightsWork(const LpvSettings& s, uint32_t lightCount, uint64_t reachedCells);
+
+} // namespace lpv::gi
