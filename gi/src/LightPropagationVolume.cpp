@@ -100,6 +100,7 @@ void LightPropagationVolume::release() {
     device_.waitIdle();
     rsm_.reset();
     volumes_.reset();
+    pointLights_.reset();
     if (vpls_) device_.destroy(vpls_);
     vpls_ = {};
     made_ = false;
@@ -109,6 +110,7 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     release();
     rsm_ = std::make_unique<ReflectiveShadowMap>(device_, s.rsmSize);
     volumes_ = std::make_unique<LpvVolumes>(device_, s);
+    pointLights_ = std::make_unique<PointLightInjection>(device_, s);
     vpls_ = device_.createBuffer({uint64_t(s.vplCount) * 48, rhi::kBufferStorage | rhi::kBufferTransfer,
                                   rhi::MemoryAccess::GpuOnly, "vpls", "gi.vpl"});
     made_ = true;
@@ -125,6 +127,7 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
         remake(s);
     }
     settings_ = s;
+    analyticLights_ = analyticLightsEnabled(config);
     grid_ = placeVolume(s, camera.position, camera.forward, renderer.sceneBounds());
 }
 
@@ -177,6 +180,13 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         auto s = scope("propagate");
         volumes_->propagate(cmd, settings_.iterations);
         work(propagateWork(settings_));
+    }
+    if (analyticLights_) {
+        // Point and spot lights, added already propagated (gi/AnalyticLight.h).
+        auto s = scope("lights");
+        const uint32_t n =
+            pointLights_->inject(cmd, renderer_->punctualLights(), *volumes_, grid_, settings_.intensity);
+        work(analyticLightsWork(settings_, n, pointLights_->reachedCells()));
     }
     {
         auto s = scope("lookup");

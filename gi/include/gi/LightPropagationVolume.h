@@ -12,6 +12,7 @@
 #include "gi/LpvReference.h"
 #include "gi/LpvSettings.h"
 #include "gi/LpvVolumes.h"
+#include "gi/PointLightInjection.h"
 #include "gi/ReflectiveShadowMap.h"
 #include "platforms/PlatformProfile.h"
 
@@ -40,6 +41,8 @@ public:
                         engine::FrameProfiler* profiler) override;
     void renderDebugOverlay(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                             rhi::TextureHandle output) override;
+    // With gi.analytic_lights the volume carries the point and spot lights (see PointLightInjection).
+    bool carriesPunctualLights() const override { return settings_.enabled && made_ && analyticLights_; }
 
     const LpvSettings& settings() const { return settings_; }
     const VolumeGrid& grid() const { return grid_; }
@@ -59,6 +62,8 @@ private:
     const engine::Renderer* renderer_ = nullptr;
     std::unique_ptr<ReflectiveShadowMap> rsm_;
     std::unique_ptr<LpvVolumes> volumes_;
+    std::unique_ptr<PointLightInjection> pointLights_;
+    bool analyticLights_ = true;
     rhi::BufferHandle vpls_;
     rhi::ComputePipelineHandle clusterPipeline_;
     rhi::GraphicsPipelineHandle lookupPipeline_, slicePipeline_, pointsPipeline_;
