@@ -2,7 +2,6 @@
 #include "CornellFrame.h"
 
 #include "engine/config/Config.h"
-#include "engine/render/Renderer.h"
 #include "engine/scene/BuiltinScenes.h"
 #include "gi/LightPropagationVolume.h"
 #include "platforms/PlatformProfile.h"
@@ -10,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include <cmath>
+#include <utility>
 
 namespace lpv::test {
 
@@ -28,20 +28,21 @@ bool CornellFrame::pixelOf(glm::vec3 world, uint32_t& x, uint32_t& y) const {
     return std::fabs(depth.at(x, y).x - ndc.z) < 2e-3f;
 }
 
-CornellFrame renderCornell(rhi::Device& device, const std::vector<std::string>& settings,
-                           std::optional<glm::vec3> sunDirection, uint32_t width, uint32_t height,
-                           int frames) {
+CornellFrame renderSceneFrame(rhi::Device& device, engine::Scene scene,
+                              const std::vector<std::string>& settings,
+                              const std::function<void(engine::Renderer&)>& prepare, uint32_t width,
+                              uint32_t height, int frames) {
     engine::Config config;
     for (const std::string& s : settings)
         config.applyOverride(s, "test");
     CornellFrame f;
-    f.scene = engine::buildCornellBox();
+    f.scene = std::move(scene);
     f.width = width;
     f.height = height;
     {
         engine::Renderer renderer(device, width, height);
         renderer.setScene(f.scene);
-        if (sunDirection) renderer.sun().direction = glm::normalize(*sunDirection);
+        if (prepare) prepare(renderer);
         gi::LightPropagationVolume lpv(device, platforms::loadPlatformProfile("pc"));
         f.camera = engine::cameraMatrices(*f.scene.camera, float(width) / float(height));
         for (int i = 0; i < frames; ++i) {
@@ -57,6 +58,17 @@ CornellFrame renderCornell(rhi::Device& device, const std::vector<std::string>& 
         f.depth = readImage(device, renderer.gbuffer().depth);
     }
     return f;
+}
+
+CornellFrame renderCornell(rhi::Device& device, const std::vector<std::string>& settings,
+                           std::optional<glm::vec3> sunDirection, uint32_t width, uint32_t height,
+                           int frames) {
+    return renderSceneFrame(
+        device, engine::buildCornellBox(), settings,
+        [&](engine::Renderer& renderer) {
+            if (sunDirection) renderer.sun().direction = glm::normalize(*sunDirection);
+        },
+        width, height, frames);
 }
 
 } // namespace lpv::test
