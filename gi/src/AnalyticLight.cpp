@@ -25,7 +25,7 @@ float smoothstep(float edge0, float edge1, float x) {
 
 AnalyticLight analyticLight(const engine::Light& l, float intensityScale) {
     AnalyticLight a;
-    a.positionRange = glm::vec4(l.position, std::max(l.range, 0.0f));
+    a.positionInvRange2 = glm::vec4(l.position, l.range > 0.0f ? 1.0f / (l.range * l.range) : 0.0f);
     const glm::vec3 intensity = l.color * (l.intensity * intensityScale);
     const bool spot = l.type == engine::LightType::Spot;
     const float cosOuter = std::cos(l.outerConeAngle);
@@ -41,36 +41,28 @@ AnalyticLight analyticLight(const engine::Light& l, float intensityScale) {
 bool reachesVolume(const AnalyticLight& light, const VolumeGrid& grid) {
     const glm::vec3 rgb(light.intensityCos);
     if (!(std::max({rgb.r, rgb.g, rgb.b}) > 0.0f)) return false;
-    const float range = light.positionRange.w;
-    if (range <= 0.0f) return true;
     // Distance from the light to the volume's box against the range.
     const glm::vec3 lo = grid.origin, hi = grid.origin + grid.cellSize * float(grid.size);
-    const glm::vec3 p(light.positionRange);
-    const glm::vec3 nearest = glm::clamp(p, lo, hi);
-    return glm::dot(p - nearest, p - nearest) < range * range;
+    const glm::vec3 p(light.positionInvRange2);
+    const glm::vec3 outside = p - glm::clamp(p, lo, hi);
+    return glm::dot(outside, outside) * light.positionInvRange2.w < 1.0f;
 }
 
 ShCell analyticLightCell(const AnalyticLight& light, const VolumeGrid& grid, glm::ivec3 cell) {
     ShCell out;
     const float s = grid.cellSize;
-    const glm::vec3 p(light.positionRange);
+    const glm::vec3 toCell = grid.origin + (glm::vec3(cell) + 0.5f) * s - glm::vec3(light.positionInvRange2);
     // The light's own cell: isotropic there, no direction of arrival.
-    if (glm::ivec3(glm::floor((p - grid.origin) / s)) == cell) return out;
-    const glm::vec3 toCell = grid.origin + (glm::vec3(cell) + 0.5f) * s - p;
+    if (glm::all(glm::lessThan(glm::abs(toCell), glm::vec3(0.5f * s)))) return out;
     const float d2 = glm::dot(toCell, toCell);
-    const float d = std::sqrt(d2);
-    const glm::vec3 w = toCell / d;
-    float window = 1.0f;
-    if (light.positionRange.w > 0.0f) {
-        const float r = d / light.positionRange.w;
-        window = std::clamp(1.0f - r * r * r * r, 0.0f, 1.0f);
-    }
+    const float q = d2 * light.positionInvRange2.w; // (d / range)^2
+    if (q >= 1.0f) return out;
+    const glm::vec3 w = toCell / std::sqrt(d2);
     const float spot =
         smoothstep(light.intensityCos.w, light.spotCos.w, glm::dot(w, glm::vec3(light.spotCos)));
-    // Flux through the cell's cross-section (s^2 / d^2 sr of the light), as a cosine lobe of
-    // intensity flux / pi along w.
-    const float flux = spot * window * s * s / d2;
-    if (flux <= 0.0f) return out;
+    // Flux through the cell's cross-section (s^2 / d^2 sr of the light, in the range window), as a
+    // cosine lobe of intensity flux / pi along w.
+    const float flux = spot * (1.0f - q * q) * s * s / d2;
     const glm::vec4 lobe = shCosineLobe(w) * (flux / kPi);
     out.r = lobe * light.intensityCos.r;
     out.g = lobe * light.intensityCos.g;

@@ -186,7 +186,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         auto s = scope("lights");
         const uint32_t n =
             pointLights_->inject(cmd, renderer_->punctualLights(), *volumes_, grid_, settings_.intensity);
-        work(analyticLightsWork(settings_, n, pointLights_->reachedCells()));
+        work(analyticLightsWork(settings_, n, pointLights_->cellEvaluations()));
     }
     {
         auto s = scope("lookup");

@@ -16,6 +16,8 @@ const engine::BoolSetting kAnalyticLights{
     "gi.analytic_lights", true,
     "Point and spot lights lit through the LPV (added analytically, no RSM) instead of per pixel"};
 
+constexpr uint32_t kBlock = 4; // cells per side of a shader group (point_lights_body.glsl)
+
 struct PointLightUniforms {
     glm::vec4 gridOrigin;
     glm::ivec4 grid;
@@ -34,13 +36,21 @@ const rhi::ShaderBinary& pointLightShader(ShFormat f) {
     return shaders::point_lights_rgba16f_comp;
 }
 
-// Cells inside the light's range: the sphere's volume in cells, at most the whole volume.
-uint64_t cellsInRange(const AnalyticLight& light, const VolumeGrid& grid) {
-    const double all = double(grid.size) * grid.size * grid.size;
-    const double range = light.positionRange.w;
-    if (range <= 0.0) return uint64_t(all);
-    const double r = range / grid.cellSize;
-    return uint64_t(std::min(all, 4.0 / 3.0 * 3.14159265358979 * r * r * r));
+// The cells of the shader's 4x4x4 blocks that the light's range box overlaps: the cells that
+// evaluate the light (all of them for an infinite range).
+uint64_t cellsEvaluating(const AnalyticLight& light, const VolumeGrid& grid) {
+    const uint32_t blocks = (grid.size + kBlock - 1) / kBlock;
+    if (light.positionInvRange2.w <= 0.0f)
+        return uint64_t(blocks) * blocks * blocks * kBlock * kBlock * kBlock;
+    const glm::vec3 p(light.positionInvRange2);
+    const float range = 1.0f / std::sqrt(light.positionInvRange2.w);
+    const float blockSize = grid.cellSize * float(kBlock);
+    const glm::ivec3 lo =
+        glm::clamp(glm::ivec3(glm::floor((p - range - grid.origin) / blockSize)), 0, int(blocks) - 1);
+    const glm::ivec3 hi =
+        glm::clamp(glm::ivec3(glm::floor((p + range - grid.origin) / blockSize)), 0, int(blocks) - 1);
+    const glm::ivec3 span = hi - lo + 1;
+    return uint64_t(span.x) * uint64_t(span.y) * uint64_t(span.z) * kBlock * kBlock * kBlock;
 }
 
 } // namespace
@@ -52,7 +62,7 @@ bool analyticLightsEnabled(const engine::Config& config) {
 PointLightInjection::PointLightInjection(rhi::Device& device, const LpvSettings& settings)
     : device_(device), format_(shTextureFormat(settings.shFormat)) {
     using namespace rhi;
-    buffer_ = device.createBuffer({kBufferBytes, kBufferStorage | kBufferTransfer, MemoryAccess::GpuOnly,
+    buffer_ = device.createBuffer({kBufferBytes, kBufferUniform | kBufferTransfer, MemoryAccess::GpuOnly,
                                    "analytic lights", "gi.lights"});
     pipeline_ = device.createPipeline(
         ComputePipelineDesc{&pointLightShader(settings.shFormat), "lpv analytic lights"});
@@ -68,14 +78,14 @@ uint32_t PointLightInjection::inject(rhi::CommandList& cmd, std::span<const engi
                                      const LpvVolumes& volumes, const VolumeGrid& grid,
                                      float intensityScale) {
     count_ = 0;
-    reachedCells_ = 0;
+    cellEvaluations_ = 0;
     for (const engine::Light& l : lights) {
         if (count_ == kMaxLights) break;
         if (l.type == engine::LightType::Directional) continue;
         const AnalyticLight a = analyticLight(l, intensityScale);
         if (!reachesVolume(a, grid)) continue;
         staged_[count_++] = a;
-        reachedCells_ += cellsInRange(a, grid);
+        cellEvaluations_ += cellsEvaluating(a, grid);
     }
     if (count_ == 0) return 0;
     if (device_.desc(volumes.accumulated()[0]).format != format_)
@@ -87,28 +97,29 @@ uint32_t PointLightInjection::inject(rhi::CommandList& cmd, std::span<const engi
     u.encode = glm::vec4(volumes.encodeRange(), 0, 0, 0);
     cmd.bindPipeline(pipeline_);
     cmd.pushUniforms(0, &u, sizeof(u));
-    cmd.bindStorageBuffer(1, buffer_);
+    cmd.bindUniformBuffer(1, buffer_);
     for (uint32_t c = 0; c < 3; ++c)
         cmd.bindStorageImage(2 + c, volumes.accumulated()[c]);
-    const uint32_t n = volumes.gridSize();
-    cmd.dispatch((n + 7) / 8, (n + 7) / 8, n);
+    const uint32_t blocks = (volumes.gridSize() + kBlock - 1) / kBlock;
+    cmd.dispatch(blocks, blocks, blocks);
     return count_;
 }
 
-engine::WorkCounts analyticLightsWork(const LpvSettings& s, uint32_t lightCount, uint64_t reachedCells) {
-    const uint64_t cells = uint64_t(s.gridSize) * s.gridSize * s.gridSize;
-    const uint64_t bpp = rhi::bytesPerPixel(shTextureFormat(s.shFormat));
-    const uint64_t touched = std::min(cells, reachedCells); // cells some light reaches, at most
+engine::WorkCounts analyticLightsWork(const LpvSettings& s, uint32_t lightCount, uint64_t cellEvaluations) {
     engine::WorkCounts w;
     if (lightCount == 0) return w;
+    const uint64_t cells = uint64_t(s.gridSize) * s.gridSize * s.gridSize;
+    const uint64_t blocks = uint64_t((s.gridSize + kBlock - 1) / kBlock);
+    const uint64_t bpp = rhi::bytesPerPixel(shTextureFormat(s.shFormat));
+    const uint64_t touched = std::min(cells, cellEvaluations); // cells that read-modify-write, at most
     w.cells = cells;
-    // Every cell tests every light (distance and range, 8 operations); a light in range costs the
-    // own-cell test, rsqrt, window, cone and three 4-coefficient MADs (about 60).
-    w.aluOps = cells * lightCount * 8 + reachedCells * 60;
-    // Reached cells read and write the three accumulated SH textures.
+    // Each group tests every light against its block (12 operations); each evaluation costs the
+    // own-cell and range tests, rsqrt, window, cone and three 4-coefficient MADs (about 50).
+    w.aluOps = blocks * blocks * blocks * lightCount * 12 + cellEvaluations * 50;
     w.texelsRead = touched * 3;
     w.texelsWritten = touched * 3;
-    // Light records come from memory once (then from cache), plus the upload.
+    // The light records are uploaded and read once per group (from cache after the first), plus
+    // the three SH textures' read-modify-write.
     w.bytesMoved = uint64_t(lightCount) * sizeof(AnalyticLight) * 2 + touched * 3 * bpp * 2;
     return w;
 }

@@ -49,7 +49,7 @@ void operator delete[](void* p, std::size_t) noexcept {
 using namespace lpv;
 
 // Heap allocations on this thread while 4 frames of `scene` (GI on) are recorded and submitted,
-// after 6 warm-up frames. `check` looks at the profiler afterwards.
+// after 6 warm-up frames. `check` looks at the profiler and the LPV afterwards.
 template <typename Check>
 uint64_t steadyStateAllocations(const test::BackendUnderTest& backend, const engine::Scene& scene,
                                 float cellSize, Check&& check) {
@@ -83,15 +83,16 @@ uint64_t steadyStateAllocations(const test::BackendUnderTest& backend, const eng
         frame();
     gCounting = false;
     device->waitIdle();
-    check(profiler);
+    check(profiler, lpv);
     return gAllocations.load();
 }
 
 TEST_CASE("steady state: a frame with GI and the profiler allocates nothing") {
     for (const auto& backend : test::selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
-            const uint64_t n = steadyStateAllocations(backend, engine::buildCornellBox(), 0.17f,
-                                                      [](const engine::FrameProfiler&) {});
+            const uint64_t n = steadyStateAllocations(
+                backend, engine::buildCornellBox(), 0.17f,
+                [](const engine::FrameProfiler&, const gi::LightPropagationVolume&) {});
             MESSAGE(backend.name << ": " << n << " allocations in 4 steady-state frames");
             CHECK(n == 0);
         }
@@ -102,17 +103,20 @@ TEST_CASE("steady state: a frame of the lights hall with analytic lights allocat
     const engine::Scene hall = engine::buildLightHall();
     for (const auto& backend : test::selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
-            const uint64_t n =
-                steadyStateAllocations(backend, hall, 0.25f, [&](const engine::FrameProfiler& p) {
-                    // The pass ran as gi/lights with its work: every cell, all 147 lights in the volume.
-                    const auto& scopes = p.scopes();
-                    const auto it =
-                        std::find_if(scopes.begin(), scopes.end(),
-                                     [](const engine::ScopeInfo& s) { return s.path == "gi/lights"; });
-                    REQUIRE(it != scopes.end());
-                    CHECK(it->work.cells == 32u * 32u * 32u);
-                    CHECK(it->work.aluOps >= uint64_t(32 * 32 * 32) * 147 * 8);
+            const auto check = [&](const engine::FrameProfiler& p, const gi::LightPropagationVolume& lpv) {
+                // The pass ran as gi/lights with the work of all 147 lights (the hall fits the volume).
+                const auto& scopes = p.scopes();
+                const auto it = std::find_if(scopes.begin(), scopes.end(), [](const engine::ScopeInfo& s) {
+                    return s.path == "gi/lights";
                 });
+                REQUIRE(it != scopes.end());
+                REQUIRE(lpv.pointLights());
+                CHECK(lpv.pointLights()->lights().size() == 147);
+                CHECK(it->work ==
+                      gi::analyticLightsWork(lpv.settings(), 147, lpv.pointLights()->cellEvaluations()));
+                CHECK(it->work.cells == 32u * 32u * 32u);
+            };
+            const uint64_t n = steadyStateAllocations(backend, hall, 0.25f, check);
             MESSAGE(backend.name << ": " << n << " allocations in 4 steady-state frames");
             CHECK(n == 0);
         }

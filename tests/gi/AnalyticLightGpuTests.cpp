@@ -34,7 +34,8 @@ engine::Light light(engine::LightType type, glm::vec3 position, glm::vec3 color,
     return l;
 }
 
-// Lights around and in a 16^3 volume of 0.5 m cells ([0, 8] m), none on a cell border.
+// Lights around and in an 18^3 volume of 0.5 m cells ([0, 9] m; 18 leaves the shader partial 4x4x4
+// blocks at the far sides), none on a cell border.
 std::vector<engine::Light> testLights() {
     using engine::LightType;
     std::vector<engine::Light> v;
@@ -89,7 +90,7 @@ TEST_CASE("gi: analytic lights on the GPU match the CPU formula") {
     // rgba8: set below to one 8-bit step, 2 x range / 255, for either rounding.
     const Case cases[] = {
         {gi::ShFormat::Rgba32f, 1e-4f}, {gi::ShFormat::Rgba16f, 1e-3f}, {gi::ShFormat::Rgba8, 0}};
-    const gi::VolumeGrid grid{{0.0f, 0.0f, 0.0f}, 0.5f, 16};
+    const gi::VolumeGrid grid{{0.0f, 0.0f, 0.0f}, 0.5f, 18};
     const std::vector<engine::Light> lights = testLights();
     // Two point lights, the spot and the light outside that reaches in; not the one out of range,
     // not the directional light.

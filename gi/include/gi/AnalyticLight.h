@@ -26,9 +26,9 @@
 // lookup then gives a surface facing the light (c0^2 + c1^2) / pi = 0.583 of I / d^2 and a surface
 // edge-on 0.25 of it: the L1 cosine-lobe blur every propagated light in the volume has.
 //
-// The cell that holds the light gets nothing: there the light is isotropic (no direction of
-// arrival) and d goes to 0. Every other cell's centre is at least half a cell from the light, so
-// s^2 / d^2 <= 4 sr and nothing diverges.
+// The cell that holds the light (its centre within half a cell of the light on every axis) gets
+// nothing: there the light is isotropic (no direction of arrival) and d goes to 0. Every other
+// cell's centre is at least half a cell from the light, so s^2 / d^2 <= 4 sr and nothing diverges.
 #pragma once
 
 #include "engine/scene/Scene.h"
@@ -42,9 +42,9 @@ namespace lpv::gi {
 
 // std430 element of `Lights` in point_lights_body.glsl.
 struct AnalyticLight {
-    glm::vec4 positionRange; // xyz: position; w: range in metres, 0 for infinite
-    glm::vec4 intensityCos;  // rgb: radiant intensity per channel (W/sr) x gi.intensity; w: cos(outer cone)
-    glm::vec4 spotCos;       // xyz: direction the spot light points; w: cos(inner cone)
+    glm::vec4 positionInvRange2; // xyz: position; w: 1 / range^2, 0 for an infinite range
+    glm::vec4 intensityCos; // rgb: radiant intensity per channel (W/sr) x gi.intensity; w: cos(outer cone)
+    glm::vec4 spotCos;      // xyz: direction the spot light points; w: cos(inner cone)
 };
 static_assert(sizeof(AnalyticLight) == 48);
 

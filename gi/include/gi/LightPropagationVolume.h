@@ -48,6 +48,7 @@ public:
     const VolumeGrid& grid() const { return grid_; }
     const LpvVolumes* volumes() const { return volumes_.get(); }
     const ReflectiveShadowMap* rsm() const { return rsm_.get(); }
+    const PointLightInjection* pointLights() const { return pointLights_.get(); }
     rhi::BufferHandle vplBuffer() const { return vpls_; }
 
 private:

@@ -26,7 +26,7 @@ public:
     // As many as the renderer's punctual-light buffer holds (engine::GpuScene::kMaxPunctualLights).
     static constexpr uint32_t kMaxLights = 1024;
     static constexpr uint64_t kBufferBytes = kMaxLights * sizeof(AnalyticLight);
-    // One CommandList::updateBuffer call uploads the whole buffer.
+    // A uniform block (see point_lights_body.glsl) that one CommandList::updateBuffer call fills.
     static_assert(kBufferBytes <= 65536);
 
     // Made with the volumes: the pipeline matches `settings.shFormat`.
@@ -43,8 +43,9 @@ public:
 
     // What the last inject() uploaded.
     std::span<const AnalyticLight> lights() const { return {staged_.data(), count_}; }
-    // Sum over those lights of the cells inside their range (at most the volume's cells each).
-    uint64_t reachedCells() const { return reachedCells_; }
+    // About how many (cell, light) pairs the last inject() evaluates: per light, the cells of the
+    // shader's 4x4x4 blocks that its range's bounding box overlaps (the shader tests the sphere).
+    uint64_t cellEvaluations() const { return cellEvaluations_; }
 
 private:
     rhi::Device& device_;
@@ -53,10 +54,10 @@ private:
     rhi::ComputePipelineHandle pipeline_;
     std::array<AnalyticLight, kMaxLights> staged_{};
     uint32_t count_ = 0;
-    uint64_t reachedCells_ = 0;
+    uint64_t cellEvaluations_ = 0;
 };
 
-// Work of one inject() that added `lightCount` lights reaching `reachedCells` cells in all.
-engine::WorkCounts analyticLightsWork(const LpvSettings& s, uint32_t lightCount, uint64_t reachedCells);
+// Work of one inject() that added `lightCount` lights in `cellEvaluations` (cell, light) pairs.
+engine::WorkCounts analyticLightsWork(const LpvSettings& s, uint32_t lightCount, uint64_t cellEvaluations);
 
 } // namespace lpv::gi
