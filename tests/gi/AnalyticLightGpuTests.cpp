@@ -76,6 +76,14 @@ bool floorUnderLight(const CornellFrame& f, glm::vec3 color, uint32_t& x, uint32
     return false;
 }
 
+// The brightest colour channel of an image.
+float brightest(const Image& image) {
+    float m = 0.0f;
+    for (const glm::vec4& t : image.texels)
+        m = std::max({m, t.r, t.g, t.b});
+    return m;
+}
+
 const auto kNoSun = [](engine::Renderer& r) { r.sun().radiance = glm::vec3(0.0f); };
 
 } // namespace
@@ -189,10 +197,7 @@ TEST_CASE("gi: many coloured lights light the indirect term in their colour, and
             std::vector<std::string> off = indirect;
             off.push_back("gi.analytic_lights=false");
             const CornellFrame dark = renderSceneFrame(*device, hall, off, kNoSun);
-            float maxIndirect = 0.0f;
-            for (const glm::vec4& t : dark.hdr.texels)
-                maxIndirect = std::max({maxIndirect, t.r, t.g, t.b});
-            CHECK(maxIndirect == 0.0f);
+            CHECK(brightest(dark.hdr) == 0.0f);
             device.expectSilent();
         }
     }
@@ -229,10 +234,7 @@ TEST_CASE("gi: lights the volume carries are not lit a second time per pixel") {
             // With gi.analytic_lights=false the lighting pass lights them per pixel again.
             const CornellFrame perPixel =
                 renderSceneFrame(*device, hall, with({"gi.analytic_lights=false"}), kNoSun);
-            float lit = 0.0f;
-            for (const glm::vec4& t : perPixel.hdr.texels)
-                lit = std::max({lit, t.r, t.g, t.b});
-            CHECK(lit > 0.1f);
+            CHECK(brightest(perPixel.hdr) > 0.1f);
             device.expectSilent();
         }
     }
@@ -253,9 +255,7 @@ TEST_CASE("gi: GL and Vulkan compute the same analytic lights") {
         vk = renderSceneFrame(*device, hall, on, kNoSun);
         device.expectSilent();
     }
-    float peak = 0.0f;
-    for (const glm::vec4& t : vk.hdr.texels)
-        peak = std::max({peak, t.r, t.g, t.b});
+    const float peak = brightest(vk.hdr);
     REQUIRE(peak > 0.0f);
     // Tolerance as for the sun's indirect light: 1% of the brightest value on 99% of the pixels.
     const ImageDifference d = compareImages(gl.hdr, vk.hdr, 0.01f * peak);
