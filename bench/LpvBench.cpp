@@ -3,13 +3,15 @@
 //  1. Propagation kernels: the shipped kernel against the straightforward 5-face gather kept here
 //     as the baseline, 32^3 x 8 iterations, RGBA16F, same injected VPLs; median GPU time of each
 //     and the largest difference between their results.
+//  1b. Analytic lights: the gi/lights pass alone (gi/PointLightInjection.h) for 128 and 1024 point
+//     lights of the lights hall, 32^3, RGBA16F; median GPU time.
 //  2. Frames: the Cornell box and the atrium at 1280x720 with GI on (32^3, 8 iterations) along a
 //     scripted camera; per-pass median GPU times from the frame profiler, GI share of the frame,
 //     memory by category, and the predicted Xbox 360 / PS3 GI time of the frame's work and of the
 //     CryEngine 3 console setup (32^3, 128^2 RSM, 6 iterations, RGBA8).
 //
 //   lpv_bench [--backends=vulkan,gl-egl,gl-osmesa] [--runs=N] [--frames=N] [--scenes=cornell,atrium]
-//             [--parts=propagation,frames,profiler,console]
+//             [--parts=propagation,lights,frames,profiler,console]
 #include "BenchShaders.h"
 
 #include "engine/config/Config.h"
@@ -21,6 +23,7 @@
 #include "gi/GiWork.h"
 #include "gi/LightPropagationVolume.h"
 #include "gi/LpvVolumes.h"
+#include "gi/PointLightInjection.h"
 #include "platforms/Clock.h"
 #include "rhi/Device.h"
 #include "rhi/Error.h"
@@ -178,6 +181,42 @@ void benchPropagation(const BenchBackend& b, int runs) {
     device->destroy(vplBuffer);
 }
 
+// The analytic-lights pass alone: the first `count` point lights of the lights hall added to a
+// 32^3 RGBA16F volume that spans the hall, timed by GPU timestamps around the pass.
+void benchAnalyticLights(const BenchBackend& b, int runs) {
+    auto device = makeDevice(b);
+    gi::LpvSettings s;
+    s.gridSize = 32;
+    s.shFormat = gi::ShFormat::Rgba16f;
+    const gi::VolumeGrid grid{{-4.0f, -2.75f, -4.0f}, 0.25f, 32};
+    gi::LpvVolumes volumes(*device, s);
+    gi::PointLightInjection injection(*device, s);
+    std::printf("| %-9s |", b.name.c_str());
+    for (const uint32_t count : {128u, 1024u}) {
+        std::vector<engine::Light> lights;
+        for (const engine::Light& l : engine::buildLightHall(count).lights)
+            if (l.type == engine::LightType::Point) lights.push_back(l);
+        std::vector<double> ms;
+        uint32_t added = 0;
+        for (int run = 0; run < runs + 1; ++run) {
+            rhi::CommandList& cmd = device->beginFrame();
+            const uint64_t frame = device->frameIndex();
+            for (rhi::TextureHandle t : volumes.accumulated())
+                cmd.clearTexture(t, {0, 0, 0, 0});
+            cmd.writeTimestamp(0);
+            added = injection.inject(cmd, lights, volumes, grid, 1.0f);
+            cmd.writeTimestamp(1);
+            device->endFrame();
+            device->waitIdle();
+            uint64_t ts[2] = {};
+            if (run > 0 && device->readTimestamps(frame, ts)) ms.push_back(double(ts[1] - ts[0]) / 1e6);
+        }
+        std::printf(" %4u: %7.2f |", added, median(ms));
+    }
+    std::printf(" %-16s |\n", std::string(rhi::timestampSourceName(device->caps().timestampSource)).c_str());
+    std::fflush(stdout);
+}
+
 void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames) {
     auto device = makeDevice(b);
     engine::Config config;
@@ -314,7 +353,7 @@ int main(int argc, char** argv) {
         {"gl-osmesa", rhi::BackendKind::OpenGL, rhi::GlHeadless::OSMesa}};
     std::vector<std::string> scenes = {"cornell", "atrium"};
     int runs = 5, frames = 12;
-    std::string parts = "propagation,frames,profiler,console";
+    std::string parts = "propagation,lights,frames,profiler,console";
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         const auto list = [&](const std::string& value) {
@@ -342,7 +381,7 @@ int main(int argc, char** argv) {
         } else {
             std::fprintf(stderr,
                          "usage: %s [--backends=...] [--runs=N] [--frames=N] [--scenes=cornell,atrium]\n"
-                         "          [--parts=propagation,frames,profiler,console]\n",
+                         "          [--parts=propagation,lights,frames,profiler,console]\n",
                          argv[0]);
             return 2;
         }
@@ -356,6 +395,18 @@ int main(int argc, char** argv) {
         for (const auto& b : backends) {
             try {
                 benchPropagation(b, runs);
+            } catch (const std::exception& e) {
+                std::printf("| %-9s | failed: %s\n", b.name.c_str(), e.what());
+                ++failures;
+            }
+        }
+    }
+    if (want("lights")) {
+        std::printf("\n## Analytic lights pass, 32^3 RGBA16F (median of %d, ms)\n\n", runs);
+        std::printf("| backend   | 128 lights | 1024 lights | timing source    |\n|---|---|---|---|\n");
+        for (const auto& b : backends) {
+            try {
+                benchAnalyticLights(b, runs);
             } catch (const std::exception& e) {
                 std::printf("| %-9s | failed: %s\n", b.name.c_str(), e.what());
                 ++failures;

@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
                 opt.overrides.emplace_back("--set", a);
         },
         "Override a setting: --set render.exposure=1.5 (after the config files)");
-    app.add_option("--scene", opt.scene, "Built-in scene (cornell, atrium) or a .gltf/.glb path")
+    app.add_option("--scene", opt.scene, "Built-in scene (cornell, atrium, lights) or a .gltf/.glb path")
         ->capture_default_str();
     app.add_option_function<std::string>(
         "--backend", shorthand("--backend", "render.backend"),

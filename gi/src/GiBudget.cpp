@@ -2,6 +2,7 @@
 #include "gi/GiBudget.h"
 
 #include "gi/LpvVolumes.h"
+#include "gi/PointLightInjection.h"
 #include "rhi/Format.h"
 
 #include <cstdio>
@@ -28,6 +29,8 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
         {"propagation partial sums, ping (packed)", "gi.lpv", cells * packedBytes},
         {"propagation partial sums, pong (packed)", "gi.lpv", cells * packedBytes},
         {"accumulation (3 SH textures)", "gi.lpv", 3 * cells * shBytes},
+        {"analytic light buffers (one per cascade)", "gi.lights",
+         s.cascades * PointLightInjection::kBufferBytes},
     };
     // Every further cascade keeps its own result; the scratch volumes above serve them in turn.
     for (uint32_t c = 1; c < s.cascades; ++c)

@@ -107,6 +107,7 @@ void LightPropagationVolume::release() {
     rsm_.reset();
     volumes_.reset();
     geometry_.reset();
+    pointLights_.reset();
     if (vpls_) device_.destroy(vpls_);
     vpls_ = {};
     made_ = false;
@@ -121,6 +122,7 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     for (uint32_t c = 1; c < s.cascades; ++c)
         cascades_[c].result = volumes_->createResult("lpv cascade " + std::to_string(c));
     if (s.occlusion) geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize);
+    pointLights_ = std::make_unique<PointLightInjection>(device_, s);
     vpls_ = device_.createBuffer({uint64_t(s.vplCount) * 48, rhi::kBufferStorage | rhi::kBufferTransfer,
                                   rhi::MemoryAccess::GpuOnly, "vpls", "gi.vpl"});
     made_ = true;
@@ -137,6 +139,7 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
         remake(s);
     }
     settings_ = s;
+    analyticLights_ = analyticLightsEnabled(config);
     LpvSettings level = s;
     for (Cascade& c : cascades_) {
         c.grid = placeVolume(level, camera.position, camera.forward, renderer.sceneBounds());
@@ -228,6 +231,19 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                                 &cascades_[c].result, c + 1 < cascades_.size() ? &handoff : nullptr);
             work(propagateWork(settings_));
         }
+    }
+    if (analyticLights_) {
+        // Point and spot lights, added already propagated (gi/AnalyticLight.h) to every cascade,
+        // after all propagation so no cascade hands them on to a finer one.
+        auto s = scope("lights");
+        engine::WorkCounts lightsWork;
+        for (uint32_t c = 0; c < cascades_.size(); ++c) {
+            const uint32_t n =
+                pointLights_->inject(cmd, renderer_->punctualLights(), *volumes_, cascades_[c].grid,
+                                     settings_.intensity, &cascades_[c].result, c);
+            lightsWork += analyticLightsWork(settings_, n, pointLights_->cellEvaluations());
+        }
+        work(lightsWork);
     }
     {
         auto s = scope("lookup");

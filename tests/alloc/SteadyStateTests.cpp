@@ -1,8 +1,9 @@
 // No heap allocation in a steady-state frame: operator new is counted while frames of the full
 // pipeline (renderer, profiler, LPV) are recorded and submitted, after warm-up frames have filled
-// the caches. Only allocations on the frame's own thread count: lavapipe JIT-compiles shader
-// variants with LLVM on its queue thread, which is the driver's business. Runs without validation
-// layers, whose own bookkeeping allocates on the calling thread.
+// the caches: the Cornell box, and the lights hall for the analytic lights. Only allocations on
+// the frame's own thread count: lavapipe JIT-compiles shader variants with LLVM on its queue
+// thread, which is the driver's business. Runs without validation layers, whose own bookkeeping
+// allocates on the calling thread.
 #include "../support/TestDevice.h"
 
 #include "engine/config/Config.h"
@@ -15,6 +16,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <new>
@@ -47,42 +49,79 @@ void operator delete[](void* p, std::size_t) noexcept {
 
 using namespace lpv;
 
+// Heap allocations on this thread while 4 frames of `scene` (GI on) are recorded and submitted,
+// after 6 warm-up frames. `check` looks at the profiler and the LPV afterwards.
+template <typename Check>
+uint64_t steadyStateAllocations(const test::BackendUnderTest& backend, const engine::Scene& scene,
+                                float cellSize, Check&& check) {
+    rhi::DeviceConfig config;
+    config.backend = backend.kind;
+    config.glHeadless = backend.glHeadless;
+    config.allowFallback = false;
+    auto device = rhi::createDevice(config);
+    engine::Config settings;
+    settings.applyOverride("gi.enabled=true");
+    settings.set(*engine::SettingRegistry::global().find("gi.cell_size"), double(cellSize), "test");
+    engine::Renderer renderer(*device, 160, 120);
+    renderer.setScene(scene);
+    const auto profile = platforms::loadPlatformProfile("pc");
+    engine::FrameProfiler profiler(*device, profile);
+    gi::LightPropagationVolume lpv(*device, profile);
+    const engine::CameraMatrices camera = engine::cameraMatrices(*scene.camera, 160.0f / 120.0f);
+    const auto frame = [&] {
+        lpv.update(settings, renderer, camera);
+        rhi::CommandList& cmd = device->beginFrame();
+        profiler.beginFrame(cmd);
+        renderer.render(cmd, camera, settings, &profiler, &lpv);
+        profiler.endFrame(cmd);
+        device->endFrame();
+    };
+    for (int i = 0; i < 6; ++i)
+        frame(); // warm-up: caches, framebuffers, shader variants
+    gAllocations = 0;
+    gCounting = true;
+    for (int i = 0; i < 4; ++i)
+        frame();
+    gCounting = false;
+    device->waitIdle();
+    check(profiler, lpv);
+    return gAllocations.load();
+}
+
 TEST_CASE("steady state: a frame with GI and the profiler allocates nothing") {
     for (const auto& backend : test::selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
-            rhi::DeviceConfig config;
-            config.backend = backend.kind;
-            config.glHeadless = backend.glHeadless;
-            config.allowFallback = false;
-            auto device = rhi::createDevice(config);
-            engine::Config settings;
-            settings.applyOverride("gi.enabled=true");
-            settings.applyOverride("gi.cell_size=0.17");
-            const engine::Scene scene = engine::buildCornellBox();
-            engine::Renderer renderer(*device, 160, 120);
-            renderer.setScene(scene);
-            const auto profile = platforms::loadPlatformProfile("pc");
-            engine::FrameProfiler profiler(*device, profile);
-            gi::LightPropagationVolume lpv(*device, profile);
-            const engine::CameraMatrices camera = engine::cameraMatrices(*scene.camera, 160.0f / 120.0f);
-            const auto frame = [&] {
-                lpv.update(settings, renderer, camera);
-                rhi::CommandList& cmd = device->beginFrame();
-                profiler.beginFrame(cmd);
-                renderer.render(cmd, camera, settings, &profiler, &lpv);
-                profiler.endFrame(cmd);
-                device->endFrame();
+            const uint64_t n = steadyStateAllocations(
+                backend, engine::buildCornellBox(), 0.17f,
+                [](const engine::FrameProfiler&, const gi::LightPropagationVolume&) {});
+            MESSAGE(backend.name << ": " << n << " allocations in 4 steady-state frames");
+            CHECK(n == 0);
+        }
+    }
+}
+
+TEST_CASE("steady state: a frame of the lights hall with analytic lights allocates nothing") {
+    const engine::Scene hall = engine::buildLightHall();
+    for (const auto& backend : test::selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            const auto check = [&](const engine::FrameProfiler& p, const gi::LightPropagationVolume& lpv) {
+                // The pass ran as gi/lights with the work of all 147 lights in every cascade (the hall
+                // fits the finest volume; the last call is the coarsest's).
+                const auto& scopes = p.scopes();
+                const auto it = std::find_if(scopes.begin(), scopes.end(), [](const engine::ScopeInfo& s) {
+                    return s.path == "gi/lights";
+                });
+                REQUIRE(it != scopes.end());
+                REQUIRE(lpv.pointLights());
+                CHECK(lpv.pointLights()->lights().size() == 147);
+                const engine::WorkCounts last =
+                    gi::analyticLightsWork(lpv.settings(), 147, lpv.pointLights()->cellEvaluations());
+                CHECK(it->work.aluOps > last.aluOps);
+                CHECK(it->work.cells == lpv.cascadeCount() * 32u * 32u * 32u);
             };
-            for (int i = 0; i < 6; ++i)
-                frame(); // warm-up: caches, framebuffers, shader variants
-            gAllocations = 0;
-            gCounting = true;
-            for (int i = 0; i < 4; ++i)
-                frame();
-            gCounting = false;
-            MESSAGE(backend.name << ": " << gAllocations.load() << " allocations in 4 steady-state frames");
-            CHECK(gAllocations.load() == 0);
-            device->waitIdle();
+            const uint64_t n = steadyStateAllocations(backend, hall, 0.25f, check);
+            MESSAGE(backend.name << ": " << n << " allocations in 4 steady-state frames");
+            CHECK(n == 0);
         }
     }
 }

@@ -2,7 +2,6 @@
 #include "CornellFrame.h"
 
 #include "engine/config/Config.h"
-#include "engine/render/Renderer.h"
 #include "engine/scene/BuiltinScenes.h"
 #include "gi/LightPropagationVolume.h"
 #include "platforms/PlatformProfile.h"
@@ -10,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include <cmath>
+#include <utility>
 
 namespace lpv::test {
 
@@ -28,20 +28,21 @@ bool CornellFrame::pixelOf(glm::vec3 world, uint32_t& x, uint32_t& y) const {
     return std::fabs(depth.at(x, y).x - ndc.z) < 2e-3f;
 }
 
-CornellFrame renderCornell(rhi::Device& device, const std::vector<std::string>& settings,
-                           std::optional<glm::vec3> sunDirection, uint32_t width, uint32_t height, int frames,
-                           glm::vec3 cameraOffset) {
+CornellFrame renderSceneFrame(rhi::Device& device, engine::Scene scene,
+                              const std::vector<std::string>& settings,
+                              const std::function<void(engine::Renderer&)>& prepare, uint32_t width,
+                              uint32_t height, int frames, glm::vec3 cameraOffset) {
     engine::Config config;
     for (const std::string& s : settings)
         config.applyOverride(s, "test");
     CornellFrame f;
-    f.scene = engine::buildCornellBox();
+    f.scene = std::move(scene);
     f.width = width;
     f.height = height;
     {
         engine::Renderer renderer(device, width, height);
         renderer.setScene(f.scene);
-        if (sunDirection) renderer.sun().direction = glm::normalize(*sunDirection);
+        if (prepare) prepare(renderer);
         gi::LightPropagationVolume lpv(device, platforms::loadPlatformProfile("pc"));
         engine::Camera camera = *f.scene.camera;
         camera.position += cameraOffset;
@@ -67,6 +68,17 @@ CornellFrame renderCornell(rhi::Device& device, const std::vector<std::string>& 
             }
     }
     return f;
+}
+
+CornellFrame renderCornell(rhi::Device& device, const std::vector<std::string>& settings,
+                           std::optional<glm::vec3> sunDirection, uint32_t width, uint32_t height, int frames,
+                           glm::vec3 cameraOffset) {
+    return renderSceneFrame(
+        device, engine::buildCornellBox(), settings,
+        [&](engine::Renderer& renderer) {
+            if (sunDirection) renderer.sun().direction = glm::normalize(*sunDirection);
+        },
+        width, height, frames, cameraOffset);
 }
 
 } // namespace lpv::test

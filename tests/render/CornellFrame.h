@@ -1,10 +1,11 @@
-// Renders the Cornell box through the engine's renderer (and the LPV when gi.enabled) on a test
-// device and reads back what the render tests look at.
+// Renders the Cornell box (or another scene) through the engine's renderer (and the LPV when
+// gi.enabled) on a test device and reads back what the render tests look at.
 #pragma once
 
 #include "../support/Image.h"
 
 #include "engine/render/CameraMatrices.h"
+#include "engine/render/Renderer.h"
 #include "engine/scene/Scene.h"
 #include "gi/LpvReference.h"
 #include "rhi/Device.h"
@@ -12,6 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include <array>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +39,13 @@ struct CornellFrame {
 CornellFrame renderCornell(rhi::Device& device, const std::vector<std::string>& settings,
                            std::optional<glm::vec3> sunDirection = std::nullopt, uint32_t width = 320,
                            uint32_t height = 240, int frames = 1, glm::vec3 cameraOffset = glm::vec3(0.0f));
+
+// `scene` from its own camera; `prepare` may change the renderer (its sun) before the frames.
+CornellFrame renderSceneFrame(rhi::Device& device, engine::Scene scene,
+                              const std::vector<std::string>& settings,
+                              const std::function<void(engine::Renderer&)>& prepare = {},
+                              uint32_t width = 320, uint32_t height = 240, int frames = 1,
+                              glm::vec3 cameraOffset = glm::vec3(0.0f));
 
 float luminance(glm::vec4 c);
 

@@ -189,6 +189,9 @@ void Renderer::setScene(const Scene& scene) {
     scene_.reset();
     scene_ = std::make_unique<GpuScene>(device_, scene);
     bounds_ = scene.bounds;
+    punctualLights_.clear();
+    for (const Light& l : scene.lights)
+        if (l.type != LightType::Directional) punctualLights_.push_back(l);
     for (const Light& l : scene.lights)
         if (l.type == LightType::Directional) {
             sun_.direction = glm::normalize(l.direction);
@@ -235,7 +238,9 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
     frame_.viewport = glm::vec4(float(width_), float(height_), 1.0f / float(width_), 1.0f / float(height_));
     frame_.params = glm::vec4(float(config.get(kExposure)), float(config.get(kSsaoRadius)),
                               float(config.get(kSsaoStrength)), float(int(config.get(kDebugView))));
-    frame_.counts = glm::ivec4(int(scene_->lightCount()), config.get(kSsao) ? 1 : 0, int(shadowSize_), 0);
+    // Point and spot lights the indirect light already holds are not lit a second time.
+    const uint32_t directLights = indirect && indirect->carriesPunctualLights() ? 0 : scene_->lightCount();
+    frame_.counts = glm::ivec4(int(directLights), config.get(kSsao) ? 1 : 0, int(shadowSize_), 0);
 
     const uint64_t pixels = uint64_t(width_) * height_;
     const auto scope = [&](const char* name) {
@@ -328,7 +333,7 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
             cmd.bindStorageBuffer(8, scene_->lights());
         });
         cmd.endMarker();
-        work(fullscreenWork(pixels, 7 + 9 * 4, 120 + 40 * scene_->lightCount(), 4 * 8 + 8));
+        work(fullscreenWork(pixels, 7 + 9 * 4, 120 + 40 * uint64_t(directLights), 4 * 8 + 8));
     }
     {
         auto s = scope("render.tonemap");

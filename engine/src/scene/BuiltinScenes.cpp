@@ -6,17 +6,19 @@
 namespace lpv::engine {
 
 std::vector<std::string> builtinSceneNames() {
-    return {"cornell", "atrium"};
+    return {"cornell", "atrium", "lights"};
 }
 
 bool isBuiltinScene(std::string_view name) {
-    return name == "cornell" || name == "atrium";
+    return name == "cornell" || name == "atrium" || name == "lights";
 }
 
 Scene buildBuiltinScene(std::string_view name, float detail) {
     if (name == "cornell") return buildCornellBox();
     if (name == "atrium") return buildAtrium(detail);
-    throw std::invalid_argument("unknown built-in scene '" + std::string(name) + "' (cornell, atrium)");
+    if (name == "lights") return buildLightHall();
+    throw std::invalid_argument("unknown built-in scene '" + std::string(name) +
+                                "' (cornell, atrium, lights)");
 }
 
 } // namespace lpv::engine

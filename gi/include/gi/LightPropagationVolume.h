@@ -13,6 +13,7 @@
 #include "gi/LpvReference.h"
 #include "gi/LpvSettings.h"
 #include "gi/LpvVolumes.h"
+#include "gi/PointLightInjection.h"
 #include "gi/ReflectiveShadowMap.h"
 #include "platforms/PlatformProfile.h"
 
@@ -43,6 +44,8 @@ public:
                         engine::FrameProfiler* profiler) override;
     void renderDebugOverlay(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                             rhi::TextureHandle output) override;
+    // With gi.analytic_lights the volume carries the point and spot lights (see PointLightInjection).
+    bool carriesPunctualLights() const override { return settings_.enabled && made_ && analyticLights_; }
 
     const LpvSettings& settings() const { return settings_; }
     // The finest cascade's placement (cascade(c) for the others).
@@ -53,6 +56,7 @@ public:
     const LpvVolumes* volumes() const { return volumes_.get(); }
     const ReflectiveShadowMap* rsm() const { return rsm_.get(); }
     const GeometryVolume* geometry() const { return geometry_.get(); }
+    const PointLightInjection* pointLights() const { return pointLights_.get(); }
     rhi::BufferHandle vplBuffer() const { return vpls_; }
 
 private:
@@ -75,6 +79,8 @@ private:
     std::unique_ptr<ReflectiveShadowMap> rsm_;
     std::unique_ptr<LpvVolumes> volumes_;
     std::unique_ptr<GeometryVolume> geometry_;
+    std::unique_ptr<PointLightInjection> pointLights_;
+    bool analyticLights_ = true;
     rhi::BufferHandle vpls_;
     rhi::ComputePipelineHandle clusterPipeline_;
     rhi::GraphicsPipelineHandle lookupPipeline_, slicePipeline_, pointsPipeline_;

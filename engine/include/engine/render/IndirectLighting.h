@@ -32,6 +32,9 @@ public:
                                     rhi::TextureHandle output) {
         (void)cmd, (void)camera, (void)output;
     }
+    // True when the indirect light written by renderIndirect() already holds the scene's point and
+    // spot lights (the LPV's analytic lights), so the lighting pass must not add them again.
+    virtual bool carriesPunctualLights() const { return false; }
 };
 
 } // namespace lpv::engine

@@ -14,6 +14,7 @@
 #include <glm/vec3.hpp>
 
 #include <memory>
+#include <vector>
 
 namespace lpv::engine {
 
@@ -54,6 +55,8 @@ public:
     SunLight& sun() { return sun_; }
     const SunLight& sun() const { return sun_; }
     const Bounds& sceneBounds() const { return bounds_; }
+    // The scene's point and spot lights (as set by setScene()), for the GI to read every frame.
+    const std::vector<Light>& punctualLights() const { return punctualLights_; }
     // The uploaded scene (null before setScene()); the GI draws its reflective shadow maps from it.
     const GpuScene* scene() const { return scene_.get(); }
 
@@ -85,6 +88,7 @@ private:
     std::unique_ptr<GpuScene> scene_;
     Bounds bounds_;
     SunLight sun_;
+    std::vector<Light> punctualLights_;
     FrameUniforms frame_{};
 };
 

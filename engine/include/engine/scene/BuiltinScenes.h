@@ -1,8 +1,9 @@
-// Scenes made in code, chosen by name (--scene cornell, --scene atrium).
+// Scenes made in code, chosen by name (--scene cornell, --scene atrium, --scene lights).
 #pragma once
 
 #include "engine/scene/Scene.h"
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -18,6 +19,11 @@ Scene buildCornellBox();
 // around a court, a roof opening for the sun, coloured cloth banners and clutter, materials with
 // textures made in code. About 250k triangles at detail 1.0; `detail` scales the tessellation.
 Scene buildAtrium(float detail = 1.0f);
+
+// A 7 m hall at night ("lights"): a floor and three walls, a dim moon, `pointLights` small coloured
+// point lights (range 1.2 m, 0.3 m over the floor on a square grid, no light next to one of its own
+// colour) and three spot lights on the back wall. For the LPV's analytic lights.
+Scene buildLightHall(uint32_t pointLights = 144);
 
 std::vector<std::string> builtinSceneNames();
 // True when `name` is a built-in scene name (not a path).

@@ -21,7 +21,7 @@ public:
 // texture, metallic-roughness, emissive), the first camera, and KHR_lights_punctual lights.
 Scene loadGltf(const std::string& path);
 
-// A built-in scene name (cornell, atrium) or a path to a glTF file.
+// A built-in scene name (cornell, atrium, lights) or a path to a glTF file.
 Scene loadScene(std::string_view nameOrPath, float detail = 1.0f);
 
 } // namespace lpv::engine

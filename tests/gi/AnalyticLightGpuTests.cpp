@@ -1,0 +1,265 @@
+// The LPV's analytic point and spot lights on each backend: the GPU pass against the CPU formula
+// in every SH format, the "lights" hall (144 coloured point lights) lighting the indirect term in
+// each light's colour, nothing without them, no second per-pixel lighting of the lights the volume
+// carries, and GL/Vulkan agreement.
+#include "../render/CornellFrame.h"
+#include "../support/TestDevice.h"
+
+#include "engine/scene/BuiltinScenes.h"
+#include "gi/AnalyticLight.h"
+#include "gi/LpvVolumes.h"
+#include "gi/PointLightInjection.h"
+
+#include <doctest/doctest.h>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+using namespace lpv;
+using namespace lpv::test;
+
+namespace {
+
+engine::Light light(engine::LightType type, glm::vec3 position, glm::vec3 color, float intensity,
+                    float range) {
+    engine::Light l;
+    l.type = type;
+    l.position = position;
+    l.color = color;
+    l.intensity = intensity;
+    l.range = range;
+    return l;
+}
+
+// Lights around and in an 18^3 volume of 0.5 m cells ([0, 9] m; 18 leaves the shader partial 4x4x4
+// blocks at the far sides), none on a cell border.
+std::vector<engine::Light> testLights() {
+    using engine::LightType;
+    std::vector<engine::Light> v;
+    v.push_back(light(LightType::Point, {2.1f, 3.3f, 4.2f}, {1.0f, 0.2f, 0.1f}, 2.0f, 3.0f));
+    v.push_back(light(LightType::Point, {6.3f, 1.1f, 1.7f}, {0.2f, 0.4f, 1.0f}, 0.5f, 0.0f)); // infinite
+    engine::Light spot = light(LightType::Spot, {4.1f, 7.2f, 3.9f}, {1.0f, 1.0f, 0.8f}, 8.0f, 6.0f);
+    spot.direction = glm::normalize(glm::vec3(0.1f, -1.0f, 0.05f));
+    spot.innerConeAngle = 0.3f;
+    spot.outerConeAngle = 0.5f;
+    v.push_back(spot);
+    v.push_back(
+        light(LightType::Point, {-0.7f, 4.1f, 4.3f}, {0.3f, 1.0f, 0.3f}, 1.0f, 2.0f)); // outside, reaches in
+    v.push_back(light(LightType::Point, {-5.0f, 4.1f, 4.3f}, {1.0f, 1.0f, 1.0f}, 1.0f, 2.0f)); // cannot reach
+    v.push_back(light(LightType::Directional, {}, {1.0f, 1.0f, 1.0f}, 20.0f, 0.0f));           // the RSM's
+    return v;
+}
+
+std::array<Image, 3> readVolumes(rhi::Device& device, const gi::LpvVolumes& volumes) {
+    std::array<Image, 3> out;
+    for (size_t c = 0; c < 3; ++c)
+        out[c] = readImage(device, volumes.accumulated()[c]);
+    return out;
+}
+
+glm::vec4 decoded(const Image& image, uint32_t x, uint32_t y, uint32_t z, bool encoded, float range) {
+    const glm::vec4 v = image.at(x, y, z);
+    return encoded ? (v * 2.0f - 1.0f) * range : v;
+}
+
+// The first visible floor point under a point light of `color` in the front half of the hall.
+bool floorUnderLight(const CornellFrame& f, glm::vec3 color, uint32_t& x, uint32_t& y, glm::vec3& at) {
+    for (const engine::Light& l : f.scene.lights)
+        if (l.type == engine::LightType::Point && l.color == color && l.position.z > 0.5f &&
+            f.pixelOf({l.position.x, 0.0f, l.position.z}, x, y)) {
+            at = l.position;
+            return true;
+        }
+    return false;
+}
+
+// The brightest colour channel of an image.
+float brightest(const Image& image) {
+    float m = 0.0f;
+    for (const glm::vec4& t : image.texels)
+        m = std::max({m, t.r, t.g, t.b});
+    return m;
+}
+
+const auto kNoSun = [](engine::Renderer& r) { r.sun().radiance = glm::vec3(0.0f); };
+
+} // namespace
+
+TEST_CASE("gi: analytic lights on the GPU match the CPU formula") {
+    struct Case {
+        gi::ShFormat format;
+        float tolerance; // largest difference relative to the largest coefficient
+    };
+    // rgba32f: float rounding. rgba16f: one conversion to half precision (10 mantissa bits), at
+    // most one unit in the last place, 2^-10 of the value, even where the driver truncates.
+    // rgba8: set below to one 8-bit step, 2 x range / 255, for either rounding.
+    const Case cases[] = {
+        {gi::ShFormat::Rgba32f, 1e-4f}, {gi::ShFormat::Rgba16f, 1e-3f}, {gi::ShFormat::Rgba8, 0}};
+    const gi::VolumeGrid grid{{0.0f, 0.0f, 0.0f}, 0.5f, 18};
+    const std::vector<engine::Light> lights = testLights();
+    // Two point lights, the spot and the light outside that reaches in; not the one out of range,
+    // not the directional light.
+    std::vector<gi::AnalyticLight> packed;
+    for (const engine::Light& l : lights)
+        if (l.type != engine::LightType::Directional && gi::reachesVolume(gi::analyticLight(l, 1.0f), grid))
+            packed.push_back(gi::analyticLight(l, 1.0f));
+    REQUIRE(packed.size() == 4);
+    gi::ShVolume reference(grid.size);
+    gi::addAnalyticLightsReference(reference, grid, packed);
+    float peak = 0.0f;
+    for (const gi::ShCell& cell : reference.cells())
+        for (int k = 0; k < 4; ++k)
+            peak = std::max({peak, std::fabs(cell.r[k]), std::fabs(cell.g[k]), std::fabs(cell.b[k])});
+    REQUIRE(peak > 0.0f);
+    for (const auto& backend : selectedBackends())
+        for (const Case& c : cases) {
+            SUBCASE((backend.name + " " + std::string(gi::shFormatName(c.format))).c_str()) {
+                TestDevice device(backend);
+                gi::LpvSettings s;
+                s.gridSize = grid.size;
+                s.shFormat = c.format;
+                s.rgba8Range = 1.05f * peak; // the largest coefficient fits the encoding
+                std::array<Image, 3> before, after;
+                {
+                    gi::LpvVolumes volumes(*device, s);
+                    gi::PointLightInjection injection(*device, s);
+                    // Clear to zero (0.5 encoded), read back, add the lights, read back.
+                    const float zero = volumes.encoded() ? 0.5f : 0.0f;
+                    rhi::CommandList& cmd = device->beginFrame();
+                    for (rhi::TextureHandle t : volumes.accumulated())
+                        cmd.clearTexture(t, {zero, zero, zero, zero});
+                    device->endFrame();
+                    device->waitIdle();
+                    before = readVolumes(*device, volumes);
+                    rhi::CommandList& cmd2 = device->beginFrame();
+                    CHECK(injection.inject(cmd2, lights, volumes, grid, 1.0f) == packed.size());
+                    device->endFrame();
+                    device->waitIdle();
+                    after = readVolumes(*device, volumes);
+                    REQUIRE(injection.lights().size() == packed.size());
+                    CHECK(std::memcmp(injection.lights().data(), packed.data(),
+                                      packed.size() * sizeof(gi::AnalyticLight)) == 0);
+                }
+                const bool encoded = c.format == gi::ShFormat::Rgba8;
+                const float range = s.rgba8Range;
+                float worst = 0.0f;
+                for (uint32_t z = 0; z < grid.size; ++z)
+                    for (uint32_t y = 0; y < grid.size; ++y)
+                        for (uint32_t x = 0; x < grid.size; ++x) {
+                            const gi::ShCell& want = reference.at(x, y, z);
+                            const glm::vec4 wants[3] = {want.r, want.g, want.b};
+                            for (size_t ch = 0; ch < 3; ++ch) {
+                                const glm::vec4 got = decoded(after[ch], x, y, z, encoded, range) -
+                                                      decoded(before[ch], x, y, z, encoded, range);
+                                for (int k = 0; k < 4; ++k)
+                                    worst = std::max(worst, std::fabs(got[k] - wants[ch][k]));
+                            }
+                        }
+                const float tolerance = encoded ? 2.0f * range / 255.0f / peak : c.tolerance;
+                MESSAGE(backend.name << " " << gi::shFormatName(c.format) << ": largest difference "
+                                     << worst / peak << " of the largest coefficient " << peak
+                                     << " (tolerance " << tolerance << ")");
+                CHECK(worst / peak <= tolerance);
+                device.expectSilent();
+            }
+        }
+}
+
+TEST_CASE("gi: many coloured lights light the indirect term in their colour, and nothing without them") {
+    const engine::Scene hall = engine::buildLightHall();
+    REQUIRE(hall.lights.size() >= 128);
+    const glm::vec3 red(1.0f, 0.08f, 0.05f), blue(0.1f, 0.2f, 1.0f);
+    const std::vector<std::string> indirect = {"gi.enabled=true", "render.debug_view=indirect",
+                                               "render.ssao=false"};
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            const CornellFrame on = renderSceneFrame(*device, hall, indirect, kNoSun);
+            uint32_t rx = 0, ry = 0, bx = 0, by = 0;
+            glm::vec3 redAt, blueAt;
+            REQUIRE(floorUnderLight(on, red, rx, ry, redAt));
+            REQUIRE(floorUnderLight(on, blue, bx, by, blueAt));
+            const glm::vec4 nearRed = on.hdr.at(rx, ry), nearBlue = on.hdr.at(bx, by);
+            MESSAGE(backend.name << ": indirect under the red light at " << describe(glm::vec4(redAt, 1))
+                                 << ": " << describe(nearRed) << "; under the blue light at "
+                                 << describe(glm::vec4(blueAt, 1)) << ": " << describe(nearBlue));
+            // Under a light its own lobe carries about 1.5 sr of its intensity, its 8 neighbours
+            // (other colours) together less than that: its channel leads each other by 2x.
+            CHECK(nearRed.r > 2.0f * nearRed.g);
+            CHECK(nearRed.r > 2.0f * nearRed.b);
+            CHECK(nearBlue.b > 2.0f * nearBlue.r);
+            CHECK(nearBlue.b > 2.0f * nearBlue.g);
+
+            // No sun and no analytic lights: no indirect light anywhere.
+            std::vector<std::string> off = indirect;
+            off.push_back("gi.analytic_lights=false");
+            const CornellFrame dark = renderSceneFrame(*device, hall, off, kNoSun);
+            CHECK(brightest(dark.hdr) == 0.0f);
+            device.expectSilent();
+        }
+    }
+}
+
+TEST_CASE("gi: lights the volume carries are not lit a second time per pixel") {
+    const engine::Scene hall = engine::buildLightHall();
+    const std::vector<std::string> base = {"gi.enabled=true", "render.ssao=false"};
+    const auto with = [&](std::initializer_list<const char*> extra) {
+        std::vector<std::string> v = base;
+        v.insert(v.end(), extra.begin(), extra.end());
+        return v;
+    };
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            // Without a sun, a frame lit by the volume is its indirect term alone (the lighting
+            // pass adds no point light of its own): final and indirect views agree on every pixel.
+            const CornellFrame final = renderSceneFrame(*device, hall, base, kNoSun);
+            const CornellFrame indirect =
+                renderSceneFrame(*device, hall, with({"render.debug_view=indirect"}), kNoSun);
+            float peak = 0.0f, worst = 0.0f;
+            for (size_t i = 0; i < final.hdr.texels.size(); ++i) {
+                if (final.depth.texels[i].x >= 1.0f) continue; // background
+                const glm::vec4 a = final.hdr.texels[i], b = indirect.hdr.texels[i];
+                peak = std::max({peak, b.r, b.g, b.b});
+                worst = std::max({worst, std::fabs(a.r - b.r), std::fabs(a.g - b.g), std::fabs(a.b - b.b)});
+            }
+            REQUIRE(peak > 0.0f);
+            MESSAGE(backend.name << ": final vs indirect, largest difference " << worst << " (peak " << peak
+                                 << ")");
+            CHECK(worst == 0.0f);
+
+            // With gi.analytic_lights=false the lighting pass lights them per pixel again.
+            const CornellFrame perPixel =
+                renderSceneFrame(*device, hall, with({"gi.analytic_lights=false"}), kNoSun);
+            CHECK(brightest(perPixel.hdr) > 0.1f);
+            device.expectSilent();
+        }
+    }
+}
+
+TEST_CASE("gi: GL and Vulkan compute the same analytic lights") {
+    const engine::Scene hall = engine::buildLightHall();
+    const std::vector<std::string> on = {"gi.enabled=true", "render.debug_view=indirect",
+                                         "render.ssao=false"};
+    CornellFrame gl, vk;
+    {
+        TestDevice device(backendByName("gl-egl"));
+        gl = renderSceneFrame(*device, hall, on, kNoSun);
+        device.expectSilent();
+    }
+    {
+        TestDevice device(backendByName("vulkan"));
+        vk = renderSceneFrame(*device, hall, on, kNoSun);
+        device.expectSilent();
+    }
+    const float peak = brightest(vk.hdr);
+    REQUIRE(peak > 0.0f);
+    // Tolerance as for the sun's indirect light: 1% of the brightest value on 99% of the pixels.
+    const ImageDifference d = compareImages(gl.hdr, vk.hdr, 0.01f * peak);
+    MESSAGE("analytic lights GL vs Vulkan: max difference " << d.maxAbs << " (peak " << peak << "), "
+                                                            << d.texelsOver << " pixels over");
+    CHECK(d.texelsOver <= gl.hdr.texels.size() / 100);
+}
