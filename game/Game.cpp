@@ -158,7 +158,7 @@ int runGame(const GameOptions& opt) {
             cam = freeCamera.camera();
         const engine::CameraMatrices matrices = engine::cameraMatrices(cam, float(width) / float(height));
         try {
-            lpv.update(config, renderer, matrices);
+            lpv.update(config, renderer, matrices, &profiler);
         } catch (const std::runtime_error& e) {
             // GiBudgetError or ConfigError: at startup the configuration is refused outright; while
             // running the change is undone.

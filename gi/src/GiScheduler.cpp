@@ -317,7 +317,11 @@ bool GiBudgetScheduler::nextTimeStep(Step& step) const {
             }
     }
     if (load_.iterations > limits_.minIterations) {
-        step = {GiKnob::Iterations, load_.iterations, load_.iterations - 1};
+        // A quarter at a time (at least one): long settings converge in a few steps, short ones
+        // lose one iteration per step.
+        const uint32_t to =
+            std::max(limits_.minIterations, load_.iterations - std::max(1u, load_.iterations / 4));
+        step = {GiKnob::Iterations, load_.iterations, to};
         return true;
     }
     return rsmStep(step);

@@ -129,14 +129,29 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
 }
 
 void LightPropagationVolume::update(const engine::Config& config, const engine::Renderer& renderer,
-                                    const engine::CameraMatrices& camera) {
-    const LpvSettings s = readLpvSettings(config);
+                                    const engine::CameraMatrices& camera, engine::FrameProfiler* profiler) {
+    const LpvSettings configured = readLpvSettings(config);
+    LpvSettings s = configured;
+    cascadeUpdates_ = ~0u;
+    if (profiler && configured.enabled) {
+        // The scheduler always sees the configured load; what it returns is this frame's.
+        const uint64_t frame = device_.frameIndex() + 1;
+        schedule_ = scheduler_.schedule(frame, giFrameCost(*profiler), giBudgetOf(profile_),
+                                        giLoadOf(configured, configured.cascades), configured.budgetPolicy);
+        applyGiLoad(schedule_.load, s);
+        cascadeUpdates_ = 0;
+        for (uint32_t c = 0; c < configured.cascades; ++c)
+            if (schedule_.updatesCascade(c)) cascadeUpdates_ |= 1u << c;
+        for (const GiChange& change : schedule_.changes())
+            profiler->note(kGiBudgetNoteTopic, change.text());
+    }
     renderer_ = &renderer;
     const bool resized = !made_ || s.rsmSize != settings_.rsmSize || s.vplCount != settings_.vplCount ||
                          !volumes_->matches(s) || s.occlusion != (geometry_ != nullptr);
     if (s.enabled && resized) {
         checkGiBudget(s, profile_); // throws before anything changes
         remake(s);
+        cascadesValid_ = 0;
     }
     settings_ = s;
     analyticLights_ = analyticLightsEnabled(config);
@@ -172,7 +187,13 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     const uint32_t side = settings_.vplGridSide();
     // Coarsest first: each finer cascade takes the light from beyond its border from the one
     // around it (CascadeHandoff).
+    uint32_t updated = 0;
     for (uint32_t c = uint32_t(cascades_.size()); c-- > 0;) {
+        // A coarse cascade the scheduler skips this frame keeps last frame's result (a cascade
+        // that never had one updates regardless).
+        if (!(cascadeUpdates_ & (1u << c)) && (cascadesValid_ & (1u << c))) continue;
+        cascadesValid_ |= 1u << c;
+        updated |= 1u << c;
         auto cascadeScope = scope(kCascadeScopes[c]);
         const VolumeGrid& grid = cascades_[c].grid;
         {

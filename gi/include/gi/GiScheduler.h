@@ -1,7 +1,7 @@
 // The GI budget scheduler: under gi.budget_policy=adapt it keeps GI inside the platform profile's
 // time and memory budgets by lowering, one step at a time and always in this order,
 //   1. how often the coarse cascades update (every 1 -> 2 -> 4 frames; only with cascades > 1),
-//   2. the propagation iterations (one fewer per step, down to a floor),
+//   2. the propagation iterations (a quarter, at least one, per step, down to a floor),
 //   3. the RSM size (halved per step, down to a floor),
 // and gives steps back in reverse order once GI has stayed well under budget for a while and the
 // step is expected to fit. Memory over budget is helped only by a smaller RSM; past that it is

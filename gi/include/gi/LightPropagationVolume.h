@@ -10,6 +10,7 @@
 #include "engine/render/IndirectLighting.h"
 #include "engine/render/Renderer.h"
 #include "gi/GeometryVolume.h"
+#include "gi/GiScheduler.h"
 #include "gi/LpvReference.h"
 #include "gi/LpvSettings.h"
 #include "gi/LpvVolumes.h"
@@ -36,8 +37,13 @@ public:
     // Reads gi.* and prepares the frame: checks the budget (throws GiBudgetError or
     // engine::ConfigError; the previous configuration stays), remakes resources on a change,
     // places the volume.
+    // With `profiler` (before its beginFrame), gi.budget_policy runs: the budget scheduler picks
+    // this frame's iterations, RSM size and which coarse cascades update, from the profiler's
+    // newest GI cost, and notes what it changed and why in the profiler's report.
     void update(const engine::Config& config, const engine::Renderer& renderer,
-                const engine::CameraMatrices& camera);
+                const engine::CameraMatrices& camera, engine::FrameProfiler* profiler = nullptr);
+    // The scheduler's answer for the current frame (the configured load without a profiler).
+    const GiSchedule& schedule() const { return schedule_; }
 
     void renderIndirect(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                         const engine::GBufferView& gbuffer, rhi::TextureHandle target,
@@ -75,6 +81,10 @@ private:
         std::array<rhi::TextureHandle, 3> result{}; // cascade 0: volumes_->accumulated()
     };
     std::vector<Cascade> cascades_;
+    GiBudgetScheduler scheduler_;
+    GiSchedule schedule_;
+    uint32_t cascadeUpdates_ = ~0u; // bit c: cascade c updates this frame
+    uint32_t cascadesValid_ = 0;    // bit c: cascade c's result holds a solution
     const engine::Renderer* renderer_ = nullptr;
     std::unique_ptr<ReflectiveShadowMap> rsm_;
     std::unique_ptr<LpvVolumes> volumes_;
