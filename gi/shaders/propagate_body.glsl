@@ -25,11 +25,14 @@ layout(binding = 0, std140) uniform Propagate {
     vec4 encode; // x: rgba8 range, y: handoff scale (0: none), z: 1 when the coarse volume is encoded
     vec4 handoff; // xyz: the coarse volume's uvw at cell (0,0,0)'s centre; w: uvw per cell
 } params;
+#ifdef HANDOFF
 // Cascade handoff: outside this volume the neighbours are the next coarser cascade's result,
-// so light from beyond the border flows in (Kaplanyan & Dachsbacher 2010).
+// so light from beyond the border flows in (Kaplanyan & Dachsbacher 2010). A variant of its own:
+// a CPU rasterizer would evaluate the coarse lookups for every lane, inside or not.
 layout(binding = 20) uniform sampler3D coarseRed;
 layout(binding = 21) uniform sampler3D coarseGreen;
 layout(binding = 22) uniform sampler3D coarseBlue;
+#endif
 layout(binding = 1) uniform sampler3D injectedRed;
 layout(binding = 2) uniform sampler3D injectedGreen;
 layout(binding = 3) uniform sampler3D injectedBlue;
@@ -121,7 +124,9 @@ Sh3 add(Sh3 a, Sh3 b) { return Sh3(a.r + b.r, a.g + b.g, a.b + b.b); }
 // A cell outside the volume: the coarser cascade's result there, in this cascade's units (the
 // intensity of a cell scales with its cross-section), or nothing for the coarsest cascade.
 Sh3 outside(ivec3 c) {
-    if (params.encode.y == 0.0) return Sh3(vec4(0.0), vec4(0.0), vec4(0.0));
+#ifndef HANDOFF
+    return Sh3(vec4(0.0), vec4(0.0), vec4(0.0));
+#else
     const vec3 uvw = params.handoff.xyz + vec3(c) * params.handoff.w;
     vec4 r = textureLod(coarseRed, uvw, 0.0), g = textureLod(coarseGreen, uvw, 0.0);
     vec4 b = textureLod(coarseBlue, uvw, 0.0);
@@ -130,6 +135,7 @@ Sh3 outside(ivec3 c) {
         b = (b * 2.0 - 1.0) * params.encode.x;
     }
     return Sh3(r * params.encode.y, g * params.encode.y, b * params.encode.y);
+#endif
 }
 
 // The injection volume at a cell, or outside() beyond the volume (the coordinate is clamped first

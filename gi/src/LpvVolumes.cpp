@@ -27,20 +27,24 @@ struct PropagateUniforms {
 // Iteration roles: first reads the injection, last writes the result, only does both.
 enum Role { kFirst, kNext, kLast, kOnly };
 
-const rhi::ShaderBinary& propagateShader(ShFormat f, bool occluded, int role) {
+const rhi::ShaderBinary& propagateShader(ShFormat f, int variant, int role) {
     using namespace shaders;
 #define LPV_ROLES(format, suffix)                                                                            \
     {                                                                                                        \
         &propagate_##format##_first##suffix##_comp, &propagate_##format##_next##suffix##_comp,               \
             &propagate_##format##_last##suffix##_comp, &propagate_##format##_only##suffix##_comp             \
     }
-    static const rhi::ShaderBinary* const table[3][2][4] = {
-        {LPV_ROLES(rgba8, ), LPV_ROLES(rgba8, _occluded)},
-        {LPV_ROLES(rgba16f, ), LPV_ROLES(rgba16f, _occluded)},
-        {LPV_ROLES(rgba32f, ), LPV_ROLES(rgba32f, _occluded)}};
+    // Variant: bit 0 occlusion, bit 1 handoff.
+    static const rhi::ShaderBinary* const table[3][4][4] = {
+        {LPV_ROLES(rgba8, ), LPV_ROLES(rgba8, _occluded), LPV_ROLES(rgba8, _handoff),
+         LPV_ROLES(rgba8, _occluded_handoff)},
+        {LPV_ROLES(rgba16f, ), LPV_ROLES(rgba16f, _occluded), LPV_ROLES(rgba16f, _handoff),
+         LPV_ROLES(rgba16f, _occluded_handoff)},
+        {LPV_ROLES(rgba32f, ), LPV_ROLES(rgba32f, _occluded), LPV_ROLES(rgba32f, _handoff),
+         LPV_ROLES(rgba32f, _occluded_handoff)}};
 #undef LPV_ROLES
     const int row = f == ShFormat::Rgba8 ? 0 : f == ShFormat::Rgba16f ? 1 : 2;
-    return *table[row][occluded ? 1 : 0][role];
+    return *table[row][variant][role];
 }
 
 } // namespace
@@ -103,10 +107,10 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
     injectPipeline_ = device.createPipeline(d);
     const char* roleNames[4] = {"lpv propagate first", "lpv propagate", "lpv propagate last",
                                 "lpv propagate once"};
-    for (int occluded = 0; occluded < 2; ++occluded)
+    for (int variant = 0; variant < 4; ++variant)
         for (int role = 0; role < 4; ++role)
-            propagatePipelines_[size_t(occluded)][size_t(role)] = device.createPipeline(ComputePipelineDesc{
-                &propagateShader(settings.shFormat, occluded != 0, role), roleNames[role]});
+            propagatePipelines_[size_t(variant)][size_t(role)] = device.createPipeline(
+                ComputePipelineDesc{&propagateShader(settings.shFormat, variant, role), roleNames[role]});
     pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
     SamplerDesc linear;
     linear.mipFilter = Filter::Nearest;
@@ -190,12 +194,13 @@ void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::Text
     for (uint32_t i = 0; i < iterations; ++i) {
         const bool first = i == 0, last = i + 1 == iterations;
         const int role = first && last ? kOnly : first ? kFirst : last ? kLast : kNext;
-        cmd.bindPipeline(propagatePipelines_[faceTransmittance ? 1 : 0][size_t(role)]);
+        const int variant = (faceTransmittance ? 1 : 0) | (handoff ? 2 : 0);
+        cmd.bindPipeline(propagatePipelines_[size_t(variant)][size_t(role)]);
         cmd.pushUniforms(0, &u, sizeof(u));
         if (faceTransmittance) cmd.bindTexture(19, faceTransmittance, pointSampler_);
-        // Without a handoff the coarse volume is never read; any 3D texture satisfies the binding.
-        for (uint32_t c = 0; c < 3; ++c)
-            cmd.bindTexture(20 + c, handoff ? handoff->coarse[c] : inject_[c], linearSampler_);
+        if (handoff)
+            for (uint32_t c = 0; c < 3; ++c)
+                cmd.bindTexture(20 + c, handoff->coarse[c], linearSampler_);
         for (uint32_t c = 0; c < 3; ++c) {
             cmd.bindTexture(1 + c, inject_[c], pointSampler_);
             if (last) cmd.bindStorageImage(10 + c, target[c]);

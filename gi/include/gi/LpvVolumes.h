@@ -73,8 +73,8 @@ private:
     // Partial sums between iterations, ping and pong, packed (packedTexelCount texels per cell).
     std::array<std::array<rhi::TextureHandle, 3>, 2> partial_{};
     rhi::GraphicsPipelineHandle injectPipeline_;
-    // By occlusion (without, with) and iteration role.
-    std::array<std::array<rhi::ComputePipelineHandle, 4>, 2> propagatePipelines_{};
+    // By variant (bit 0: occlusion, bit 1: handoff) and iteration role.
+    std::array<std::array<rhi::ComputePipelineHandle, 4>, 4> propagatePipelines_{};
     rhi::SamplerHandle pointSampler_, linearSampler_;
 };
 
