@@ -67,10 +67,14 @@ LightPropagationVolume::LightPropagationVolume(rhi::Device& device, platforms::P
     clusterPipeline_ = device.createPipeline(ComputePipelineDesc{&shaders::vpl_cluster_comp, "vpl cluster"});
     GraphicsPipelineDesc lookup;
     lookup.vertex = &engine::shaders::fullscreen_vert;
-    lookup.fragment = &shaders::lpv_lookup_frag;
     lookup.colorFormats = {Format::RGBA16F};
     lookup.debugName = "lpv lookup";
-    lookupPipeline_ = device.createPipeline(lookup);
+    const rhi::ShaderBinary* lookups[4] = {&shaders::lpv_lookup_1_frag, &shaders::lpv_lookup_2_frag,
+                                           &shaders::lpv_lookup_3_frag, &shaders::lpv_lookup_4_frag};
+    for (size_t c = 0; c < 4; ++c) {
+        lookup.fragment = lookups[c];
+        lookupPipelines_[c] = device.createPipeline(lookup);
+    }
     GraphicsPipelineDesc slice = lookup;
     slice.fragment = &shaders::lpv_slice_frag;
     slice.colorFormats = {Format::RGBA8Srgb};
@@ -91,7 +95,9 @@ LightPropagationVolume::LightPropagationVolume(rhi::Device& device, platforms::P
 
 LightPropagationVolume::~LightPropagationVolume() {
     release();
-    for (auto p : {lookupPipeline_, slicePipeline_, pointsPipeline_})
+    for (auto p : lookupPipelines_)
+        device_.destroy(p);
+    for (auto p : {slicePipeline_, pointsPipeline_})
         device_.destroy(p);
     device_.destroy(clusterPipeline_);
     device_.destroy(pointSampler_);
@@ -284,7 +290,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         pass.colorCount = 1;
         pass.debugName = "lpv lookup";
         cmd.beginRenderPass(pass);
-        cmd.bindPipeline(lookupPipeline_);
+        cmd.bindPipeline(lookupPipelines_[cascades_.size() - 1]);
         cmd.pushUniforms(0, &u, sizeof(u));
         cmd.bindTexture(1, gbuffer.depth, pointSampler_);
         cmd.bindTexture(2, gbuffer.normal, pointSampler_);

@@ -93,7 +93,8 @@ private:
     bool analyticLights_ = true;
     rhi::BufferHandle vpls_;
     rhi::ComputePipelineHandle clusterPipeline_;
-    rhi::GraphicsPipelineHandle lookupPipeline_, slicePipeline_, pointsPipeline_;
+    std::array<rhi::GraphicsPipelineHandle, 4> lookupPipelines_{}; // for 1..4 cascades
+    rhi::GraphicsPipelineHandle slicePipeline_, pointsPipeline_;
     rhi::SamplerHandle pointSampler_, linearSampler_;
 };
 

@@ -1,5 +1,3 @@
-#version 450
-#extension GL_GOOGLE_include_directive : require
 // Indirect irradiance from the accumulated LPV: a trilinear lookup half a cell along the normal,
 // the SH intensity integrated against the clamped cosine of the incoming directions, divided by
 // the cell's cross-section to turn intensity into radiance. Anisotropic damping: when the field
@@ -14,7 +12,7 @@
 layout(binding = 0, std140) uniform Lookup {
     mat4 invViewProjection;
     vec4 gridOrigin[4]; // per cascade: xyz corner of cell 0, w: cell size
-    ivec4 grid;         // x: cells per axis, y: volumes are rgba8-encoded, z: damping on, w: cascades
+    ivec4 grid;         // x: cells per axis, y: volumes are rgba8-encoded, z: damping on
     vec4 encode;        // x: rgba8 range, y: blend band (fraction of the half-extent)
     vec4 intensity;     // x: gi.intensity (already applied at injection), y: damping strength
 } lookup;
@@ -100,19 +98,18 @@ void main() {
     vec4 world = lookup.invViewProjection * clip;
     vec3 p = world.xyz / world.w;
     vec3 n = normalize(textureLod(normalTexture, vUv, 0.0).xyz);
-    int cascades = lookup.grid.w;
-    vec3 e = vec3(0.0);
-    for (int c = 0; c < cascades; ++c) {
-        float w = insideness(c, p);
-        if (w <= 0.0 && c + 1 < cascades) continue; // outside this one: a coarser one answers
-        vec3 fine = surfaceIrradiance(c, p, n);
-        if (w >= 1.0 || c + 1 == cascades) {
-            e = fine;
-        } else {
-            float t = smoothstep(0.0, 1.0, w);
-            e = mix(surfaceIrradiance(c + 1, p, n), fine, t);
-        }
-        break;
-    }
+    // Every cascade is looked up once (CASCADES is compile-time, so each lookup names its own
+    // textures: a dynamic choice would make a CPU rasterizer run every branch for every pixel),
+    // then folded from the coarsest in: each finer one takes over across its blend band.
+    vec3 e = surfaceIrradiance(CASCADES - 1, p, n);
+#if CASCADES > 3
+    e = mix(e, surfaceIrradiance(2, p, n), smoothstep(0.0, 1.0, clamp(insideness(2, p), 0.0, 1.0)));
+#endif
+#if CASCADES > 2
+    e = mix(e, surfaceIrradiance(1, p, n), smoothstep(0.0, 1.0, clamp(insideness(1, p), 0.0, 1.0)));
+#endif
+#if CASCADES > 1
+    e = mix(e, surfaceIrradiance(0, p, n), smoothstep(0.0, 1.0, clamp(insideness(0, p), 0.0, 1.0)));
+#endif
     outIrradiance = vec4(e, 0.0);
 }
