@@ -11,12 +11,14 @@
 //     CryEngine 3 console setup (32^3, 128^2 RSM, 6 iterations, RGBA8).
 //
 //   lpv_bench [--backends=vulkan,gl-egl,gl-osmesa] [--runs=N] [--frames=N] [--scenes=cornell,atrium]
-//             [--parts=propagation,lights,frames,profiler,console]
+//             [--parts=propagation,lights,frames,profiler,console] [--out=DIR]
 #include "BenchShaders.h"
 
+#include "engine/Screenshot.h"
 #include "engine/config/Config.h"
 #include "engine/profiler/CostModel.h"
 #include "engine/profiler/FrameProfiler.h"
+#include "engine/profiler/ProfileReport.h"
 #include "engine/render/CameraPath.h"
 #include "engine/render/Renderer.h"
 #include "engine/scene/BuiltinScenes.h"
@@ -217,7 +219,9 @@ void benchAnalyticLights(const BenchBackend& b, int runs) {
     std::fflush(stdout);
 }
 
-void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames) {
+// `outDir` (may be empty): where the run's profiler outputs (trace.json, frames.svg, summaries) and
+// its last frame with GI on and with GI off go, as <scene>-<backend>-*.
+void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames, const std::string& outDir) {
     auto device = makeDevice(b);
     engine::Config config;
     config.applyOverride("gi.enabled=true");
@@ -278,6 +282,21 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
         if (usage.currentBytes)
             std::printf(" %s %.2f MiB;", category.c_str(), double(usage.currentBytes) / 1048576.0);
     std::printf("\n");
+    if (!outDir.empty()) {
+        const std::string stem = outDir + "/" + sceneName + "-" + b.name;
+        engine::writeProfileOutputs(profiler, stem + "-profile");
+        engine::writeScreenshot(*device, renderer, stem + "-gi-on.png");
+        // The same last frame without GI (the renderer's ambient constant instead).
+        const engine::Camera cam =
+            engine::cameraOnPath(sceneName == "atrium" ? "flythrough" : "orbit", scene.bounds, start, 0.25f);
+        const engine::CameraMatrices m = engine::cameraMatrices(cam, float(w) / float(h));
+        rhi::CommandList& cmd = device->beginFrame();
+        renderer.render(cmd, m, config, nullptr, nullptr); // no indirect provider: GI off
+        device->endFrame();
+        engine::writeScreenshot(*device, renderer, stem + "-gi-off.png");
+        std::printf("wrote %s-profile/ (trace.json, frames.svg, summary.*), %s-gi-on.png, %s-gi-off.png\n",
+                    stem.c_str(), stem.c_str(), stem.c_str());
+    }
     std::fflush(stdout);
 }
 
@@ -354,6 +373,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> scenes = {"cornell", "atrium"};
     int runs = 5, frames = 12;
     std::string parts = "propagation,lights,frames,profiler,console";
+    std::string outDir;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         const auto list = [&](const std::string& value) {
@@ -368,6 +388,8 @@ int main(int argc, char** argv) {
             runs = std::max(1, std::atoi(a.c_str() + 7));
         else if (a.rfind("--frames=", 0) == 0)
             frames = std::max(1, std::atoi(a.c_str() + 9));
+        else if (a.rfind("--out=", 0) == 0)
+            outDir = a.substr(6);
         else if (a.rfind("--parts=", 0) == 0)
             parts = a.substr(8);
         else if (a.rfind("--scenes=", 0) == 0)
@@ -381,7 +403,7 @@ int main(int argc, char** argv) {
         } else {
             std::fprintf(stderr,
                          "usage: %s [--backends=...] [--runs=N] [--frames=N] [--scenes=cornell,atrium]\n"
-                         "          [--parts=propagation,lights,frames,profiler,console]\n",
+                         "          [--parts=propagation,lights,frames,profiler,console] [--out=DIR]\n",
                          argv[0]);
             return 2;
         }
@@ -418,7 +440,7 @@ int main(int argc, char** argv) {
         for (const std::string& scene : scenes)
             for (const auto& b : backends) {
                 try {
-                    benchFrames(b, scene, frames);
+                    benchFrames(b, scene, frames, outDir);
                 } catch (const std::exception& e) {
                     std::printf("%s on %s failed: %s\n", scene.c_str(), b.name.c_str(), e.what());
                     ++failures;
