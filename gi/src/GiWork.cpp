@@ -102,9 +102,11 @@ WorkCounts lookupWork(const LpvSettings& s, uint64_t pixels) {
     const uint64_t lookups = s.damping ? 2 : 1;
     // Depth, normal, and 3 filtered volume fetches per lookup; a 3D (trilinear) fetch costs two
     // bilinear ones on the texture units the cost model describes.
-    w.texelsRead = pixels * (2 + 3 * 2 * lookups);
+    // Every cascade is looked up (lpv_lookup.glsl folds them), so the volume fetches scale with them.
+    const uint64_t cascades = s.cascades;
+    w.texelsRead = pixels * (2 + 3 * 2 * lookups * cascades);
     w.texelsWritten = pixels;
-    w.aluOps = pixels * (30 + 25 * lookups);
+    w.aluOps = pixels * (30 + 25 * lookups * cascades);
     w.bytesMoved = pixels * (4 + 8 + 8);
     w.primitives = 1;
     return w;

@@ -242,7 +242,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             src.invViewProjection = camera.invViewProjection;
             src.cameraPosition = camera.position;
             geometry_->build(cmd, grid, src);
-            work(occlusionWork(settings_, geometry_->cameraSampleCount(gbuffer.width, gbuffer.height)));
+            work(occlusionWork(settings_,
+                               src.depth ? geometry_->cameraSampleCount(gbuffer.width, gbuffer.height) : 0));
         }
         {
             auto s = scope("inject");

@@ -164,6 +164,7 @@ TEST_CASE("gi cost model: the CryEngine 3 console setup predicts the published t
     // 100k-triangle scene (assumptions: the talk gives neither). Their propagation is the
     // straightforward gather, so that is what is calibrated here.
     LpvSettings s;
+    s.cascades = 1;
     s.gridSize = 32;
     s.rsmSize = 128;
     s.vplCount = 1024;
