@@ -73,15 +73,17 @@ bool holds(int c, vec3 start) {
 
 void main() {
     float depth = textureLod(depthTexture, vUv, 0.0).r;
-    if (depth >= 1.0) {
+    vec4 normalRoughness = textureLod(normalTexture, vUv, 0.0);
+    float roughness = clamp(normalRoughness.w, 0.0, 1.0);
+    // Sky, and fully rough surfaces: the lighting pass weighs the glossy term by 1 - roughness, so
+    // the march would be wasted (most of the Cornell box; the default material is rough).
+    if (depth >= 1.0 || roughness >= 1.0) {
         outRadiance = vec4(0.0);
         return;
     }
     vec4 world = glossy.invViewProjection * vec4(vUv * 2.0 - 1.0, depth, 1.0);
     vec3 p = world.xyz / world.w;
-    vec4 normalRoughness = textureLod(normalTexture, vUv, 0.0);
     vec3 n = normalize(normalRoughness.xyz);
-    float roughness = clamp(normalRoughness.w, 0.0, 1.0);
     vec3 v = normalize(glossy.cameraPosition.xyz - p);
     vec3 r = reflect(-v, n);
 
