@@ -1,7 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Deferred lighting into the HDR target: the shadowed sun, punctual lights, emissive, and the
-// indirect irradiance (filled by the GI, or the ambient constant) times SSAO. Lambertian diffuse.
+// indirect irradiance (filled by the GI, or the ambient constant) times SSAO. Lambertian diffuse,
+// plus the GI's glossy radiance under a Schlick Fresnel weight (0 without GI).
 #include "common.glsl"
 
 struct PunctualLight {
@@ -21,6 +22,7 @@ layout(binding = 7) uniform sampler2D indirectTexture;
 layout(binding = 8, std430) readonly buffer Lights {
     PunctualLight lights[];
 };
+layout(binding = 9) uniform sampler2D glossyTexture;
 
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outColor;
@@ -72,13 +74,23 @@ void main() {
     vec3 direct = albedo / PI * irradiance;
     vec3 indirect = albedo / PI * indirectIrradiance * ao;
     vec3 emissive = textureLod(emissiveTexture, vUv, 0.0).rgb;
+    // Glossy: Schlick Fresnel (F0 4% for dielectrics, the albedo for metals), faded out with
+    // roughness since the glossy pass already widens its cone toward the diffuse lobe. Added on top
+    // of the diffuse without taking its share away, so frames without GI (glossy 0) are unchanged;
+    // the small energy gain at grazing angles is accepted.
+    float roughness = clamp(textureLod(normalTexture, vUv, 0.0).a, 0.0, 1.0);
+    vec3 f0 = mix(vec3(0.04), albedo, albedoMetal.a);
+    float cosView = max(dot(n, normalize(frame.cameraPosition.xyz - p)), 0.0);
+    vec3 fresnel = f0 + (1.0 - f0) * pow(1.0 - cosView, 5.0);
+    vec3 glossy = fresnel * (1.0 - roughness) * textureLod(glossyTexture, vUv, 0.0).rgb * ao;
 
-    vec3 color = direct + indirect + emissive;
+    vec3 color = direct + indirect + glossy + emissive;
     if (debugView == 1) color = albedo;
     else if (debugView == 2) color = n * 0.5 + 0.5;
     else if (debugView == 3) color = vec3(length(p - frame.cameraPosition.xyz) / 50.0);
     else if (debugView == 4) color = vec3(ao);
     else if (debugView == 5) color = vec3(shadow);
     else if (debugView == 6) color = indirect;  // linear indirect diffuse alone (irradiance x albedo / pi)
+    else if (debugView == 7) color = glossy;    // linear glossy reflection alone, as added above
     outColor = vec4(color, 1.0);
 }

@@ -1,4 +1,4 @@
-// The LPV frame: RSM, VPL clustering, injection, propagation, lookup, debug views.
+// The LPV frame: RSM, VPL clustering, injection, propagation, lookup, glossy, debug views.
 #include "gi/LightPropagationVolume.h"
 
 #include "EngineShaders.h"
@@ -62,7 +62,7 @@ VolumeGrid placeVolume(const LpvSettings& s, glm::vec3 cameraPosition, glm::vec3
 }
 
 LightPropagationVolume::LightPropagationVolume(rhi::Device& device, platforms::PlatformProfile profile)
-    : device_(device), profile_(std::move(profile)) {
+    : device_(device), profile_(std::move(profile)), glossy_(device) {
     using namespace rhi;
     clusterPipeline_ = device.createPipeline(ComputePipelineDesc{&shaders::vpl_cluster_comp, "vpl cluster"});
     GraphicsPipelineDesc lookup;
@@ -172,10 +172,12 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
 
 void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                                             const engine::GBufferView& gbuffer, rhi::TextureHandle target,
+                                            rhi::TextureHandle glossyTarget,
                                             engine::FrameProfiler* profiler) {
     using namespace rhi;
     if (!settings_.enabled || !made_ || !renderer_ || !renderer_->scene()) {
         cmd.clearTexture(target, {0, 0, 0, 0}); // GI off: no indirect light at all
+        cmd.clearTexture(glossyTarget, {0, 0, 0, 0});
         return;
     }
     const auto scope = [&](const char* name) {
@@ -303,6 +305,17 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         cmd.draw(3);
         cmd.endRenderPass();
         work(lookupWork(settings_, uint64_t(gbuffer.width) * gbuffer.height));
+    }
+    if (settings_.glossy) {
+        auto s = scope("glossy");
+        std::array<GlossyCascade, 4> glossyCascades;
+        for (size_t c = 0; c < cascades_.size(); ++c)
+            glossyCascades[c] = {cascades_[c].grid, cascades_[c].result};
+        glossy_.render(cmd, camera, gbuffer, std::span(glossyCascades.data(), cascades_.size()),
+                       volumes_->encoded() ? volumes_->encodeRange() : 0.0f, glossyTarget);
+        work(glossyWork(uint64_t(gbuffer.width) * gbuffer.height));
+    } else {
+        cmd.clearTexture(glossyTarget, {0, 0, 0, 0});
     }
     cmd.endMarker();
 }

@@ -42,6 +42,9 @@ const engine::BoolSetting kDamping{"gi.damping", true,
 const engine::BoolSetting kOcclusion{
     "gi.occlusion", true,
     "Geometry volume from the RSM and camera depth attenuates propagation (stops leaks through walls)"};
+const engine::BoolSetting kGlossy{
+    "gi.glossy", true,
+    "Glossy reflections: a few cells marched along the reflected view ray through the LPV (by roughness)"};
 const engine::IntSetting kDebugSlice{"gi.debug_slice", 16, 0, 63,
                                      "Volume slice (z) shown by gi.debug_view=volume_slice"};
 
@@ -67,6 +70,7 @@ LpvSettings readLpvSettings(const engine::Config& config) {
     s.rgba8Range = float(config.get(kRgba8Range));
     s.damping = config.get(kDamping);
     s.occlusion = config.get(kOcclusion);
+    s.glossy = config.get(kGlossy);
     s.budgetPolicy = readGiBudgetPolicy(config);
     const uint32_t side = s.vplGridSide();
     if (side * side != s.vplCount || s.rsmSize % side != 0)

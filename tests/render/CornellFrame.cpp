@@ -58,6 +58,7 @@ CornellFrame renderSceneFrame(rhi::Device& device, engine::Scene scene,
         f.output = readImage(device, renderer.output());
         f.hdr = readImage(device, renderer.hdr());
         f.depth = readImage(device, renderer.gbuffer().depth);
+        f.glossy = readImage(device, renderer.glossy());
         if (lpv.settings().enabled)
             for (uint32_t c = 0; c < lpv.cascadeCount(); ++c) {
                 f.cascadeGrids.push_back(lpv.cascadeGrid(c));

@@ -24,6 +24,7 @@ struct CornellFrame {
     Image output; // tone-mapped sRGB, as [0,1] floats of the stored bytes
     Image hdr;    // linear HDR before tone mapping (or the debug view)
     Image depth;
+    Image glossy; // the glossy radiance target (linear, before the specular weight)
     engine::CameraMatrices camera;
     engine::Scene scene;
     uint32_t width = 0, height = 0;

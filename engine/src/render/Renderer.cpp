@@ -33,8 +33,10 @@ const EnumSetting<DebugView> kDebugView{"render.debug_view",
                                          {DebugView::Depth, "depth"},
                                          {DebugView::Ssao, "ssao"},
                                          {DebugView::Shadow, "shadow"},
-                                         {DebugView::Indirect, "indirect"}},
-                                        "What the frame shows; indirect = linear indirect diffuse only"};
+                                         {DebugView::Indirect, "indirect"},
+                                         {DebugView::Glossy, "glossy"}},
+                                        "What the frame shows; indirect = linear indirect diffuse only, "
+                                        "glossy = linear glossy reflection only"};
 
 rhi::GraphicsPipelineHandle fullscreenPipeline(rhi::Device& device, const rhi::ShaderBinary& fragment,
                                                rhi::Format format, const char* name) {
@@ -124,6 +126,8 @@ void Renderer::createTargets(uint32_t shadowSize) {
     targets_.ao = target(Format::R32F, kTextureTransfer, "ssao", "render.ssao");
     targets_.indirect =
         target(Format::RGBA16F, kTextureStorage | kTextureTransfer, "indirect irradiance", "render.lighting");
+    targets_.glossy =
+        target(Format::RGBA16F, kTextureStorage | kTextureTransfer, "glossy radiance", "render.lighting");
     targets_.hdr = target(Format::RGBA16F, kTextureTransfer, "hdr", "render.lighting");
     targets_.output = target(Format::RGBA8Srgb, kTextureTransfer, "output", "render.output");
     shadowSize_ = shadowSize;
@@ -133,8 +137,9 @@ void Renderer::createTargets(uint32_t shadowSize) {
 }
 
 void Renderer::destroyTargets() {
-    for (auto t : {targets_.albedo, targets_.normal, targets_.emissive, targets_.depth, targets_.aoRaw,
-                   targets_.ao, targets_.indirect, targets_.hdr, targets_.output, targets_.shadow})
+    for (auto t :
+         {targets_.albedo, targets_.normal, targets_.emissive, targets_.depth, targets_.aoRaw, targets_.ao,
+          targets_.indirect, targets_.glossy, targets_.hdr, targets_.output, targets_.shadow})
         if (t) device_.destroy(t);
     targets_ = {};
 }
@@ -315,9 +320,10 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         work(w);
     }
     if (indirect) {
-        indirect->renderIndirect(cmd, camera, gbuffer(), targets_.indirect, profiler);
+        indirect->renderIndirect(cmd, camera, gbuffer(), targets_.indirect, targets_.glossy, profiler);
     } else {
         cmd.clearTexture(targets_.indirect, {ambient.x, ambient.y, ambient.z, 0.0f});
+        cmd.clearTexture(targets_.glossy, {0, 0, 0, 0}); // the ambient constant has no direction
     }
     {
         auto s = scope("render.lighting");
@@ -331,9 +337,10 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
             cmd.bindTexture(6, targets_.ao, pointClamp_);
             cmd.bindTexture(7, targets_.indirect, pointClamp_);
             cmd.bindStorageBuffer(8, scene_->lights());
+            cmd.bindTexture(9, targets_.glossy, pointClamp_);
         });
         cmd.endMarker();
-        work(fullscreenWork(pixels, 7 + 9 * 4, 120 + 40 * uint64_t(directLights), 4 * 8 + 8));
+        work(fullscreenWork(pixels, 8 + 9 * 4, 120 + 40 * uint64_t(directLights), 4 * 8 + 8));
     }
     {
         auto s = scope("render.tonemap");

@@ -1,6 +1,7 @@
 // Dynamic diffuse GI with a light propagation volume (Kaplanyan 2009; Kaplanyan & Dachsbacher
 // 2010), plugged into the renderer as its IndirectLighting:
-//   rsm -> vpl (intensity-aware clustering) -> inject -> propagate -> lookup (+ debug views)
+//   rsm -> vpl (intensity-aware clustering) -> inject -> propagate -> lookup -> glossy
+//   (+ debug views)
 // each a profiler scope under "gi" with its work counts. The volume follows the camera, snapped to
 // whole cells and kept inside the scene. Settings are read every frame; a change of size or format
 // remakes the resources on that frame (not a steady-state frame), after checking the platform
@@ -11,6 +12,7 @@
 #include "engine/render/Renderer.h"
 #include "gi/GeometryVolume.h"
 #include "gi/GiScheduler.h"
+#include "gi/GlossyReflections.h"
 #include "gi/LpvReference.h"
 #include "gi/LpvSettings.h"
 #include "gi/LpvVolumes.h"
@@ -47,7 +49,7 @@ public:
 
     void renderIndirect(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                         const engine::GBufferView& gbuffer, rhi::TextureHandle target,
-                        engine::FrameProfiler* profiler) override;
+                        rhi::TextureHandle glossyTarget, engine::FrameProfiler* profiler) override;
     void renderDebugOverlay(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                             rhi::TextureHandle output) override;
     // With gi.analytic_lights the volume carries the point and spot lights (see PointLightInjection).
@@ -90,6 +92,7 @@ private:
     std::unique_ptr<LpvVolumes> volumes_;
     std::unique_ptr<GeometryVolume> geometry_;
     std::unique_ptr<PointLightInjection> pointLights_;
+    GlossyReflections glossy_;
     bool analyticLights_ = true;
     rhi::BufferHandle vpls_;
     rhi::ComputePipelineHandle clusterPipeline_;

@@ -29,6 +29,7 @@ struct LpvSettings {
     float rgba8Range = 2.0f;
     bool damping = true;
     bool occlusion = true; // geometry volume attenuates propagation
+    bool glossy = true;    // glossy reflections marched through the volume
     GiBudgetPolicy budgetPolicy = GiBudgetPolicy::Fixed;
 
     // Side of the VPL grid the RSM is clustered into (sqrt of vplCount).

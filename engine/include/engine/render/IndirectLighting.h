@@ -1,6 +1,6 @@
 // The renderer's hook for global illumination. Between the G-buffer and the lighting pass, the
-// renderer asks the provider (the LPV in gi/) to fill the indirect-irradiance target; without a
-// provider the target holds the constant render.ambient.
+// renderer asks the provider (the LPV in gi/) to fill the indirect-irradiance target and the glossy
+// radiance target; without a provider the first holds the constant render.ambient, the second 0.
 #pragma once
 
 #include "engine/render/CameraMatrices.h"
@@ -23,10 +23,12 @@ class IndirectLighting {
 public:
     virtual ~IndirectLighting() = default;
     // Writes indirect irradiance (RGBA16F, linear, W/m^2-like units of the sun's) for every pixel
-    // into `target`, which the call must fully overwrite.
+    // into `target`, and the radiance a glossy surface reflects toward the camera before its
+    // specular weight (RGBA16F, linear; 0 where there is none) into `glossyTarget`. The call must
+    // fully overwrite both.
     virtual void renderIndirect(rhi::CommandList& cmd, const CameraMatrices& camera,
                                 const GBufferView& gbuffer, rhi::TextureHandle target,
-                                FrameProfiler* profiler) = 0;
+                                rhi::TextureHandle glossyTarget, FrameProfiler* profiler) = 0;
     // Draws debug views over the tone-mapped output (RGBA8 sRGB color target); none by default.
     virtual void renderDebugOverlay(rhi::CommandList& cmd, const CameraMatrices& camera,
                                     rhi::TextureHandle output) {

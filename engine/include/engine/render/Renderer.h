@@ -20,7 +20,7 @@ namespace lpv::engine {
 
 class FrameProfiler;
 
-enum class DebugView { Final, Albedo, Normals, Depth, Ssao, Shadow, Indirect };
+enum class DebugView { Final, Albedo, Normals, Depth, Ssao, Shadow, Indirect, Glossy };
 
 struct SunLight {
     glm::vec3 direction{0.25f, -1.0f, -0.15f}; // where the light travels
@@ -66,6 +66,8 @@ public:
 
     rhi::TextureHandle output() const { return targets_.output; } // RGBA8 sRGB, tone mapped
     rhi::TextureHandle hdr() const { return targets_.hdr; }       // RGBA16F linear, before tone mapping
+    // RGBA16F linear: the radiance glossy surfaces reflect (before the specular weight), 0 without GI.
+    rhi::TextureHandle glossy() const { return targets_.glossy; }
     GBufferView gbuffer() const;
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
@@ -73,7 +75,7 @@ public:
 
 private:
     struct Targets {
-        rhi::TextureHandle albedo, normal, emissive, depth, aoRaw, ao, indirect, hdr, output, shadow;
+        rhi::TextureHandle albedo, normal, emissive, depth, aoRaw, ao, indirect, glossy, hdr, output, shadow;
     };
     void createTargets(uint32_t shadowSize);
     void destroyTargets();

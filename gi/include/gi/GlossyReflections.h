@@ -1,0 +1,49 @@
+// Glossy reflections from the LPV (gi.glossy): a fullscreen pass that marches a few cells along
+// each pixel's reflected view ray through the cascades and writes the radiance arriving along it
+// (linear RGBA16F) for the lighting pass to add under a Fresnel weight. The march and the roughness
+// cone are in gi/shaders/lpv_glossy.frag.
+#pragma once
+
+#include "engine/profiler/WorkCounts.h"
+#include "engine/render/CameraMatrices.h"
+#include "engine/render/IndirectLighting.h"
+#include "gi/LpvReference.h"
+#include "rhi/Device.h"
+
+#include <array>
+#include <span>
+
+namespace lpv::gi {
+
+// One cascade as the march sees it.
+struct GlossyCascade {
+    VolumeGrid grid;
+    std::array<rhi::TextureHandle, 3> sh; // R, G, B
+};
+
+class GlossyReflections {
+public:
+    // Cells marched per pixel: the talk's "4 cells is sufficient for moderately glossy objects".
+    static constexpr uint32_t kSteps = 4;
+
+    explicit GlossyReflections(rhi::Device& device);
+    ~GlossyReflections();
+    GlossyReflections(const GlossyReflections&) = delete;
+    GlossyReflections& operator=(const GlossyReflections&) = delete;
+
+    // Overwrites `target` (finest cascade first in `cascades`, 1 to 4 of them). `encodeRange` > 0:
+    // the volumes are rgba8, range-encoded.
+    void render(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
+                const engine::GBufferView& gbuffer, std::span<const GlossyCascade> cascades,
+                float encodeRange, rhi::TextureHandle target);
+
+private:
+    rhi::Device& device_;
+    rhi::GraphicsPipelineHandle pipeline_;
+    rhi::SamplerHandle pointSampler_, linearSampler_;
+};
+
+// Depth, normal, kSteps trilinear fetches of the three volumes, per pixel.
+engine::WorkCounts glossyWork(uint64_t pixels);
+
+} // namespace lpv::gi

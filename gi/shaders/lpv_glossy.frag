@@ -1,0 +1,115 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Glossy reflections from the LPV (CryEngine 3 talk, "glossy reflections"): march a few cells along
+// the reflected view ray and gather the radiance that travels back toward the surface along it.
+//
+// - The volume stores intensity; light arriving from direction r travels along -r, so each step
+//   evaluates the SH in direction -r and divides by the cell's cross-section (as the lookup does).
+// - Nearer steps weigh more: their light is the likelier to reach the surface unoccluded (the
+//   march ignores occlusion, as the talk's does).
+// - Roughness widens the cone. Convolving an L1 signal with a normalized lobe scales band 1 only:
+//   1 for a mirror, 2/3 for the clamped cosine / pi. Blending that factor with roughness blends the
+//   mirror radiance toward the cosine-lobe irradiance / pi; at roughness 1 the lighting pass adds
+//   no glossy term at all.
+// - The talk also steps back in propagation time to reduce smearing; with only the accumulated
+//   volume kept that is not possible here, so reflections are as blurred as the volume.
+#include "lpv_common.glsl"
+
+layout(binding = 0, std140) uniform Glossy {
+    mat4 invViewProjection;
+    vec4 cameraPosition; // xyz
+    vec4 gridOrigin[4];  // per cascade: xyz corner of cell 0, w: cell size
+    ivec4 grid;          // x: cells per axis, y: volumes are rgba8-encoded, z: cascades, w: steps
+    vec4 encode;         // x: rgba8 range
+} glossy;
+layout(binding = 1) uniform sampler2D depthTexture;
+layout(binding = 2) uniform sampler2D normalTexture;
+// Cascade c's R, G, B volumes at bindings 3 + 3c .. 5 + 3c (unused cascades bound to cascade 0).
+layout(binding = 3) uniform sampler3D lpv0r;
+layout(binding = 4) uniform sampler3D lpv0g;
+layout(binding = 5) uniform sampler3D lpv0b;
+layout(binding = 6) uniform sampler3D lpv1r;
+layout(binding = 7) uniform sampler3D lpv1g;
+layout(binding = 8) uniform sampler3D lpv1b;
+layout(binding = 9) uniform sampler3D lpv2r;
+layout(binding = 10) uniform sampler3D lpv2g;
+layout(binding = 11) uniform sampler3D lpv2b;
+layout(binding = 12) uniform sampler3D lpv3r;
+layout(binding = 13) uniform sampler3D lpv3g;
+layout(binding = 14) uniform sampler3D lpv3b;
+
+layout(location = 0) in vec2 vUv;
+layout(location = 0) out vec4 outRadiance;
+
+vec4 decode(vec4 v) { return glossy.grid.y != 0 ? (v * 2.0 - 1.0) * glossy.encode.x : v; }
+
+// The intensity of cascade c at uvw weighted by `lobe`, per channel.
+vec3 project(int c, vec3 uvw, vec4 lobe) {
+    if (c == 0) return vec3(dot(decode(texture(lpv0r, uvw)), lobe), dot(decode(texture(lpv0g, uvw)), lobe),
+                            dot(decode(texture(lpv0b, uvw)), lobe));
+    if (c == 1) return vec3(dot(decode(texture(lpv1r, uvw)), lobe), dot(decode(texture(lpv1g, uvw)), lobe),
+                            dot(decode(texture(lpv1b, uvw)), lobe));
+    if (c == 2) return vec3(dot(decode(texture(lpv2r, uvw)), lobe), dot(decode(texture(lpv2g, uvw)), lobe),
+                            dot(decode(texture(lpv2b, uvw)), lobe));
+    return vec3(dot(decode(texture(lpv3r, uvw)), lobe), dot(decode(texture(lpv3g, uvw)), lobe),
+                dot(decode(texture(lpv3b, uvw)), lobe));
+}
+
+vec3 uvwIn(int c, vec3 p) {
+    return (p - glossy.gridOrigin[c].xyz) / (glossy.gridOrigin[c].w * float(glossy.grid.x));
+}
+
+// The march starts half a cell out along the normal (like the lookup, so the first step is not
+// inside the surface); cascade c holds it when that start is half a cell inside its border, so
+// trilinear filtering stays inside. Testing the start rather than the surface point keeps a floor
+// that lies on a cascade's border in that (finer) cascade.
+vec3 marchStart(int c, vec3 p, vec3 n) { return p + 0.5 * glossy.gridOrigin[c].w * n; }
+
+bool holds(int c, vec3 start) {
+    vec3 uvw = uvwIn(c, start);
+    float margin = 0.5 / float(glossy.grid.x);
+    return all(greaterThanEqual(uvw, vec3(margin))) && all(lessThanEqual(uvw, vec3(1.0 - margin)));
+}
+
+void main() {
+    float depth = textureLod(depthTexture, vUv, 0.0).r;
+    vec4 normalRoughness = textureLod(normalTexture, vUv, 0.0);
+    float roughness = clamp(normalRoughness.w, 0.0, 1.0);
+    // Sky, and fully rough surfaces: the lighting pass weighs the glossy term by 1 - roughness, so
+    // the march would be wasted (most of the Cornell box; the default material is rough).
+    if (depth >= 1.0 || roughness >= 1.0) {
+        outRadiance = vec4(0.0);
+        return;
+    }
+    vec4 world = glossy.invViewProjection * vec4(vUv * 2.0 - 1.0, depth, 1.0);
+    vec3 p = world.xyz / world.w;
+    vec3 n = normalize(normalRoughness.xyz);
+    vec3 v = normalize(glossy.cameraPosition.xyz - p);
+    vec3 r = reflect(-v, n);
+
+    // The finest cascade that holds the march answers for all of it (no blend band: the
+    // glossy term is faint next to the diffuse one, and a seam in it is hard to see).
+    int c = glossy.grid.z - 1;
+    for (int i = 0; i < glossy.grid.z; ++i)
+        if (holds(i, marchStart(i, p, n))) {
+            c = i;
+            break;
+        }
+    float cell = glossy.gridOrigin[c].w;
+    float band1 = mix(1.0, 2.0 / 3.0, roughness);
+    // Radiance toward the surface along -r: the basis in direction -r, band 1 narrowed by the cone.
+    vec4 lobe = shBasis(-r) * vec4(1.0, band1, band1, band1);
+    vec3 start = marchStart(c, p, n);
+    vec3 sum = vec3(0.0);
+    float weights = 0.0;
+    for (int step = 1; step <= glossy.grid.w; ++step) {
+        vec3 q = start + r * (cell * float(step));
+        vec3 uvw = uvwIn(c, q);
+        if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) break; // left the volume
+        float w = 1.0 / float(step);
+        sum += w * max(project(c, uvw, lobe), vec3(0.0));
+        weights += w;
+    }
+    vec3 radiance = weights > 0.0 ? sum / (weights * cell * cell) : vec3(0.0);
+    outRadiance = vec4(radiance, 0.0);
+}

@@ -1,0 +1,88 @@
+// The glossy-reflection pass: uniforms, bindings and one fullscreen triangle.
+#include "gi/GlossyReflections.h"
+
+#include "EngineShaders.h"
+#include "GiShaders.h"
+
+#include <glm/vec4.hpp>
+
+#include <algorithm>
+
+namespace lpv::gi {
+namespace {
+
+// std140 block `Glossy` of lpv_glossy.frag.
+struct GlossyUniforms {
+    glm::mat4 invViewProjection;
+    glm::vec4 cameraPosition;
+    glm::vec4 gridOrigin[4];
+    glm::ivec4 grid;
+    glm::vec4 encode;
+};
+
+} // namespace
+
+GlossyReflections::GlossyReflections(rhi::Device& device) : device_(device) {
+    using namespace rhi;
+    GraphicsPipelineDesc d;
+    d.vertex = &engine::shaders::fullscreen_vert;
+    d.fragment = &shaders::lpv_glossy_frag;
+    d.colorFormats = {Format::RGBA16F};
+    d.debugName = "lpv glossy";
+    pipeline_ = device.createPipeline(d);
+    pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
+    SamplerDesc linear;
+    linear.mipFilter = Filter::Nearest;
+    linearSampler_ = device.createSampler(linear);
+}
+
+GlossyReflections::~GlossyReflections() {
+    device_.destroy(pipeline_);
+    device_.destroy(pointSampler_);
+    device_.destroy(linearSampler_);
+}
+
+void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
+                               const engine::GBufferView& gbuffer, std::span<const GlossyCascade> cascades,
+                               float encodeRange, rhi::TextureHandle target) {
+    using namespace rhi;
+    const auto cascade = [&](size_t c) -> const GlossyCascade& {
+        return cascades[std::min(c, cascades.size() - 1)];
+    };
+    GlossyUniforms u;
+    u.invViewProjection = camera.invViewProjection;
+    u.cameraPosition = glm::vec4(camera.position, 1.0f);
+    for (uint32_t c = 0; c < 4; ++c)
+        u.gridOrigin[c] = glm::vec4(cascade(c).grid.origin, cascade(c).grid.cellSize);
+    u.grid =
+        glm::ivec4(int(cascades[0].grid.size), encodeRange > 0.0f ? 1 : 0, int(cascades.size()), int(kSteps));
+    u.encode = glm::vec4(encodeRange, 0, 0, 0);
+    RenderPassDesc pass;
+    pass.colors[0] = {target, 0, 0, LoadOp::DontCare};
+    pass.colorCount = 1;
+    pass.debugName = "lpv glossy";
+    cmd.beginRenderPass(pass);
+    cmd.bindPipeline(pipeline_);
+    cmd.pushUniforms(0, &u, sizeof(u));
+    cmd.bindTexture(1, gbuffer.depth, pointSampler_);
+    cmd.bindTexture(2, gbuffer.normal, pointSampler_);
+    for (uint32_t c = 0; c < 4; ++c)
+        for (uint32_t ch = 0; ch < 3; ++ch)
+            cmd.bindTexture(3 + 3 * c + ch, cascade(c).sh[ch], linearSampler_);
+    cmd.draw(3);
+    cmd.endRenderPass();
+}
+
+engine::WorkCounts glossyWork(uint64_t pixels) {
+    engine::WorkCounts w;
+    w.pixelsShaded = pixels;
+    // A 3D (trilinear) fetch costs two bilinear ones on the cost model's texture units.
+    w.texelsRead = pixels * (2 + GlossyReflections::kSteps * 3 * 2);
+    w.texelsWritten = pixels;
+    w.aluOps = pixels * (40 + 20 * GlossyReflections::kSteps);
+    w.bytesMoved = pixels * (4 + 8 + 8);
+    w.primitives = 1;
+    return w;
+}
+
+} // namespace lpv::gi
