@@ -163,11 +163,11 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
     analyticLights_ = analyticLightsEnabled(config);
     LpvSettings level = s;
     for (Cascade& c : cascades_) {
-        c.grid = placeVolume(level, camera.position, camera.forward, renderer.sceneBounds());
+        c.placement = placeVolume(level, camera.position, camera.forward, renderer.sceneBounds());
         level.cellSize *= 2.0f;
     }
     grid_ = cascades_.empty() ? placeVolume(s, camera.position, camera.forward, renderer.sceneBounds())
-                              : cascades_[0].grid;
+                              : cascades_[0].placement;
 }
 
 void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
@@ -203,6 +203,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         cascadesValid_ |= 1u << c;
         updated |= 1u << c;
         auto cascadeScope = scope(kCascadeScopes[c]);
+        // A skipped cascade keeps the placement its result was computed at; this one moves now.
+        cascades_[c].grid = cascades_[c].placement;
         const VolumeGrid& grid = cascades_[c].grid;
         {
             auto s = scope("rsm");

@@ -79,7 +79,8 @@ private:
     // Cascade 0 is the finest; each further one has cells twice the size. Scratch (RSM, VPLs,
     // geometry, injection and partial sums) is shared: cascades are built one after another.
     struct Cascade {
-        VolumeGrid grid;
+        VolumeGrid grid;      // where `result` was computed: what the lookup and handoff use
+        VolumeGrid placement; // where the camera wants it now; becomes `grid` when it updates
         std::array<rhi::TextureHandle, 3> result{}; // cascade 0: volumes_->accumulated()
     };
     std::vector<Cascade> cascades_;
