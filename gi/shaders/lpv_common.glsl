@@ -12,4 +12,8 @@ const float PI = 3.14159265358979;
 vec4 shBasis(vec3 w) { return vec4(SH_Y0, SH_Y1 * w.y, SH_Y1 * w.z, SH_Y1 * w.x); }
 vec4 shCosineLobe(vec3 n) { return vec4(SH_COS_C0, SH_COS_C1 * n.y, SH_COS_C1 * n.z, SH_COS_C1 * n.x); }
 
+// RGBA8 volumes store coefficients range-encoded: v in [-range, range] as (v / range + 1) / 2.
+vec4 encodeShRange(vec4 v, float range) { return clamp(v / range * 0.5 + 0.5, 0.0, 1.0); }
+vec4 decodeShRange(vec4 v, float range) { return (v * 2.0 - 1.0) * range; }
+
 #endif

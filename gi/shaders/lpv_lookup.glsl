@@ -35,7 +35,7 @@ layout(binding = 14) uniform sampler3D lpv3b;
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outIrradiance;
 
-vec4 decode(vec4 v) { return lookup.grid.y != 0 ? (v * 2.0 - 1.0) * lookup.encode.x : v; }
+vec4 decode(vec4 v) { return lookup.grid.y != 0 ? decodeShRange(v, lookup.encode.x) : v; }
 
 // The intensity of cascade c at uvw integrated against `lobe`, per channel.
 vec3 project(int c, vec3 uvw, vec4 lobe) {

@@ -15,7 +15,7 @@ layout(location = 0) out vec4 outColor;
 
 float l0(sampler3D s, vec3 uvw) {
     float v = texture(s, uvw).x;
-    return slice.flags.x != 0 ? (v * 2.0 - 1.0) * slice.params.z : v;
+    return slice.flags.x != 0 ? decodeShRange(vec4(v), slice.params.z).x : v;
 }
 
 void main() {

@@ -131,8 +131,8 @@ Sh3 outside(ivec3 c) {
     vec4 r = textureLod(coarseRed, uvw, 0.0), g = textureLod(coarseGreen, uvw, 0.0);
     vec4 b = textureLod(coarseBlue, uvw, 0.0);
     if (params.encode.z != 0.0) {
-        r = (r * 2.0 - 1.0) * params.encode.x, g = (g * 2.0 - 1.0) * params.encode.x;
-        b = (b * 2.0 - 1.0) * params.encode.x;
+        r = decodeShRange(r, params.encode.x), g = decodeShRange(g, params.encode.x);
+        b = decodeShRange(b, params.encode.x);
     }
     return Sh3(r * params.encode.y, g * params.encode.y, b * params.encode.y);
 #endif

@@ -6,8 +6,8 @@
 #define PACKED0_FORMAT rgba32ui
 #include "propagate_body.glsl"
 
-vec4 encodeSh(vec4 v) { return clamp(v / params.encode.x * 0.5 + 0.5, 0.0, 1.0); }
-vec4 decodeSh(vec4 v) { return (v * 2.0 - 1.0) * params.encode.x; }
+vec4 encodeSh(vec4 v) { return encodeShRange(v, params.encode.x); }
+vec4 decodeSh(vec4 v) { return decodeShRange(v, params.encode.x); }
 
 Sh3 unpackCell(uvec4 t0, uvec4 t1, uvec4 t2) {
     return Sh3(decodeSh(unpackUnorm4x8(t0.x)), decodeSh(unpackUnorm4x8(t0.y)), decodeSh(unpackUnorm4x8(t0.z)));

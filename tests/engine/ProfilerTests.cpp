@@ -6,6 +6,8 @@
 #include "platforms/PlatformProfile.h"
 #include "rhi/Device.h"
 
+#include "../support/TestDevice.h"
+
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
@@ -20,12 +22,7 @@ using namespace lpv::engine;
 
 namespace {
 
-std::unique_ptr<rhi::Device> nullDevice() {
-    rhi::DeviceConfig config;
-    config.backend = rhi::BackendKind::Null;
-    config.framesInFlight = 2;
-    return rhi::createDevice(config);
-}
+using test::nullDevice;
 
 // A profile with tiny budgets so simulated microseconds can cross them.
 platforms::PlatformProfile tinyProfile(double frameMs, double giMs) {

@@ -8,6 +8,8 @@
 #include "gi/GiScheduler.h"
 #include "rhi/Device.h"
 
+#include "../support/TestDevice.h"
+
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
@@ -19,12 +21,7 @@ using namespace lpv::gi;
 
 namespace {
 
-std::unique_ptr<rhi::Device> nullDevice() {
-    rhi::DeviceConfig config;
-    config.backend = rhi::BackendKind::Null;
-    config.framesInFlight = 2;
-    return rhi::createDevice(config);
-}
+using test::nullDevice;
 
 // One frame's GI as scopes: every cascade due this frame runs its passes, then the lookup.
 void recordGi(engine::FrameProfiler& profiler, rhi::CommandList& cmd, const test::ConsoleGiCost& cost,

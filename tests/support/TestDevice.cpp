@@ -69,4 +69,11 @@ void TestDevice::expectSilent() {
     messages_->clear();
 }
 
+std::unique_ptr<rhi::Device> nullDevice() {
+    rhi::DeviceConfig config;
+    config.backend = rhi::BackendKind::Null;
+    config.framesInFlight = 2;
+    return rhi::createDevice(config);
+}
+
 } // namespace lpv::test

@@ -18,6 +18,8 @@ struct BackendUnderTest {
 
 // Every GPU backend, or those named by --backends=a,b on the test command line.
 const std::vector<BackendUnderTest>& selectedBackends();
+// The null backend (simulated timestamps, 2 frames in flight): front-end tests without a GPU.
+std::unique_ptr<rhi::Device> nullDevice();
 void selectBackends(const std::string& commaSeparated);
 const BackendUnderTest& backendByName(const std::string& name);
 
