@@ -7,9 +7,11 @@
 
 layout(binding = 1) uniform sampler2D gbufferDepth;
 layout(binding = 2) uniform sampler2D gbufferNormal;
+layout(binding = 3) uniform sampler2D gbufferAlbedo;
 
 layout(location = 0) flat out vec3 vCoverage;
 layout(location = 1) flat out int vFromCamera;
+layout(location = 2) flat out vec3 vAlbedo;
 
 void main() {
     ivec2 size = textureSize(gbufferDepth, 0);
@@ -25,6 +27,7 @@ void main() {
     vec3 p = world.xyz / world.w;
     vCoverage = abs(normalize(normal));
     vFromCamera = 1;
+    vAlbedo = texelFetch(gbufferAlbedo, pixel, 0).rgb;
     gl_PointSize = 1.0;
     bool valid = sampleIndex.y < rows && depth < 1.0 && dot(normal, normal) > 0.25;
     gl_Position = valid ? surfelPosition(p) : vec4(-4.0, -4.0, 0.0, 1.0);

@@ -16,6 +16,7 @@ layout(binding = 0, std140) uniform GeometryInject {
     mat4 invViewProjection; // camera surfels: clip -> world
     vec4 camera;       // xyz: camera position
     ivec4 grid;        // x: GV cells per axis, y: slice being drawn, z: VPL count, w: samples per row
+    vec4 whiteTexelFlux; // rgb: the flux an RSM texel of albedo 1 reflects
 } gv;
 
 // Where a surfel lands: the GV cell whose centre (an LPV corner) is nearest, if it is in the

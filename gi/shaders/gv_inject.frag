@@ -6,10 +6,15 @@
 // moves; the max does not.
 layout(location = 0) flat in vec3 vCoverage;
 layout(location = 1) flat in int vFromCamera;
+layout(location = 2) flat in vec3 vAlbedo;
 layout(location = 0) out vec4 outLightCoverage;
 layout(location = 1) out vec4 outCameraCoverage;
+// Albedo sum and surfel count (additive): their ratio is the mean albedo multiple bounces reflect
+// with, whichever view saw the surfel.
+layout(location = 2) out vec4 outAlbedo;
 
 void main() {
     outLightCoverage = vFromCamera != 0 ? vec4(0.0) : vec4(vCoverage, 1.0);
     outCameraCoverage = vFromCamera != 0 ? vec4(vCoverage, 1.0) : vec4(0.0);
+    outAlbedo = vec4(vAlbedo, 1.0);
 }

@@ -16,12 +16,16 @@ layout(binding = 1, std430) readonly buffer Vpls {
 
 layout(location = 0) flat out vec3 vCoverage;
 layout(location = 1) flat out int vFromCamera;
+layout(location = 2) flat out vec3 vAlbedo;
 
 void main() {
     Vpl v = vpls[gl_VertexIndex];
     float cosLight = max(abs(dot(v.normal.xyz, gv.lightDirection.xyz)), 0.25);
     vCoverage = surfelCoverage(v.normal.xyz, gv.lightDirection.w / cosLight);
     vFromCamera = 0;
+    // The cluster's flux over what as many white texels would reflect (flux.w: its texel count).
+    vec3 white = max(v.flux.w * gv.whiteTexelFlux.rgb, vec3(1e-20));
+    vAlbedo = clamp(v.flux.rgb / white, 0.0, 1.0);
     gl_PointSize = 1.0;
     gl_Position = v.position.w > 0.0 ? surfelPosition(v.position.xyz) : vec4(-4.0, -4.0, 0.0, 1.0);
 }

@@ -8,7 +8,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 struct Vpl {
     vec4 position;  // w: 1 when the cluster holds any lit texel
     vec4 normal;
-    vec4 flux;
+    vec4 flux;      // w: RSM texels clustered
 };
 
 layout(binding = 0, std140) uniform Params {
@@ -29,7 +29,7 @@ void main() {
     int block = params.sizes.z;
     float rsmSize = float(params.sizes.x);
     vec3 position = vec3(0.0), normal = vec3(0.0), flux = vec3(0.0);
-    float weight = 0.0;
+    float weight = 0.0, texels = 0.0;
     for (int y = 0; y < block; ++y)
         for (int x = 0; x < block; ++x) {
             ivec2 t = cluster * block + ivec2(x, y);
@@ -43,10 +43,11 @@ void main() {
             normal += w * texelFetch(rsmNormal, t, 0).xyz;
             flux += f;
             weight += w;
+            texels += 1.0;
         }
     Vpl v;
     v.position = weight > 0.0 ? vec4(position / weight, 1.0) : vec4(0.0);
     v.normal = vec4(length(normal) > 0.0 ? normalize(normal) : vec3(0.0, 1.0, 0.0), 0.0);
-    v.flux = vec4(flux, 0.0);
+    v.flux = vec4(flux, texels); // w: the texels it clusters (the geometry volume's albedo)
     vpls[cluster.y * side + cluster.x] = v;
 }

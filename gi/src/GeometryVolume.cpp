@@ -16,6 +16,7 @@ struct InjectUniforms {
     glm::mat4 invViewProjection;
     glm::vec4 camera;
     glm::ivec4 grid;
+    glm::vec4 whiteTexelFlux;
 };
 
 } // namespace
@@ -34,14 +35,20 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize) : device_(
     faces_ = device.createTexture({TextureKind::Tex3D, Format::RGBA8Unorm, lpvSize, lpvSize, lpvSize, 1,
                                    kTextureStorage | kTextureSampled | kTextureTransfer,
                                    "gv face transmittance", "gi.gv"});
+    albedoSum_ = device.createTexture({TextureKind::Tex3D, Format::RGBA16F, g, g, g, 1,
+                                       kTextureColorTarget | kTextureSampled | kTextureTransfer, "gv albedo sum",
+                                       "gi.gv"});
+    albedo_ = device.createTexture({TextureKind::Tex3D, Format::RGBA8Unorm, lpvSize, lpvSize, lpvSize, 1,
+                                    kTextureStorage | kTextureSampled | kTextureTransfer, "gv surfel albedo",
+                                    "gi.gv"});
     GraphicsPipelineDesc d;
     d.vertex = &shaders::gv_vpl_vert;
     d.fragment = &shaders::gv_inject_frag;
     d.topology = PrimitiveTopology::PointList;
-    d.colorFormats = {Format::RGBA8Unorm, Format::RGBA8Unorm};
+    d.colorFormats = {Format::RGBA8Unorm, Format::RGBA8Unorm, Format::RGBA16F};
     BlendState max = BlendState::additive();
     max.colorOp = max.alphaOp = BlendOp::Max;
-    d.blend = {BlendState::additive(), max};
+    d.blend = {BlendState::additive(), max, BlendState::additive()};
     d.debugName = "gv inject light surfels";
     vplPipeline_ = device.createPipeline(d);
     d.vertex = &shaders::gv_camera_vert;
@@ -56,6 +63,8 @@ GeometryVolume::~GeometryVolume() {
     device_.destroy(coverage_);
     device_.destroy(cameraCoverage_);
     device_.destroy(faces_);
+    device_.destroy(albedoSum_);
+    device_.destroy(albedo_);
     device_.destroy(vplPipeline_);
     device_.destroy(cameraPipeline_);
     device_.destroy(facesPipeline_);
@@ -72,12 +81,14 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
     using namespace rhi;
     cmd.clearTexture(coverage_, {0, 0, 0, 0});
     cmd.clearTexture(cameraCoverage_, {0, 0, 0, 0});
+    cmd.clearTexture(albedoSum_, {0, 0, 0, 0});
     const uint32_t g = lpvSize_ + 1;
     InjectUniforms u;
     u.gridOrigin = glm::vec4(grid.origin, grid.cellSize);
     u.lightDirection = glm::vec4(src.lightDirection, src.vplArea);
     u.invViewProjection = src.invViewProjection;
     u.camera = glm::vec4(src.cameraPosition, 0.0f);
+    u.whiteTexelFlux = glm::vec4(src.whiteTexelFlux, 0.0f);
     uint32_t cameraSamples = 0;
     if (src.depth) {
         const TextureDesc& d = device_.desc(src.depth);
@@ -87,7 +98,8 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
         RenderPassDesc pass;
         pass.colors[0] = {coverage_, 0, slice, LoadOp::Load};
         pass.colors[1] = {cameraCoverage_, 0, slice, LoadOp::Load};
-        pass.colorCount = 2;
+        pass.colors[2] = {albedoSum_, 0, slice, LoadOp::Load};
+        pass.colorCount = 3;
         pass.debugName = "gv inject slice";
         cmd.beginRenderPass(pass);
         u.grid = glm::ivec4(int(g), int(slice), int(src.vplCount), int(kCameraSamplesPerRow));
@@ -102,6 +114,7 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
             cmd.pushUniforms(0, &u, sizeof(u));
             cmd.bindTexture(1, src.depth, pointSampler_);
             cmd.bindTexture(2, src.normal, pointSampler_);
+            cmd.bindTexture(3, src.albedo ? src.albedo : src.normal, pointSampler_);
             cmd.draw(cameraSamples);
         }
         cmd.endRenderPass();
@@ -112,6 +125,8 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
     cmd.bindTexture(1, coverage_, pointSampler_);
     cmd.bindStorageImage(2, faces_);
     cmd.bindTexture(3, cameraCoverage_, pointSampler_);
+    cmd.bindTexture(4, albedoSum_, pointSampler_);
+    cmd.bindStorageImage(5, albedo_);
     cmd.dispatch((lpvSize_ + 3) / 4, (lpvSize_ + 3) / 4, (lpvSize_ + 3) / 4);
 }
 

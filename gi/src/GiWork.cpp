@@ -65,6 +65,31 @@ WorkCounts propagateWork(const LpvSettings& s) {
     return one * s.iterations;
 }
 
+WorkCounts bounceWork(const LpvSettings& s) {
+    if (s.bounces < 2) return {};
+    const uint64_t cells = uint64_t(s.gridSize) * s.gridSize * s.gridSize;
+    const uint64_t shBytes = rhi::bytesPerPixel(shTextureFormat(s.shFormat));
+    const uint64_t injectBytes = s.shFormat == ShFormat::Rgba32f ? 16 : 8;
+    WorkCounts reflect;
+    // lpv_reflect_body.glsl: the cell's 3 SH texels, 4 face-transmittance texels and its albedo;
+    // 6 faces x 3 channels of a few multiply-adds; 3 injection texels written.
+    reflect.cells = cells;
+    reflect.texelsRead = cells * (3 + 4 + 1);
+    reflect.texelsWritten = cells * 3;
+    reflect.aluOps = cells * (6 * (3 * 6 + 8) + 20);
+    reflect.bytesMoved = cells * (3 * shBytes + 5 * 4 + 3 * injectBytes);
+    WorkCounts sum;
+    // lpv_bounce_add_body.glsl: 3 texels read from each volume, 3 written.
+    sum.texelsRead = cells * 6;
+    sum.texelsWritten = cells * 3;
+    sum.aluOps = cells * 3 * 4 * 2;
+    sum.bytesMoved = cells * 9 * shBytes;
+    WorkCounts one = reflect;
+    one += propagateWork(s);
+    one += sum;
+    return one * (s.bounces - 1);
+}
+
 WorkCounts gatherPropagationWork(const LpvSettings& s) {
     const uint64_t cells = uint64_t(s.gridSize) * s.gridSize * s.gridSize;
     const uint64_t bpp = rhi::bytesPerPixel(shTextureFormat(s.shFormat));

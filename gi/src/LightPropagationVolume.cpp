@@ -112,6 +112,7 @@ void LightPropagationVolume::release() {
     cascades_.clear();
     rsm_.reset();
     volumes_.reset();
+    bounces_.reset();
     geometry_.reset();
     pointLights_.reset();
     if (vpls_) device_.destroy(vpls_);
@@ -128,6 +129,7 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     for (uint32_t c = 1; c < s.cascades; ++c)
         cascades_[c].result = volumes_->createResult("lpv cascade " + std::to_string(c));
     if (s.occlusion) geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize);
+    if (s.bounces > 1) bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_);
     pointLights_ = std::make_unique<PointLightInjection>(device_, s);
     vpls_ = device_.createBuffer({uint64_t(s.vplCount) * 48, rhi::kBufferStorage | rhi::kBufferTransfer,
                                   rhi::MemoryAccess::GpuOnly, "vpls", "gi.vpl"});
@@ -153,7 +155,8 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
     }
     renderer_ = &renderer;
     const bool resized = !made_ || s.rsmSize != settings_.rsmSize || s.vplCount != settings_.vplCount ||
-                         !volumes_->matches(s) || s.occlusion != (geometry_ != nullptr);
+                         !volumes_->matches(s) || s.occlusion != (geometry_ != nullptr) ||
+                         (s.bounces > 1) != (bounces_ != nullptr);
     if (s.enabled && resized) {
         checkGiBudget(s, profile_); // throws before anything changes
         remake(s);
@@ -235,6 +238,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             const float texelsPerVpl = float(rsm_->size() / side) * float(rsm_->size() / side);
             src.vplArea = rsm_->texelArea() * texelsPerVpl;
             src.lightDirection = lightDir;
+            src.whiteTexelFlux = sun.radiance * rsm_->texelArea();
             // Camera surfels in the finest cascade only: there a G-buffer sample is small next to
             // a cell and the coverage is stable as the camera moves; in a coarse cell one sample
             // of a small or partly seen surface would mark the whole cell, and whether one lands
@@ -242,6 +246,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             if (c == 0) {
                 src.depth = gbuffer.depth;
                 src.normal = gbuffer.normal;
+                src.albedo = gbuffer.albedo;
             }
             src.invViewProjection = camera.invViewProjection;
             src.cameraPosition = camera.position;
@@ -262,6 +267,11 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                                 geometry_ ? geometry_->faceTransmittance() : rhi::TextureHandle{},
                                 &cascades_[c].result, c + 1 < cascades_.size() ? &handoff : nullptr);
             work(propagateWork(settings_));
+        }
+        if (bounces_) {
+            auto s = scope("bounces");
+            bounces_->add(cmd, *volumes_, *geometry_, settings_.bounces, settings_.iterations, cascades_[c].result);
+            work(bounceWork(settings_));
         }
     }
     if (analyticLights_) {

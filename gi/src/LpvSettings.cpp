@@ -45,6 +45,9 @@ const engine::BoolSetting kOcclusion{
 const engine::BoolSetting kGlossy{
     "gi.glossy", true,
     "Glossy reflections: a few cells marched along the reflected view ray through the LPV (by roughness)"};
+const engine::IntSetting kBounces{
+    "gi.bounces", 1, 1, 3,
+    "Light bounces: 2-3 reflect the light the geometry volume blocks off its surfels (needs gi.occlusion)"};
 const engine::IntSetting kDebugSlice{"gi.debug_slice", 16, 0, 63,
                                      "Volume slice (z) shown by gi.debug_view=volume_slice"};
 
@@ -71,6 +74,7 @@ LpvSettings readLpvSettings(const engine::Config& config) {
     s.damping = config.get(kDamping);
     s.occlusion = config.get(kOcclusion);
     s.glossy = config.get(kGlossy);
+    s.bounces = uint32_t(config.get(kBounces));
     s.budgetPolicy = readGiBudgetPolicy(config);
     const uint32_t side = s.vplGridSide();
     if (side * side != s.vplCount || s.rsmSize % side != 0)
@@ -79,6 +83,11 @@ LpvSettings readLpvSettings(const engine::Config& config) {
                                       ": expected a square number whose side divides gi.rsm_size (" +
                                       std::to_string(s.rsmSize) + "), e.g. " +
                                       std::to_string((s.rsmSize / 4) * (s.rsmSize / 4)));
+    if (s.bounces > 1 && !s.occlusion)
+        throw engine::ConfigError(config.origin(kBounces.decl()), 0,
+                                  "'gi.bounces' = " + std::to_string(s.bounces) +
+                                      ": expected 1 while gi.occlusion is false (further bounces reflect the "
+                                      "light the geometry volume blocks)");
     return s;
 }
 

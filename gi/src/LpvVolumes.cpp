@@ -87,7 +87,9 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
             return device.createTexture({TextureKind::Tex3D, f, n, n, n, 1, usage | kTextureTransfer,
                                          std::string("lpv ") + what + " " + channels[c], "gi.lpv"});
         };
-        inject_[size_t(c)] = volume(injectFormat, kTextureColorTarget | kTextureSampled, "injection");
+        // Storage too: further bounces write their reflected light here (MultipleBounces).
+        inject_[size_t(c)] =
+            volume(injectFormat, kTextureColorTarget | kTextureSampled | kTextureStorage, "injection");
         accum_[size_t(c)] = volume(shFormat, kTextureStorage | kTextureSampled, "accumulated");
     }
     for (uint32_t t = 0; t < packedTexelCount(settings.shFormat); ++t)

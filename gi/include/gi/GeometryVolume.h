@@ -19,6 +19,10 @@ struct GeometrySources {
     glm::vec3 lightDirection{0.0f, -1.0f, 0.0f};
     rhi::TextureHandle depth;  // camera depth (D32F); none: light surfels only
     rhi::TextureHandle normal; // camera world normals
+    rhi::TextureHandle albedo; // camera albedo (G-buffer, sRGB); with depth
+    // The flux an RSM texel of albedo 1 reflects (sun irradiance x texel area): a VPL's albedo is
+    // its flux over this times its texel count (for multiple bounces).
+    glm::vec3 whiteTexelFlux{0.0f};
     glm::mat4 invViewProjection{1.0f};
     glm::vec3 cameraPosition{0.0f};
 };
@@ -43,12 +47,17 @@ public:
     // surfels and from the camera's (RGBA8 each).
     rhi::TextureHandle lightCoverage() const { return coverage_; }
     rhi::TextureHandle cameraCoverage() const { return cameraCoverage_; }
+    // Per LPV cell: the mean albedo of the surfels at its corners (RGBA8, rgb; a: 1 where any),
+    // what multiple bounces reflect with.
+    rhi::TextureHandle surfelAlbedo() const { return albedo_; }
     uint32_t cameraSampleCount(uint32_t width, uint32_t height) const;
 
 private:
     rhi::Device& device_;
     uint32_t lpvSize_;
     rhi::TextureHandle coverage_, cameraCoverage_, faces_;
+    // Per GV cell: rgb sum of surfel albedos, a: surfel count (RGBA16F, additive).
+    rhi::TextureHandle albedoSum_, albedo_;
     rhi::GraphicsPipelineHandle vplPipeline_, cameraPipeline_;
     rhi::ComputePipelineHandle facesPipeline_;
     rhi::SamplerHandle pointSampler_;

@@ -19,6 +19,8 @@ engine::WorkCounts propagateWork(const LpvSettings& s);
 // and written every iteration) and the benchmark keeps as its baseline. The cost model is
 // calibrated against the published console times with these counts, since that is the kernel
 // those times measured.
+// Bounces 2..gi.bounces of one cascade: per bounce a reflection pass, the propagation, the sum.
+engine::WorkCounts bounceWork(const LpvSettings& s);
 engine::WorkCounts gatherPropagationWork(const LpvSettings& s);
 // The geometry volume: light and camera surfels drawn per slice, then the face transmittance.
 engine::WorkCounts occlusionWork(const LpvSettings& s, uint64_t cameraSamples);

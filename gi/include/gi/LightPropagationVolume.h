@@ -16,6 +16,7 @@
 #include "gi/LpvReference.h"
 #include "gi/LpvSettings.h"
 #include "gi/LpvVolumes.h"
+#include "gi/MultipleBounces.h"
 #include "gi/PointLightInjection.h"
 #include "gi/ReflectiveShadowMap.h"
 #include "platforms/PlatformProfile.h"
@@ -92,6 +93,7 @@ private:
     std::unique_ptr<ReflectiveShadowMap> rsm_;
     std::unique_ptr<LpvVolumes> volumes_;
     std::unique_ptr<GeometryVolume> geometry_;
+    std::unique_ptr<MultipleBounces> bounces_; // gi.bounces > 1
     std::unique_ptr<PointLightInjection> pointLights_;
     GlossyReflections glossy_;
     bool analyticLights_ = true;

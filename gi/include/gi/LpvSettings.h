@@ -30,6 +30,7 @@ struct LpvSettings {
     bool damping = true;
     bool occlusion = true; // geometry volume attenuates propagation
     bool glossy = true;    // glossy reflections marched through the volume
+    uint32_t bounces = 1;  // light reflected off the geometry volume's surfels (needs occlusion)
     GiBudgetPolicy budgetPolicy = GiBudgetPolicy::Fixed;
 
     // Side of the VPL grid the RSM is clustered into (sqrt of vplCount).

@@ -1,0 +1,29 @@
+// Multiple bounces, the sum (gi/MultipleBounces.h): a further bounce's propagated light is added
+// to the cascade's result. Included by the generated lpv_bounce_add_<format>.comp (SH_FORMAT: the
+// result's storage format).
+#include "lpv_common.glsl"
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+
+layout(binding = 0, std140) uniform Add {
+    ivec4 grid;  // x: cells per axis
+    vec4 encode; // x: rgba8 range; y: 1 when the volumes are range-encoded
+} params;
+layout(binding = 1) uniform sampler3D bounceRed;
+layout(binding = 2) uniform sampler3D bounceGreen;
+layout(binding = 3) uniform sampler3D bounceBlue;
+layout(binding = 4, SH_FORMAT) uniform image3D resultRed;
+layout(binding = 5, SH_FORMAT) uniform image3D resultGreen;
+layout(binding = 6, SH_FORMAT) uniform image3D resultBlue;
+
+vec4 decoded(vec4 v) { return params.encode.y != 0.0 ? decodeShRange(v, params.encode.x) : v; }
+vec4 encoded(vec4 v) { return params.encode.y != 0.0 ? encodeShRange(v, params.encode.x) : v; }
+
+void main() {
+    const ivec3 c = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(c, ivec3(params.grid.x)))) return;
+    imageStore(resultRed, c, encoded(decoded(imageLoad(resultRed, c)) + decoded(texelFetch(bounceRed, c, 0))));
+    imageStore(resultGreen, c,
+               encoded(decoded(imageLoad(resultGreen, c)) + decoded(texelFetch(bounceGreen, c, 0))));
+    imageStore(resultBlue, c, encoded(decoded(imageLoad(resultBlue, c)) + decoded(texelFetch(bounceBlue, c, 0))));
+}
