@@ -5,8 +5,8 @@
 //     and the largest difference between their results.
 //  1b. Analytic lights: the gi/lights pass alone (gi/PointLightInjection.h) for 128 and 1024 point
 //     lights of the lights hall, 32^3, RGBA16F; median GPU time.
-//  2. Frames: the Cornell box and the atrium at 1280x720 with GI on (32^3, 8 iterations) along a
-//     scripted camera; per-pass median GPU times from the frame profiler, GI share of the frame,
+//  2. Frames: the Cornell box and the atrium at 1280x720 with GI on (3 cascades of 32^3, 8
+//     iterations, 2 bounces, occlusion, glossy) along a scripted camera, the sun moving; per-pass median GPU times from the frame profiler, GI share of the frame,
 //     memory by category, and the predicted Xbox 360 / PS3 GI time of the frame's work and of the
 //     CryEngine 3 console setup (32^3, 128^2 RSM, 6 iterations, RGBA8).
 //
@@ -227,6 +227,7 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
     config.applyOverride("gi.enabled=true");
     config.applyOverride("gi.grid_size=32");
     config.applyOverride("gi.iterations=8");
+    config.applyOverride("gi.bounces=2");
     config.applyOverride(sceneName == "atrium" ? "gi.cell_size=1.0" : "gi.cell_size=0.2");
     const engine::Scene scene = engine::buildBuiltinScene(sceneName);
     const uint32_t w = 1280, h = 720;
@@ -364,18 +365,19 @@ void consolePrediction() {
                 sx, sp);
 
     // The console preset with every feature of this engine that runs: 3 cascades of 32^3, 8
-    // iterations, occlusion (camera surfels in the finest cascade: 160 x 90 samples), RGBA8,
+    // iterations, 2 bounces, occlusion (camera surfels in the finest cascade: 160 x 90 samples), RGBA8,
     // RSM 128^2, a 100k-triangle scene. Every cascade every frame, and as gi.budget_policy=adapt's
     // first step runs it (coarse cascades every 2 frames: the busiest frame updates one of them).
     gi::LpvSettings c = s;
     c.cascades = 3;
     c.iterations = 8;
     c.occlusion = true;
+    c.bounces = 2;
     const auto cascadeMs = [&](const platforms::PlatformProfile& p, bool finest) {
         double ms = 0;
         for (const engine::WorkCounts& w :
              {gi::rsmWork(c, 100000), gi::vplClusterWork(c), gi::occlusionWork(c, finest ? 160u * 90u : 0u),
-              gi::injectWork(c), gi::propagateWork(c)})
+              gi::injectWork(c), gi::propagateWork(c), gi::bounceWork(c)})
             ms += engine::predictCost(w, p.throughput).ms;
         return ms;
     };
@@ -383,7 +385,7 @@ void consolePrediction() {
         const double lookup = engine::predictCost(gi::lookupWork(c, pixels), p->throughput).ms;
         const double all = cascadeMs(*p, true) + 2 * cascadeMs(*p, false) + lookup;
         const double staggered = cascadeMs(*p, true) + cascadeMs(*p, false) + lookup;
-        std::printf("Console preset (3 x 32^3 cascades, 8 iterations, occlusion, RGBA8, RSM 128^2) on %s: "
+        std::printf("Console preset (3 x 32^3 cascades, 8 iterations, 2 bounces, occlusion, RGBA8, RSM 128^2) on %s: "
                     "predicted GI %.2f ms with every cascade every frame, %.2f ms with coarse cascades every "
                     "2 frames (goal: at most 3.3 ms)\n",
                     p->name.c_str(), all, staggered);

@@ -61,6 +61,7 @@ uint64_t steadyStateAllocations(const test::BackendUnderTest& backend, const eng
     auto device = rhi::createDevice(config);
     engine::Config settings;
     settings.applyOverride("gi.enabled=true");
+    settings.applyOverride("gi.bounces=2"); // every GI pass, the further bounce included
     settings.set(*engine::SettingRegistry::global().find("gi.cell_size"), double(cellSize), "test");
     engine::Renderer renderer(*device, 160, 120);
     renderer.setScene(scene);
