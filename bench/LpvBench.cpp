@@ -23,6 +23,7 @@
 #include "engine/render/Renderer.h"
 #include "engine/scene/BuiltinScenes.h"
 #include "gi/GiWork.h"
+#include "gi/GlossyReflections.h"
 #include "gi/LightPropagationVolume.h"
 #include "gi/LpvVolumes.h"
 #include "gi/PointLightInjection.h"
@@ -373,23 +374,39 @@ void consolePrediction() {
     c.iterations = 8;
     c.occlusion = true;
     c.bounces = 2;
-    const auto cascadeMs = [&](const platforms::PlatformProfile& p, bool finest) {
-        double ms = 0;
-        for (const engine::WorkCounts& w :
-             {gi::rsmWork(c, 100000), gi::vplClusterWork(c), gi::occlusionWork(c, finest ? 160u * 90u : 0u),
-              gi::injectWork(c), gi::propagateWork(c), gi::bounceWork(c)})
-            ms += engine::predictCost(w, p.throughput).ms;
-        return ms;
+    struct Pass {
+        const char* name;
+        engine::WorkCounts work;
+        uint32_t perFrame, perFrameStaggered; // runs in a frame: every cascade / coarse every 2 frames
     };
-    for (const auto* p : {&x360, &ps3}) {
-        const double lookup = engine::predictCost(gi::lookupWork(c, pixels), p->throughput).ms;
-        const double all = cascadeMs(*p, true) + 2 * cascadeMs(*p, false) + lookup;
-        const double staggered = cascadeMs(*p, true) + cascadeMs(*p, false) + lookup;
-        std::printf("Console preset (3 x 32^3 cascades, 8 iterations, 2 bounces, occlusion, RGBA8, RSM 128^2) on %s: "
-                    "predicted GI %.2f ms with every cascade every frame, %.2f ms with coarse cascades every "
-                    "2 frames (goal: at most 3.3 ms)\n",
-                    p->name.c_str(), all, staggered);
+    const engine::WorkCounts fineOcclusion = gi::occlusionWork(c, 160u * 90u), coarseOcclusion = gi::occlusionWork(c, 0);
+    const Pass passes[] = {
+        {"rsm (per cascade)", gi::rsmWork(c, 100000), 3, 2},
+        {"vpl (per cascade)", gi::vplClusterWork(c), 3, 2},
+        {"occlusion, finest (camera surfels)", fineOcclusion, 1, 1},
+        {"occlusion, coarse cascade", coarseOcclusion, 2, 1},
+        {"inject (per cascade)", gi::injectWork(c), 3, 2},
+        {"propagate (per cascade)", gi::propagateWork(c), 3, 2},
+        {"bounces (per cascade)", gi::bounceWork(c), 3, 2},
+        {"lookup (3 cascades)", gi::lookupWork(c, pixels), 1, 1},
+        {"glossy (every pixel marched)", gi::glossyWork(pixels), 1, 1},
+    };
+    std::printf("\nConsole preset (3 x 32^3 cascades, 8 iterations, 2 bounces, occlusion, glossy, RGBA8, RSM "
+                "128^2, 1280x720), predicted ms per run of each pass:\n\n"
+                "| pass | runs per frame | x360 | ps3 |\n|---|---|---|---|\n");
+    double all[2] = {}, staggered[2] = {};
+    for (const Pass& pass : passes) {
+        const double x = engine::predictCost(pass.work, x360.throughput).ms;
+        const double y = engine::predictCost(pass.work, ps3.throughput).ms;
+        std::printf("| %s | %u (%u) | %.2f | %.2f |\n", pass.name, pass.perFrame, pass.perFrameStaggered, x, y);
+        all[0] += x * pass.perFrame, all[1] += y * pass.perFrame;
+        staggered[0] += x * pass.perFrameStaggered, staggered[1] += y * pass.perFrameStaggered;
     }
+    std::printf("\n(runs in brackets: coarse cascades every 2 frames, gi.budget_policy=adapt's first step)\n");
+    for (int p = 0; p < 2; ++p)
+        std::printf("Console preset on %s: predicted GI %.2f ms with every cascade every frame, %.2f ms with "
+                    "coarse cascades every 2 frames (goal: at most 3.3 ms)\n",
+                    p == 0 ? "x360" : "ps3", all[p], staggered[p]);
 }
 
 } // namespace
