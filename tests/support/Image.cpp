@@ -3,6 +3,9 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include <doctest/doctest.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <sstream>
@@ -68,6 +71,17 @@ std::string describe(glm::vec4 v) {
     std::ostringstream s;
     s << "(" << v.x << ", " << v.y << ", " << v.z << ", " << v.w << ")";
     return s.str();
+}
+
+void checkBackendsAgree(const Image& gl, const Image& vk, const char* what, float fraction) {
+    float peak = 0.0f;
+    for (const glm::vec4& t : vk.texels)
+        peak = std::max({peak, t.r, t.g, t.b});
+    REQUIRE(peak > 0.0f);
+    const ImageDifference d = compareImages(gl, vk, fraction * peak);
+    MESSAGE(std::string(what) << " GL vs Vulkan: max difference " << d.maxAbs << " (peak " << peak << "), " << d.texelsOver
+                 << " pixels over " << fraction * peak);
+    CHECK(d.texelsOver <= gl.texels.size() / 100);
 }
 
 } // namespace lpv::test

@@ -30,4 +30,8 @@ ImageDifference compareImages(const Image& a, const Image& b, float tolerance);
 
 std::string describe(glm::vec4 v);
 
+// The GL and Vulkan images of one lighting term agree: within `fraction` of the brightest value
+// (any channel) of `vk`, on all but 1% of the pixels. Checks (doctest) and reports the figures.
+void checkBackendsAgree(const Image& gl, const Image& vk, const char* what, float fraction = 0.01f);
+
 } // namespace lpv::test
