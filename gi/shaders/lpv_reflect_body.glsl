@@ -11,6 +11,7 @@
 // is reflecting each iteration's light in turn, which is what the paper does inside propagation.
 // Included by the generated lpv_reflect_<format>.comp (INJECT_FORMAT: the injection volume's).
 #include "lpv_common.glsl"
+#include "propagation_transfer.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
@@ -27,12 +28,6 @@ layout(binding = 6, INJECT_FORMAT) uniform writeonly image3D injectedRed;
 layout(binding = 7, INJECT_FORMAT) uniform writeonly image3D injectedGreen;
 layout(binding = 8, INJECT_FORMAT) uniform writeonly image3D injectedBlue;
 
-// The propagation constants the L0 of a neighbour's transfer is made of (propagate_body.glsl).
-const float FAR_W = 0.4006696846 / PI;
-const float SIDE_W = 0.4234413544 / PI;
-const float AX = 0.894427191;
-const float KA = SH_COS_C0 * SH_Y0 * (FAR_W + 4.0 * SIDE_W);
-const float KB = SH_COS_C0 * SH_Y1 * (FAR_W + 4.0 * AX * SIDE_W);
 
 vec4 source(sampler3D s, ivec3 c) {
     vec4 v = texelFetch(s, c, 0);
