@@ -21,7 +21,8 @@ struct InjectUniforms {
 
 } // namespace
 
-GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize) : device_(device), lpvSize_(lpvSize) {
+GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepAlbedo)
+    : device_(device), lpvSize_(lpvSize) {
     using namespace rhi;
     const uint32_t g = lpvSize + 1;
     // 8 bits are enough: the faces use coverage up to 1 (a cell face fully covered), and additive
@@ -35,26 +36,33 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize) : device_(
     faces_ = device.createTexture({TextureKind::Tex3D, Format::RGBA8Unorm, lpvSize, lpvSize, lpvSize, 1,
                                    kTextureStorage | kTextureSampled | kTextureTransfer,
                                    "gv face transmittance", "gi.gv"});
-    albedoSum_ = device.createTexture({TextureKind::Tex3D, Format::RGBA16F, g, g, g, 1,
-                                       kTextureColorTarget | kTextureSampled | kTextureTransfer, "gv albedo sum",
-                                       "gi.gv"});
-    albedo_ = device.createTexture({TextureKind::Tex3D, Format::RGBA8Unorm, lpvSize, lpvSize, lpvSize, 1,
-                                    kTextureStorage | kTextureSampled | kTextureTransfer, "gv surfel albedo",
-                                    "gi.gv"});
+    if (keepAlbedo) {
+        albedoSum_ = device.createTexture({TextureKind::Tex3D, Format::RGBA16F, g, g, g, 1,
+                                           kTextureColorTarget | kTextureSampled | kTextureTransfer,
+                                           "gv albedo sum", "gi.gv"});
+        albedo_ = device.createTexture({TextureKind::Tex3D, Format::RGBA8Unorm, lpvSize, lpvSize, lpvSize, 1,
+                                        kTextureStorage | kTextureSampled | kTextureTransfer,
+                                        "gv surfel albedo", "gi.gv"});
+    }
     GraphicsPipelineDesc d;
     d.vertex = &shaders::gv_vpl_vert;
-    d.fragment = &shaders::gv_inject_frag;
+    d.fragment = keepAlbedo ? &shaders::gv_inject_albedo_frag : &shaders::gv_inject_coverage_frag;
     d.topology = PrimitiveTopology::PointList;
-    d.colorFormats = {Format::RGBA8Unorm, Format::RGBA8Unorm, Format::RGBA16F};
     BlendState max = BlendState::additive();
     max.colorOp = max.alphaOp = BlendOp::Max;
-    d.blend = {BlendState::additive(), max, BlendState::additive()};
+    d.colorFormats = {Format::RGBA8Unorm, Format::RGBA8Unorm};
+    d.blend = {BlendState::additive(), max};
+    if (keepAlbedo) {
+        d.colorFormats.push_back(Format::RGBA16F);
+        d.blend.push_back(BlendState::additive());
+    }
     d.debugName = "gv inject light surfels";
     vplPipeline_ = device.createPipeline(d);
     d.vertex = &shaders::gv_camera_vert;
     d.debugName = "gv inject camera surfels";
     cameraPipeline_ = device.createPipeline(d);
-    facesPipeline_ = device.createPipeline(ComputePipelineDesc{&shaders::gv_faces_comp, "gv faces"});
+    facesPipeline_ = device.createPipeline(ComputePipelineDesc{
+        keepAlbedo ? &shaders::gv_faces_albedo_comp : &shaders::gv_faces_coverage_comp, "gv faces"});
     pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
 }
 
@@ -63,8 +71,8 @@ GeometryVolume::~GeometryVolume() {
     device_.destroy(coverage_);
     device_.destroy(cameraCoverage_);
     device_.destroy(faces_);
-    device_.destroy(albedoSum_);
-    device_.destroy(albedo_);
+    if (albedoSum_) device_.destroy(albedoSum_);
+    if (albedo_) device_.destroy(albedo_);
     device_.destroy(vplPipeline_);
     device_.destroy(cameraPipeline_);
     device_.destroy(facesPipeline_);
@@ -81,7 +89,7 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
     using namespace rhi;
     cmd.clearTexture(coverage_, {0, 0, 0, 0});
     cmd.clearTexture(cameraCoverage_, {0, 0, 0, 0});
-    cmd.clearTexture(albedoSum_, {0, 0, 0, 0});
+    if (albedoSum_) cmd.clearTexture(albedoSum_, {0, 0, 0, 0});
     const uint32_t g = lpvSize_ + 1;
     InjectUniforms u;
     u.gridOrigin = glm::vec4(grid.origin, grid.cellSize);
@@ -99,7 +107,7 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
         pass.colors[0] = {coverage_, 0, slice, LoadOp::Load};
         pass.colors[1] = {cameraCoverage_, 0, slice, LoadOp::Load};
         pass.colors[2] = {albedoSum_, 0, slice, LoadOp::Load};
-        pass.colorCount = 3;
+        pass.colorCount = albedoSum_ ? 3 : 2;
         pass.debugName = "gv inject slice";
         cmd.beginRenderPass(pass);
         u.grid = glm::ivec4(int(g), int(slice), int(src.vplCount), int(kCameraSamplesPerRow));
@@ -125,8 +133,10 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
     cmd.bindTexture(1, coverage_, pointSampler_);
     cmd.bindStorageImage(2, faces_);
     cmd.bindTexture(3, cameraCoverage_, pointSampler_);
-    cmd.bindTexture(4, albedoSum_, pointSampler_);
-    cmd.bindStorageImage(5, albedo_);
+    if (albedo_) {
+        cmd.bindTexture(4, albedoSum_, pointSampler_);
+        cmd.bindStorageImage(5, albedo_);
+    }
     cmd.dispatch((lpvSize_ + 3) / 4, (lpvSize_ + 3) / 4, (lpvSize_ + 3) / 4);
 }
 

@@ -40,11 +40,12 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
         out.push_back({"geometry volume coverage, light surfels", "gi.gv", gvCells * 4});
         out.push_back({"geometry volume coverage, camera surfels", "gi.gv", gvCells * 4});
         out.push_back({"face transmittance", "gi.gv", cells * 4});
+    }
+    if (s.bounces > 1) { // needs occlusion (readLpvSettings)
         out.push_back({"geometry volume albedo sum", "gi.gv", gvCells * 8});
         out.push_back({"surfel albedo", "gi.gv", cells * 4});
-    }
-    if (s.bounces > 1)
         out.push_back({"bounce scratch (3 SH textures)", "gi.lpv", 3 * cells * shBytes});
+    }
     return out;
 }
 

@@ -128,7 +128,7 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     cascades_[0].result = volumes_->accumulated();
     for (uint32_t c = 1; c < s.cascades; ++c)
         cascades_[c].result = volumes_->createResult("lpv cascade " + std::to_string(c));
-    if (s.occlusion) geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize);
+    if (s.occlusion) geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize, s.bounces > 1);
     if (s.bounces > 1) bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_);
     pointLights_ = std::make_unique<PointLightInjection>(device_, s);
     vpls_ = device_.createBuffer({uint64_t(s.vplCount) * 48, rhi::kBufferStorage | rhi::kBufferTransfer,

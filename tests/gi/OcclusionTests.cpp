@@ -73,7 +73,7 @@ TEST_CASE("gi: a thin wall keeps the light of a lit area out of a dark room (occ
             float open = 0.0f, walled = 0.0f, wallCoverage = 0.0f;
             {
                 gi::LpvVolumes volumes(*device, s);
-                gi::GeometryVolume geometry(*device, kCells);
+                gi::GeometryVolume geometry(*device, kCells, false);
                 for (bool occlusion : {false, true}) {
                     rhi::CommandList& cmd = device->beginFrame();
                     gi::GeometrySources src;

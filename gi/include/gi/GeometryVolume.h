@@ -32,7 +32,10 @@ public:
     // Camera samples per row of the depth buffer (rows follow its aspect).
     static constexpr uint32_t kCameraSamplesPerRow = 160;
 
-    GeometryVolume(rhi::Device& device, uint32_t lpvSize);
+    // keepAlbedo: also gather the surfels' albedo (surfelAlbedo()), which only multiple bounces
+    // read (gi.bounces > 1); it costs 8 bytes per GV cell and 4 per LPV cell (GiBudget.cpp), more
+    // than the console setup's budget has left.
+    GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepAlbedo);
     ~GeometryVolume();
     GeometryVolume(const GeometryVolume&) = delete;
     GeometryVolume& operator=(const GeometryVolume&) = delete;
@@ -48,7 +51,7 @@ public:
     rhi::TextureHandle lightCoverage() const { return coverage_; }
     rhi::TextureHandle cameraCoverage() const { return cameraCoverage_; }
     // Per LPV cell: the mean albedo of the surfels at its corners (RGBA8, rgb; a: 1 where any),
-    // what multiple bounces reflect with.
+    // what multiple bounces reflect with. None unless made with keepAlbedo.
     rhi::TextureHandle surfelAlbedo() const { return albedo_; }
     uint32_t cameraSampleCount(uint32_t width, uint32_t height) const;
 
