@@ -362,6 +362,16 @@ void consolePrediction() {
                 "predicted GI "
                 "%.2f ms on Xbox 360 (published 3.5 ms), %.2f ms on PS3 (published 3.4 ms)\n",
                 sx, sp);
+    // A spot light with its own RSM (gi.light_rsms=1): its RSM and clustering, and its VPLs in
+    // the injection of that one cascade.
+    const auto spotMs = [&](const platforms::PlatformProfile& p) {
+        return engine::predictCost(gi::lightRsmWork(s, 1, 100000), p.throughput).ms +
+               engine::predictCost(gi::injectWork(s, 2), p.throughput).ms -
+               engine::predictCost(gi::injectWork(s), p.throughput).ms;
+    };
+    const double spotX = spotMs(x360), spotP = spotMs(ps3);
+    std::printf("  plus one spot light RSM of 128^2 (gi.light_rsms=1): %.2f ms on Xbox 360, %.2f ms on PS3\n",
+                spotX, spotP);
 
     // The console preset with every feature of this engine that runs: 3 cascades of 32^3, 8
     // iterations, occlusion (camera surfels in the finest cascade: 160 x 90 samples), RGBA8,

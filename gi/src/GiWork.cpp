@@ -30,17 +30,27 @@ WorkCounts vplClusterWork(const LpvSettings& s) {
     return w;
 }
 
-WorkCounts injectWork(const LpvSettings& s) {
+WorkCounts injectWork(const LpvSettings& s, uint32_t sources) {
     const uint64_t injectBytes = s.shFormat == ShFormat::Rgba32f ? 16 : 8;
+    const uint64_t vpls = uint64_t(s.vplCount) * sources;
     WorkCounts w;
     // Every VPL is submitted once per slice; one slice keeps it.
-    w.primitives = uint64_t(s.vplCount) * s.gridSize;
+    w.primitives = vpls * s.gridSize;
     w.aluOps = w.primitives * 20;
-    w.pixelsShaded = s.vplCount;
-    w.texelsWritten = uint64_t(s.vplCount) * 3;
+    w.pixelsShaded = vpls;
+    w.texelsWritten = vpls * 3;
     w.bytesMoved = w.primitives * 48 + w.texelsWritten * injectBytes * 2; // blending reads and writes
     w.cells = uint64_t(s.gridSize) * s.gridSize * s.gridSize;
     return w;
+}
+
+WorkCounts lightRsmWork(const LpvSettings& s, uint32_t lights, uint64_t sceneTriangles) {
+    // Each light: the whole scene into a spot RSM of gi.rsm_size (one more position interpolant
+    // and the cone, window and solid angle per texel), clustered like the sun's.
+    WorkCounts one = rsmWork(s, sceneTriangles);
+    one += vplClusterWork(s);
+    one.aluOps += uint64_t(s.rsmSize) * s.rsmSize * 15;
+    return one * lights;
 }
 
 WorkCounts propagateWork(const LpvSettings& s) {

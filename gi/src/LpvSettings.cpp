@@ -45,6 +45,9 @@ const engine::BoolSetting kOcclusion{
 const engine::BoolSetting kGlossy{
     "gi.glossy", true,
     "Glossy reflections: a few cells marched along the reflected view ray through the LPV (by roughness)"};
+const engine::IntSetting kLightRsms{"gi.light_rsms", 1, 0, 4,
+                                    "Spot lights (the brightest reaching the volume) with their own RSM: "
+                                    "bounce light in the colour they hit"};
 const engine::IntSetting kDebugSlice{"gi.debug_slice", 16, 0, 63,
                                      "Volume slice (z) shown by gi.debug_view=volume_slice"};
 
@@ -71,6 +74,7 @@ LpvSettings readLpvSettings(const engine::Config& config) {
     s.damping = config.get(kDamping);
     s.occlusion = config.get(kOcclusion);
     s.glossy = config.get(kGlossy);
+    s.lightRsms = uint32_t(config.get(kLightRsms));
     s.budgetPolicy = readGiBudgetPolicy(config);
     const uint32_t side = s.vplGridSide();
     if (side * side != s.vplCount || s.rsmSize % side != 0)

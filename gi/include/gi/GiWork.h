@@ -11,7 +11,10 @@ namespace lpv::gi {
 
 engine::WorkCounts rsmWork(const LpvSettings& s, uint64_t sceneTriangles);
 engine::WorkCounts vplClusterWork(const LpvSettings& s);
-engine::WorkCounts injectWork(const LpvSettings& s);
+// `sources`: lights whose VPLs share the pass (the sun and the spot lights with an RSM).
+engine::WorkCounts injectWork(const LpvSettings& s, uint32_t sources = 1);
+// The RSMs and VPL clustering of `lights` spot lights (SpotLightRsms), once per frame.
+engine::WorkCounts lightRsmWork(const LpvSettings& s, uint32_t lights, uint64_t sceneTriangles);
 // All iterations of the shipped kernel.
 engine::WorkCounts propagateWork(const LpvSettings& s);
 // All iterations of the straightforward 5-face gather the CryEngine 3 shaders use (one cell per

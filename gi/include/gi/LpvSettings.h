@@ -31,6 +31,8 @@ struct LpvSettings {
     bool occlusion = true; // geometry volume attenuates propagation
     bool glossy = true;    // glossy reflections marched through the volume
     GiBudgetPolicy budgetPolicy = GiBudgetPolicy::Fixed;
+    // Spot lights with a reflective shadow map of their own (SpotLightRsms).
+    uint32_t lightRsms = 1;
 
     // Side of the VPL grid the RSM is clustered into (sqrt of vplCount).
     uint32_t vplGridSide() const;
