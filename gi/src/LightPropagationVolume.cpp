@@ -200,13 +200,11 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     cmd.beginMarker("gi");
     static const char* const kCascadeScopes[4] = {"cascade0", "cascade1", "cascade2", "cascade3"};
     const uint32_t side = settings_.vplGridSide();
-    // The spot lights' RSMs follow the lights, not the cascades: drawn once, injected into each.
-    std::array<VplSource, 1 + SpotLightRsms::kMaxLights> vplSources;
-    const uint32_t spotRsms = uint32_t(spotRsms_->selection().size());
-    if (spotRsms > 0) {
+    // The spot lights' RSMs follow the lights, not the cascades: drawn once, injected into each
+    // cascade they reach.
+    if (const uint32_t spotRsms = uint32_t(spotRsms_->selection().size())) {
         auto s = scope("lightrsm");
         spotRsms_->render(cmd, *renderer_->scene(), renderer_->punctualLights());
-        std::copy(spotRsms_->sources().begin(), spotRsms_->sources().end(), vplSources.begin() + 1);
         work(lightRsmWork(settings_, spotRsms, renderer_->scene()->triangleCount()));
     }
     // Coarsest first: each finer cascade takes the light from beyond its border from the one
@@ -267,9 +265,11 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         }
         {
             auto s = scope("inject");
-            vplSources[0] = {vpls_, settings_.vplCount, glm::vec4(lightDir, 0.0f)};
-            volumes_->inject(cmd, std::span(vplSources.data(), 1 + spotRsms), grid, settings_.intensity);
-            work(injectWork(settings_, 1 + spotRsms));
+            std::array<VplSource, 1 + SpotLightRsms::kMaxLights> sources;
+            sources[0] = {vpls_, settings_.vplCount, glm::vec4(lightDir, 0.0f)};
+            const uint32_t n = 1 + spotRsms_->sourcesReaching(grid, std::span(sources).subspan(1));
+            volumes_->inject(cmd, std::span(sources.data(), n), grid, settings_.intensity);
+            work(injectWork(settings_, n));
         }
         {
             auto s = scope("propagate");

@@ -2,7 +2,6 @@
 #include "gi/SpotLightRsms.h"
 
 #include "GiShaders.h"
-#include "gi/AnalyticLight.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -91,8 +90,18 @@ SpotLightRsms::~SpotLightRsms() {
 void SpotLightRsms::select(std::span<const engine::Light> lights, const VolumeGrid& reach) {
     count_ = selectRsmSpotLights(lights, reach, std::span(selection_.data(), capacity_));
     reachGrid_ = reach;
-    for (uint32_t k = 0; k < count_; ++k)
-        sources_[k] = {vpls_[k], settings_.vplCount, glm::vec4(lights[selection_[k]].position, 1.0f)};
+    for (uint32_t k = 0; k < count_; ++k) {
+        const engine::Light& spot = lights[selection_[k]];
+        sources_[k] = {vpls_[k], settings_.vplCount, glm::vec4(spot.position, 1.0f)};
+        reach_[k] = analyticLight(spot, 1.0f);
+    }
+}
+
+uint32_t SpotLightRsms::sourcesReaching(const VolumeGrid& grid, std::span<VplSource> out) const {
+    uint32_t n = 0;
+    for (uint32_t k = 0; k < count_ && n < out.size(); ++k)
+        if (reachesVolume(reach_[k], grid)) out[n++] = sources_[k];
+    return n;
 }
 
 bool SpotLightRsms::selected(uint32_t index) const {

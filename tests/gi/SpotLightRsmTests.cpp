@@ -1,6 +1,9 @@
 // Spot lights with their own RSM on the CPU (gi/SpotLightRsms.h, gi/ReflectiveShadowMap.h): the
 // perspective fit holds the whole cone and no more than it needs, its depth range follows the range
-// and the volume, the choice of lights, and the budget counts their memory.
+// and the volume, the choice of lights, the cascades each light's VPLs go to, and the budget counts
+// their memory.
+#include "../support/TestDevice.h"
+
 #include "gi/GiBudget.h"
 #include "gi/ReflectiveShadowMap.h"
 #include "gi/SpotLightRsms.h"
@@ -120,4 +123,29 @@ TEST_CASE("spot rsm: the GI budget counts every spot light's RSM and VPLs") {
     CHECK(std::count_if(resources.begin(), resources.end(), [](const GiResource& r) {
               return r.name.find("spot light 1") != std::string::npos;
           }) == 2);
+}
+
+TEST_CASE("spot rsm: a cascade gets the VPLs of the spot lights that reach it, and no others") {
+    auto device = test::nullDevice();
+    LpvSettings s;
+    s.lightRsms = 3;
+    SpotLightRsms rsms(*device, s);
+    const VolumeGrid coarse{{-16.0f, -16.0f, -16.0f}, 1.0f, 32}, fine{{-4.0f, -4.0f, -4.0f}, 0.25f, 32};
+    const std::vector<engine::Light> lights = {
+        spotLight({0, 2, 0}, {0, -1, 0}, 0.5f, 4.0f, 3.0f),   // in both
+        spotLight({10, 2, 0}, {0, -1, 0}, 0.5f, 4.0f, 3.0f),  // 6 m from the fine volume, range 3
+        spotLight({-12, 2, 0}, {1, 0, 0}, 0.5f, 4.0f, 0.0f)}; // infinite range: everywhere
+    rsms.select(lights, coarse);
+    REQUIRE(rsms.selection().size() == 3);
+    REQUIRE(rsms.sources().size() == 3);
+    std::array<VplSource, SpotLightRsms::kMaxLights> out{};
+    CHECK(rsms.sourcesReaching(coarse, out) == 3);
+    REQUIRE(rsms.sourcesReaching(fine, out) == 2);
+    CHECK(out[0].light == glm::vec4(lights[0].position, 1.0f));
+    CHECK(out[1].light == glm::vec4(lights[2].position, 1.0f));
+    for (const VplSource& v : rsms.sources()) {
+        CHECK(v.vpls);
+        CHECK(v.count == s.vplCount);
+    }
+    CHECK(rsms.sourcesReaching(fine, std::span(out.data(), 1)) == 1);
 }

@@ -10,6 +10,7 @@
 
 #include "engine/render/GpuScene.h"
 #include "engine/scene/Scene.h"
+#include "gi/AnalyticLight.h"
 #include "gi/LpvSettings.h"
 #include "gi/LpvVolumes.h"
 #include "gi/ReflectiveShadowMap.h"
@@ -40,8 +41,11 @@ public:
 
     // Draws every selected light's RSM and clusters it into its VPLs.
     void render(rhi::CommandList& cmd, const engine::GpuScene& scene, std::span<const engine::Light> lights);
-    // The selected lights' VPL buffers, for LpvVolumes::inject with the sun's (filled by render()).
+    // The selected lights' VPL buffers, for LpvVolumes::inject with the sun's (render() fills them).
     std::span<const VplSource> sources() const { return {sources_.data(), count_}; }
+    // Those of sources() whose light can reach `grid` (a cascade: its range sphere meets the box),
+    // copied to `out`; returns how many. A cascade gets no VPLs that cannot land in it.
+    uint32_t sourcesReaching(const VolumeGrid& grid, std::span<VplSource> out) const;
     const ReflectiveShadowMap& rsm(uint32_t slot) const { return *rsms_.at(slot); }
 
 private:
@@ -52,6 +56,7 @@ private:
     std::array<rhi::BufferHandle, kMaxLights> vpls_{};
     std::array<uint32_t, kMaxLights> selection_{};
     std::array<VplSource, kMaxLights> sources_{};
+    std::array<AnalyticLight, kMaxLights> reach_{}; // each selected light's range, for sourcesReaching()
     uint32_t count_ = 0;
     VolumeGrid reachGrid_; // the volume the lights were chosen for
     rhi::ComputePipelineHandle clusterPipeline_;
