@@ -26,6 +26,7 @@
 #include "gi/LightPropagationVolume.h"
 #include "gi/LpvVolumes.h"
 #include "gi/PointLightInjection.h"
+#include "gi/SpotLightRsms.h"
 #include "platforms/Clock.h"
 #include "rhi/Device.h"
 #include "rhi/Error.h"
@@ -366,7 +367,7 @@ void consolePrediction() {
     // the injection of that one cascade.
     const auto spotMs = [&](const platforms::PlatformProfile& p) {
         return engine::predictCost(gi::lightRsmWork(s, 1, 100000), p.throughput).ms +
-               engine::predictCost(gi::injectWork(s, 2), p.throughput).ms -
+               engine::predictCost(gi::injectWork(s, gi::spotLightVplCount(s)), p.throughput).ms -
                engine::predictCost(gi::injectWork(s), p.throughput).ms;
     };
     const double spotX = spotMs(x360), spotP = spotMs(ps3);

@@ -3,6 +3,7 @@
 
 #include "gi/LpvVolumes.h"
 #include "gi/PointLightInjection.h"
+#include "gi/SpotLightRsms.h"
 #include "rhi/Format.h"
 
 #include <cstdio>
@@ -40,7 +41,7 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
     for (uint32_t k = 0; k < s.lightRsms; ++k) {
         const std::string light = "spot light " + std::to_string(k);
         out.push_back({light + " rsm depth, normal, flux", "gi.rsm", rsm * (4 + 8 + 8)});
-        out.push_back({light + " vpl buffer", "gi.vpl", uint64_t(s.vplCount) * 48});
+        out.push_back({light + " vpl buffer", "gi.vpl", uint64_t(spotLightVplCount(s)) * 48});
     }
     if (s.occlusion) {
         out.push_back({"geometry volume coverage, light surfels", "gi.gv", gvCells * 4});

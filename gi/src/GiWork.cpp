@@ -3,6 +3,7 @@
 #include "gi/GiWork.h"
 
 #include "gi/LpvVolumes.h"
+#include "gi/SpotLightRsms.h"
 #include "rhi/Format.h"
 
 namespace lpv::gi {
@@ -30,9 +31,9 @@ WorkCounts vplClusterWork(const LpvSettings& s) {
     return w;
 }
 
-WorkCounts injectWork(const LpvSettings& s, uint32_t sources) {
+WorkCounts injectWork(const LpvSettings& s, uint64_t extraVpls) {
     const uint64_t injectBytes = s.shFormat == ShFormat::Rgba32f ? 16 : 8;
-    const uint64_t vpls = uint64_t(s.vplCount) * sources;
+    const uint64_t vpls = s.vplCount + extraVpls;
     WorkCounts w;
     // Every VPL is submitted once per slice; one slice keeps it.
     w.primitives = vpls * s.gridSize;
@@ -46,10 +47,13 @@ WorkCounts injectWork(const LpvSettings& s, uint32_t sources) {
 
 WorkCounts lightRsmWork(const LpvSettings& s, uint32_t lights, uint64_t sceneTriangles) {
     // Each light: the whole scene into a spot RSM of gi.rsm_size (one more position interpolant
-    // and the cone, window and solid angle per texel), clustered like the sun's.
+    // and the cone, window and solid angle per texel), clustered like the sun's into fewer VPLs.
+    const uint64_t texels = uint64_t(s.rsmSize) * s.rsmSize;
     WorkCounts one = rsmWork(s, sceneTriangles);
-    one += vplClusterWork(s);
-    one.aluOps += uint64_t(s.rsmSize) * s.rsmSize * 15;
+    one.aluOps += texels * 15;
+    WorkCounts cluster = vplClusterWork(s);
+    cluster.bytesMoved -= (uint64_t(s.vplCount) - spotLightVplCount(s)) * 48;
+    one += cluster;
     return one * lights;
 }
 

@@ -269,7 +269,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             sources[0] = {vpls_, settings_.vplCount, glm::vec4(lightDir, 0.0f)};
             const uint32_t n = 1 + spotRsms_->sourcesReaching(grid, std::span(sources).subspan(1));
             volumes_->inject(cmd, std::span(sources.data(), n), grid, settings_.intensity);
-            work(injectWork(settings_, n));
+            work(injectWork(settings_, uint64_t(n - 1) * spotLightVplCount(settings_)));
         }
         {
             auto s = scope("propagate");

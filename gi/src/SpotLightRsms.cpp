@@ -34,6 +34,11 @@ float farthestCorner(glm::vec3 p, const VolumeGrid& grid) {
 
 } // namespace
 
+uint32_t spotLightVplSide(const LpvSettings& settings) {
+    const uint32_t side = settings.vplGridSide();
+    return side % 2 == 0 ? side / 2 : side; // rsm % side == 0, so rsm % (side / 2) == 0
+}
+
 uint32_t spotLightCount(std::span<const engine::Light> lights) {
     return uint32_t(std::count_if(lights.begin(), lights.end(),
                                   [](const engine::Light& l) { return l.type == engine::LightType::Spot; }));
@@ -70,7 +75,7 @@ SpotLightRsms::SpotLightRsms(rhi::Device& device, const LpvSettings& settings)
     for (uint32_t k = 0; k < capacity_; ++k) {
         rsms_[k] = std::make_unique<ReflectiveShadowMap>(device, settings.rsmSize, RsmLight::Spot);
         vpls_[k] =
-            device.createBuffer({uint64_t(settings.vplCount) * 48, kBufferStorage | kBufferTransfer,
+            device.createBuffer({uint64_t(spotLightVplCount(settings)) * 48, kBufferStorage | kBufferTransfer,
                                  MemoryAccess::GpuOnly, "spot light vpls " + std::to_string(k), "gi.vpl"});
     }
     if (capacity_ > 0)
@@ -92,7 +97,7 @@ void SpotLightRsms::select(std::span<const engine::Light> lights, const VolumeGr
     reachGrid_ = reach;
     for (uint32_t k = 0; k < count_; ++k) {
         const engine::Light& spot = lights[selection_[k]];
-        sources_[k] = {vpls_[k], settings_.vplCount, glm::vec4(spot.position, 1.0f)};
+        sources_[k] = {vpls_[k], spotLightVplCount(settings_), glm::vec4(spot.position, 1.0f)};
         reach_[k] = analyticLight(spot, 1.0f);
     }
 }
@@ -112,7 +117,7 @@ bool SpotLightRsms::selected(uint32_t index) const {
 
 void SpotLightRsms::render(rhi::CommandList& cmd, const engine::GpuScene& scene,
                            std::span<const engine::Light> lights) {
-    const uint32_t side = settings_.vplGridSide();
+    const uint32_t side = spotLightVplSide(settings_);
     for (uint32_t k = 0; k < count_; ++k) {
         const engine::Light& spot = lights[selection_[k]];
         ReflectiveShadowMap& rsm = *rsms_[k];

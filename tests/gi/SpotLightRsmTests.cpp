@@ -118,7 +118,9 @@ TEST_CASE("spot rsm: the GI budget counts every spot light's RSM and VPLs") {
     const uint64_t none = giBytes(giResources(s));
     s.lightRsms = 2;
     const auto resources = giResources(s);
-    const uint64_t perLight = uint64_t(s.rsmSize) * s.rsmSize * (4 + 8 + 8) + uint64_t(s.vplCount) * 48;
+    // A quarter of the sun's VPLs: 256^2 texels in blocks of 8x8.
+    CHECK(spotLightVplCount(s) == s.vplCount / 4);
+    const uint64_t perLight = uint64_t(s.rsmSize) * s.rsmSize * (4 + 8 + 8) + uint64_t(s.vplCount / 4) * 48;
     CHECK(giBytes(resources) == none + 2 * perLight);
     CHECK(std::count_if(resources.begin(), resources.end(), [](const GiResource& r) {
               return r.name.find("spot light 1") != std::string::npos;
@@ -145,7 +147,7 @@ TEST_CASE("spot rsm: a cascade gets the VPLs of the spot lights that reach it, a
     CHECK(out[1].light == glm::vec4(lights[2].position, 1.0f));
     for (const VplSource& v : rsms.sources()) {
         CHECK(v.vpls);
-        CHECK(v.count == s.vplCount);
+        CHECK(v.count == s.vplCount / 4);
     }
     CHECK(rsms.sourcesReaching(fine, std::span(out.data(), 1)) == 1);
 }

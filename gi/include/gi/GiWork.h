@@ -11,8 +11,8 @@ namespace lpv::gi {
 
 engine::WorkCounts rsmWork(const LpvSettings& s, uint64_t sceneTriangles);
 engine::WorkCounts vplClusterWork(const LpvSettings& s);
-// `sources`: lights whose VPLs share the pass (the sun and the spot lights with an RSM).
-engine::WorkCounts injectWork(const LpvSettings& s, uint32_t sources = 1);
+// `extraVpls`: VPLs of further lights in the same pass (spot lights with an RSM).
+engine::WorkCounts injectWork(const LpvSettings& s, uint64_t extraVpls = 0);
 // The RSMs and VPL clustering of `lights` spot lights (SpotLightRsms), once per frame.
 engine::WorkCounts lightRsmWork(const LpvSettings& s, uint32_t lights, uint64_t sceneTriangles);
 // All iterations of the shipped kernel.

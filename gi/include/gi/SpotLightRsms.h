@@ -26,7 +26,8 @@ class SpotLightRsms {
 public:
     static constexpr uint32_t kMaxLights = 4; // gi.light_rsms' upper limit
 
-    // settings.lightRsms RSMs of settings.rsmSize, each with a buffer of settings.vplCount VPLs.
+    // settings.lightRsms RSMs of settings.rsmSize, each with a buffer of spotLightVplSide(settings)^2
+    // VPLs.
     SpotLightRsms(rhi::Device& device, const LpvSettings& settings);
     ~SpotLightRsms();
     SpotLightRsms(const SpotLightRsms&) = delete;
@@ -62,6 +63,16 @@ private:
     rhi::ComputePipelineHandle clusterPipeline_;
     rhi::SamplerHandle pointSampler_;
 };
+
+// Side of a spot light RSM's VPL grid: half the sun's (blocks of twice the texels, a quarter of
+// the VPLs) when that divides the RSM. The sun's RSM spreads gi.vpl_count VPLs over the bounding
+// square of a whole cascade; a spot's covers its cone, a fraction of that, so a quarter of them is
+// still denser on the surfaces it lights, and the injection, which draws every VPL once per slice,
+// pays a quarter of the sun's for it.
+uint32_t spotLightVplSide(const LpvSettings& settings);
+inline uint32_t spotLightVplCount(const LpvSettings& settings) {
+    return spotLightVplSide(settings) * spotLightVplSide(settings);
+}
 
 // How many of `lights` are spot lights.
 uint32_t spotLightCount(std::span<const engine::Light> lights);
