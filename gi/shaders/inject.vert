@@ -13,7 +13,7 @@ struct Vpl {
 
 layout(binding = 0, std140) uniform Inject {
     vec4 gridOrigin;      // xyz: corner of cell 0; w: cell size
-    vec4 lightDirection;  // xyz: where the light travels
+    vec4 lightDirection;  // w 0: xyz is where the light travels; w 1: xyz is the light's position
     vec4 intensity;       // x: gi.intensity
     ivec4 grid;           // x: cells per axis, y: slice being drawn, z: VPL count
 } inject;
@@ -27,7 +27,10 @@ layout(location = 1) flat out vec3 vFlux;
 void main() {
     Vpl v = vpls[gl_VertexIndex];
     float cell = inject.gridOrigin.w;
-    vec3 p = v.position.xyz + 0.5 * cell * (v.normal.xyz - inject.lightDirection.xyz);
+    // A light at a point (a spot light) shines along the line from it to the VPL.
+    vec3 travel = inject.lightDirection.w > 0.5 ? normalize(v.position.xyz - inject.lightDirection.xyz)
+                                                : inject.lightDirection.xyz;
+    vec3 p = v.position.xyz + 0.5 * cell * (v.normal.xyz - travel);
     ivec3 c = ivec3(floor((p - inject.gridOrigin.xyz) / cell));
     int n = inject.grid.x;
     bool inside = v.position.w > 0.0 && all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n))) &&

@@ -3,6 +3,7 @@
 
 #include "gi/LpvVolumes.h"
 #include "gi/PointLightInjection.h"
+#include "gi/SpotLightRsms.h"
 #include "rhi/Format.h"
 
 #include <cstdio>
@@ -36,6 +37,12 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
     for (uint32_t c = 1; c < s.cascades; ++c)
         out.push_back({"accumulation, cascade " + std::to_string(c) + " (3 SH textures)", "gi.lpv",
                        3 * cells * shBytes});
+    // Spot lights with their own RSM (SpotLightRsms): an RSM and a VPL buffer each.
+    for (uint32_t k = 0; k < s.lightRsms; ++k) {
+        const std::string light = "spot light " + std::to_string(k);
+        out.push_back({light + " rsm depth, normal, flux", "gi.rsm", rsm * (4 + 8 + 8)});
+        out.push_back({light + " vpl buffer", "gi.vpl", uint64_t(spotLightVplCount(s)) * 48});
+    }
     if (s.occlusion) {
         out.push_back({"geometry volume coverage, light surfels", "gi.gv", gvCells * 4});
         out.push_back({"geometry volume coverage, camera surfels", "gi.gv", gvCells * 4});

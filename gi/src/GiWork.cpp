@@ -3,6 +3,7 @@
 #include "gi/GiWork.h"
 
 #include "gi/LpvVolumes.h"
+#include "gi/SpotLightRsms.h"
 #include "rhi/Format.h"
 
 namespace lpv::gi {
@@ -30,17 +31,30 @@ WorkCounts vplClusterWork(const LpvSettings& s) {
     return w;
 }
 
-WorkCounts injectWork(const LpvSettings& s) {
+WorkCounts injectWork(const LpvSettings& s, uint64_t extraVpls) {
     const uint64_t injectBytes = s.shFormat == ShFormat::Rgba32f ? 16 : 8;
+    const uint64_t vpls = s.vplCount + extraVpls;
     WorkCounts w;
     // Every VPL is submitted once per slice; one slice keeps it.
-    w.primitives = uint64_t(s.vplCount) * s.gridSize;
+    w.primitives = vpls * s.gridSize;
     w.aluOps = w.primitives * 20;
-    w.pixelsShaded = s.vplCount;
-    w.texelsWritten = uint64_t(s.vplCount) * 3;
+    w.pixelsShaded = vpls;
+    w.texelsWritten = vpls * 3;
     w.bytesMoved = w.primitives * 48 + w.texelsWritten * injectBytes * 2; // blending reads and writes
     w.cells = uint64_t(s.gridSize) * s.gridSize * s.gridSize;
     return w;
+}
+
+WorkCounts lightRsmWork(const LpvSettings& s, uint32_t lights, uint64_t sceneTriangles) {
+    // Each light: the whole scene into a spot RSM of gi.rsm_size (one more position interpolant
+    // and the cone, window and solid angle per texel), clustered like the sun's into fewer VPLs.
+    const uint64_t texels = uint64_t(s.rsmSize) * s.rsmSize;
+    WorkCounts one = rsmWork(s, sceneTriangles);
+    one.aluOps += texels * 15;
+    WorkCounts cluster = vplClusterWork(s);
+    cluster.bytesMoved -= (uint64_t(s.vplCount) - spotLightVplCount(s)) * 48;
+    one += cluster;
+    return one * lights;
 }
 
 WorkCounts propagateWork(const LpvSettings& s) {

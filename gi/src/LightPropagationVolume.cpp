@@ -115,6 +115,7 @@ void LightPropagationVolume::release() {
     bounces_.reset();
     geometry_.reset();
     pointLights_.reset();
+    spotRsms_.reset();
     if (vpls_) device_.destroy(vpls_);
     vpls_ = {};
     made_ = false;
@@ -131,6 +132,7 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     if (s.occlusion) geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize, s.bounces > 1);
     if (s.bounces > 1) bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_);
     pointLights_ = std::make_unique<PointLightInjection>(device_, s);
+    spotRsms_ = std::make_unique<SpotLightRsms>(device_, s);
     vpls_ = device_.createBuffer({uint64_t(s.vplCount) * 48, rhi::kBufferStorage | rhi::kBufferTransfer,
                                   rhi::MemoryAccess::GpuOnly, "vpls", "gi.vpl"});
     made_ = true;
@@ -154,9 +156,11 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
             profiler->note(kGiBudgetNoteTopic, change.text());
     }
     renderer_ = &renderer;
+    // RSMs for as many spot lights as the scene has, up to gi.light_rsms: none for a scene without.
+    s.lightRsms = std::min(s.lightRsms, spotLightCount(renderer.punctualLights()));
     const bool resized = !made_ || s.rsmSize != settings_.rsmSize || s.vplCount != settings_.vplCount ||
                          !volumes_->matches(s) || s.occlusion != (geometry_ != nullptr) ||
-                         (s.bounces > 1) != (bounces_ != nullptr);
+                         (s.bounces > 1) != (bounces_ != nullptr) || s.lightRsms != settings_.lightRsms;
     if (s.enabled && resized) {
         checkGiBudget(s, profile_); // throws before anything changes
         remake(s);
@@ -171,6 +175,8 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
     }
     grid_ = cascades_.empty() ? placeVolume(s, camera.position, camera.forward, renderer.sceneBounds())
                               : cascades_[0].placement;
+    // Before the renderer asks which lights the volume carries.
+    if (s.enabled && made_) spotRsms_->select(renderer.punctualLights(), cascades_.back().placement);
 }
 
 void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
@@ -196,6 +202,13 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     cmd.beginMarker("gi");
     static const char* const kCascadeScopes[4] = {"cascade0", "cascade1", "cascade2", "cascade3"};
     const uint32_t side = settings_.vplGridSide();
+    // The spot lights' RSMs follow the lights, not the cascades: drawn once, injected into each
+    // cascade they reach.
+    if (const uint32_t spotRsms = uint32_t(spotRsms_->selection().size())) {
+        auto s = scope("lightrsm");
+        spotRsms_->render(cmd, *renderer_->scene(), renderer_->punctualLights());
+        work(lightRsmWork(settings_, spotRsms, renderer_->scene()->triangleCount()));
+    }
     // Coarsest first: each finer cascade takes the light from beyond its border from the one
     // around it (CascadeHandoff).
     uint32_t updated = 0;
@@ -256,8 +269,11 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         }
         {
             auto s = scope("inject");
-            volumes_->inject(cmd, vpls_, settings_.vplCount, grid, lightDir, settings_.intensity);
-            work(injectWork(settings_));
+            std::array<VplSource, 1 + SpotLightRsms::kMaxLights> sources;
+            sources[0] = {vpls_, settings_.vplCount, glm::vec4(lightDir, 0.0f)};
+            const uint32_t n = 1 + spotRsms_->sourcesReaching(grid, std::span(sources).subspan(1));
+            volumes_->inject(cmd, std::span(sources.data(), n), grid, settings_.intensity);
+            work(injectWork(settings_, uint64_t(n - 1) * spotLightVplCount(settings_)));
         }
         {
             auto s = scope("propagate");
@@ -282,7 +298,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         for (uint32_t c = 0; c < cascades_.size(); ++c) {
             const uint32_t n =
                 pointLights_->inject(cmd, renderer_->punctualLights(), *volumes_, cascades_[c].grid,
-                                     settings_.intensity, &cascades_[c].result, c);
+                                     settings_.intensity, &cascades_[c].result, c, spotRsms_->selection());
             lightsWork += analyticLightsWork(settings_, n, pointLights_->cellEvaluations());
         }
         work(lightsWork);
@@ -363,6 +379,10 @@ void LightPropagationVolume::renderDebugOverlay(rhi::CommandList& cmd, const eng
         cmd.pushUniforms(0, &camera.viewProjection, sizeof(camera.viewProjection));
         cmd.bindStorageBuffer(1, vpls_);
         cmd.draw(settings_.vplCount);
+        for (const VplSource& spot : spotRsms_->sources()) { // and the spot lights' with an RSM
+            cmd.bindStorageBuffer(1, spot.vpls);
+            cmd.draw(spot.count);
+        }
     }
     cmd.endRenderPass();
 }

@@ -48,6 +48,9 @@ const engine::BoolSetting kGlossy{
 const engine::IntSetting kBounces{
     "gi.bounces", 1, 1, 3,
     "Light bounces: 2-3 reflect the light the geometry volume blocks off its surfels (needs gi.occlusion)"};
+const engine::IntSetting kLightRsms{"gi.light_rsms", 1, 0, 4,
+                                    "Spot lights (the brightest reaching the volume) with their own RSM: "
+                                    "bounce light in the colour they hit"};
 const engine::IntSetting kDebugSlice{"gi.debug_slice", 16, 0, 63,
                                      "Volume slice (z) shown by gi.debug_view=volume_slice"};
 
@@ -75,6 +78,7 @@ LpvSettings readLpvSettings(const engine::Config& config) {
     s.occlusion = config.get(kOcclusion);
     s.glossy = config.get(kGlossy);
     s.bounces = uint32_t(config.get(kBounces));
+    s.lightRsms = uint32_t(config.get(kLightRsms));
     s.budgetPolicy = readGiBudgetPolicy(config);
     const uint32_t side = s.vplGridSide();
     if (side * side != s.vplCount || s.rsmSize % side != 0)

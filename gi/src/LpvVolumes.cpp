@@ -139,12 +139,17 @@ bool LpvVolumes::matches(const LpvSettings& s) const {
 
 void LpvVolumes::inject(rhi::CommandList& cmd, rhi::BufferHandle vpls, uint32_t vplCount,
                         const VolumeGrid& grid, glm::vec3 lightDirection, float intensity) {
+    const VplSource source{vpls, vplCount, glm::vec4(lightDirection, 0.0f)};
+    inject(cmd, std::span(&source, 1), grid, intensity);
+}
+
+void LpvVolumes::inject(rhi::CommandList& cmd, std::span<const VplSource> sources, const VolumeGrid& grid,
+                        float intensity) {
     using namespace rhi;
     for (TextureHandle t : inject_)
         cmd.clearTexture(t, {0, 0, 0, 0});
     InjectUniforms u;
     u.gridOrigin = glm::vec4(grid.origin, grid.cellSize);
-    u.lightDirection = glm::vec4(lightDirection, 0.0f);
     u.intensity = glm::vec4(intensity, 0, 0, 0);
     for (uint32_t slice = 0; slice < settings_.gridSize; ++slice) {
         RenderPassDesc pass;
@@ -154,10 +159,14 @@ void LpvVolumes::inject(rhi::CommandList& cmd, rhi::BufferHandle vpls, uint32_t 
         pass.debugName = "lpv inject slice";
         cmd.beginRenderPass(pass);
         cmd.bindPipeline(injectPipeline_);
-        u.grid = glm::ivec4(int(settings_.gridSize), int(slice), int(vplCount), 0);
-        cmd.pushUniforms(0, &u, sizeof(u));
-        cmd.bindStorageBuffer(1, vpls);
-        cmd.draw(vplCount);
+        for (const VplSource& source : sources) {
+            if (source.count == 0) continue;
+            u.lightDirection = source.light;
+            u.grid = glm::ivec4(int(settings_.gridSize), int(slice), int(source.count), 0);
+            cmd.pushUniforms(0, &u, sizeof(u));
+            cmd.bindStorageBuffer(1, source.vpls);
+            cmd.draw(source.count);
+        }
         cmd.endRenderPass();
     }
 }

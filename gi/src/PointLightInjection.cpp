@@ -83,13 +83,16 @@ PointLightInjection::~PointLightInjection() {
 
 uint32_t PointLightInjection::inject(rhi::CommandList& cmd, std::span<const engine::Light> lights,
                                      const LpvVolumes& volumes, const VolumeGrid& grid, float intensityScale,
-                                     const std::array<rhi::TextureHandle, 3>* result, uint32_t cascade) {
+                                     const std::array<rhi::TextureHandle, 3>* result, uint32_t cascade,
+                                     std::span<const uint32_t> skip) {
     const std::array<rhi::TextureHandle, 3>& target = result ? *result : volumes.accumulated();
     count_ = 0;
     cellEvaluations_ = 0;
-    for (const engine::Light& l : lights) {
+    for (uint32_t i = 0; i < uint32_t(lights.size()); ++i) {
+        const engine::Light& l = lights[i];
         if (count_ == kMaxLights) break;
         if (l.type == engine::LightType::Directional) continue;
+        if (std::find(skip.begin(), skip.end(), i) != skip.end()) continue;
         const AnalyticLight a = analyticLight(l, intensityScale);
         if (!reachesVolume(a, grid)) continue;
         staged_[count_++] = a;

@@ -1,12 +1,14 @@
-// RSM fit and pass.
+// RSM fits (sun and spot) and pass.
 #include "gi/ReflectiveShadowMap.h"
 
 #include "GiShaders.h"
+#include "rhi/Error.h"
 
 #define GLM_FORCE_DEPTH_ZERO_TO_ONE
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace lpv::gi {
@@ -16,9 +18,42 @@ struct RsmUniforms {
     glm::vec4 lightDirection;
     glm::vec4 fluxScale;
 };
+
+// std140 block `SpotRsm` of rsm_spot.vert/.frag.
+struct SpotRsmUniforms {
+    glm::mat4 lightViewProjection;
+    glm::vec4 lightPosition;
+    glm::vec4 spotDirection;
+    glm::vec4 cone;
+    glm::vec4 intensity;
+};
+
+glm::vec3 spotAxis(const engine::Light& spot) {
+    const float length = glm::length(spot.direction);
+    return length > 0.0f ? spot.direction / length : glm::vec3(0.0f, -1.0f, 0.0f);
+}
 } // namespace
 
-ReflectiveShadowMap::ReflectiveShadowMap(rhi::Device& device, uint32_t size) : device_(device), size_(size) {
+SpotRsmFit fitSpotRsm(const engine::Light& spot, float reach) {
+    SpotRsmFit f;
+    const glm::vec3 axis = spotAxis(spot);
+    const glm::vec3 up = std::fabs(axis.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+    // 1% wider than the cone, so its rim lands inside the outermost texels, not on the edge.
+    const float halfAngle = std::clamp(spot.outerConeAngle, 0.01f, kMaxSpotRsmHalfAngle);
+    f.tanHalfAngle = std::tan(halfAngle) * 1.01f;
+    f.farPlane = std::max(spot.range > 0.0f ? std::min(spot.range, reach) : reach, 0.1f);
+    // Depth precision follows far / near; 1/500 keeps D32F's reconstructed positions within
+    // a millimetre at 10 m.
+    f.nearPlane = std::max(0.02f, f.farPlane / 500.0f);
+    const glm::mat4 view = glm::lookAt(spot.position, spot.position + axis, up);
+    const glm::mat4 projection =
+        glm::perspectiveRH_ZO(2.0f * std::atan(f.tanHalfAngle), 1.0f, f.nearPlane, f.farPlane);
+    f.viewProjection = projection * view;
+    return f;
+}
+
+ReflectiveShadowMap::ReflectiveShadowMap(rhi::Device& device, uint32_t size, RsmLight light)
+    : device_(device), size_(size), light_(light) {
     using namespace rhi;
     depth_ = device.createTexture({TextureKind::Tex2D, Format::D32F, size, size, 1, 1,
                                    kTextureDepthTarget | kTextureSampled | kTextureTransfer, "rsm depth",
@@ -30,8 +65,8 @@ ReflectiveShadowMap::ReflectiveShadowMap(rhi::Device& device, uint32_t size) : d
                                   kTextureColorTarget | kTextureSampled | kTextureTransfer, "rsm flux",
                                   "gi.rsm"});
     GraphicsPipelineDesc d;
-    d.vertex = &shaders::rsm_vert;
-    d.fragment = &shaders::rsm_frag;
+    d.vertex = light == RsmLight::Spot ? &shaders::rsm_spot_vert : &shaders::rsm_vert;
+    d.fragment = light == RsmLight::Spot ? &shaders::rsm_spot_frag : &shaders::rsm_frag;
     d.vertexBuffers = {{sizeof(engine::Vertex)}};
     d.attributes = {{0, VertexFormat::Float3, offsetof(engine::Vertex, position)},
                     {1, VertexFormat::Float3, offsetof(engine::Vertex, normal)},
@@ -40,7 +75,7 @@ ReflectiveShadowMap::ReflectiveShadowMap(rhi::Device& device, uint32_t size) : d
     d.depthCompare = CompareOp::Less;
     d.colorFormats = {Format::RGBA16F, Format::RGBA16F};
     d.depthFormat = Format::D32F;
-    d.debugName = "rsm";
+    d.debugName = light == RsmLight::Spot ? "spot rsm" : "rsm";
     pipeline_ = device.createPipeline(d);
 }
 
@@ -75,20 +110,46 @@ glm::mat4 ReflectiveShadowMap::fit(const VolumeGrid& grid, glm::vec3 lightDirect
 
 void ReflectiveShadowMap::render(rhi::CommandList& cmd, const engine::GpuScene& scene,
                                  glm::vec3 lightDirection, glm::vec3 sunIrradiance, float minObjectSize) {
-    using namespace rhi;
+    if (light_ != RsmLight::Sun) throw rhi::Error("ReflectiveShadowMap::render() on a spot light's RSM");
     RsmUniforms u;
     u.lightViewProjection = viewProjection_;
     u.lightDirection = glm::vec4(glm::normalize(lightDirection), 0.0f);
     u.fluxScale = glm::vec4(sunIrradiance * texelArea_, 0.0f);
+    draw(cmd, scene, &u, sizeof(u), minObjectSize);
+}
+
+void ReflectiveShadowMap::renderSpot(rhi::CommandList& cmd, const engine::GpuScene& scene,
+                                     const engine::Light& spot, float reach) {
+    if (light_ != RsmLight::Spot) throw rhi::Error("ReflectiveShadowMap::renderSpot() on the sun's RSM");
+    const SpotRsmFit fit = fitSpotRsm(spot, reach);
+    viewProjection_ = fit.viewProjection;
+    // A texel's side on the image plane at 1 m is 2 tan / size: its area there is the solid angle
+    // of the texel on the axis. texelArea_ is that area at the far plane (for the surfels' size).
+    const float texel = 2.0f * fit.tanHalfAngle / float(size_);
+    texelArea_ = texel * texel * fit.farPlane * fit.farPlane;
+    SpotRsmUniforms u;
+    u.lightViewProjection = viewProjection_;
+    u.lightPosition = glm::vec4(spot.position, spot.range > 0.0f ? 1.0f / (spot.range * spot.range) : 0.0f);
+    u.spotDirection = glm::vec4(spotAxis(spot), texel * texel);
+    // As the analytic lights (gi/AnalyticLight.cpp): smoothstep needs edge0 < edge1.
+    const float cosOuter = std::cos(spot.outerConeAngle);
+    u.cone = glm::vec4(cosOuter, std::max(std::cos(spot.innerConeAngle), cosOuter + 1e-4f), 0, 0);
+    u.intensity = glm::vec4(spot.color * spot.intensity, 0.0f);
+    draw(cmd, scene, &u, sizeof(u), 0.0f);
+}
+
+void ReflectiveShadowMap::draw(rhi::CommandList& cmd, const engine::GpuScene& scene, const void* uniforms,
+                               uint32_t bytes, float minObjectSize) {
+    using namespace rhi;
     RenderPassDesc pass;
     pass.colors[0] = {normal_, 0, 0, LoadOp::Clear, {0, 1, 0, 0}};
     pass.colors[1] = {flux_, 0, 0, LoadOp::Clear, {0, 0, 0, 0}};
     pass.colorCount = 2;
     pass.depth = {depth_, 0, LoadOp::Clear, 1.0f};
-    pass.debugName = "rsm";
+    pass.debugName = light_ == RsmLight::Spot ? "spot rsm" : "rsm";
     cmd.beginRenderPass(pass);
     cmd.bindPipeline(pipeline_);
-    cmd.pushUniforms(0, &u, sizeof(u));
+    cmd.pushUniforms(0, uniforms, bytes);
     cmd.bindVertexBuffer(0, scene.vertices());
     cmd.bindIndexBuffer(scene.indices(), IndexType::Uint32);
     for (const engine::GpuDraw& d : scene.draws()) {

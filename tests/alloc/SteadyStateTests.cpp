@@ -1,9 +1,9 @@
 // No heap allocation in a steady-state frame: operator new is counted while frames of the full
 // pipeline (renderer, profiler, LPV) are recorded and submitted, after warm-up frames have filled
-// the caches: the Cornell box, and the lights hall for the analytic lights. Only allocations on
-// the frame's own thread count: lavapipe JIT-compiles shader variants with LLVM on its queue
-// thread, which is the driver's business. Runs without validation layers, whose own bookkeeping
-// allocates on the calling thread.
+// the caches: the Cornell box, and the lights hall for the analytic lights and a spot light RSM.
+// Only allocations on the frame's own thread count: lavapipe JIT-compiles shader variants with
+// LLVM on its queue thread, which is the driver's business. Runs without validation layers, whose
+// own bookkeeping allocates on the calling thread.
 #include "../support/TestDevice.h"
 
 #include "engine/config/Config.h"
@@ -11,6 +11,7 @@
 #include "engine/render/Renderer.h"
 #include "engine/scene/BuiltinScenes.h"
 #include "gi/GiScheduler.h"
+#include "gi/GiWork.h"
 #include "gi/LightPropagationVolume.h"
 #include "platforms/PlatformProfile.h"
 
@@ -101,24 +102,30 @@ TEST_CASE("steady state: a frame with GI and the profiler allocates nothing") {
     }
 }
 
-TEST_CASE("steady state: a frame of the lights hall with analytic lights allocates nothing") {
+TEST_CASE("steady state: the lights hall with analytic lights and a spot light RSM allocates nothing") {
     const engine::Scene hall = engine::buildLightHall();
     for (const auto& backend : test::selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
             const auto check = [&](const engine::FrameProfiler& p, const gi::LightPropagationVolume& lpv) {
-                // The pass ran as gi/lights with the work of all 147 lights in every cascade (the hall
-                // fits the finest volume; the last call is the coarsest's).
+                // The pass ran as gi/lights with the work of 146 lights in every cascade (the hall
+                // fits the finest volume; the last call is the coarsest's): all but the spot light
+                // with an RSM of its own (gi.light_rsms=1), which ran as gi/lightrsm.
                 const auto& scopes = p.scopes();
                 const auto it = std::find_if(scopes.begin(), scopes.end(), [](const engine::ScopeInfo& s) {
                     return s.path == "gi/lights";
                 });
                 REQUIRE(it != scopes.end());
                 REQUIRE(lpv.pointLights());
-                CHECK(lpv.pointLights()->lights().size() == 147);
+                CHECK(lpv.pointLights()->lights().size() == 146);
                 const engine::WorkCounts last =
-                    gi::analyticLightsWork(lpv.settings(), 147, lpv.pointLights()->cellEvaluations());
+                    gi::analyticLightsWork(lpv.settings(), 146, lpv.pointLights()->cellEvaluations());
                 CHECK(it->work.aluOps > last.aluOps);
                 CHECK(it->work.cells == lpv.cascadeCount() * 32u * 32u * 32u);
+                const auto rsm = std::find_if(scopes.begin(), scopes.end(), [](const engine::ScopeInfo& s) {
+                    return s.path == "gi/lightrsm";
+                });
+                REQUIRE(rsm != scopes.end());
+                CHECK(rsm->work == gi::lightRsmWork(lpv.settings(), 1, hall.triangleCount()));
             };
             const uint64_t n = steadyStateAllocations(backend, hall, 0.25f, check);
             MESSAGE(backend.name << ": " << n << " allocations in 4 steady-state frames");

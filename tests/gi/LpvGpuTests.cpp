@@ -220,8 +220,9 @@ TEST_CASE("gi: configurations that do not fit are refused with a clear message")
     CHECK(message.find("over platform 'x360' GI memory budget of 3145728 bytes by") != std::string::npos);
     CHECK(message.find("gi.lpv accumulation (3 SH textures): 3145728 bytes") != std::string::npos);
     CHECK(message.find("gi.rsm rsm depth: 262144 bytes") != std::string::npos);
-    // The CryEngine 3 console setup (one cascade) fits.
+    // The CryEngine 3 console setup (one cascade, the sun's RSM alone) fits.
     s.cascades = 1;
+    s.lightRsms = 0;
     s.gridSize = 32;
     s.rsmSize = 128;
     s.vplCount = 1024;

@@ -112,6 +112,8 @@ GpuScene::GpuScene(rhi::Device& device, const Scene& scene) : device_(device) {
         device.createBuffer({sizeof(GpuPunctualLight) * kMaxPunctualLights, kBufferStorage | kBufferTransfer,
                              MemoryAccess::GpuOnly, scene.name + " lights", "scene.lights"});
     if (lightCount_) device.uploadBuffer(lights_, 0, lights.data(), lightCount_ * sizeof(GpuPunctualLight));
+    lights.resize(lightCount_);
+    lightRecords_ = std::move(lights);
 
     for (const Instance& inst : scene.instances) {
         const Mesh& mesh = scene.meshes[inst.mesh];

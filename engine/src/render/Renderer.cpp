@@ -102,6 +102,7 @@ Renderer::Renderer(rhi::Device& device, uint32_t width, uint32_t height)
 Renderer::~Renderer() {
     device_.waitIdle();
     scene_.reset();
+    if (directLights_) device_.destroy(directLights_);
     destroyTargets();
     for (auto p : {gbufferPipeline_, shadowPipeline_, ssaoPipeline_, ssaoBlurPipeline_, lightingPipeline_,
                    tonemapPipeline_})
@@ -193,6 +194,17 @@ void Renderer::setScene(const Scene& scene) {
     device_.waitIdle();
     scene_.reset();
     scene_ = std::make_unique<GpuScene>(device_, scene);
+    if (directLights_) device_.destroy(directLights_);
+    const uint32_t lightCount = scene_->lightCount();
+    directLights_ = device_.createBuffer(
+        {sizeof(GpuPunctualLight) * std::max(lightCount, 1u), rhi::kBufferStorage | rhi::kBufferTransfer,
+         rhi::MemoryAccess::GpuOnly, scene.name + " directly lit lights", "scene.lights"});
+    directIndices_.clear();
+    directIndices_.reserve(lightCount);
+    uploadedIndices_.clear();
+    uploadedIndices_.reserve(lightCount);
+    directRecords_.clear();
+    directRecords_.reserve(lightCount);
     bounds_ = scene.bounds;
     punctualLights_.clear();
     for (const Light& l : scene.lights)
@@ -203,6 +215,27 @@ void Renderer::setScene(const Scene& scene) {
             sun_.radiance = l.color * l.intensity;
             break;
         }
+}
+
+uint32_t Renderer::directLights(rhi::CommandList& cmd, const IndirectLighting* indirect,
+                                rhi::BufferHandle& buffer) {
+    const uint32_t count = scene_->lightCount();
+    buffer = scene_->lights();
+    if (!indirect) return count;
+    directIndices_.clear(); // capacity from setScene(): no allocation
+    for (uint32_t i = 0; i < count; ++i)
+        if (!indirect->carriesPunctualLight(i)) directIndices_.push_back(i);
+    if (directIndices_.size() == count || directIndices_.empty()) return uint32_t(directIndices_.size());
+    buffer = directLights_;
+    if (directIndices_ != uploadedIndices_) {
+        directRecords_.clear();
+        for (uint32_t i : directIndices_)
+            directRecords_.push_back(scene_->lightRecords()[i]);
+        cmd.updateBuffer(directLights_, 0, directRecords_.data(),
+                         uint32_t(directRecords_.size() * sizeof(GpuPunctualLight)));
+        uploadedIndices_ = directIndices_; // within the reserved capacity
+    }
+    return uint32_t(directIndices_.size());
 }
 
 GBufferView Renderer::gbuffer() const {
@@ -244,7 +277,8 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
     frame_.params = glm::vec4(float(config.get(kExposure)), float(config.get(kSsaoRadius)),
                               float(config.get(kSsaoStrength)), float(int(config.get(kDebugView))));
     // Point and spot lights the indirect light already holds are not lit a second time.
-    const uint32_t directLights = indirect && indirect->carriesPunctualLights() ? 0 : scene_->lightCount();
+    rhi::BufferHandle lightBuffer;
+    const uint32_t directLights = this->directLights(cmd, indirect, lightBuffer);
     frame_.counts = glm::ivec4(int(directLights), config.get(kSsao) ? 1 : 0, int(shadowSize_), 0);
 
     const uint64_t pixels = uint64_t(width_) * height_;
@@ -336,7 +370,7 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
             cmd.bindTexture(5, targets_.shadow, shadowCompare_);
             cmd.bindTexture(6, targets_.ao, pointClamp_);
             cmd.bindTexture(7, targets_.indirect, pointClamp_);
-            cmd.bindStorageBuffer(8, scene_->lights());
+            cmd.bindStorageBuffer(8, lightBuffer);
             cmd.bindTexture(9, targets_.glossy, pointClamp_);
         });
         cmd.endMarker();

@@ -11,7 +11,10 @@ namespace lpv::gi {
 
 engine::WorkCounts rsmWork(const LpvSettings& s, uint64_t sceneTriangles);
 engine::WorkCounts vplClusterWork(const LpvSettings& s);
-engine::WorkCounts injectWork(const LpvSettings& s);
+// `extraVpls`: VPLs of further lights in the same pass (spot lights with an RSM).
+engine::WorkCounts injectWork(const LpvSettings& s, uint64_t extraVpls = 0);
+// The RSMs and VPL clustering of `lights` spot lights (SpotLightRsms), once per frame.
+engine::WorkCounts lightRsmWork(const LpvSettings& s, uint32_t lights, uint64_t sceneTriangles);
 // All iterations of the shipped kernel.
 engine::WorkCounts propagateWork(const LpvSettings& s);
 // All iterations of the straightforward 5-face gather the CryEngine 3 shaders use (one cell per

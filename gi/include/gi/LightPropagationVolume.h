@@ -19,6 +19,7 @@
 #include "gi/MultipleBounces.h"
 #include "gi/PointLightInjection.h"
 #include "gi/ReflectiveShadowMap.h"
+#include "gi/SpotLightRsms.h"
 #include "platforms/PlatformProfile.h"
 
 #include <array>
@@ -53,8 +54,12 @@ public:
                         rhi::TextureHandle glossyTarget, engine::FrameProfiler* profiler) override;
     void renderDebugOverlay(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                             rhi::TextureHandle output) override;
-    // With gi.analytic_lights the volume carries the point and spot lights (see PointLightInjection).
-    bool carriesPunctualLights() const override { return settings_.enabled && made_ && analyticLights_; }
+    // With gi.analytic_lights the volume carries the point and spot lights (see PointLightInjection),
+    // except the spot lights with an RSM of their own (gi.light_rsms): those the lighting pass lights
+    // per pixel, and the volume carries their bounce.
+    bool carriesPunctualLight(uint32_t index) const override {
+        return settings_.enabled && made_ && analyticLights_ && !spotRsms_->selected(index);
+    }
 
     const LpvSettings& settings() const { return settings_; }
     // The finest cascade's placement (cascade(c) for the others).
@@ -66,6 +71,7 @@ public:
     const ReflectiveShadowMap* rsm() const { return rsm_.get(); }
     const GeometryVolume* geometry() const { return geometry_.get(); }
     const PointLightInjection* pointLights() const { return pointLights_.get(); }
+    const SpotLightRsms* spotLightRsms() const { return spotRsms_.get(); }
     rhi::BufferHandle vplBuffer() const { return vpls_; }
 
 private:
@@ -95,6 +101,7 @@ private:
     std::unique_ptr<GeometryVolume> geometry_;
     std::unique_ptr<MultipleBounces> bounces_; // gi.bounces > 1
     std::unique_ptr<PointLightInjection> pointLights_;
+    std::unique_ptr<SpotLightRsms> spotRsms_;
     GlossyReflections glossy_;
     bool analyticLights_ = true;
     rhi::BufferHandle vpls_;

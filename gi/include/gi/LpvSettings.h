@@ -32,6 +32,8 @@ struct LpvSettings {
     bool glossy = true;    // glossy reflections marched through the volume
     uint32_t bounces = 1;  // light reflected off the geometry volume's surfels (needs occlusion)
     GiBudgetPolicy budgetPolicy = GiBudgetPolicy::Fixed;
+    // Spot lights with a reflective shadow map of their own (SpotLightRsms).
+    uint32_t lightRsms = 1;
 
     // Side of the VPL grid the RSM is clustered into (sqrt of vplCount).
     uint32_t vplGridSide() const;

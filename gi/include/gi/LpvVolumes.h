@@ -8,7 +8,10 @@
 #include "gi/LpvSettings.h"
 #include "rhi/Device.h"
 
+#include <glm/vec4.hpp>
+
 #include <array>
+#include <span>
 #include <string>
 
 namespace lpv::gi {
@@ -30,6 +33,16 @@ struct CascadeHandoff {
     VolumeGrid coarseGrid, fineGrid;
 };
 
+// One light's VPLs for inject(): a buffer of std430 {vec4 position (w: valid), vec4 normal,
+// vec4 flux} and where its light is, for the half-cell shift toward it.
+struct VplSource {
+    rhi::BufferHandle vpls;
+    uint32_t count = 0;
+    // w 0: xyz is the direction a distant light travels (the sun); w 1: xyz is the position of a
+    // light at a point (a spot light), each VPL's direction then runs from it.
+    glm::vec4 light{0.0f, -1.0f, 0.0f, 0.0f};
+};
+
 class LpvVolumes {
 public:
     // `columnLength`: cells each propagation thread walks along z; 0 picks it from the device
@@ -46,6 +59,10 @@ public:
     // {vec4 position (w: valid), vec4 normal, vec4 flux}).
     void inject(rhi::CommandList& cmd, rhi::BufferHandle vpls, uint32_t vplCount, const VolumeGrid& grid,
                 glm::vec3 lightDirection, float intensity);
+    // Clears the injection volume and adds the VPLs of every source (several lights share the
+    // volume), all in one pass per slice.
+    void inject(rhi::CommandList& cmd, std::span<const VplSource> sources, const VolumeGrid& grid,
+                float intensity);
     // Propagates `iterations` (>= 1) times from the injection volume; accumulated() then holds the
     // injected volume plus every iteration's propagated light. With `faceTransmittance`
     // (GeometryVolume), the flux through every face is attenuated by it.

@@ -1,9 +1,11 @@
-// The reflective shadow map of the sun, fitted tightly around the light volume and snapped to its
+// A reflective shadow map. The sun's is fitted tightly around the light volume and snapped to its
 // own texels, so a moving camera (and volume) shifts the RSM by whole texels and it does not swim.
+// A spot light's is a perspective view from the light around its cone (SpotLightRsms).
 // Targets: depth, world normal, reflected flux per texel.
 #pragma once
 
 #include "engine/render/GpuScene.h"
+#include "engine/scene/Scene.h"
 #include "gi/LpvReference.h"
 #include "rhi/Device.h"
 
@@ -11,9 +13,25 @@
 
 namespace lpv::gi {
 
+enum class RsmLight { Sun, Spot };
+
+// A perspective RSM cannot hold a cone wider than this half-angle (radians, 70 degrees); a wider
+// spot's RSM sees the middle of its cone.
+constexpr float kMaxSpotRsmHalfAngle = 1.2217305f;
+
+// The frustum of a spot light's RSM: from the light along its axis, square, just around the outer
+// cone (at most kMaxSpotRsmHalfAngle), out to the light's range or `reach` m (how far the volume
+// needs it), whichever is nearer.
+struct SpotRsmFit {
+    glm::mat4 viewProjection{1.0f};
+    float tanHalfAngle = 0.0f; // of the frustum's sides
+    float nearPlane = 0.0f, farPlane = 0.0f;
+};
+SpotRsmFit fitSpotRsm(const engine::Light& spot, float reach);
+
 class ReflectiveShadowMap {
 public:
-    ReflectiveShadowMap(rhi::Device& device, uint32_t size);
+    ReflectiveShadowMap(rhi::Device& device, uint32_t size, RsmLight light = RsmLight::Sun);
     ~ReflectiveShadowMap();
     ReflectiveShadowMap(const ReflectiveShadowMap&) = delete;
     ReflectiveShadowMap& operator=(const ReflectiveShadowMap&) = delete;
@@ -25,6 +43,9 @@ public:
     // small next to its cells (a finer cascade carries it).
     void render(rhi::CommandList& cmd, const engine::GpuScene& scene, glm::vec3 lightDirection,
                 glm::vec3 sunIrradiance, float minObjectSize = 0.0f);
+    // A spot RSM (RsmLight::Spot): fits it to `spot` (fitSpotRsm) and draws the scene.
+    void renderSpot(rhi::CommandList& cmd, const engine::GpuScene& scene, const engine::Light& spot,
+                    float reach);
 
     const glm::mat4& lightViewProjection() const { return viewProjection_; }
     float texelArea() const { return texelArea_; }
@@ -33,8 +54,12 @@ public:
     rhi::TextureHandle flux() const { return flux_; }
 
 private:
+    void draw(rhi::CommandList& cmd, const engine::GpuScene& scene, const void* uniforms, uint32_t bytes,
+              float minObjectSize);
+
     rhi::Device& device_;
     uint32_t size_;
+    RsmLight light_;
     rhi::TextureHandle depth_, normal_, flux_;
     rhi::GraphicsPipelineHandle pipeline_;
     glm::mat4 viewProjection_{1.0f};

@@ -51,6 +51,8 @@ public:
     rhi::BufferHandle indices() const { return indices_; }
     rhi::BufferHandle lights() const { return lights_; }
     uint32_t lightCount() const { return lightCount_; }
+    // The records in lights(), in the order of the scene's point and spot lights.
+    const std::vector<GpuPunctualLight>& lightRecords() const { return lightRecords_; }
     const std::vector<GpuDraw>& draws() const { return draws_; }
     rhi::SamplerHandle materialSampler() const { return sampler_; }
     uint64_t triangleCount() const { return triangles_; }
@@ -62,6 +64,7 @@ private:
     rhi::TextureHandle white_, flatNormal_;
     rhi::SamplerHandle sampler_;
     std::vector<GpuDraw> draws_;
+    std::vector<GpuPunctualLight> lightRecords_;
     uint32_t lightCount_ = 0;
     uint64_t triangles_ = 0;
 };

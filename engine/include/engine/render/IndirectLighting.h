@@ -7,6 +7,8 @@
 #include "rhi/CommandList.h"
 #include "rhi/Handle.h"
 
+#include <cstdint>
+
 namespace lpv::engine {
 
 class FrameProfiler;
@@ -34,9 +36,14 @@ public:
                                     rhi::TextureHandle output) {
         (void)cmd, (void)camera, (void)output;
     }
-    // True when the indirect light written by renderIndirect() already holds the scene's point and
-    // spot lights (the LPV's analytic lights), so the lighting pass must not add them again.
-    virtual bool carriesPunctualLights() const { return false; }
+    // True when the indirect light written by renderIndirect() already holds punctual light `index`
+    // (of Renderer::punctualLights(); the LPV's analytic lights), so the lighting pass must not add
+    // it again. Asked per light every frame: a provider may carry some lights and not others (the
+    // LPV lights a spot light with its own RSM per pixel and carries only its bounce).
+    virtual bool carriesPunctualLight(uint32_t index) const {
+        (void)index;
+        return false;
+    }
 };
 
 } // namespace lpv::engine

@@ -80,6 +80,10 @@ private:
     void createTargets(uint32_t shadowSize);
     void destroyTargets();
     void createPipelines();
+    // The point and spot lights the lighting pass lights itself (those `indirect` does not carry):
+    // their count, and in `buffer` the buffer that holds them (the scene's, or directLights_ when
+    // only some are left, refilled when that choice changes).
+    uint32_t directLights(rhi::CommandList& cmd, const IndirectLighting* indirect, rhi::BufferHandle& buffer);
 
     rhi::Device& device_;
     uint32_t width_, height_, shadowSize_ = 0;
@@ -91,6 +95,10 @@ private:
     Bounds bounds_;
     SunLight sun_;
     std::vector<Light> punctualLights_;
+    // Made with the scene, sized for all its lights: a steady-state frame allocates nothing.
+    rhi::BufferHandle directLights_;
+    std::vector<uint32_t> directIndices_, uploadedIndices_; // into the scene's light records
+    std::vector<GpuPunctualLight> directRecords_;
     FrameUniforms frame_{};
 };
 

@@ -1,0 +1,89 @@
+// Spot lights with a reflective shadow map of their own (gi.light_rsms; Kaplanyan 2009: "several
+// lights inject into one shared volume"). Each frame the spot lights that matter most to the
+// volume get a perspective RSM around their cone, rendered once (not per cascade: the fit follows
+// the light, not the volume) and clustered into a VPL buffer of their own; the LPV injects those
+// VPLs into every cascade after the sun's, so a spot light's bounce carries the colour of what it
+// hits and propagates (and is occluded) like the sun's. The lighting pass lights these spots per
+// pixel; the others stay analytic (PointLightInjection). RSMs and buffers are made with the
+// volumes, never in a frame.
+#pragma once
+
+#include "engine/render/GpuScene.h"
+#include "engine/scene/Scene.h"
+#include "gi/AnalyticLight.h"
+#include "gi/LpvSettings.h"
+#include "gi/LpvVolumes.h"
+#include "gi/ReflectiveShadowMap.h"
+#include "rhi/Device.h"
+
+#include <array>
+#include <memory>
+#include <span>
+
+namespace lpv::gi {
+
+class SpotLightRsms {
+public:
+    static constexpr uint32_t kMaxLights = 4; // gi.light_rsms' upper limit
+
+    // settings.lightRsms RSMs of settings.rsmSize, each with a buffer of spotLightVplSide(settings)^2
+    // VPLs.
+    SpotLightRsms(rhi::Device& device, const LpvSettings& settings);
+    ~SpotLightRsms();
+    SpotLightRsms(const SpotLightRsms&) = delete;
+    SpotLightRsms& operator=(const SpotLightRsms&) = delete;
+
+    // Picks this frame's lights (selectRsmSpotLights) for the volume `reach` (the coarsest
+    // cascade: every cascade lies inside it). Call before the renderer asks selected().
+    void select(std::span<const engine::Light> lights, const VolumeGrid& reach);
+    // True when light `index` of the lights given to select() has an RSM this frame.
+    bool selected(uint32_t index) const;
+    std::span<const uint32_t> selection() const { return {selection_.data(), count_}; }
+
+    // Draws every selected light's RSM and clusters it into its VPLs.
+    void render(rhi::CommandList& cmd, const engine::GpuScene& scene, std::span<const engine::Light> lights);
+    // The selected lights' VPL buffers, for LpvVolumes::inject with the sun's (render() fills them).
+    std::span<const VplSource> sources() const { return {sources_.data(), count_}; }
+    // Those of sources() whose light can reach `grid` (a cascade: its range sphere meets the box),
+    // copied to `out`; returns how many. A cascade gets no VPLs that cannot land in it.
+    uint32_t sourcesReaching(const VolumeGrid& grid, std::span<VplSource> out) const;
+    const ReflectiveShadowMap& rsm(uint32_t slot) const { return *rsms_.at(slot); }
+
+private:
+    rhi::Device& device_;
+    LpvSettings settings_;
+    uint32_t capacity_ = 0;
+    std::array<std::unique_ptr<ReflectiveShadowMap>, kMaxLights> rsms_;
+    std::array<rhi::BufferHandle, kMaxLights> vpls_{};
+    std::array<uint32_t, kMaxLights> selection_{};
+    std::array<VplSource, kMaxLights> sources_{};
+    std::array<AnalyticLight, kMaxLights> reach_{}; // each selected light's range, for sourcesReaching()
+    uint32_t count_ = 0;
+    VolumeGrid reachGrid_; // the volume the lights were chosen for
+    rhi::ComputePipelineHandle clusterPipeline_;
+    rhi::SamplerHandle pointSampler_;
+};
+
+// Side of a spot light RSM's VPL grid: half the sun's (blocks of twice the texels, a quarter of
+// the VPLs) when that divides the RSM. The sun's RSM spreads gi.vpl_count VPLs over the bounding
+// square of a whole cascade; a spot's covers its cone, a fraction of that, so a quarter of them is
+// still denser on the surfaces it lights, and the injection, which draws every VPL once per slice,
+// pays a quarter of the sun's for it.
+uint32_t spotLightVplSide(const LpvSettings& settings);
+inline uint32_t spotLightVplCount(const LpvSettings& settings) {
+    return spotLightVplSide(settings) * spotLightVplSide(settings);
+}
+
+// How many of `lights` are spot lights.
+uint32_t spotLightCount(std::span<const engine::Light> lights);
+
+// The spot lights of `lights` that matter most to the volume at `grid`, at most `out.size()` of
+// them, as indices into `lights`, most important first; returns how many. A light counts when its
+// range reaches the volume and it is not dark; importance is its intensity's luminance over the
+// squared distance from the volume's centre, no less than the squared half-extent (so the lights
+// inside the volume rank by intensity alone). Ties keep the lights' order: the choice is
+// deterministic and stable from frame to frame while nothing moves.
+uint32_t selectRsmSpotLights(std::span<const engine::Light> lights, const VolumeGrid& grid,
+                             std::span<uint32_t> out);
+
+} // namespace lpv::gi

@@ -1,0 +1,274 @@
+// Spot lights with their own RSM (gi.light_rsms) on each backend: the VPLs of a light at a point
+// shift toward it along their own direction, several lights in one injection; the RSM's VPLs carry the flux
+// the cone delivers, times the albedo (the units the sun's VPLs have); in the Cornell box a spot on the red
+// wall bleeds red onto the floor through its RSM and does not when it is analytic (white light); the lighting
+// pass lights an RSM spot per pixel and not an analytic one; GL and Vulkan agree.
+#include "../render/CornellFrame.h"
+#include "../support/TestDevice.h"
+
+#include "engine/render/GpuScene.h"
+#include "engine/scene/BuiltinScenes.h"
+#include "gi/LpvReference.h"
+#include "gi/LpvVolumes.h"
+#include "gi/SpotLightRsms.h"
+
+#include <doctest/doctest.h>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+using namespace lpv;
+using namespace lpv::test;
+
+namespace {
+
+struct GpuVpl {
+    glm::vec4 position, normal, flux;
+};
+
+engine::Light spotLight(glm::vec3 position, glm::vec3 target, float inner, float outer, float intensity) {
+    engine::Light l;
+    l.name = "spot";
+    l.type = engine::LightType::Spot;
+    l.position = position;
+    l.direction = glm::normalize(target - position);
+    l.innerConeAngle = inner;
+    l.outerConeAngle = outer;
+    l.intensity = intensity;
+    return l;
+}
+
+// The Cornell box without its sun, and a white spot light from the right half of the room onto
+// the lower red wall; the floor by the wall is inside its cone too.
+engine::Scene spotOnRedWall() {
+    engine::Scene scene = engine::buildCornellBox();
+    scene.lights.push_back(spotLight({0.5f, 3.0f, 2.0f}, {-2.75f, 1.0f, 1.5f}, 0.35f, 0.5f, 60.0f));
+    return scene;
+}
+
+const auto kNoSun = [](engine::Renderer& r) { r.sun().radiance = glm::vec3(0.0f); };
+
+// 32 cells of 0.17 m span the box's interior (as the sun's colour-bleeding test).
+std::vector<std::string> indirectView(std::initializer_list<const char*> extra = {}) {
+    std::vector<std::string> v = {"gi.enabled=true", "render.debug_view=indirect", "gi.cell_size=0.17",
+                                  "gi.iterations=16", "render.ssao=false"};
+    v.insert(v.end(), extra.begin(), extra.end());
+    return v;
+}
+
+float smoothstep(float e0, float e1, float x) {
+    const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
+    return t * t * (3.0f - 2.0f * t);
+}
+
+// What engine/shaders/lighting.frag gives a surface at `p` with normal `n` from `l` (no range).
+glm::vec3 spotIrradiance(const engine::Light& l, glm::vec3 p, glm::vec3 n) {
+    const glm::vec3 toLight = l.position - p;
+    const float d2 = glm::dot(toLight, toLight);
+    const glm::vec3 dir = toLight / std::sqrt(d2);
+    const float cone =
+        smoothstep(std::cos(l.outerConeAngle), std::cos(l.innerConeAngle), glm::dot(-dir, l.direction));
+    return l.color * l.intensity * cone / d2 * std::max(glm::dot(n, dir), 0.0f);
+}
+
+const glm::vec3 kFloorByRedWall{-2.2f, 0.0f, 2.0f};
+
+} // namespace
+
+TEST_CASE("gi: VPLs of a light at a point shift along the line from it; lights share one injection") {
+    const gi::VolumeGrid grid{{0.0f, 0.0f, 0.0f}, 0.5f, 16};
+    const glm::vec3 sunDirection = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+    const glm::vec3 spotPosition{4.1f, 6.1f, 4.1f};
+    const std::vector<gi::Vpl> sunVpls = {{{3.3f, 1.2f, 5.1f}, {0, 1, 0}, {1.0f, 0.5f, 0.2f}}};
+    // Near cell borders, where the shift toward the light decides the cell.
+    const std::vector<gi::Vpl> spotVpls = {{{2.45f, 2.2f, 2.45f}, {0, 1, 0}, {0.2f, 0.4f, 1.0f}},
+                                           {{6.05f, 2.2f, 6.05f}, {0, 1, 0}, {0.5f, 0.5f, 0.5f}},
+                                           {{1.1f, 4.4f, 4.2f}, {1, 0, 0}, {0.9f, 0.1f, 0.3f}}};
+    gi::ShVolume reference(grid.size);
+    gi::injectReference(reference, grid, sunVpls, sunDirection);
+    uint32_t moved = 0; // VPLs whose cell a constant direction (the spot's axis) would get wrong
+    for (const gi::Vpl& v : spotVpls) {
+        const glm::vec3 travel = glm::normalize(v.position - spotPosition);
+        gi::injectReference(reference, grid, {v}, travel);
+        glm::ivec3 own, constant;
+        REQUIRE(gi::injectionCell(grid, v, travel, own));
+        if (!gi::injectionCell(grid, v, {0, -1, 0}, constant) || own != constant) ++moved;
+    }
+    REQUIRE(moved >= 2);
+    const auto upload = [](rhi::Device& device, const std::vector<gi::Vpl>& vpls) {
+        std::vector<GpuVpl> gpu;
+        for (const gi::Vpl& v : vpls)
+            gpu.push_back({glm::vec4(v.position, 1), glm::vec4(v.normal, 0), glm::vec4(v.flux, 0)});
+        return device.createBuffer({gpu.size() * sizeof(GpuVpl), rhi::kBufferStorage | rhi::kBufferTransfer,
+                                    rhi::MemoryAccess::GpuOnly, "test vpls", "test"},
+                                   gpu.data());
+    };
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            gi::LpvSettings s;
+            s.gridSize = grid.size;
+            s.shFormat = gi::ShFormat::Rgba32f; // float injection volume
+            const rhi::BufferHandle sun = upload(*device, sunVpls), spot = upload(*device, spotVpls);
+            float worst = 0.0f, peak = 0.0f;
+            {
+                gi::LpvVolumes volumes(*device, s);
+                const gi::VplSource sources[] = {
+                    {sun, uint32_t(sunVpls.size()), glm::vec4(sunDirection, 0.0f)},
+                    {spot, uint32_t(spotVpls.size()), glm::vec4(spotPosition, 1.0f)}};
+                rhi::CommandList& cmd = device->beginFrame();
+                volumes.inject(cmd, sources, grid, 1.0f);
+                device->endFrame();
+                device->waitIdle();
+                for (uint32_t ch = 0; ch < 3; ++ch) {
+                    const Image got = readImage(*device, volumes.injected()[ch]);
+                    for (uint32_t z = 0; z < grid.size; ++z)
+                        for (uint32_t y = 0; y < grid.size; ++y)
+                            for (uint32_t x = 0; x < grid.size; ++x) {
+                                const gi::ShCell& want = reference.at(x, y, z);
+                                const glm::vec4 w = ch == 0 ? want.r : ch == 1 ? want.g : want.b;
+                                for (int k = 0; k < 4; ++k) {
+                                    worst = std::max(worst, std::fabs(got.at(x, y, z)[k] - w[k]));
+                                    peak = std::max(peak, std::fabs(w[k]));
+                                }
+                            }
+                }
+            }
+            device->destroy(sun);
+            device->destroy(spot);
+            MESSAGE(backend.name << ": injection of a sun and a point-source VPL set, largest difference "
+                                 << worst << " (peak " << peak << ")");
+            REQUIRE(peak > 0.0f);
+            CHECK(worst <= 1e-5f * peak);
+            device.expectSilent();
+        }
+    }
+}
+
+TEST_CASE("gi: a spot light's RSM reflects the flux its cone delivers, times the albedo") {
+    // Straight down from under the ceiling: the whole cone lands on the floor and the box tops
+    // (albedo 0.73 all), none on the coloured walls. Reflected flux = albedo x I x the cone's
+    // solid angle weighted by its smoothstep falloff, 2 pi (1 - (cos inner + cos outer) / 2).
+    engine::Scene box = engine::buildCornellBox();
+    const engine::Light spot = spotLight({0.0f, 4.5f, 0.0f}, {0.0f, 0.0f, 0.0f}, 0.3f, 0.5f, 10.0f);
+    const std::vector<engine::Light> lights = {spot};
+    const float expected = 0.73f * spot.intensity * 2.0f * 3.14159265f *
+                           (1.0f - 0.5f * (std::cos(spot.innerConeAngle) + std::cos(spot.outerConeAngle)));
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            gi::LpvSettings s; // RSM 256, 4096 VPLs for the sun: 1024 for a spot
+            s.lightRsms = 1;
+            std::vector<GpuVpl> vpls(gi::spotLightVplCount(s));
+            {
+                engine::GpuScene scene(*device, box);
+                gi::SpotLightRsms rsms(*device, s);
+                rsms.select(lights, gi::VolumeGrid{{-8.0f, -8.0f, -8.0f}, 0.5f, 32});
+                REQUIRE(rsms.selection().size() == 1);
+                rhi::CommandList& cmd = device->beginFrame();
+                rsms.render(cmd, scene, lights);
+                device->endFrame();
+                device->waitIdle();
+                REQUIRE(rsms.sources().size() == 1);
+                CHECK(rsms.sources()[0].light == glm::vec4(spot.position, 1.0f));
+                device->readBuffer(rsms.sources()[0].vpls, 0, vpls.data(), vpls.size() * sizeof(GpuVpl));
+            }
+            glm::vec3 flux(0.0f);
+            uint32_t lit = 0, facingLight = 0;
+            for (const GpuVpl& v : vpls) {
+                if (v.position.w <= 0.0f) continue;
+                ++lit;
+                flux += glm::vec3(v.flux);
+                // Every lit VPL faces the light (the RSM turns two-sided surfaces toward it).
+                if (glm::dot(glm::vec3(v.normal), spot.position - glm::vec3(v.position)) > 0.0f)
+                    ++facingLight;
+            }
+            MESSAGE(backend.name << ": " << lit << " lit VPLs carry " << flux.r << ", " << flux.g << ", "
+                                 << flux.b << " W; the cone delivers x albedo " << expected << " W");
+            CHECK(lit > vpls.size() / 2);
+            CHECK(facingLight == lit);
+            for (int c = 0; c < 3; ++c)
+                CHECK(flux[c] == doctest::Approx(expected).epsilon(0.02));
+            device.expectSilent();
+        }
+    }
+}
+
+TEST_CASE("gi: a spot light with its own RSM bleeds the colour it hits; an analytic one does not") {
+    const engine::Scene scene = spotOnRedWall();
+    const engine::Light& spot = scene.lights.back();
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            const CornellFrame rsm = renderSceneFrame(*device, scene, indirectView(), kNoSun);
+            const CornellFrame analytic =
+                renderSceneFrame(*device, scene, indirectView({"gi.light_rsms=0"}), kNoSun);
+            uint32_t x = 0, y = 0;
+            REQUIRE(rsm.pixelOf(kFloorByRedWall, x, y));
+            const glm::vec4 bounce = rsm.hdr.at(x, y), white = analytic.hdr.at(x, y);
+            MESSAGE(backend.name << ": indirect on the floor by the red wall, spot with an RSM "
+                                 << describe(bounce) << ", analytic spot " << describe(white));
+            // Through its RSM the light reflected by the red wall reaches the floor red.
+            CHECK(bounce.r > 1.5f * bounce.g);
+            CHECK(bounce.r > 1.5f * bounce.b);
+            // Analytic, the volume holds the spot's own white light there, and no bounce.
+            CHECK(luminance(white) > 0.0f);
+            CHECK(white.r == doctest::Approx(white.g).epsilon(0.02));
+            CHECK(white.r == doctest::Approx(white.b).epsilon(0.02));
+
+            // The lighting pass lights the RSM spot per pixel (the volume holds only its bounce),
+            // as lighting.frag's formula says, and adds nothing for the analytic one.
+            const CornellFrame rsmFinal = renderSceneFrame(
+                *device, scene, {"gi.enabled=true", "gi.cell_size=0.17", "render.ssao=false"}, kNoSun);
+            const CornellFrame analyticFinal = renderSceneFrame(
+                *device, scene,
+                {"gi.enabled=true", "gi.cell_size=0.17", "render.ssao=false", "gi.light_rsms=0"}, kNoSun);
+            const CornellFrame analyticIndirect =
+                renderSceneFrame(*device, scene,
+                                 {"gi.enabled=true", "gi.cell_size=0.17", "render.ssao=false",
+                                  "gi.light_rsms=0", "render.debug_view=indirect"},
+                                 kNoSun);
+            const CornellFrame rsmIndirect = renderSceneFrame(
+                *device, scene,
+                {"gi.enabled=true", "gi.cell_size=0.17", "render.ssao=false", "render.debug_view=indirect"},
+                kNoSun);
+            const glm::vec3 direct = glm::vec3(rsmFinal.hdr.at(x, y) - rsmIndirect.hdr.at(x, y));
+            const glm::vec3 want = 0.73f / 3.14159265f * spotIrradiance(spot, kFloorByRedWall, {0, 1, 0});
+            MESSAGE(backend.name << ": direct light of the RSM spot " << describe(glm::vec4(direct, 1))
+                                 << ", lighting.frag's formula " << describe(glm::vec4(want, 1)));
+            REQUIRE(want.g > 0.1f);
+            CHECK(direct.g == doctest::Approx(want.g).epsilon(0.05));
+            const glm::vec4 none = analyticFinal.hdr.at(x, y) - analyticIndirect.hdr.at(x, y);
+            CHECK(std::fabs(none.g) <= 1e-6f);
+            device.expectSilent();
+        }
+    }
+}
+
+TEST_CASE("gi: GL and Vulkan compute the same spot light bounce") {
+    const engine::Scene scene = spotOnRedWall();
+    CornellFrame gl, vk;
+    {
+        TestDevice device(backendByName("gl-egl"));
+        gl = renderSceneFrame(*device, scene, indirectView(), kNoSun);
+        device.expectSilent();
+    }
+    {
+        TestDevice device(backendByName("vulkan"));
+        vk = renderSceneFrame(*device, scene, indirectView(), kNoSun);
+        device.expectSilent();
+    }
+    float peak = 0.0f;
+    for (const glm::vec4& t : vk.hdr.texels)
+        peak = std::max({peak, t.r, t.g, t.b});
+    REQUIRE(peak > 0.0f);
+    // As for the sun's indirect light: 1% of the brightest value on 99% of the pixels.
+    const ImageDifference d = compareImages(gl.hdr, vk.hdr, 0.01f * peak);
+    MESSAGE("spot light bounce GL vs Vulkan: max difference " << d.maxAbs << " (peak " << peak << "), "
+                                                              << d.texelsOver << " pixels over");
+    CHECK(d.texelsOver <= gl.hdr.texels.size() / 100);
+}
