@@ -33,16 +33,18 @@ layout(binding = 20) uniform sampler3D coarseRed;
 layout(binding = 21) uniform sampler3D coarseGreen;
 layout(binding = 22) uniform sampler3D coarseBlue;
 #endif
-layout(binding = 1) uniform sampler3D injectedRed;
-layout(binding = 2) uniform sampler3D injectedGreen;
-layout(binding = 3) uniform sampler3D injectedBlue;
+// Everything the kernel reads cell by cell is a storage image: llvmpipe turns imageLoad into a
+// plain gather, where texelFetch goes through its sampler code.
+layout(binding = 1, INJECT_FORMAT) uniform readonly image3D injectedRed;
+layout(binding = 2, INJECT_FORMAT) uniform readonly image3D injectedGreen;
+layout(binding = 3, INJECT_FORMAT) uniform readonly image3D injectedBlue;
 #ifndef FROM_INJECTION
-layout(binding = 4) uniform usampler3D src0;
+layout(binding = 4, PACKED0_FORMAT) uniform readonly uimage3D src0;
 #if PACKED_TEXELS > 1
-layout(binding = 5) uniform usampler3D src1;
+layout(binding = 5, PACKED1_FORMAT) uniform readonly uimage3D src1;
 #endif
 #if PACKED_TEXELS > 2
-layout(binding = 6) uniform usampler3D src2;
+layout(binding = 6, PACKED2_FORMAT) uniform readonly uimage3D src2;
 #endif
 #endif
 #ifdef TO_RESULT
@@ -143,7 +145,7 @@ Sh3 outside(ivec3 c) {
 Sh3 loadInjected(ivec3 c, int n) {
     const bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
     const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
-    const Sh3 v = Sh3(texelFetch(injectedRed, k, 0), texelFetch(injectedGreen, k, 0), texelFetch(injectedBlue, k, 0));
+    const Sh3 v = Sh3(imageLoad(injectedRed, k), imageLoad(injectedGreen, k), imageLoad(injectedBlue, k));
     return inside ? v : outside(c);
 }
 
@@ -154,12 +156,12 @@ Sh3 loadSource(ivec3 c, int n) {
 #else
     const bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
     const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
-    uvec4 t0 = texelFetch(src0, k, 0), t1 = uvec4(0u), t2 = uvec4(0u);
+    uvec4 t0 = imageLoad(src0, k), t1 = uvec4(0u), t2 = uvec4(0u);
 #if PACKED_TEXELS > 1
-    t1 = texelFetch(src1, k, 0);
+    t1 = imageLoad(src1, k);
 #endif
 #if PACKED_TEXELS > 2
-    t2 = texelFetch(src2, k, 0);
+    t2 = imageLoad(src2, k);
 #endif
     if (!inside) return outside(c);
     return unpackCell(t0, t1, t2);

@@ -4,6 +4,7 @@
 #define PACKED_TEXELS 2
 #define PACKED0_FORMAT rgba32ui
 #define PACKED1_FORMAT rg32ui
+#define INJECT_FORMAT rgba16f // the injection volume (LpvVolumes.cpp)
 #include "propagate_body.glsl"
 
 vec4 encodeSh(vec4 v) { return v; }

@@ -87,7 +87,9 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
             return device.createTexture({TextureKind::Tex3D, f, n, n, n, 1, usage | kTextureTransfer,
                                          std::string("lpv ") + what + " " + channels[c], "gi.lpv"});
         };
-        inject_[size_t(c)] = volume(injectFormat, kTextureColorTarget | kTextureSampled, "injection");
+        // Storage too: the propagation kernel reads it with imageLoad (propagate_body.glsl).
+        inject_[size_t(c)] =
+            volume(injectFormat, kTextureColorTarget | kTextureSampled | kTextureStorage, "injection");
         accum_[size_t(c)] = volume(shFormat, kTextureStorage | kTextureSampled, "accumulated");
     }
     for (uint32_t t = 0; t < packedTexelCount(settings.shFormat); ++t)
@@ -202,11 +204,11 @@ void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::Text
             for (uint32_t c = 0; c < 3; ++c)
                 cmd.bindTexture(20 + c, handoff->coarse[c], linearSampler_);
         for (uint32_t c = 0; c < 3; ++c) {
-            cmd.bindTexture(1 + c, inject_[c], pointSampler_);
+            cmd.bindStorageImage(1 + c, inject_[c]);
             if (last) cmd.bindStorageImage(10 + c, target[c]);
         }
         for (uint32_t t = 0; t < texels; ++t) {
-            if (!first) cmd.bindTexture(4 + t, partial_[(i + 1) % 2][t], pointSampler_);
+            if (!first) cmd.bindStorageImage(4 + t, partial_[(i + 1) % 2][t]);
             if (!last) cmd.bindStorageImage(7 + t, partial_[i % 2][t]);
         }
         cmd.dispatch((n + 15) / 16, (n + 15) / 16, (n + column - 1) / column);
