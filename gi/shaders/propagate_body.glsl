@@ -140,13 +140,23 @@ Sh3 outside(ivec3 c) {
 #endif
 }
 
-// The injection volume at a cell, or outside() beyond the volume (the coordinate is clamped first
-// so no fetch is ever out of range).
+// Beyond the volume a cell reads outside(); the coordinate is clamped first so that no access is
+// ever out of range, and the choice is a select (mix with a bvec), not a branch: a CPU rasterizer
+// runs every branch with lane masks, and ?: or && on vectors compile to branches.
+Sh3 insideOr(ivec3 c, ivec3 k, Sh3 v) {
+    const bvec4 inside = bvec4(all(equal(c, k)));
+#ifdef HANDOFF
+    const Sh3 o = outside(c);
+#else
+    const Sh3 o = Sh3(vec4(0.0), vec4(0.0), vec4(0.0));
+#endif
+    return Sh3(mix(o.r, v.r, inside), mix(o.g, v.g, inside), mix(o.b, v.b, inside));
+}
+
+// The injection volume at a cell, or outside() beyond the volume.
 Sh3 loadInjected(ivec3 c, int n) {
-    const bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
     const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
-    const Sh3 v = Sh3(imageLoad(injectedRed, k), imageLoad(injectedGreen, k), imageLoad(injectedBlue, k));
-    return inside ? v : outside(c);
+    return insideOr(c, k, Sh3(imageLoad(injectedRed, k), imageLoad(injectedGreen, k), imageLoad(injectedBlue, k)));
 }
 
 // The previous iteration's partial sum at a cell (outside() beyond the volume).
@@ -154,7 +164,6 @@ Sh3 loadSource(ivec3 c, int n) {
 #ifdef FROM_INJECTION
     return loadInjected(c, n);
 #else
-    const bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
     const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
     uvec4 t0 = imageLoad(src0, k), t1 = uvec4(0u), t2 = uvec4(0u);
 #if PACKED_TEXELS > 1
@@ -163,8 +172,7 @@ Sh3 loadSource(ivec3 c, int n) {
 #if PACKED_TEXELS > 2
     t2 = imageLoad(src2, k);
 #endif
-    if (!inside) return outside(c);
-    return unpackCell(t0, t1, t2);
+    return insideOr(c, k, unpackCell(t0, t1, t2));
 #endif
 }
 
