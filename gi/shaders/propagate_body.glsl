@@ -16,6 +16,19 @@
 //   walks it along z: the z neighbours come from registers, the x/y neighbours inside the 2x2
 //   from registers, and only the 8 cells around it are fetched per step (3 fetched cells per
 //   output cell instead of 6). Partial sums travel packed (fewer, wider fetches and stores).
+// - On llvmpipe (Mesa 22.3, measured with in-process A/B runs of CPU time): every per-cell read
+//   is an imageLoad of a storage image, which llvmpipe compiles to a gather; texelFetch goes
+//   through its sampler code and cost 13-20% more of the whole kernel. Out-of-volume cells are
+//   chosen with mix(bvec) selects: ?: and && on vectors compile to branches, and a CPU
+//   rasterizer runs every branch under lane masks.
+// - Tried and dropped on llvmpipe: a 4x4 footprint per thread (2 fetched cells per output cell
+//   instead of 3) measured the same or slower than 2x2 (register spills eat the saved fetches);
+//   carrying part of x in the second packed texel (RGBA32UI instead of RG32UI, x read with one
+//   fetch instead of three) was slower: an image store costs per 32-bit word (llvmpipe stores lane
+//   by lane, word by word), so 2 more words stored per cell outweigh 2 fetches saved.
+// - Still weak on GL: Mesa's GL front end lowers packHalf2x16/unpackHalf2x16 to integer code
+//   (Vulkan gets F16C); with the unpacking replaced by bit casts (wrong results, timing only) GL
+//   went from about 2.5x to 3.2x the baseline in CPU time, Vulkan stayed where it was.
 #include "lpv_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
