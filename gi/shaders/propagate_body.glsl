@@ -11,24 +11,27 @@
 // - Linearity also folds the accumulation into the iteration (Horner's rule): with x the injected
 //   volume, y0 = x and y(k+1) = x + P y(k), so y(N) = x + Px + ... + P^N x is the accumulated
 //   result. No accumulation texture is read or written until the last iteration stores y(N).
-// - Memory operations dominate on every device we measured (a CPU rasterizer pays about the same
-//   per texel fetch or store whatever its size), so each thread owns a 2x2 column of cells and
-//   walks it along z: the z neighbours come from registers, the x/y neighbours inside the 2x2
-//   from registers, and only the 8 cells around it are fetched per step (3 fetched cells per
-//   output cell instead of 6). Partial sums travel packed (fewer, wider fetches and stores).
-// - On llvmpipe (Mesa 22.3, measured with in-process A/B runs of CPU time): every per-cell read
-//   is an imageLoad of a storage image, which llvmpipe compiles to a gather; texelFetch goes
-//   through its sampler code and cost 13-20% more of the whole kernel. Out-of-volume cells are
-//   chosen with mix(bvec) selects: ?: and && on vectors compile to branches, and a CPU
-//   rasterizer runs every branch under lane masks.
+// - Memory operations dominate on every device we measured, so each thread owns a 2x2 column of
+//   cells and walks it along z: the z neighbours come from registers, the x/y neighbours inside
+//   the 2x2 from registers, and only the 8 cells around it are fetched per step (3 fetched cells
+//   per output cell instead of 6). The partial sums travel in as few 32-bit words as the format
+//   allows: RGBA8 packed into one RGBA32UI texel, RGBA32F as three RGBA32UI texels of float bits,
+//   RGBA16F as three RGBA16F images (one per channel, 6 words per cell either way).
+// - On llvmpipe (Mesa 22.3; in-process A/B runs of CPU time, this 2-core machine being noisy):
+//   every per-cell read is an imageLoad of a storage image, which llvmpipe compiles to a gather;
+//   texelFetch goes through its sampler code and cost 13-20% more of the whole kernel.
+//   Out-of-volume cells are chosen with mix(bvec) selects: ?: and && on vectors compile to
+//   branches, and a CPU rasterizer runs every branch under lane masks.
+// - RGBA16F partial sums used to be packed halves (an RGBA32UI and an RG32UI texel: 2 fetches per
+//   cell instead of 3), but Mesa's GL front end lowers packHalf2x16/unpackHalf2x16 to integer
+//   code, and on Vulkan too the unpacking cost more than the fetch it saved: as RGBA16F
+//   images, converted by llvmpipe's image code, the kernel went from 2.4-2.8x to 3.5-3.9x the
+//   baseline on both APIs (same rounding: halves either way).
 // - Tried and dropped on llvmpipe: a 4x4 footprint per thread (2 fetched cells per output cell
 //   instead of 3) measured the same or slower than 2x2 (register spills eat the saved fetches);
-//   carrying part of x in the second packed texel (RGBA32UI instead of RG32UI, x read with one
-//   fetch instead of three) was slower: an image store costs per 32-bit word (llvmpipe stores lane
-//   by lane, word by word), so 2 more words stored per cell outweigh 2 fetches saved.
-// - Still weak on GL: Mesa's GL front end lowers packHalf2x16/unpackHalf2x16 to integer code
-//   (Vulkan gets F16C); with the unpacking replaced by bit casts (wrong results, timing only) GL
-//   went from about 2.5x to 3.2x the baseline in CPU time, Vulkan stayed where it was.
+//   carrying part of x in the packed texels (x read with one fetch instead of three) was slower:
+//   an image store costs per 32-bit word (llvmpipe stores lane by lane, word by word), and it
+//   stored 2 more words per cell than it saved in fetches.
 #include "lpv_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
@@ -51,13 +54,22 @@ layout(binding = 22) uniform sampler3D coarseBlue;
 layout(binding = 1, INJECT_FORMAT) uniform readonly image3D injectedRed;
 layout(binding = 2, INJECT_FORMAT) uniform readonly image3D injectedGreen;
 layout(binding = 3, INJECT_FORMAT) uniform readonly image3D injectedBlue;
+// The partial sums: packed unsigned-integer texels, or (PARTIALS_AS_SH) one SH_FORMAT image per
+// channel like the result.
+#ifdef PARTIALS_AS_SH
+#define PARTIAL_IMAGE image3D
+#define PARTIAL_TEXEL vec4
+#else
+#define PARTIAL_IMAGE uimage3D
+#define PARTIAL_TEXEL uvec4
+#endif
 #ifndef FROM_INJECTION
-layout(binding = 4, PACKED0_FORMAT) uniform readonly uimage3D src0;
+layout(binding = 4, PACKED0_FORMAT) uniform readonly PARTIAL_IMAGE src0;
 #if PACKED_TEXELS > 1
-layout(binding = 5, PACKED1_FORMAT) uniform readonly uimage3D src1;
+layout(binding = 5, PACKED1_FORMAT) uniform readonly PARTIAL_IMAGE src1;
 #endif
 #if PACKED_TEXELS > 2
-layout(binding = 6, PACKED2_FORMAT) uniform readonly uimage3D src2;
+layout(binding = 6, PACKED2_FORMAT) uniform readonly PARTIAL_IMAGE src2;
 #endif
 #endif
 #ifdef TO_RESULT
@@ -65,12 +77,12 @@ layout(binding = 10, SH_FORMAT) uniform writeonly image3D resultRed;
 layout(binding = 11, SH_FORMAT) uniform writeonly image3D resultGreen;
 layout(binding = 12, SH_FORMAT) uniform writeonly image3D resultBlue;
 #else
-layout(binding = 7, PACKED0_FORMAT) uniform writeonly uimage3D dst0;
+layout(binding = 7, PACKED0_FORMAT) uniform writeonly PARTIAL_IMAGE dst0;
 #if PACKED_TEXELS > 1
-layout(binding = 8, PACKED1_FORMAT) uniform writeonly uimage3D dst1;
+layout(binding = 8, PACKED1_FORMAT) uniform writeonly PARTIAL_IMAGE dst1;
 #endif
 #if PACKED_TEXELS > 2
-layout(binding = 9, PACKED2_FORMAT) uniform writeonly uimage3D dst2;
+layout(binding = 9, PACKED2_FORMAT) uniform writeonly PARTIAL_IMAGE dst2;
 #endif
 #endif
 
@@ -84,8 +96,8 @@ struct Sh3 {
 };
 // Defined by the format's .comp file.
 vec4 encodeSh(vec4 v);
-Sh3 unpackCell(uvec4 t0, uvec4 t1, uvec4 t2);
-void packCell(Sh3 v, out uvec4 t0, out uvec4 t1, out uvec4 t2);
+Sh3 unpackCell(PARTIAL_TEXEL t0, PARTIAL_TEXEL t1, PARTIAL_TEXEL t2);
+void packCell(Sh3 v, out PARTIAL_TEXEL t0, out PARTIAL_TEXEL t1, out PARTIAL_TEXEL t2);
 
 // The transfer from a neighbour one cell away along axis e (PropagationScheme.h): with p the
 // source at cell - e (light travelling +e) and m the source at cell + e (travelling -e), and a the
@@ -178,7 +190,7 @@ Sh3 loadSource(ivec3 c, int n) {
     return loadInjected(c, n);
 #else
     const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
-    uvec4 t0 = imageLoad(src0, k), t1 = uvec4(0u), t2 = uvec4(0u);
+    PARTIAL_TEXEL t0 = imageLoad(src0, k), t1 = PARTIAL_TEXEL(0), t2 = PARTIAL_TEXEL(0);
 #if PACKED_TEXELS > 1
     t1 = imageLoad(src1, k);
 #endif
@@ -196,7 +208,7 @@ void storeCell(ivec3 c, int n, Sh3 v) {
     imageStore(resultGreen, c, encodeSh(v.g));
     imageStore(resultBlue, c, encodeSh(v.b));
 #else
-    uvec4 t0, t1, t2;
+    PARTIAL_TEXEL t0, t1, t2;
     packCell(v, t0, t1, t2);
     imageStore(dst0, c, t0);
 #if PACKED_TEXELS > 1

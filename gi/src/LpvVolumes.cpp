@@ -54,11 +54,10 @@ uint32_t packedTexelCount(ShFormat f) {
     case ShFormat::Rgba8:
         return 1;
     case ShFormat::Rgba32f:
-        return 3;
     case ShFormat::Rgba16f:
         break;
     }
-    return 2;
+    return 3;
 }
 
 uint32_t propagationColumnLength(uint32_t n, uint32_t concurrentWorkgroups) {
@@ -68,8 +67,9 @@ uint32_t propagationColumnLength(uint32_t n, uint32_t concurrentWorkgroups) {
     return std::max(1u, (n + slabs - 1) / slabs);
 }
 
-rhi::Format packedTexelFormat(ShFormat f, uint32_t texel) {
-    return f == ShFormat::Rgba16f && texel == 1 ? rhi::Format::RG32UI : rhi::Format::RGBA32UI;
+// Every texel of a format has the same format (the parameter keeps the per-texel question open).
+rhi::Format packedTexelFormat(ShFormat f, uint32_t /*texel*/) {
+    return f == ShFormat::Rgba16f ? rhi::Format::RGBA16F : rhi::Format::RGBA32UI;
 }
 
 LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_t columnLength)
