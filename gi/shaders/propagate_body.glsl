@@ -88,7 +88,7 @@ layout(binding = 9, PACKED2_FORMAT) uniform writeonly PARTIAL_IMAGE dst2;
 
 #ifdef OCCLUSION
 // Per cell: the transmittance of its -x, -y, -z faces (GeometryVolume).
-layout(binding = 19) uniform sampler3D faceTransmittance;
+layout(binding = 19, rgba8) uniform readonly image3D faceTransmittance;
 #endif
 
 struct Sh3 {
@@ -223,9 +223,8 @@ void storeCell(ivec3 c, int n, Sh3 v) {
 // Face transmittance of a cell; 1 outside the volume (nothing comes from there anyway).
 vec3 faces(ivec3 c, int n) {
 #ifdef OCCLUSION
-    const bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
-    const vec3 t = texelFetch(faceTransmittance, clamp(c, ivec3(0), ivec3(n - 1)), 0).xyz;
-    return inside ? t : vec3(1.0);
+    const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
+    return mix(vec3(1.0), imageLoad(faceTransmittance, k).xyz, bvec3(all(equal(c, k))));
 #else
     return vec3(1.0);
 #endif

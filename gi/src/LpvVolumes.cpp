@@ -113,7 +113,6 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
         for (int role = 0; role < 4; ++role)
             propagatePipelines_[size_t(variant)][size_t(role)] = device.createPipeline(
                 ComputePipelineDesc{&propagateShader(settings.shFormat, variant, role), roleNames[role]});
-    pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
     SamplerDesc linear;
     linear.mipFilter = Filter::Nearest;
     linearSampler_ = device.createSampler(linear);
@@ -128,7 +127,6 @@ LpvVolumes::~LpvVolumes() {
     for (const auto& set : propagatePipelines_)
         for (rhi::ComputePipelineHandle p : set)
             device_.destroy(p);
-    device_.destroy(pointSampler_);
     device_.destroy(linearSampler_);
 }
 
@@ -199,7 +197,7 @@ void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::Text
         const int variant = (faceTransmittance ? 1 : 0) | (handoff ? 2 : 0);
         cmd.bindPipeline(propagatePipelines_[size_t(variant)][size_t(role)]);
         cmd.pushUniforms(0, &u, sizeof(u));
-        if (faceTransmittance) cmd.bindTexture(19, faceTransmittance, pointSampler_);
+        if (faceTransmittance) cmd.bindStorageImage(19, faceTransmittance);
         if (handoff)
             for (uint32_t c = 0; c < 3; ++c)
                 cmd.bindTexture(20 + c, handoff->coarse[c], linearSampler_);

@@ -76,7 +76,7 @@ private:
     rhi::GraphicsPipelineHandle injectPipeline_;
     // By variant (bit 0: occlusion, bit 1: handoff) and iteration role.
     std::array<std::array<rhi::ComputePipelineHandle, 4>, 4> propagatePipelines_{};
-    rhi::SamplerHandle pointSampler_, linearSampler_;
+    rhi::SamplerHandle linearSampler_; // the coarse cascade's result (handoff)
 };
 
 } // namespace lpv::gi
