@@ -11,11 +11,27 @@
 // - Linearity also folds the accumulation into the iteration (Horner's rule): with x the injected
 //   volume, y0 = x and y(k+1) = x + P y(k), so y(N) = x + Px + ... + P^N x is the accumulated
 //   result. No accumulation texture is read or written until the last iteration stores y(N).
-// - Memory operations dominate on every device we measured (a CPU rasterizer pays about the same
-//   per texel fetch or store whatever its size), so each thread owns a 2x2 column of cells and
-//   walks it along z: the z neighbours come from registers, the x/y neighbours inside the 2x2
-//   from registers, and only the 8 cells around it are fetched per step (3 fetched cells per
-//   output cell instead of 6). Partial sums travel packed (fewer, wider fetches and stores).
+// - Memory operations dominate on every device we measured, so each thread owns a 2x2 column of
+//   cells and walks it along z: the z neighbours come from registers, the x/y neighbours inside
+//   the 2x2 from registers, and only the 8 cells around it are fetched per step (3 fetched cells
+//   per output cell instead of 6). The partial sums travel in as few 32-bit words as the format
+//   allows: RGBA8 packed into one RGBA32UI texel, RGBA32F as three RGBA32UI texels of float bits,
+//   RGBA16F as three RGBA16F images (one per channel, 6 words per cell either way).
+// - On llvmpipe (Mesa 22.3; in-process A/B runs of CPU time, this 2-core machine being noisy):
+//   every per-cell read is an imageLoad of a storage image, which llvmpipe compiles to a gather;
+//   texelFetch goes through its sampler code and cost 13-20% more of the whole kernel.
+//   Out-of-volume cells are chosen with mix(bvec) selects: ?: and && on vectors compile to
+//   branches, and a CPU rasterizer runs every branch under lane masks.
+// - RGBA16F partial sums used to be packed halves (an RGBA32UI and an RG32UI texel: 2 fetches per
+//   cell instead of 3), but Mesa's GL front end lowers packHalf2x16/unpackHalf2x16 to integer
+//   code, and on Vulkan too the unpacking cost more than the fetch it saved: as RGBA16F
+//   images, converted by llvmpipe's image code, the kernel went from 2.4-2.8x to 3.5-3.9x the
+//   baseline on both APIs (same rounding: halves either way).
+// - Tried and dropped on llvmpipe: a 4x4 footprint per thread (2 fetched cells per output cell
+//   instead of 3) measured the same or slower than 2x2 (register spills eat the saved fetches);
+//   carrying part of x in the packed texels (x read with one fetch instead of three) was slower:
+//   an image store costs per 32-bit word (llvmpipe stores lane by lane, word by word), and it
+//   stored 2 more words per cell than it saved in fetches.
 #include "lpv_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
@@ -33,16 +49,27 @@ layout(binding = 20) uniform sampler3D coarseRed;
 layout(binding = 21) uniform sampler3D coarseGreen;
 layout(binding = 22) uniform sampler3D coarseBlue;
 #endif
-layout(binding = 1) uniform sampler3D injectedRed;
-layout(binding = 2) uniform sampler3D injectedGreen;
-layout(binding = 3) uniform sampler3D injectedBlue;
+// Everything the kernel reads cell by cell is a storage image: llvmpipe turns imageLoad into a
+// plain gather, where texelFetch goes through its sampler code.
+layout(binding = 1, INJECT_FORMAT) uniform readonly image3D injectedRed;
+layout(binding = 2, INJECT_FORMAT) uniform readonly image3D injectedGreen;
+layout(binding = 3, INJECT_FORMAT) uniform readonly image3D injectedBlue;
+// The partial sums: packed unsigned-integer texels, or (PARTIALS_AS_SH) one SH_FORMAT image per
+// channel like the result.
+#ifdef PARTIALS_AS_SH
+#define PARTIAL_IMAGE image3D
+#define PARTIAL_TEXEL vec4
+#else
+#define PARTIAL_IMAGE uimage3D
+#define PARTIAL_TEXEL uvec4
+#endif
 #ifndef FROM_INJECTION
-layout(binding = 4) uniform usampler3D src0;
+layout(binding = 4, PACKED0_FORMAT) uniform readonly PARTIAL_IMAGE src0;
 #if PACKED_TEXELS > 1
-layout(binding = 5) uniform usampler3D src1;
+layout(binding = 5, PACKED1_FORMAT) uniform readonly PARTIAL_IMAGE src1;
 #endif
 #if PACKED_TEXELS > 2
-layout(binding = 6) uniform usampler3D src2;
+layout(binding = 6, PACKED2_FORMAT) uniform readonly PARTIAL_IMAGE src2;
 #endif
 #endif
 #ifdef TO_RESULT
@@ -50,18 +77,18 @@ layout(binding = 10, SH_FORMAT) uniform writeonly image3D resultRed;
 layout(binding = 11, SH_FORMAT) uniform writeonly image3D resultGreen;
 layout(binding = 12, SH_FORMAT) uniform writeonly image3D resultBlue;
 #else
-layout(binding = 7, PACKED0_FORMAT) uniform writeonly uimage3D dst0;
+layout(binding = 7, PACKED0_FORMAT) uniform writeonly PARTIAL_IMAGE dst0;
 #if PACKED_TEXELS > 1
-layout(binding = 8, PACKED1_FORMAT) uniform writeonly uimage3D dst1;
+layout(binding = 8, PACKED1_FORMAT) uniform writeonly PARTIAL_IMAGE dst1;
 #endif
 #if PACKED_TEXELS > 2
-layout(binding = 9, PACKED2_FORMAT) uniform writeonly uimage3D dst2;
+layout(binding = 9, PACKED2_FORMAT) uniform writeonly PARTIAL_IMAGE dst2;
 #endif
 #endif
 
 #ifdef OCCLUSION
 // Per cell: the transmittance of its -x, -y, -z faces (GeometryVolume).
-layout(binding = 19) uniform sampler3D faceTransmittance;
+layout(binding = 19, rgba8) uniform readonly image3D faceTransmittance;
 #endif
 
 struct Sh3 {
@@ -69,23 +96,11 @@ struct Sh3 {
 };
 // Defined by the format's .comp file.
 vec4 encodeSh(vec4 v);
-Sh3 unpackCell(uvec4 t0, uvec4 t1, uvec4 t2);
-void packCell(Sh3 v, out uvec4 t0, out uvec4 t1, out uvec4 t2);
+Sh3 unpackCell(PARTIAL_TEXEL t0, PARTIAL_TEXEL t1, PARTIAL_TEXEL t2);
+void packCell(Sh3 v, out PARTIAL_TEXEL t0, out PARTIAL_TEXEL t1, out PARTIAL_TEXEL t2);
 
-// The transfer from a neighbour one cell away along axis e (PropagationScheme.h): with p the
-// source at cell - e (light travelling +e) and m the source at cell + e (travelling -e), and a the
-// coefficient of e's axis, the cell gains
-//   [0] += KA (p0 + m0) + KB (pa - ma),  [a] += KC (p0 - m0) + KD (pa + ma),
-//   [other two] += KE (p + m).
-const float FAR_W = 0.4006696846 / PI;  // far-face solid angle / pi
-const float SIDE_W = 0.4234413544 / PI; // side-face solid angle / pi
-const float AX = 0.894427191;           // 2 / sqrt(5): side-face direction along the axis
-const float LAT = 0.447213595;          // 1 / sqrt(5): and across it
-const float KA = SH_COS_C0 * SH_Y0 * (FAR_W + 4.0 * SIDE_W);
-const float KB = SH_COS_C0 * SH_Y1 * (FAR_W + 4.0 * AX * SIDE_W);
-const float KC = SH_COS_C1 * SH_Y0 * FAR_W;
-const float KD = SH_COS_C1 * SH_Y1 * FAR_W;
-const float KE = 2.0 * SH_COS_C1 * SH_Y1 * LAT * SIDE_W;
+// The transfer from a neighbour one cell away along axis e: KA..KE.
+#include "propagation_transfer.glsl"
 
 // Coefficient order (Y00, y, z, x): x is [3], y is [1], z is [2].
 vec4 transferX(vec4 p, vec4 m) {
@@ -138,13 +153,23 @@ Sh3 outside(ivec3 c) {
 #endif
 }
 
-// The injection volume at a cell, or outside() beyond the volume (the coordinate is clamped first
-// so no fetch is ever out of range).
+// Beyond the volume a cell reads outside(); the coordinate is clamped first so that no access is
+// ever out of range, and the choice is a select (mix with a bvec), not a branch: a CPU rasterizer
+// runs every branch with lane masks, and ?: or && on vectors compile to branches.
+Sh3 insideOr(ivec3 c, ivec3 k, Sh3 v) {
+    const bvec4 inside = bvec4(all(equal(c, k)));
+#ifdef HANDOFF
+    const Sh3 o = outside(c);
+#else
+    const Sh3 o = Sh3(vec4(0.0), vec4(0.0), vec4(0.0));
+#endif
+    return Sh3(mix(o.r, v.r, inside), mix(o.g, v.g, inside), mix(o.b, v.b, inside));
+}
+
+// The injection volume at a cell, or outside() beyond the volume.
 Sh3 loadInjected(ivec3 c, int n) {
-    const bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
     const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
-    const Sh3 v = Sh3(texelFetch(injectedRed, k, 0), texelFetch(injectedGreen, k, 0), texelFetch(injectedBlue, k, 0));
-    return inside ? v : outside(c);
+    return insideOr(c, k, Sh3(imageLoad(injectedRed, k), imageLoad(injectedGreen, k), imageLoad(injectedBlue, k)));
 }
 
 // The previous iteration's partial sum at a cell (outside() beyond the volume).
@@ -152,17 +177,15 @@ Sh3 loadSource(ivec3 c, int n) {
 #ifdef FROM_INJECTION
     return loadInjected(c, n);
 #else
-    const bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
     const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
-    uvec4 t0 = texelFetch(src0, k, 0), t1 = uvec4(0u), t2 = uvec4(0u);
+    PARTIAL_TEXEL t0 = imageLoad(src0, k), t1 = PARTIAL_TEXEL(0), t2 = PARTIAL_TEXEL(0);
 #if PACKED_TEXELS > 1
-    t1 = texelFetch(src1, k, 0);
+    t1 = imageLoad(src1, k);
 #endif
 #if PACKED_TEXELS > 2
-    t2 = texelFetch(src2, k, 0);
+    t2 = imageLoad(src2, k);
 #endif
-    if (!inside) return outside(c);
-    return unpackCell(t0, t1, t2);
+    return insideOr(c, k, unpackCell(t0, t1, t2));
 #endif
 }
 
@@ -173,7 +196,7 @@ void storeCell(ivec3 c, int n, Sh3 v) {
     imageStore(resultGreen, c, encodeSh(v.g));
     imageStore(resultBlue, c, encodeSh(v.b));
 #else
-    uvec4 t0, t1, t2;
+    PARTIAL_TEXEL t0, t1, t2;
     packCell(v, t0, t1, t2);
     imageStore(dst0, c, t0);
 #if PACKED_TEXELS > 1
@@ -188,9 +211,8 @@ void storeCell(ivec3 c, int n, Sh3 v) {
 // Face transmittance of a cell; 1 outside the volume (nothing comes from there anyway).
 vec3 faces(ivec3 c, int n) {
 #ifdef OCCLUSION
-    const bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
-    const vec3 t = texelFetch(faceTransmittance, clamp(c, ivec3(0), ivec3(n - 1)), 0).xyz;
-    return inside ? t : vec3(1.0);
+    const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
+    return mix(vec3(1.0), imageLoad(faceTransmittance, k).xyz, bvec3(all(equal(c, k))));
 #else
     return vec3(1.0);
 #endif

@@ -5,6 +5,7 @@
 #define PACKED0_FORMAT rgba32ui
 #define PACKED1_FORMAT rgba32ui
 #define PACKED2_FORMAT rgba32ui
+#define INJECT_FORMAT rgba32f // the injection volume (LpvVolumes.cpp)
 #include "propagate_body.glsl"
 
 vec4 encodeSh(vec4 v) { return v; }

@@ -4,6 +4,7 @@
 #define SH_ENCODED 1
 #define PACKED_TEXELS 1
 #define PACKED0_FORMAT rgba32ui
+#define INJECT_FORMAT rgba16f // the injection volume (LpvVolumes.cpp)
 #include "propagate_body.glsl"
 
 vec4 encodeSh(vec4 v) { return encodeShRange(v, params.encode.x); }

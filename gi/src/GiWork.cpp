@@ -58,9 +58,10 @@ WorkCounts lightRsmWork(const LpvSettings& s, uint32_t lights, uint64_t sceneTri
 }
 
 WorkCounts propagateWork(const LpvSettings& s) {
-    // The shipped kernel (propagate_body.glsl): per cell and iteration, 3 fetched cells of packed
-    // partial sums (the 2x2 column's ring and the slice above; the rest come from registers), the
-    // injected x (3 texels), one packed store (3 texels on the last iteration, 1 per channel).
+    // The shipped kernel (propagate_body.glsl): per cell and iteration, 3 fetched cells of
+    // partial sums, packedTexelCount texels each (the 2x2 column's ring and the slice above; the
+    // rest come from registers), the injected x (3 texels), one store of the partial sum (3
+    // texels on the last iteration, 1 per channel).
     const uint64_t cells = uint64_t(s.gridSize) * s.gridSize * s.gridSize;
     const uint64_t packed = packedTexelCount(s.shFormat);
     uint64_t packedBytes = 0;

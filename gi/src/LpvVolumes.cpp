@@ -54,11 +54,10 @@ uint32_t packedTexelCount(ShFormat f) {
     case ShFormat::Rgba8:
         return 1;
     case ShFormat::Rgba32f:
-        return 3;
     case ShFormat::Rgba16f:
         break;
     }
-    return 2;
+    return 3;
 }
 
 uint32_t propagationColumnLength(uint32_t n, uint32_t concurrentWorkgroups) {
@@ -68,8 +67,9 @@ uint32_t propagationColumnLength(uint32_t n, uint32_t concurrentWorkgroups) {
     return std::max(1u, (n + slabs - 1) / slabs);
 }
 
-rhi::Format packedTexelFormat(ShFormat f, uint32_t texel) {
-    return f == ShFormat::Rgba16f && texel == 1 ? rhi::Format::RG32UI : rhi::Format::RGBA32UI;
+// Every texel of a format has the same format (the parameter keeps the per-texel question open).
+rhi::Format packedTexelFormat(ShFormat f, uint32_t /*texel*/) {
+    return f == ShFormat::Rgba16f ? rhi::Format::RGBA16F : rhi::Format::RGBA32UI;
 }
 
 LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_t columnLength)
@@ -87,7 +87,8 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
             return device.createTexture({TextureKind::Tex3D, f, n, n, n, 1, usage | kTextureTransfer,
                                          std::string("lpv ") + what + " " + channels[c], "gi.lpv"});
         };
-        // Storage too: further bounces write their reflected light here (MultipleBounces).
+        // Storage too: the propagation kernel reads it with imageLoad (propagate_body.glsl) and
+        // further bounces write their reflected light here (MultipleBounces).
         inject_[size_t(c)] =
             volume(injectFormat, kTextureColorTarget | kTextureSampled | kTextureStorage, "injection");
         accum_[size_t(c)] = volume(shFormat, kTextureStorage | kTextureSampled, "accumulated");
@@ -113,7 +114,6 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
         for (int role = 0; role < 4; ++role)
             propagatePipelines_[size_t(variant)][size_t(role)] = device.createPipeline(
                 ComputePipelineDesc{&propagateShader(settings.shFormat, variant, role), roleNames[role]});
-    pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
     SamplerDesc linear;
     linear.mipFilter = Filter::Nearest;
     linearSampler_ = device.createSampler(linear);
@@ -128,7 +128,6 @@ LpvVolumes::~LpvVolumes() {
     for (const auto& set : propagatePipelines_)
         for (rhi::ComputePipelineHandle p : set)
             device_.destroy(p);
-    device_.destroy(pointSampler_);
     device_.destroy(linearSampler_);
 }
 
@@ -208,16 +207,16 @@ void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::Text
         const int variant = (faceTransmittance ? 1 : 0) | (handoff ? 2 : 0);
         cmd.bindPipeline(propagatePipelines_[size_t(variant)][size_t(role)]);
         cmd.pushUniforms(0, &u, sizeof(u));
-        if (faceTransmittance) cmd.bindTexture(19, faceTransmittance, pointSampler_);
+        if (faceTransmittance) cmd.bindStorageImage(19, faceTransmittance);
         if (handoff)
             for (uint32_t c = 0; c < 3; ++c)
                 cmd.bindTexture(20 + c, handoff->coarse[c], linearSampler_);
         for (uint32_t c = 0; c < 3; ++c) {
-            cmd.bindTexture(1 + c, inject_[c], pointSampler_);
+            cmd.bindStorageImage(1 + c, inject_[c]);
             if (last) cmd.bindStorageImage(10 + c, target[c]);
         }
         for (uint32_t t = 0; t < texels; ++t) {
-            if (!first) cmd.bindTexture(4 + t, partial_[(i + 1) % 2][t], pointSampler_);
+            if (!first) cmd.bindStorageImage(4 + t, partial_[(i + 1) % 2][t]);
             if (!last) cmd.bindStorageImage(7 + t, partial_[i % 2][t]);
         }
         cmd.dispatch((n + 15) / 16, (n + 15) / 16, (n + column - 1) / column);

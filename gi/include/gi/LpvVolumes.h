@@ -16,8 +16,9 @@
 
 namespace lpv::gi {
 
-// Between iterations propagation keeps a cell's 12 coefficients packed in 1 (rgba8), 2 (rgba16f)
-// or 3 (rgba32f) unsigned-integer texels: fewer, wider fetches (see propagate_body.glsl).
+// Between iterations propagation keeps a cell's 12 coefficients in 1 RGBA32UI texel (rgba8,
+// packed), 3 RGBA16F texels (rgba16f, one per channel) or 3 RGBA32UI texels (rgba32f, the floats'
+// bits): see propagate_body.glsl.
 uint32_t packedTexelCount(ShFormat f);
 rhi::Format packedTexelFormat(ShFormat f, uint32_t texel);
 
@@ -92,7 +93,7 @@ private:
     rhi::GraphicsPipelineHandle injectPipeline_;
     // By variant (bit 0: occlusion, bit 1: handoff) and iteration role.
     std::array<std::array<rhi::ComputePipelineHandle, 4>, 4> propagatePipelines_{};
-    rhi::SamplerHandle pointSampler_, linearSampler_;
+    rhi::SamplerHandle linearSampler_; // the coarse cascade's result (handoff)
 };
 
 } // namespace lpv::gi
