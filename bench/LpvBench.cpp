@@ -405,6 +405,9 @@ void consolePrediction() {
         engine::WorkCounts work;
         uint32_t perFrame, perFrameStaggered; // runs in a frame: every cascade / coarse every 2 frames
     };
+    // The lookup and the glossy march run on a quarter of the pixels (gi.resolution=half, the
+    // default); the lighting pass rebuilds the rest, and that work is GI's too.
+    const uint64_t lowPixels = (1280 / 2) * (720 / 2);
     const engine::WorkCounts fineOcclusion = gi::occlusionWork(c, 160u * 90u),
                              coarseOcclusion = gi::occlusionWork(c, 0);
     const Pass passes[] = {
@@ -415,11 +418,12 @@ void consolePrediction() {
         {"inject (per cascade)", gi::injectWork(c), 3, 2},
         {"propagate (per cascade)", gi::propagateWork(c), 3, 2},
         {"bounces (per cascade)", gi::bounceWork(c), 3, 2},
-        {"lookup (3 cascades)", gi::lookupWork(c, pixels), 1, 1},
-        {"glossy (every pixel marched)", gi::glossyWork(pixels), 1, 1},
+        {"lookup (3 cascades, gi.resolution=half)", gi::lookupWork(c, lowPixels), 1, 1},
+        {"glossy (gi.resolution=half)", gi::glossyWork(lowPixels), 1, 1},
+        {"bilateral rebuild to 1280x720 (in render.lighting)", engine::indirectRebuildWork(pixels), 1, 1},
     };
     std::printf("\nConsole preset (3 x 32^3 cascades, 8 iterations, 2 bounces, occlusion, glossy, RGBA8, RSM "
-                "128^2, 1280x720), predicted ms per run of each pass:\n\n"
+                "128^2, 1280x720, gi.resolution=half), predicted ms per run of each pass:\n\n"
                 "| pass | runs per frame | x360 | ps3 |\n|---|---|---|---|\n");
     double all[2] = {}, staggered[2] = {};
     for (const Pass& pass : passes) {

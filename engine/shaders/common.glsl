@@ -13,7 +13,7 @@ layout(binding = 0, std140) uniform Frame {
     vec4 ambient;            // rgb: constant indirect irradiance when no GI fills the indirect target
     vec4 viewport;           // width, height, 1/width, 1/height
     vec4 params;             // x: exposure, y: ssao radius (m), z: ssao strength, w: debug view
-    ivec4 counts;            // x: punctual light count, y: ssao enabled, z: shadow map size, w: frame index
+    ivec4 counts;            // x: punctual light count, y: ssao enabled, z: shadow map size, w: indirect targets' resolution divisor
 } frame;
 
 const float PI = 3.14159265358979;

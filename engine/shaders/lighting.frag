@@ -27,6 +27,53 @@ layout(binding = 9) uniform sampler2D glossyTexture;
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outColor;
 
+// The indirect irradiance (rgb) and glossy radiance of this pixel. With smaller indirect targets
+// (frame.counts.w = divisor > 1; texel t holds the answer for pixel t * divisor) a joint bilateral
+// filter rebuilds it from the four nearest texels: bilinear weights times how well each texel's
+// own pixel matches this one's surface (its distance from this pixel's tangent plane, relative to
+// the viewing distance, and the agreement of the normals). Light then stays on its side of
+// silhouettes and creases, where plain bilinear filtering would mix a wall's light into the floor.
+struct IndirectLight {
+    vec3 irradiance;
+    vec3 glossy;
+};
+
+IndirectLight indirectAt(vec3 p, vec3 n) {
+    int divisor = frame.counts.w;
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    if (divisor <= 1) return IndirectLight(texelFetch(indirectTexture, pixel, 0).rgb, texelFetch(glossyTexture, pixel, 0).rgb);
+    ivec2 lowSize = textureSize(indirectTexture, 0);
+    ivec2 fullSize = ivec2(frame.viewport.xy);
+    ivec2 base = pixel / divisor;
+    vec2 f = vec2(pixel - base * divisor) / float(divisor);
+    // 1% of the viewing distance: the tangent-plane tolerance grows with the pixel footprint.
+    float tolerance = 0.01 * max(length(p - frame.cameraPosition.xyz), 1e-3);
+    vec3 sumIrradiance = vec3(0.0), sumGlossy = vec3(0.0), plainIrradiance = vec3(0.0), plainGlossy = vec3(0.0);
+    float sum = 0.0;
+    for (int i = 0; i < 4; ++i) {
+        ivec2 o = ivec2(i & 1, i >> 1);
+        ivec2 t = min(base + o, lowSize - 1);
+        ivec2 source = min(t * divisor, fullSize - 1);
+        float bilinear = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        vec3 e = texelFetch(indirectTexture, t, 0).rgb;
+        vec3 g = texelFetch(glossyTexture, t, 0).rgb;
+        plainIrradiance += bilinear * e;
+        plainGlossy += bilinear * g;
+        float d = texelFetch(depthTexture, source, 0).r;
+        if (d >= 1.0) continue; // sky: no surface, no light
+        vec3 q = worldFromDepth((vec2(source) + 0.5) * frame.viewport.zw, d);
+        vec3 m = normalize(texelFetch(normalTexture, source, 0).xyz);
+        float plane = abs(dot(q - p, n)) / tolerance;
+        float w = bilinear * exp(-plane * plane) * pow(max(dot(m, n), 0.0), 16.0) + 1e-6 * bilinear;
+        sumIrradiance += w * e;
+        sumGlossy += w * g;
+        sum += w;
+    }
+    // No neighbour on this surface (a sliver thinner than a texel): plain bilinear filtering.
+    if (sum <= 1e-4) return IndirectLight(plainIrradiance, plainGlossy);
+    return IndirectLight(sumIrradiance / sum, sumGlossy / sum);
+}
+
 float sunShadow(vec3 p, vec3 n) {
     // Offset along the normal against acne on slopes; the pipeline bias handles the rest.
     vec4 s = frame.sunViewProjection * vec4(p + n * 0.02, 1.0);
@@ -53,7 +100,7 @@ void main() {
     vec3 albedo = albedoMetal.rgb;
     vec3 n = normalize(textureLod(normalTexture, vUv, 0.0).xyz);
     float ao = textureLod(aoTexture, vUv, 0.0).r;
-    vec3 indirectIrradiance = textureLod(indirectTexture, vUv, 0.0).rgb;
+    IndirectLight light = indirectAt(p, n);
     float shadow = sunShadow(p, n);
 
     vec3 L = -frame.sunDirection.xyz;
@@ -72,7 +119,7 @@ void main() {
         irradiance += l.colorIntensity.rgb * l.colorIntensity.w * atten * max(dot(n, dir), 0.0);
     }
     vec3 direct = albedo / PI * irradiance;
-    vec3 indirect = albedo / PI * indirectIrradiance * ao;
+    vec3 indirect = albedo / PI * light.irradiance * ao;
     vec3 emissive = textureLod(emissiveTexture, vUv, 0.0).rgb;
     // Glossy: Schlick Fresnel (F0 4% for dielectrics, the albedo for metals), faded out with
     // roughness since the glossy pass already widens its cone toward the diffuse lobe. Added on top
@@ -82,7 +129,7 @@ void main() {
     vec3 f0 = mix(vec3(0.04), albedo, albedoMetal.a);
     float cosView = max(dot(n, normalize(frame.cameraPosition.xyz - p)), 0.0);
     vec3 fresnel = f0 + (1.0 - f0) * pow(1.0 - cosView, 5.0);
-    vec3 glossy = fresnel * (1.0 - roughness) * textureLod(glossyTexture, vUv, 0.0).rgb * ao;
+    vec3 glossy = fresnel * (1.0 - roughness) * light.glossy * ao;
 
     vec3 color = direct + indirect + glossy + emissive;
     if (debugView == 1) color = albedo;

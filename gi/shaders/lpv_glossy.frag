@@ -21,6 +21,7 @@ layout(binding = 0, std140) uniform Glossy {
     vec4 gridOrigin[4];  // per cascade: xyz corner of cell 0, w: cell size
     ivec4 grid;          // x: cells per axis, y: volumes are rgba8-encoded, z: cascades, w: steps
     vec4 encode;         // x: rgba8 range
+    ivec4 pixels;        // x: resolution divisor, yz: G-buffer size
 } glossy;
 layout(binding = 1) uniform sampler2D depthTexture;
 layout(binding = 2) uniform sampler2D normalTexture;
@@ -72,8 +73,11 @@ bool holds(int c, vec3 start) {
 }
 
 void main() {
-    float depth = textureLod(depthTexture, vUv, 0.0).r;
-    vec4 normalRoughness = textureLod(normalTexture, vUv, 0.0);
+    // This texel marches from G-buffer pixel texel x divisor (gi.resolution).
+    ivec2 source = min(ivec2(gl_FragCoord.xy) * glossy.pixels.x, glossy.pixels.yz - 1);
+    vec2 uv = (vec2(source) + 0.5) / vec2(glossy.pixels.yz);
+    float depth = texelFetch(depthTexture, source, 0).r;
+    vec4 normalRoughness = texelFetch(normalTexture, source, 0);
     float roughness = clamp(normalRoughness.w, 0.0, 1.0);
     // Sky, and fully rough surfaces: the lighting pass weighs the glossy term by 1 - roughness, so
     // the march would be wasted (most of the Cornell box; the default material is rough).
@@ -81,7 +85,7 @@ void main() {
         outRadiance = vec4(0.0);
         return;
     }
-    vec4 world = glossy.invViewProjection * vec4(vUv * 2.0 - 1.0, depth, 1.0);
+    vec4 world = glossy.invViewProjection * vec4(uv * 2.0 - 1.0, depth, 1.0);
     vec3 p = world.xyz / world.w;
     vec3 n = normalize(normalRoughness.xyz);
     vec3 v = normalize(glossy.cameraPosition.xyz - p);

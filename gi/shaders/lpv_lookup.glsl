@@ -15,6 +15,7 @@ layout(binding = 0, std140) uniform Lookup {
     ivec4 grid;         // x: cells per axis, y: volumes are rgba8-encoded, z: damping on
     vec4 encode;        // x: rgba8 range, y: blend band (fraction of the half-extent)
     vec4 intensity;     // x: gi.intensity (already applied at injection), y: damping strength
+    ivec4 pixels;       // x: resolution divisor, yz: G-buffer size
 } lookup;
 layout(binding = 1) uniform sampler2D depthTexture;
 layout(binding = 2) uniform sampler2D normalTexture;
@@ -89,15 +90,19 @@ float insideness(int c, vec3 p) {
 }
 
 void main() {
-    float depth = textureLod(depthTexture, vUv, 0.0).r;
+    // This texel answers for G-buffer pixel texel x divisor (gi.resolution; the lighting pass
+    // rebuilds the pixels between).
+    ivec2 source = min(ivec2(gl_FragCoord.xy) * lookup.pixels.x, lookup.pixels.yz - 1);
+    vec2 uv = (vec2(source) + 0.5) / vec2(lookup.pixels.yz);
+    float depth = texelFetch(depthTexture, source, 0).r;
     if (depth >= 1.0) {
         outIrradiance = vec4(0.0);
         return;
     }
-    vec4 clip = vec4(vUv * 2.0 - 1.0, depth, 1.0);
+    vec4 clip = vec4(uv * 2.0 - 1.0, depth, 1.0);
     vec4 world = lookup.invViewProjection * clip;
     vec3 p = world.xyz / world.w;
-    vec3 n = normalize(textureLod(normalTexture, vUv, 0.0).xyz);
+    vec3 n = normalize(texelFetch(normalTexture, source, 0).xyz);
     // Every cascade is looked up once (CASCADES is compile-time, so each lookup names its own
     // textures: a dynamic choice would make a CPU rasterizer run every branch for every pixel),
     // then folded from the coarsest in: each finer one takes over across its blend band.

@@ -18,6 +18,7 @@ struct GlossyUniforms {
     glm::vec4 gridOrigin[4];
     glm::ivec4 grid;
     glm::vec4 encode;
+    glm::ivec4 pixels; // x: resolution divisor, yz: G-buffer size
 };
 
 } // namespace
@@ -44,7 +45,7 @@ GlossyReflections::~GlossyReflections() {
 
 void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                                const engine::GBufferView& gbuffer, std::span<const GlossyCascade> cascades,
-                               float encodeRange, rhi::TextureHandle target) {
+                               float encodeRange, rhi::TextureHandle target, uint32_t divisor) {
     using namespace rhi;
     const auto cascade = [&](size_t c) -> const GlossyCascade& {
         return cascades[std::min(c, cascades.size() - 1)];
@@ -57,6 +58,7 @@ void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatric
     u.grid =
         glm::ivec4(int(cascades[0].grid.size), encodeRange > 0.0f ? 1 : 0, int(cascades.size()), int(kSteps));
     u.encode = glm::vec4(encodeRange, 0, 0, 0);
+    u.pixels = glm::ivec4(int(divisor), int(gbuffer.width), int(gbuffer.height), 0);
     RenderPassDesc pass;
     pass.colors[0] = {target, 0, 0, LoadOp::DontCare};
     pass.colorCount = 1;

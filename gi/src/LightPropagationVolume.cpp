@@ -30,6 +30,7 @@ struct LookupUniforms {
     glm::ivec4 grid;
     glm::vec4 encode;
     glm::vec4 intensity;
+    glm::ivec4 pixels; // x: resolution divisor, yz: G-buffer size
 };
 
 struct SliceUniforms {
@@ -286,7 +287,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         }
         if (bounces_) {
             auto s = scope("bounces");
-            bounces_->add(cmd, *volumes_, *geometry_, settings_.bounces, settings_.iterations, cascades_[c].result);
+            bounces_->add(cmd, *volumes_, *geometry_, settings_.bounces, settings_.iterations,
+                          cascades_[c].result);
             work(bounceWork(settings_));
         }
     }
@@ -303,6 +305,11 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         }
         work(lightsWork);
     }
+    // The targets are 1/divisor of the G-buffer per axis (resolutionDivisor()); each texel looks
+    // up the G-buffer pixel at texel x divisor, and the lighting pass rebuilds the rest.
+    const uint32_t divisor = settings_.resolutionDivisor;
+    const rhi::TextureDesc& targetDesc = device_.desc(target);
+    const uint64_t lookupPixels = uint64_t(targetDesc.width) * targetDesc.height;
     {
         auto s = scope("lookup");
         LookupUniforms u;
@@ -316,6 +323,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         // Blend band: a quarter of a cascade's half-extent (CryEngine's e_GIBlendRatio 0.25).
         u.encode = glm::vec4(volumes_->encodeRange(), 0.25f, 0, 0);
         u.intensity = glm::vec4(settings_.intensity, 1.0f, 0, 0);
+        u.pixels = glm::ivec4(int(divisor), int(gbuffer.width), int(gbuffer.height), 0);
         RenderPassDesc pass;
         pass.colors[0] = {target, 0, 0, LoadOp::DontCare};
         pass.colorCount = 1;
@@ -332,7 +340,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                                 linearSampler_);
         cmd.draw(3);
         cmd.endRenderPass();
-        work(lookupWork(settings_, uint64_t(gbuffer.width) * gbuffer.height));
+        work(lookupWork(settings_, lookupPixels));
     }
     if (settings_.glossy) {
         auto s = scope("glossy");
@@ -340,8 +348,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         for (size_t c = 0; c < cascades_.size(); ++c)
             glossyCascades[c] = {cascades_[c].grid, cascades_[c].result};
         glossy_.render(cmd, camera, gbuffer, std::span(glossyCascades.data(), cascades_.size()),
-                       volumes_->encoded() ? volumes_->encodeRange() : 0.0f, glossyTarget);
-        work(glossyWork(uint64_t(gbuffer.width) * gbuffer.height));
+                       volumes_->encoded() ? volumes_->encodeRange() : 0.0f, glossyTarget, divisor);
+        work(glossyWork(lookupPixels));
     } else {
         cmd.clearTexture(glossyTarget, {0, 0, 0, 0});
     }

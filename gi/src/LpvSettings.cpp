@@ -51,6 +51,12 @@ const engine::IntSetting kBounces{
 const engine::IntSetting kLightRsms{"gi.light_rsms", 1, 0, 4,
                                     "Spot lights (the brightest reaching the volume) with their own RSM: "
                                     "bounce light in the colour they hit"};
+const engine::EnumSetting<uint32_t> kResolution{
+    "gi.resolution",
+    2u,
+    {{1u, "full"}, {2u, "half"}, {4u, "quarter"}},
+    "Pixels per axis given a GI lookup and glossy march (full, half, quarter); the lighting pass rebuilds "
+    "the others with a depth- and normal-aware (bilateral) filter"};
 const engine::IntSetting kDebugSlice{"gi.debug_slice", 16, 0, 63,
                                      "Volume slice (z) shown by gi.debug_view=volume_slice"};
 
@@ -79,6 +85,7 @@ LpvSettings readLpvSettings(const engine::Config& config) {
     s.glossy = config.get(kGlossy);
     s.bounces = uint32_t(config.get(kBounces));
     s.lightRsms = uint32_t(config.get(kLightRsms));
+    s.resolutionDivisor = config.get(kResolution);
     s.budgetPolicy = readGiBudgetPolicy(config);
     const uint32_t side = s.vplGridSide();
     if (side * side != s.vplCount || s.rsmSize % side != 0)

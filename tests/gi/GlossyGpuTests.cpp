@@ -114,7 +114,7 @@ glm::vec3 referenceGlossy(const CornellFrame& f, glm::vec3 p, glm::vec3 n, glm::
 glm::vec4 glossyAt(const CornellFrame& f, glm::vec3 world) {
     uint32_t x = 0, y = 0;
     REQUIRE(f.pixelOf(world, x, y));
-    return f.glossy.at(x, y);
+    return f.glossyAt(x, y);
 }
 
 } // namespace

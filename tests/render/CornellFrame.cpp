@@ -59,6 +59,9 @@ CornellFrame renderSceneFrame(rhi::Device& device, engine::Scene scene,
         f.hdr = readImage(device, renderer.hdr());
         f.depth = readImage(device, renderer.gbuffer().depth);
         f.glossy = readImage(device, renderer.glossy());
+        f.indirect = readImage(device, renderer.indirect());
+        f.albedo = readImage(device, renderer.gbuffer().albedo);
+        f.indirectDivisor = renderer.indirectDivisor();
         if (lpv.settings().enabled)
             for (uint32_t c = 0; c < lpv.cascadeCount(); ++c) {
                 f.cascadeGrids.push_back(lpv.cascadeGrid(c));

@@ -24,7 +24,12 @@ struct CornellFrame {
     Image output; // tone-mapped sRGB, as [0,1] floats of the stored bytes
     Image hdr;    // linear HDR before tone mapping (or the debug view)
     Image depth;
-    Image glossy; // the glossy radiance target (linear, before the specular weight)
+    Image glossy;   // the glossy radiance target (linear, before the specular weight)
+    Image indirect; // the indirect irradiance target (linear)
+    Image albedo;   // the G-buffer's albedo, as [0,1] floats of the stored sRGB bytes
+    // The two targets above are 1/indirectDivisor of the frame per axis (gi.resolution): texel t
+    // holds the answer for pixel t x indirectDivisor.
+    uint32_t indirectDivisor = 1;
     engine::CameraMatrices camera;
     engine::Scene scene;
     uint32_t width = 0, height = 0;
@@ -34,6 +39,10 @@ struct CornellFrame {
 
     // The pixel a world point lands on; false when off screen or hidden behind other geometry.
     bool pixelOf(glm::vec3 world, uint32_t& x, uint32_t& y) const;
+    // The glossy target's texel that holds pixel (x, y)'s answer, or its nearest.
+    glm::vec4 glossyAt(uint32_t x, uint32_t y) const {
+        return glossy.at(x / indirectDivisor, y / indirectDivisor);
+    }
 };
 
 // `settings`: key=value overrides (e.g. "render.debug_view=ssao", "gi.enabled=true").

@@ -79,6 +79,15 @@ WorkCounts fullscreenWork(uint64_t pixels, uint64_t texelsPerPixel, uint64_t alu
 
 } // namespace
 
+WorkCounts indirectRebuildWork(uint64_t pixels) {
+    // Neighbouring pixels share those texels, so memory traffic does not grow (the smaller
+    // targets even save some); only fetches and arithmetic do.
+    WorkCounts w;
+    w.texelsRead = pixels * (4 * 4 - 2);
+    w.aluOps = pixels * 4 * 30;
+    return w;
+}
+
 Renderer::Renderer(rhi::Device& device, uint32_t width, uint32_t height)
     : device_(device), width_(width), height_(height) {
     using namespace rhi;
@@ -125,16 +134,27 @@ void Renderer::createTargets(uint32_t shadowSize) {
                                             "gbuffer depth", "render.gbuffer"});
     targets_.aoRaw = target(Format::R32F, 0, "ssao raw", "render.ssao");
     targets_.ao = target(Format::R32F, kTextureTransfer, "ssao", "render.ssao");
-    targets_.indirect =
-        target(Format::RGBA16F, kTextureStorage | kTextureTransfer, "indirect irradiance", "render.lighting");
-    targets_.glossy =
-        target(Format::RGBA16F, kTextureStorage | kTextureTransfer, "glossy radiance", "render.lighting");
+    createIndirectTargets(indirectDivisor_);
     targets_.hdr = target(Format::RGBA16F, kTextureTransfer, "hdr", "render.lighting");
     targets_.output = target(Format::RGBA8Srgb, kTextureTransfer, "output", "render.output");
     shadowSize_ = shadowSize;
     targets_.shadow =
         device_.createTexture({TextureKind::Tex2D, Format::D32F, shadowSize, shadowSize, 1, 1,
                                kTextureDepthTarget | kTextureSampled, "sun shadow map", "render.shadow"});
+}
+
+void Renderer::createIndirectTargets(uint32_t divisor) {
+    using namespace rhi;
+    indirectDivisor_ = divisor;
+    const uint32_t w = (width_ + divisor - 1) / divisor, h = (height_ + divisor - 1) / divisor;
+    const auto target = [&](const char* name) {
+        return device_.createTexture(
+            {TextureKind::Tex2D, Format::RGBA16F, w, h, 1, 1,
+             kTextureColorTarget | kTextureSampled | kTextureStorage | kTextureTransfer, name,
+             "render.lighting"});
+    };
+    targets_.indirect = target("indirect irradiance");
+    targets_.glossy = target("glossy radiance");
 }
 
 void Renderer::destroyTargets() {
@@ -264,6 +284,14 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
     const glm::mat4 sunView = glm::lookAt(center - dir * radius * 2.0f, center, up);
     const glm::mat4 sunProj = glm::orthoRH_ZO(-radius, radius, -radius, radius, radius * 0.5f, radius * 3.5f);
 
+    const uint32_t divisor = indirect ? std::clamp(indirect->resolutionDivisor(), 1u, 8u) : 1u;
+    if (divisor != indirectDivisor_) {
+        // A settings change (the GI's resolution, or GI on/off), not a steady-state frame.
+        device_.destroy(targets_.indirect);
+        device_.destroy(targets_.glossy);
+        createIndirectTargets(divisor);
+    }
+
     const glm::vec3 ambient = config.get(kAmbient);
     frame_.viewProjection = camera.viewProjection;
     frame_.invViewProjection = camera.invViewProjection;
@@ -279,7 +307,8 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
     // Point and spot lights the indirect light already holds are not lit a second time.
     rhi::BufferHandle lightBuffer;
     const uint32_t directLights = this->directLights(cmd, indirect, lightBuffer);
-    frame_.counts = glm::ivec4(int(directLights), config.get(kSsao) ? 1 : 0, int(shadowSize_), 0);
+    frame_.counts =
+        glm::ivec4(int(directLights), config.get(kSsao) ? 1 : 0, int(shadowSize_), int(indirectDivisor_));
 
     const uint64_t pixels = uint64_t(width_) * height_;
     const auto scope = [&](const char* name) {
@@ -374,7 +403,9 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
             cmd.bindTexture(9, targets_.glossy, pointClamp_);
         });
         cmd.endMarker();
-        work(fullscreenWork(pixels, 8 + 9 * 4, 120 + 40 * uint64_t(directLights), 4 * 8 + 8));
+        WorkCounts w = fullscreenWork(pixels, 8 + 9 * 4, 120 + 40 * uint64_t(directLights), 4 * 8 + 8);
+        if (indirectDivisor_ > 1) w += indirectRebuildWork(pixels);
+        work(w);
     }
     {
         auto s = scope("render.tonemap");

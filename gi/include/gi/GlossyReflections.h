@@ -32,10 +32,11 @@ public:
     GlossyReflections& operator=(const GlossyReflections&) = delete;
 
     // Overwrites `target` (finest cascade first in `cascades`, 1 to 4 of them). `encodeRange` > 0:
-    // the volumes are rgba8, range-encoded.
+    // the volumes are rgba8, range-encoded. `target` is 1/divisor of the G-buffer per axis: its
+    // texel t marches from G-buffer pixel t x divisor.
     void render(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                 const engine::GBufferView& gbuffer, std::span<const GlossyCascade> cascades,
-                float encodeRange, rhi::TextureHandle target);
+                float encodeRange, rhi::TextureHandle target, uint32_t divisor = 1);
 
 private:
     rhi::Device& device_;
@@ -43,7 +44,7 @@ private:
     rhi::SamplerHandle pointSampler_, linearSampler_;
 };
 
-// Depth, normal, kSteps trilinear fetches of the three volumes, per pixel.
+// Depth, normal, kSteps trilinear fetches of the three volumes, per pixel marched.
 engine::WorkCounts glossyWork(uint64_t pixels);
 
 } // namespace lpv::gi

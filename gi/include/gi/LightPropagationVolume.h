@@ -54,6 +54,10 @@ public:
                         rhi::TextureHandle glossyTarget, engine::FrameProfiler* profiler) override;
     void renderDebugOverlay(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                             rhi::TextureHandle output) override;
+    // gi.resolution while GI is on; every pixel (the ambient constant) while it is off.
+    uint32_t resolutionDivisor() const override {
+        return settings_.enabled ? settings_.resolutionDivisor : 1;
+    }
     // With gi.analytic_lights the volume carries the point and spot lights (see PointLightInjection),
     // except the spot lights with an RSM of their own (gi.light_rsms): those the lighting pass lights
     // per pixel, and the volume carries their bounce.

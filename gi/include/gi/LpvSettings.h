@@ -34,6 +34,9 @@ struct LpvSettings {
     GiBudgetPolicy budgetPolicy = GiBudgetPolicy::Fixed;
     // Spot lights with a reflective shadow map of their own (SpotLightRsms).
     uint32_t lightRsms = 1;
+    // Per axis, 1/resolutionDivisor of the frame's pixels get a lookup and a glossy march; the
+    // lighting pass rebuilds the rest (engine::IndirectLighting::resolutionDivisor).
+    uint32_t resolutionDivisor = 2;
 
     // Side of the VPL grid the RSM is clustered into (sqrt of vplCount).
     uint32_t vplGridSide() const;

@@ -27,10 +27,17 @@ public:
     // Writes indirect irradiance (RGBA16F, linear, W/m^2-like units of the sun's) for every pixel
     // into `target`, and the radiance a glossy surface reflects toward the camera before its
     // specular weight (RGBA16F, linear; 0 where there is none) into `glossyTarget`. The call must
-    // fully overwrite both.
+    // fully overwrite both. Both are 1/resolutionDivisor() of the G-buffer per axis (rounded up):
+    // texel (x, y) holds the answer for G-buffer pixel (x, y) * divisor.
     virtual void renderIndirect(rhi::CommandList& cmd, const CameraMatrices& camera,
                                 const GBufferView& gbuffer, rhi::TextureHandle target,
                                 rhi::TextureHandle glossyTarget, FrameProfiler* profiler) = 0;
+    // Per axis, how much smaller than the frame the provider wants its two targets: 1 for every
+    // pixel, 2 or 4 to light a quarter or a sixteenth of them. The lighting pass then rebuilds every
+    // pixel's value from the four nearest with a joint bilateral filter (depth and normal), so
+    // light does not bleed across silhouettes. Asked every frame before renderIndirect(); a change
+    // remakes the targets on that frame.
+    virtual uint32_t resolutionDivisor() const { return 1; }
     // Draws debug views over the tone-mapped output (RGBA8 sRGB color target); none by default.
     virtual void renderDebugOverlay(rhi::CommandList& cmd, const CameraMatrices& camera,
                                     rhi::TextureHandle output) {

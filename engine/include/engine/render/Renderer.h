@@ -6,6 +6,7 @@
 #pragma once
 
 #include "engine/config/Config.h"
+#include "engine/profiler/WorkCounts.h"
 #include "engine/render/CameraMatrices.h"
 #include "engine/render/GpuScene.h"
 #include "engine/render/IndirectLighting.h"
@@ -42,6 +43,11 @@ struct FrameUniforms {
     glm::ivec4 counts;
 };
 
+// What the lighting pass adds per frame to rebuild every pixel's indirect and glossy light from
+// targets smaller than the frame (IndirectLighting::resolutionDivisor() > 1): four neighbours'
+// depth, normal, irradiance and glossy radiance and their weights, instead of one texel of each.
+WorkCounts indirectRebuildWork(uint64_t pixels);
+
 class Renderer {
 public:
     Renderer(rhi::Device& device, uint32_t width, uint32_t height);
@@ -66,8 +72,13 @@ public:
 
     rhi::TextureHandle output() const { return targets_.output; } // RGBA8 sRGB, tone mapped
     rhi::TextureHandle hdr() const { return targets_.hdr; }       // RGBA16F linear, before tone mapping
-    // RGBA16F linear: the radiance glossy surfaces reflect (before the specular weight), 0 without GI.
+    // RGBA16F linear: the radiance glossy surfaces reflect (before the specular weight), 0 without GI;
+    // at 1/indirectDivisor() of the frame per axis, as the indirect provider asked.
     rhi::TextureHandle glossy() const { return targets_.glossy; }
+    // RGBA16F linear: the indirect irradiance the provider wrote (or the ambient constant), at
+    // 1/indirectDivisor() of the frame per axis.
+    rhi::TextureHandle indirect() const { return targets_.indirect; }
+    uint32_t indirectDivisor() const { return indirectDivisor_; }
     GBufferView gbuffer() const;
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
@@ -78,6 +89,8 @@ private:
         rhi::TextureHandle albedo, normal, emissive, depth, aoRaw, ao, indirect, glossy, hdr, output, shadow;
     };
     void createTargets(uint32_t shadowSize);
+    // The indirect and glossy targets at 1/divisor of the frame per axis (IndirectLighting).
+    void createIndirectTargets(uint32_t divisor);
     void destroyTargets();
     void createPipelines();
     // The point and spot lights the lighting pass lights itself (those `indirect` does not carry):
@@ -87,6 +100,7 @@ private:
 
     rhi::Device& device_;
     uint32_t width_, height_, shadowSize_ = 0;
+    uint32_t indirectDivisor_ = 1;
     Targets targets_;
     rhi::GraphicsPipelineHandle gbufferPipeline_, shadowPipeline_, ssaoPipeline_, ssaoBlurPipeline_,
         lightingPipeline_, tonemapPipeline_;
