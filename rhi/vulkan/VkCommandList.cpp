@@ -321,8 +321,16 @@ void VulkanCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint3
                              uint32_t firstInstance) {
     requirePass(true, "draw");
     if (!graphics_) throw Error("draw without a graphics pipeline");
-    pushBindings(device_.graphicsPipelines.get(graphics_));
-    vkCmdDraw(cmd_, vertexCount, instanceCount, firstVertex, firstInstance);
+    const VulkanPipeline& p = device_.graphicsPipelines.get(graphics_);
+    pushBindings(p);
+    // Split point lists (see pointChunk in VkPipelines.cpp) keep their order only with one
+    // instance: instances are the outer loop of a draw.
+    if (p.pointChunk == 0 || instanceCount != 1) {
+        vkCmdDraw(cmd_, vertexCount, instanceCount, firstVertex, firstInstance);
+        return;
+    }
+    for (uint32_t done = 0; done < vertexCount; done += p.pointChunk)
+        vkCmdDraw(cmd_, std::min(p.pointChunk, vertexCount - done), 1, firstVertex + done, firstInstance);
 }
 
 void VulkanCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex,

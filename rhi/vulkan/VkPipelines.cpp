@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <span>
 #include <string>
 
 namespace lpv::rhi::vk {
@@ -32,6 +33,30 @@ struct Modules {
             if (m) vkDestroyShaderModule(ctx.device, m, nullptr);
     }
 };
+
+// Whether a shader declares the DrawParameters capability (gl_BaseVertex, gl_BaseInstance,
+// gl_DrawID): it would tell the chunks of a split draw apart. Capabilities come first in a module.
+bool usesDrawParameters(std::span<const uint32_t> spirv) {
+    constexpr uint32_t kOpCapability = 17, kCapabilityDrawParameters = 4427;
+    for (size_t i = 5; i + 1 < spirv.size() && (spirv[i] & 0xffffu) == kOpCapability; i += spirv[i] >> 16)
+        if (spirv[i + 1] == kCapabilityDrawParameters) return true;
+    return false;
+}
+
+// Points per draw for a point-list pipeline on a CPU device (0: draws go out whole). lavapipe
+// (Mesa 22.3) clips Vulkan points as squares, so a point outside the clip volume is not dropped
+// but goes on through its draw module's primitive pipeline, and each flush of that pipeline's
+// vertex buffer (every few dozen points) walks every vertex of the batch, up to 4096: a draw of n
+// points costs about n * 4096 / 30 steps where GL drops the points first. That was most of
+// gi/occlusion and gi/inject, whose points outside the slice drawn sit at x = y = -4. Chunks of
+// 512 points cut the walk by 8; a vkCmdDraw per chunk costs less than it saves (128 to 1024
+// measured alike, 2048 clearly worse).
+uint32_t pointChunk(const VulkanContext& ctx, const GraphicsPipelineDesc& desc) {
+    constexpr uint32_t kCpuPointChunk = 512;
+    if (desc.topology != PrimitiveTopology::PointList) return 0;
+    if (ctx.properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) return 0;
+    return usesDrawParameters(desc.vertex->spirv) ? 0 : kCpuPointChunk;
+}
 
 // Fills the layout objects of `p` from the reflected bindings; destroyPipeline cleans up on failure.
 void createLayout(const VulkanContext& ctx, VulkanPipeline& p,
@@ -101,6 +126,7 @@ VulkanPipeline buildGraphicsPipeline(const VulkanContext& ctx, const GraphicsPip
     VulkanPipeline p;
     p.name = desc.debugName;
     p.bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    p.pointChunk = pointChunk(ctx, desc);
     try {
         std::vector<VkDescriptorSetLayoutBinding> bindings;
         reflectBindings(*desc.vertex, VK_SHADER_STAGE_VERTEX_BIT, bindings);

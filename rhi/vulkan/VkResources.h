@@ -66,6 +66,7 @@ struct VulkanPipeline {
     VkPipelineLayout layout = VK_NULL_HANDLE;
     VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
     VkPipelineBindPoint bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    uint32_t pointChunk = 0; // > 0: draw() issues a point list in draws of at most this many points
     std::vector<PipelineBinding> bindings;
 };
 

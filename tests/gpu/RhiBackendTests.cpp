@@ -112,6 +112,20 @@ TEST_CASE("rhi: additive blending accumulates") {
     }
 }
 
+TEST_CASE("rhi: a long point list, some points outside the clip volume") {
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            const Image img = drawPoints(*device);
+            for (uint32_t y = 0; y < 16; ++y)
+                for (uint32_t x = 0; x < 16; ++x)
+                    REQUIRE_MESSAGE(near(img.at(x, y), expectedPointTexel(x, y), 1e-3f),
+                                    "at " << x << "," << y << " " << describe(img.at(x, y)));
+            device.expectSilent();
+        }
+    }
+}
+
 TEST_CASE("rhi: render into one slice of a 3D texture, then sample it from compute") {
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {

@@ -159,6 +159,45 @@ Image additiveBlend(rhi::Device& device) {
     return out;
 }
 
+Image drawPoints(rhi::Device& device) {
+    using namespace rhi;
+    const TextureHandle target =
+        device.createTexture({TextureKind::Tex2D, Format::RGBA16F, 16, 16, 1, 1,
+                              kTextureColorTarget | kTextureTransfer, "point target", "test"});
+    GraphicsPipelineDesc pd;
+    pd.vertex = &shaders::points_vert;
+    pd.fragment = &shaders::constant_frag;
+    pd.topology = PrimitiveTopology::PointList;
+    pd.colorFormats = {Format::RGBA16F};
+    pd.blend = {BlendState::additive()};
+    pd.debugName = "points";
+    const GraphicsPipelineHandle pipeline = device.createPipeline(pd);
+
+    CommandList& cmd = device.beginFrame();
+    RenderPassDesc pass;
+    pass.colors[0] = {target, 0, 0, LoadOp::Clear, {0, 0, 0, 0}};
+    pass.colorCount = 1;
+    cmd.beginRenderPass(pass);
+    cmd.bindPipeline(pipeline);
+    cmd.pushUniforms(0, &kBlendColor, sizeof(kBlendColor));
+    cmd.draw(kPointCount, 1, kFirstPoint);
+    cmd.endRenderPass();
+    device.endFrame();
+    device.waitIdle();
+
+    Image out = readImage(device, target);
+    device.destroy(pipeline);
+    device.destroy(target);
+    return out;
+}
+
+glm::vec4 expectedPointTexel(uint32_t x, uint32_t y) {
+    float hits = 0.0f;
+    for (uint32_t i = kFirstPoint; i < kFirstPoint + kPointCount; ++i)
+        if (i % 3 != 0 && i % 16 == x && i / 16 % 16 == y) hits += 1.0f;
+    return hits * kBlendColor;
+}
+
 InjectionResult injectIntoSlice(rhi::Device& device) {
     using namespace rhi;
     const TextureHandle volume = device.createTexture(

@@ -30,6 +30,14 @@ inline constexpr glm::vec4 kBlendClear{0.1f, 0.0f, 0.0f, 0.0f};
 inline constexpr glm::vec4 kBlendColor{0.25f, 0.5f, 0.125f, 0.25f};
 Image additiveBlend(rhi::Device& device);
 
+// 16x16 RGBA16F cleared to 0, then kPointCount points from vertex kFirstPoint on (tests/shaders/
+// points.vert: every third one outside the clip volume) each add kBlendColor to their pixel: more
+// points than one draw of a CPU device's split point lists holds, with a remainder.
+inline constexpr uint32_t kPointCount = 3001;
+inline constexpr uint32_t kFirstPoint = 100;
+Image drawPoints(rhi::Device& device);
+glm::vec4 expectedPointTexel(uint32_t x, uint32_t y);
+
 // 8^3 RGBA16F volume: slice kInjectSlice receives kBlendColor twice (additive) through a render
 // pass, then a compute shader reads the whole volume through a sampler into a storage buffer.
 inline constexpr uint32_t kInjectSize = 8;
