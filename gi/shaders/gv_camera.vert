@@ -30,5 +30,5 @@ void main() {
     vAlbedo = texelFetch(gbufferAlbedo, pixel, 0).rgb;
     gl_PointSize = 1.0;
     bool valid = sampleIndex.y < rows && depth < 1.0 && dot(normal, normal) > 0.25;
-    gl_Position = valid ? surfelPosition(p) : vec4(-4.0, -4.0, 0.0, 1.0);
+    gl_Position = valid ? surfelPosition(p) : PARKED_POINT;
 }

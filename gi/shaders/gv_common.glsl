@@ -10,6 +10,8 @@
 #ifndef LPV_GV_COMMON_GLSL
 #define LPV_GV_COMMON_GLSL
 
+#include "lpv_common.glsl"
+
 layout(binding = 0, std140) uniform GeometryInject {
     vec4 gridOrigin;   // xyz: corner of LPV cell 0 (= centre of GV cell 0); w: cell size
     vec4 lightDirection; // xyz: where the light travels; w: RSM area per VPL (m^2, across the light)
@@ -25,7 +27,7 @@ vec4 surfelPosition(vec3 p) {
     ivec3 c = ivec3(floor((p - gv.gridOrigin.xyz) / gv.gridOrigin.w + 0.5));
     int n = gv.grid.x;
     bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n))) && c.z == gv.grid.y;
-    return inside ? vec4((vec2(c.xy) + 0.5) / float(n) * 2.0 - 1.0, 0.0, 1.0) : vec4(-4.0, -4.0, 0.0, 1.0);
+    return inside ? vec4((vec2(c.xy) + 0.5) / float(n) * 2.0 - 1.0, 0.0, 1.0) : PARKED_POINT;
 }
 
 // A surfel's projected coverage along the axes, in units of one cell face.

@@ -27,5 +27,5 @@ void main() {
     vec3 white = max(v.flux.w * gv.whiteTexelFlux.rgb, vec3(1e-20));
     vAlbedo = clamp(v.flux.rgb / white, 0.0, 1.0);
     gl_PointSize = 1.0;
-    gl_Position = v.position.w > 0.0 ? surfelPosition(v.position.xyz) : vec4(-4.0, -4.0, 0.0, 1.0);
+    gl_Position = v.position.w > 0.0 ? surfelPosition(v.position.xyz) : PARKED_POINT;
 }

@@ -38,5 +38,5 @@ void main() {
     vNormal = v.normal.xyz;
     vFlux = v.flux.rgb * inject.intensity.x;
     gl_PointSize = 1.0;
-    gl_Position = inside ? vec4((vec2(c.xy) + 0.5) / float(n) * 2.0 - 1.0, 0.0, 1.0) : vec4(-4.0, -4.0, 0.0, 1.0);
+    gl_Position = inside ? vec4((vec2(c.xy) + 0.5) / float(n) * 2.0 - 1.0, 0.0, 1.0) : PARKED_POINT;
 }

@@ -1,5 +1,7 @@
 #version 450
+#extension GL_GOOGLE_include_directive : require
 // Debug view: every VPL as a point at its position, coloured by its normalised flux.
+#include "lpv_common.glsl"
 struct Vpl {
     vec4 position;
     vec4 normal;
@@ -18,5 +20,5 @@ void main() {
     float m = max(max(v.flux.r, v.flux.g), max(v.flux.b, 1e-8));
     vColor = v.flux.rgb / m;
     gl_PointSize = 1.0;
-    gl_Position = v.position.w > 0.0 ? points.viewProjection * vec4(v.position.xyz, 1.0) : vec4(-4.0, -4.0, 0.0, 1.0);
+    gl_Position = v.position.w > 0.0 ? points.viewProjection * vec4(v.position.xyz, 1.0) : PARKED_POINT;
 }
