@@ -21,7 +21,7 @@ layout(binding = 0, std140) uniform Glossy {
     vec4 gridOrigin[4];  // per cascade: xyz corner of cell 0, w: cell size
     ivec4 grid;          // x: cells per axis, y: volumes are rgba8-encoded, z: cascades, w: steps
     vec4 encode;         // x: rgba8 range
-    ivec4 pixels;        // x: resolution divisor, yz: G-buffer size
+    ivec4 pixels;        // x: resolution divisor, yz: G-buffer size, w: 0 (see main)
 } glossy;
 layout(binding = 1) uniform sampler2D depthTexture;
 layout(binding = 2) uniform sampler2D normalTexture;
@@ -85,7 +85,12 @@ void main() {
         outRadiance = vec4(0.0);
         return;
     }
-    vec4 world = glossy.invViewProjection * vec4(uv * 2.0 - 1.0, depth, 1.0);
+    // Columns at an index the compiler cannot fold (pixels.w is 0), as in lpv_lookup.glsl: a
+    // constant-offset camera matrix makes lavapipe recompile this shader whenever the camera moves.
+    int col = glossy.pixels.w;
+    vec4 clip = vec4(uv * 2.0 - 1.0, depth, 1.0);
+    vec4 world = glossy.invViewProjection[col] * clip.x + glossy.invViewProjection[col + 1] * clip.y +
+                 glossy.invViewProjection[col + 2] * clip.z + glossy.invViewProjection[col + 3];
     vec3 p = world.xyz / world.w;
     vec3 n = normalize(normalRoughness.xyz);
     vec3 v = normalize(glossy.cameraPosition.xyz - p);

@@ -15,7 +15,7 @@ layout(binding = 0, std140) uniform Lookup {
     ivec4 grid;         // x: cells per axis, y: volumes are rgba8-encoded, z: damping on
     vec4 encode;        // x: rgba8 range, y: blend band (fraction of the half-extent)
     vec4 intensity;     // x: gi.intensity (already applied at injection), y: damping strength
-    ivec4 pixels;       // x: resolution divisor, yz: G-buffer size
+    ivec4 pixels;       // x: resolution divisor, yz: G-buffer size, w: 0 (see main)
 } lookup;
 layout(binding = 1) uniform sampler2D depthTexture;
 layout(binding = 2) uniform sampler2D normalTexture;
@@ -100,7 +100,13 @@ void main() {
         return;
     }
     vec4 clip = vec4(uv * 2.0 - 1.0, depth, 1.0);
-    vec4 world = lookup.invViewProjection * clip;
+    // The camera matrix's columns at an index the compiler cannot fold (pixels.w is 0): lavapipe
+    // specializes a shader on uniform values it loads at constant offsets and recompiles it when
+    // they change, which for this matrix was every frame the camera moved (600-850 ms a frame
+    // with a cold shader cache, against 45 ms).
+    int col = lookup.pixels.w;
+    vec4 world = lookup.invViewProjection[col] * clip.x + lookup.invViewProjection[col + 1] * clip.y +
+                 lookup.invViewProjection[col + 2] * clip.z + lookup.invViewProjection[col + 3];
     vec3 p = world.xyz / world.w;
     vec3 n = normalize(texelFetch(normalTexture, source, 0).xyz);
     // Every cascade is looked up once (CASCADES is compile-time, so each lookup names its own

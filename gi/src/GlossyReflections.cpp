@@ -58,6 +58,7 @@ void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatric
     u.grid =
         glm::ivec4(int(cascades[0].grid.size), encodeRange > 0.0f ? 1 : 0, int(cascades.size()), int(kSteps));
     u.encode = glm::vec4(encodeRange, 0, 0, 0);
+    // w = 0: the first column of the camera matrix, read at an index lavapipe cannot fold (shader).
     u.pixels = glm::ivec4(int(divisor), int(gbuffer.width), int(gbuffer.height), 0);
     RenderPassDesc pass;
     pass.colors[0] = {target, 0, 0, LoadOp::DontCare};

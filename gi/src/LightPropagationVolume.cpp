@@ -323,6 +323,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         // Blend band: a quarter of a cascade's half-extent (CryEngine's e_GIBlendRatio 0.25).
         u.encode = glm::vec4(volumes_->encodeRange(), 0.25f, 0, 0);
         u.intensity = glm::vec4(settings_.intensity, 1.0f, 0, 0);
+        // w = 0: the first column of the camera matrix, read at an index lavapipe cannot fold.
         u.pixels = glm::ivec4(int(divisor), int(gbuffer.width), int(gbuffer.height), 0);
         RenderPassDesc pass;
         pass.colors[0] = {target, 0, 0, LoadOp::DontCare};
