@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <functional>
 
 namespace lpv::test {
 namespace {
@@ -126,29 +127,30 @@ Image fillVolume(rhi::Device& device) {
     return out;
 }
 
-Image additiveBlend(rhi::Device& device) {
+// A 16x16 RGBA16F target cleared to `clear`, into which `draw` adds the constant fragment
+// shader's kBlendColor through `vertex`'s primitives; read back.
+Image drawAdditive(rhi::Device& device, const rhi::ShaderBinary& vertex, rhi::PrimitiveTopology topology,
+                   glm::vec4 clear, const char* name, const std::function<void(rhi::CommandList&)>& draw) {
     using namespace rhi;
-    const TextureHandle target =
-        device.createTexture({TextureKind::Tex2D, Format::RGBA16F, 16, 16, 1, 1,
-                              kTextureColorTarget | kTextureTransfer, "blend target", "test"});
+    const TextureHandle target = device.createTexture({TextureKind::Tex2D, Format::RGBA16F, 16, 16, 1, 1,
+                                                       kTextureColorTarget | kTextureTransfer, name, "test"});
     GraphicsPipelineDesc pd;
-    pd.vertex = &shaders::fullscreen_vert;
+    pd.vertex = &vertex;
     pd.fragment = &shaders::constant_frag;
+    pd.topology = topology;
     pd.colorFormats = {Format::RGBA16F};
     pd.blend = {BlendState::additive()};
-    pd.debugName = "additive";
+    pd.debugName = name;
     const GraphicsPipelineHandle pipeline = device.createPipeline(pd);
 
     CommandList& cmd = device.beginFrame();
     RenderPassDesc pass;
-    pass.colors[0] = {
-        target, 0, 0, LoadOp::Clear, {kBlendClear.x, kBlendClear.y, kBlendClear.z, kBlendClear.w}};
+    pass.colors[0] = {target, 0, 0, LoadOp::Clear, {clear.x, clear.y, clear.z, clear.w}};
     pass.colorCount = 1;
     cmd.beginRenderPass(pass);
     cmd.bindPipeline(pipeline);
     cmd.pushUniforms(0, &kBlendColor, sizeof(kBlendColor));
-    cmd.draw(3);
-    cmd.draw(3);
+    draw(cmd);
     cmd.endRenderPass();
     device.endFrame();
     device.waitIdle();
@@ -159,36 +161,17 @@ Image additiveBlend(rhi::Device& device) {
     return out;
 }
 
+Image additiveBlend(rhi::Device& device) {
+    return drawAdditive(device, shaders::fullscreen_vert, rhi::PrimitiveTopology::TriangleList, kBlendClear,
+                        "additive", [](rhi::CommandList& cmd) {
+                            cmd.draw(3);
+                            cmd.draw(3);
+                        });
+}
+
 Image drawPoints(rhi::Device& device) {
-    using namespace rhi;
-    const TextureHandle target =
-        device.createTexture({TextureKind::Tex2D, Format::RGBA16F, 16, 16, 1, 1,
-                              kTextureColorTarget | kTextureTransfer, "point target", "test"});
-    GraphicsPipelineDesc pd;
-    pd.vertex = &shaders::points_vert;
-    pd.fragment = &shaders::constant_frag;
-    pd.topology = PrimitiveTopology::PointList;
-    pd.colorFormats = {Format::RGBA16F};
-    pd.blend = {BlendState::additive()};
-    pd.debugName = "points";
-    const GraphicsPipelineHandle pipeline = device.createPipeline(pd);
-
-    CommandList& cmd = device.beginFrame();
-    RenderPassDesc pass;
-    pass.colors[0] = {target, 0, 0, LoadOp::Clear, {0, 0, 0, 0}};
-    pass.colorCount = 1;
-    cmd.beginRenderPass(pass);
-    cmd.bindPipeline(pipeline);
-    cmd.pushUniforms(0, &kBlendColor, sizeof(kBlendColor));
-    cmd.draw(kPointCount, 1, kFirstPoint);
-    cmd.endRenderPass();
-    device.endFrame();
-    device.waitIdle();
-
-    Image out = readImage(device, target);
-    device.destroy(pipeline);
-    device.destroy(target);
-    return out;
+    return drawAdditive(device, shaders::points_vert, rhi::PrimitiveTopology::PointList, glm::vec4(0.0f),
+                        "points", [](rhi::CommandList& cmd) { cmd.draw(kPointCount, 1, kFirstPoint); });
 }
 
 glm::vec4 expectedPointTexel(uint32_t x, uint32_t y) {
