@@ -25,6 +25,7 @@
 #include "engine/render/CameraPath.h"
 #include "engine/render/Renderer.h"
 #include "engine/scene/BuiltinScenes.h"
+#include "gi/GiScheduler.h"
 #include "gi/GiWork.h"
 #include "gi/GlossyReflections.h"
 #include "gi/LightPropagationVolume.h"
@@ -440,6 +441,28 @@ void consolePrediction() {
         std::printf("Console preset on %s: predicted GI %.2f ms with every cascade every frame, %.2f ms with "
                     "coarse cascades every 2 frames (goal: at most 3.3 ms)\n",
                     p == 0 ? "x360" : "ps3", all[p], staggered[p]);
+
+    // Where gi.budget_policy=adapt stops: every knob at its floor (gi/GiScheduler.h's limits).
+    const gi::GiSchedulerLimits limits;
+    gi::LpvSettings f = c;
+    f.iterations = limits.minIterations;
+    f.rsmSize = limits.minRsmSize;
+    const uint64_t floorPixels =
+        uint64_t(1280 / limits.maxResolutionDivisor) * (720 / limits.maxResolutionDivisor);
+    for (const auto* profile : {&x360, &ps3}) {
+        const auto ms = [&](const engine::WorkCounts& w) {
+            return engine::predictCost(w, profile->throughput).ms;
+        };
+        const double perCascade = ms(gi::rsmWork(f, 100000)) + ms(gi::vplClusterWork(f)) +
+                                  ms(gi::injectWork(f)) + ms(gi::propagateWork(f)) + ms(gi::bounceWork(f));
+        const double total = 2 * perCascade + ms(gi::occlusionWork(f, 160u * 90u)) +
+                             ms(gi::occlusionWork(f, 0)) + ms(gi::lookupWork(f, floorPixels)) +
+                             ms(gi::glossyWork(floorPixels)) + ms(engine::indirectRebuildWork(pixels));
+        std::printf(
+            "Console preset on %s at adapt's floor (coarse cascades every %u frames, %u iterations, RSM "
+            "%u^2, lookup every %u pixels per axis): predicted GI %.2f ms\n",
+            profile->name.c_str(), 2u, f.iterations, f.rsmSize, limits.maxResolutionDivisor, total);
+    }
 }
 
 } // namespace

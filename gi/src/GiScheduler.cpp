@@ -18,7 +18,7 @@ const engine::EnumSetting<GiBudgetPolicy> kBudgetPolicy{
     GiBudgetPolicy::Fixed,
     {{GiBudgetPolicy::Fixed, "fixed"}, {GiBudgetPolicy::Adapt, "adapt"}},
     "GI over the platform budget: fixed only reports it; adapt updates coarse cascades less often, then "
-    "lowers iterations, then the RSM size"};
+    "lowers iterations, then the RSM size, then gi.resolution"};
 
 double mib(uint64_t bytes) {
     return double(bytes) / (1024.0 * 1024.0);
@@ -48,6 +48,9 @@ struct KnobText {
         case GiKnob::RsmSize:
             std::snprintf(text.data(), text.size(), "rsm %u", value);
             break;
+        case GiKnob::Resolution:
+            std::snprintf(text.data(), text.size(), "lookup every %u pixels per axis", value);
+            break;
         case GiKnob::None:
             break;
         }
@@ -65,6 +68,9 @@ void setKnob(GiLoad& load, GiKnob knob, uint32_t value) {
         break;
     case GiKnob::RsmSize:
         load.rsmSize = value;
+        break;
+    case GiKnob::Resolution:
+        load.resolutionDivisor = value;
         break;
     case GiKnob::None:
         break;
@@ -86,6 +92,7 @@ GiLoad giLoadOf(const LpvSettings& settings, uint32_t cascades) {
     load.cascades = std::max(cascades, 1u);
     load.iterations = settings.iterations;
     load.rsmSize = settings.rsmSize;
+    load.resolutionDivisor = settings.resolutionDivisor;
     load.vplGridSide = std::max(settings.vplGridSide(), 1u);
     return load;
 }
@@ -93,6 +100,7 @@ GiLoad giLoadOf(const LpvSettings& settings, uint32_t cascades) {
 void applyGiLoad(const GiLoad& load, LpvSettings& settings) {
     settings.iterations = load.iterations;
     settings.rsmSize = load.rsmSize;
+    settings.resolutionDivisor = load.resolutionDivisor;
 }
 
 bool cascadeUpdatedOn(const GiLoad& load, uint32_t cascade, uint64_t frame) {
@@ -170,10 +178,11 @@ void GiBudgetScheduler::start(uint64_t frame, const GiLoad& configured, GiBudget
     setLoad(frame, configured);
     if (wasReduced)
         if (GiChange* c = addChange(GiKnob::None, 0, 0, true))
-            writeText(*c, "configured load again (%s, %s, %s): gi settings or gi.budget_policy changed",
+            writeText(*c, "configured load again (%s, %s, %s, %s): gi settings or gi.budget_policy changed",
                       KnobText(GiKnob::CoarseUpdateInterval, configured.coarseUpdateInterval).c_str(),
                       KnobText(GiKnob::Iterations, configured.iterations).c_str(),
-                      KnobText(GiKnob::RsmSize, configured.rsmSize).c_str());
+                      KnobText(GiKnob::RsmSize, configured.rsmSize).c_str(),
+                      KnobText(GiKnob::Resolution, configured.resolutionDivisor).c_str());
 }
 
 void GiBudgetScheduler::setLoad(uint64_t frame, const GiLoad& load) {
@@ -239,11 +248,12 @@ void GiBudgetScheduler::judge(uint64_t frame, double ms, uint64_t bytes, const G
         } else if (!floorReported_) {
             floorReported_ = true;
             if (GiChange* c = addChange(GiKnob::None, 0, 0, false))
-                writeText(*c, "GI %.2f ms > %.2f ms budget with every knob at its floor (%s, %s, %s)", ms,
+                writeText(*c, "GI %.2f ms > %.2f ms budget with every knob at its floor (%s, %s, %s, %s)", ms,
                           budget.ms,
                           KnobText(GiKnob::CoarseUpdateInterval, load_.coarseUpdateInterval).c_str(),
                           KnobText(GiKnob::Iterations, load_.iterations).c_str(),
-                          KnobText(GiKnob::RsmSize, load_.rsmSize).c_str());
+                          KnobText(GiKnob::RsmSize, load_.rsmSize).c_str(),
+                          KnobText(GiKnob::Resolution, load_.resolutionDivisor).c_str());
         }
         return;
     }
@@ -324,7 +334,15 @@ bool GiBudgetScheduler::nextTimeStep(Step& step) const {
         step = {GiKnob::Iterations, load_.iterations, to};
         return true;
     }
-    return rsmStep(step);
+    return rsmStep(step) || resolutionStep(step);
+}
+
+bool GiBudgetScheduler::resolutionStep(Step& step) const {
+    // Last: fewer lookups cost the picture detail at silhouettes (engine::IndirectLighting).
+    const uint32_t d = std::max(load_.resolutionDivisor, 1u);
+    if (d * 2 > limits_.maxResolutionDivisor) return false;
+    step = {GiKnob::Resolution, d, d * 2};
+    return true;
 }
 
 bool GiBudgetScheduler::rsmStep(Step& step) const {

@@ -39,7 +39,7 @@ struct ConsoleGiCost {
     engine::WorkCounts lookupPass(const gi::GiLoad& load) const {
         gi::LpvSettings s = settingsOf(load);
         s.cascades = 1;
-        return gi::lookupWork(s, pixels);
+        return gi::lookupWork(s, pixels / (uint64_t(load.resolutionDivisor) * load.resolutionDivisor));
     }
 
     double passMs(const engine::WorkCounts& w) const { return engine::predictCost(w, throughput).ms; }
@@ -70,7 +70,8 @@ struct ConsoleGiCost {
 };
 
 // The expensive setup of the tests: 3 cascades of 32^3, 8 iterations, RSM 256, RGBA8 (the only
-// format the x360 profile allows), 1024 VPLs (a 32x32 grid, so every RSM size down to 64 divides).
+// format the x360 profile allows), 1024 VPLs (a 32x32 grid, so every RSM size down to 64 divides),
+// every pixel looked up (gi.resolution=full), so each knob has work to take away.
 inline ConsoleGiCost x360Cascades(gi::GiLoad& configured) {
     ConsoleGiCost cost;
     cost.base.gridSize = 32;
@@ -78,6 +79,7 @@ inline ConsoleGiCost x360Cascades(gi::GiLoad& configured) {
     cost.base.vplCount = 1024;
     cost.base.iterations = 8;
     cost.base.rsmSize = 256;
+    cost.base.resolutionDivisor = 1;
     cost.throughput = platforms::loadPlatformProfile("x360").throughput;
     configured = gi::giLoadOf(cost.base, 3);
     return cost;

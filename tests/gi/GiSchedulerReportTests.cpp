@@ -171,3 +171,35 @@ TEST_CASE("gi budget: the LPV under adapt on the x360 profile brings its predict
     const std::string report = engine::profileSummaryMarkdown(profiler);
     CHECK(report.find("iterations 21 (was 28): GI") != std::string::npos);
 }
+
+TEST_CASE("gi budget: past the RSM, adapt makes the renderer look up fewer pixels") {
+    // The same pipeline under a budget no knob reaches: the ladder ends at gi.resolution, and the
+    // renderer's indirect targets follow it.
+    auto device = nullDevice();
+    platforms::PlatformProfile tight = platforms::loadPlatformProfile("x360");
+    tight.giBudgetMs = 0.5;
+    engine::Config config;
+    for (const char* s : {"gi.enabled=true", "gi.sh_format=rgba8", "gi.rsm_size=128", "gi.vpl_count=1024",
+                          "gi.cascades=1", "gi.iterations=8", "gi.budget_policy=adapt"})
+        config.applyOverride(s, "test");
+    const engine::Scene scene = engine::buildCornellBox();
+    engine::Renderer renderer(*device, 160, 120);
+    renderer.setScene(scene);
+    engine::FrameProfiler profiler(*device, tight);
+    LightPropagationVolume lpv(*device, tight);
+    const engine::CameraMatrices camera = engine::cameraMatrices(*scene.camera, 160.0f / 120.0f);
+    for (int f = 0; f < 200; ++f) {
+        lpv.update(config, renderer, camera, &profiler);
+        rhi::CommandList& cmd = device->beginFrame();
+        profiler.beginFrame(cmd);
+        renderer.render(cmd, camera, config, &profiler, &lpv);
+        profiler.endFrame(cmd);
+        device->endFrame();
+    }
+    CHECK(lpv.schedule().load.rsmSize == 64);
+    CHECK(lpv.resolutionDivisor() == 4);
+    CHECK(renderer.indirectDivisor() == 4);
+    const std::string report = engine::profileSummaryMarkdown(profiler);
+    CHECK(report.find("lookup every 4 pixels per axis (was 2): GI") != std::string::npos);
+    CHECK(report.find("with every knob at its floor") != std::string::npos);
+}

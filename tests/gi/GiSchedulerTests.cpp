@@ -52,7 +52,7 @@ struct Run {
 };
 
 int rank(GiKnob k) {
-    return k == GiKnob::CoarseUpdateInterval ? 0 : k == GiKnob::Iterations ? 1 : 2;
+    return k == GiKnob::CoarseUpdateInterval ? 0 : k == GiKnob::Iterations ? 1 : k == GiKnob::RsmSize ? 2 : 3;
 }
 
 bool contains(std::string_view text, std::string_view part) {
@@ -139,6 +139,24 @@ TEST_CASE("gi budget: adapt brings 3 cascades under the x360 budget in the docum
             CHECK(rank(steps[i - 1].change.knob) <= rank(steps[i].change.knob));
         CHECK(steps.back().change.knob == GiKnob::RsmSize);
     }
+    SUBCASE("a budget under the RSM's floor reaches gi.resolution, last") {
+        // Just under what every other knob at its floor costs.
+        GiLoad floor = run.configured;
+        floor.coarseUpdateInterval = 2;
+        floor.iterations = run.scheduler.limits().minIterations;
+        floor.rsmSize = run.scheduler.limits().minRsmSize;
+        REQUIRE(run.configured.resolutionDivisor < run.scheduler.limits().maxResolutionDivisor);
+        const GiBudget budget{0.97 * cost.peakMs(floor), bytes};
+        const GiSchedule& s = run.frames(300, budget, costOf);
+        CHECK(cost.peakMs(s.load) <= budget.ms);
+        CHECK(s.load.rsmSize == run.scheduler.limits().minRsmSize);
+        CHECK(s.load.resolutionDivisor > run.configured.resolutionDivisor);
+        const auto steps = run.steps(false);
+        REQUIRE(steps.size() >= 4);
+        for (size_t i = 1; i < steps.size(); ++i)
+            CHECK(rank(steps[i - 1].change.knob) <= rank(steps[i].change.knob));
+        CHECK(steps.back().change.knob == GiKnob::Resolution);
+    }
     // Every step is named, with the reason, in its note.
     for (const Logged& l : run.log) {
         INFO(l.change.text());
@@ -151,6 +169,9 @@ TEST_CASE("gi budget: adapt brings 3 cascades under the x360 budget in the docum
         if (l.change.knob == GiKnob::RsmSize)
             CHECK(
                 contains(t, "rsm " + std::to_string(l.change.to) + " (was " + std::to_string(l.change.from)));
+        if (l.change.knob == GiKnob::Resolution)
+            CHECK(contains(t, "lookup every " + std::to_string(l.change.to) + " pixels per axis (was " +
+                                  std::to_string(l.change.from)));
         CHECK(contains(t, "ms budget"));
     }
 }
@@ -231,6 +252,7 @@ TEST_CASE("gi budget: noisy measured times settle instead of oscillating") {
         floor.coarseUpdateInterval = 2;
         floor.iterations = run.scheduler.limits().minIterations;
         floor.rsmSize = run.scheduler.limits().minRsmSize;
+        floor.resolutionDivisor = run.scheduler.limits().maxResolutionDivisor;
         const double budgetMs = budgetOfFloor * cost.peakMs(floor);
         const uint64_t bytes = cost.bytes(run.configured);
         uint32_t seed = 12345;

@@ -3,6 +3,8 @@
 //   1. how often the coarse cascades update (every 1 -> 2 -> 4 frames; only with cascades > 1),
 //   2. the propagation iterations (a quarter, at least one, per step, down to a floor),
 //   3. the RSM size (halved per step, down to a floor),
+//   4. the pixels looked up (gi.resolution: full -> half -> quarter per axis; the lighting pass
+//      rebuilds the rest),
 // and gives steps back in reverse order once GI has stayed well under budget for a while and the
 // step is expected to fit. Memory over budget is helped only by a smaller RSM; past that it is
 // reported, since no time knob frees memory. Under fixed it changes nothing and reports.
@@ -53,13 +55,14 @@ struct GiLoad {
     uint32_t coarseUpdateInterval = 1; // frames between two updates of a coarse cascade
     uint32_t iterations = 8;
     uint32_t rsmSize = 256;
+    uint32_t resolutionDivisor = 1; // per axis: the lookup and glossy march run on 1 in d^2 pixels
     // Not a knob: the RSM size must stay a multiple of the VPL grid side (gi.vpl_count's rule).
     uint32_t vplGridSide = 1;
     bool operator==(const GiLoad&) const = default;
 };
 
 GiLoad giLoadOf(const LpvSettings& settings, uint32_t cascades = 1);
-// Writes the knobs LpvSettings holds (iterations, rsm size) back into `settings`.
+// Writes the knobs LpvSettings holds (iterations, rsm size, resolution) back into `settings`.
 void applyGiLoad(const GiLoad& load, LpvSettings& settings);
 
 // Whether `cascade` updates on `frame`. Coarse cascades take turns (staggered phases), so with an
@@ -84,7 +87,7 @@ struct GiFrameCost {
 // the measured GI ms otherwise, and the GI bytes allocated now. Empty until a frame is checked.
 std::optional<GiFrameCost> giFrameCost(const engine::FrameProfiler& profiler);
 
-enum class GiKnob { None, CoarseUpdateInterval, Iterations, RsmSize };
+enum class GiKnob { None, CoarseUpdateInterval, Iterations, RsmSize, Resolution };
 
 inline constexpr size_t kGiChangeTextBytes = 192;
 
@@ -122,6 +125,7 @@ struct GiSchedulerLimits {
     uint32_t maxCoarseUpdateInterval = 4;
     uint32_t minIterations = 4;
     uint32_t minRsmSize = 64;
+    uint32_t maxResolutionDivisor = 4; // gi.resolution=quarter
     // A cycle over budget is the worst frame of one coarse update cycle (interval frames). This
     // many such cycles in a row take a step: more than one rides out a single noisy measurement.
     uint32_t overBudgetCycles = 2;
@@ -156,8 +160,8 @@ private:
         bool afterKnown = false;
         bool forMemory = false;
     };
-    // Two interval steps, up to 60 iteration steps (64 -> 4), a few RSM halvings.
-    static constexpr size_t kMaxSteps = 72;
+    // Two interval steps, up to 60 iteration steps (64 -> 4), a few RSM halvings, two resolutions.
+    static constexpr size_t kMaxSteps = 74;
 
     void start(uint64_t frame, const GiLoad& configured, GiBudgetPolicy policy);
     void judge(uint64_t frame, double ms, uint64_t bytes, const GiBudget& budget);
@@ -165,6 +169,7 @@ private:
                       const GiBudget& budget);
     bool nextTimeStep(Step& step) const;
     bool rsmStep(Step& step) const;
+    bool resolutionStep(Step& step) const;
     void take(uint64_t frame, Step step, double ms, uint64_t bytes, const GiBudget& budget);
     void giveBack(uint64_t frame, double ms, double expectedMs, const GiBudget& budget);
     void setLoad(uint64_t frame, const GiLoad& load);
