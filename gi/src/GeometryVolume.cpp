@@ -25,24 +25,20 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepA
     : device_(device), lpvSize_(lpvSize) {
     using namespace rhi;
     const uint32_t g = lpvSize + 1;
+    // Coverage and albedo sums are rendered into (one slice per draw), the per-cell results are
+    // written by compute; all are sampled by later passes and read back by the tests.
+    const auto volume = [&](Format format, uint32_t size, uint32_t writeUsage, const char* name) {
+        return device.createTexture({TextureKind::Tex3D, format, size, size, size, 1,
+                                     writeUsage | kTextureSampled | kTextureTransfer, name, "gi.gv"});
+    };
     // 8 bits are enough: the faces use coverage up to 1 (a cell face fully covered), and additive
     // blending into a unorm target saturates there by itself.
-    coverage_ = device.createTexture({TextureKind::Tex3D, Format::RGBA8Unorm, g, g, g, 1,
-                                      kTextureColorTarget | kTextureSampled | kTextureTransfer, "gv coverage",
-                                      "gi.gv"});
-    cameraCoverage_ = device.createTexture({TextureKind::Tex3D, Format::RGBA8Unorm, g, g, g, 1,
-                                            kTextureColorTarget | kTextureSampled | kTextureTransfer,
-                                            "gv camera coverage", "gi.gv"});
-    faces_ = device.createTexture({TextureKind::Tex3D, Format::RGBA8Unorm, lpvSize, lpvSize, lpvSize, 1,
-                                   kTextureStorage | kTextureSampled | kTextureTransfer,
-                                   "gv face transmittance", "gi.gv"});
+    coverage_ = volume(Format::RGBA8Unorm, g, kTextureColorTarget, "gv coverage");
+    cameraCoverage_ = volume(Format::RGBA8Unorm, g, kTextureColorTarget, "gv camera coverage");
+    faces_ = volume(Format::RGBA8Unorm, lpvSize, kTextureStorage, "gv face transmittance");
     if (keepAlbedo) {
-        albedoSum_ = device.createTexture({TextureKind::Tex3D, Format::RGBA16F, g, g, g, 1,
-                                           kTextureColorTarget | kTextureSampled | kTextureTransfer,
-                                           "gv albedo sum", "gi.gv"});
-        albedo_ = device.createTexture({TextureKind::Tex3D, Format::RGBA8Unorm, lpvSize, lpvSize, lpvSize, 1,
-                                        kTextureStorage | kTextureSampled | kTextureTransfer,
-                                        "gv surfel albedo", "gi.gv"});
+        albedoSum_ = volume(Format::RGBA16F, g, kTextureColorTarget, "gv albedo sum");
+        albedo_ = volume(Format::RGBA8Unorm, lpvSize, kTextureStorage, "gv surfel albedo");
     }
     GraphicsPipelineDesc d;
     d.vertex = &shaders::gv_vpl_vert;

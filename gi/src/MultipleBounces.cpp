@@ -39,7 +39,8 @@ MultipleBounces::MultipleBounces(rhi::Device& device, const LpvSettings& setting
     bounce_ = volumes.createResult("lpv bounce");
     reflectPipeline_ =
         device.createPipeline(ComputePipelineDesc{&reflectShader(settings.shFormat), "lpv bounce reflect"});
-    addPipeline_ = device.createPipeline(ComputePipelineDesc{&addShader(settings.shFormat), "lpv bounce add"});
+    addPipeline_ =
+        device.createPipeline(ComputePipelineDesc{&addShader(settings.shFormat), "lpv bounce add"});
     pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
 }
 
@@ -53,7 +54,8 @@ MultipleBounces::~MultipleBounces() {
 }
 
 void MultipleBounces::add(rhi::CommandList& cmd, LpvVolumes& volumes, const GeometryVolume& geometry,
-                          uint32_t bounces, uint32_t iterations, const std::array<rhi::TextureHandle, 3>& result) {
+                          uint32_t bounces, uint32_t iterations,
+                          const std::array<rhi::TextureHandle, 3>& result) {
     const uint32_t n = settings_.gridSize;
     const uint32_t groups = (n + 3) / 4;
     BounceUniforms u;

@@ -32,16 +32,20 @@ CornellFrame render(rhi::Device& device, uint32_t bounces, uint32_t iterations =
     // so 24 iterations carry the floor's light to the ceiling 5.5 m up (a point inside the finest
     // cascade sees only that cascade's light, so more cascades would not help here).
     return renderSceneFrame(device, floorLitCornellBox(),
-                            {"gi.enabled=true", "render.debug_view=indirect", "render.ssao=false", "gi.cascades=1",
-                             "gi.glossy=false", "gi.iterations=" + std::to_string(iterations),
+                            {"gi.enabled=true", "render.debug_view=indirect", "render.ssao=false",
+                             "gi.cascades=1", "gi.glossy=false",
+                             "gi.iterations=" + std::to_string(iterations),
                              "gi.bounces=" + std::to_string(bounces)},
                             [](engine::Renderer& r) { r.sun().direction = glm::vec3(0.0f, -1.0f, 0.0f); });
 }
 
 // Mean indirect luminance at points on the ceiling's underside, away from the opening.
 float ceilingLight(const CornellFrame& f) {
-    const glm::vec3 points[] = {{-1.6f, 5.49f, -1.5f}, {1.6f, 5.49f, -1.5f}, {-1.6f, 5.49f, 0.5f},
-                                {1.6f, 5.49f, 0.5f},   {0.0f, 5.49f, -1.8f}};
+    const glm::vec3 points[] = {{-1.6f, 5.49f, -1.5f},
+                                {1.6f, 5.49f, -1.5f},
+                                {-1.6f, 5.49f, 0.5f},
+                                {1.6f, 5.49f, 0.5f},
+                                {0.0f, 5.49f, -1.8f}};
     float sum = 0.0f;
     int seen = 0;
     for (const glm::vec3& p : points) {

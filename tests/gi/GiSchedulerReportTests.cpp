@@ -3,9 +3,14 @@
 // arrives frames late, as GPU results do), and its changes noted in the profiler's report.
 #include "ConsoleGiCost.h"
 
+#include "engine/config/Config.h"
 #include "engine/profiler/FrameProfiler.h"
 #include "engine/profiler/ProfileReport.h"
+#include "engine/render/CameraMatrices.h"
+#include "engine/render/Renderer.h"
+#include "engine/scene/BuiltinScenes.h"
 #include "gi/GiScheduler.h"
+#include "gi/LightPropagationVolume.h"
 #include "rhi/Device.h"
 
 #include "../support/TestDevice.h"
@@ -13,6 +18,8 @@
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -128,78 +135,75 @@ TEST_CASE("gi budget report: the profiler's report names each change, its frame 
     CHECK(engine::profileChartSvg(profiler).find("blue marks: notes") != std::string::npos);
 }
 
-#include "engine/config/Config.h"
-#include "engine/render/CameraMatrices.h"
-#include "engine/render/Renderer.h"
-#include "engine/scene/BuiltinScenes.h"
-#include "gi/LightPropagationVolume.h"
+namespace {
 
-TEST_CASE("gi budget: the LPV under adapt on the x360 profile brings its predicted GI time under budget") {
-    // The real pipeline (one cascade, 28 iterations: about 4.3 ms predicted on the Xbox 360) on the
-    // null device; the scheduler reads the profiler's predicted x360 GI time of checked frames.
-    auto device = nullDevice();
-    const auto x360 = platforms::loadPlatformProfile("x360");
+// The real pipeline (one cascade, RGBA8, RSM 128, `iterations`) under gi.budget_policy=adapt on the
+// null device and `profile`, with the game's frame loop: the scheduler reads the profiler's
+// predicted console GI time of checked frames.
+struct AdaptedLpv {
+    std::unique_ptr<rhi::Device> device = nullDevice();
+    platforms::PlatformProfile profile;
     engine::Config config;
-    for (const char* s : {"gi.enabled=true", "gi.sh_format=rgba8", "gi.rsm_size=128", "gi.vpl_count=1024",
-                          "gi.cascades=1", "gi.iterations=28", "gi.budget_policy=adapt"})
-        config.applyOverride(s, "test");
-    const engine::Scene scene = engine::buildCornellBox();
-    engine::Renderer renderer(*device, 160, 120);
-    renderer.setScene(scene);
-    engine::FrameProfiler profiler(*device, x360);
-    LightPropagationVolume lpv(*device, x360);
-    const engine::CameraMatrices camera = engine::cameraMatrices(*scene.camera, 160.0f / 120.0f);
-    std::optional<GiFrameCost> first, last;
-    for (int f = 0; f < 60; ++f) {
+    engine::Scene scene = engine::buildCornellBox();
+    engine::Renderer renderer{*device, 160, 120};
+    engine::FrameProfiler profiler;
+    LightPropagationVolume lpv;
+    engine::CameraMatrices camera = engine::cameraMatrices(*scene.camera, 160.0f / 120.0f);
+
+    AdaptedLpv(platforms::PlatformProfile p, uint32_t iterations)
+        : profile(std::move(p)), profiler(*device, profile), lpv(*device, profile) {
+        for (const char* s : {"gi.enabled=true", "gi.sh_format=rgba8", "gi.rsm_size=128", "gi.vpl_count=1024",
+                              "gi.cascades=1", "gi.budget_policy=adapt"})
+            config.applyOverride(s, "test");
+        config.applyOverride("gi.iterations=" + std::to_string(iterations), "test");
+        renderer.setScene(scene);
+    }
+    // One frame; the GI cost the scheduler will see next.
+    std::optional<GiFrameCost> frame() {
         lpv.update(config, renderer, camera, &profiler);
         rhi::CommandList& cmd = device->beginFrame();
         profiler.beginFrame(cmd);
         renderer.render(cmd, camera, config, &profiler, &lpv);
         profiler.endFrame(cmd);
         device->endFrame();
-        const auto cost = giFrameCost(profiler);
+        return giFrameCost(profiler);
+    }
+};
+
+} // namespace
+
+TEST_CASE("gi budget: the LPV under adapt on the x360 profile brings its predicted GI time under budget") {
+    // 28 iterations: about 4.3 ms predicted on the Xbox 360.
+    AdaptedLpv run(platforms::loadPlatformProfile("x360"), 28);
+    std::optional<GiFrameCost> first, last;
+    for (int f = 0; f < 60; ++f) {
+        const auto cost = run.frame();
         if (cost && !first) first = cost;
         if (cost) last = cost;
     }
     REQUIRE(first);
     REQUIRE(last);
     MESSAGE("predicted x360 GI: first checked frame " << first->ms << " ms, last " << last->ms << " ms; "
-                                                      << lpv.schedule().load.iterations << " iterations");
-    CHECK(first->ms > x360.giBudgetMs);
-    CHECK(last->ms <= x360.giBudgetMs);
-    CHECK(lpv.schedule().load.iterations < 28);
-    const std::string report = engine::profileSummaryMarkdown(profiler);
+                                                      << run.lpv.schedule().load.iterations << " iterations");
+    CHECK(first->ms > run.profile.giBudgetMs);
+    CHECK(last->ms <= run.profile.giBudgetMs);
+    CHECK(run.lpv.schedule().load.iterations < 28);
+    const std::string report = engine::profileSummaryMarkdown(run.profiler);
     CHECK(report.find("iterations 21 (was 28): GI") != std::string::npos);
 }
 
 TEST_CASE("gi budget: past the RSM, adapt makes the renderer look up fewer pixels") {
-    // The same pipeline under a budget no knob reaches: the ladder ends at gi.resolution, and the
-    // renderer's indirect targets follow it.
-    auto device = nullDevice();
+    // Under a budget no knob reaches, the ladder ends at gi.resolution, and the renderer's indirect
+    // targets follow it.
     platforms::PlatformProfile tight = platforms::loadPlatformProfile("x360");
     tight.giBudgetMs = 0.5;
-    engine::Config config;
-    for (const char* s : {"gi.enabled=true", "gi.sh_format=rgba8", "gi.rsm_size=128", "gi.vpl_count=1024",
-                          "gi.cascades=1", "gi.iterations=8", "gi.budget_policy=adapt"})
-        config.applyOverride(s, "test");
-    const engine::Scene scene = engine::buildCornellBox();
-    engine::Renderer renderer(*device, 160, 120);
-    renderer.setScene(scene);
-    engine::FrameProfiler profiler(*device, tight);
-    LightPropagationVolume lpv(*device, tight);
-    const engine::CameraMatrices camera = engine::cameraMatrices(*scene.camera, 160.0f / 120.0f);
-    for (int f = 0; f < 200; ++f) {
-        lpv.update(config, renderer, camera, &profiler);
-        rhi::CommandList& cmd = device->beginFrame();
-        profiler.beginFrame(cmd);
-        renderer.render(cmd, camera, config, &profiler, &lpv);
-        profiler.endFrame(cmd);
-        device->endFrame();
-    }
-    CHECK(lpv.schedule().load.rsmSize == 64);
-    CHECK(lpv.resolutionDivisor() == 4);
-    CHECK(renderer.indirectDivisor() == 4);
-    const std::string report = engine::profileSummaryMarkdown(profiler);
+    AdaptedLpv run(tight, 8);
+    for (int f = 0; f < 200; ++f)
+        run.frame();
+    CHECK(run.lpv.schedule().load.rsmSize == 64);
+    CHECK(run.lpv.resolutionDivisor() == 4);
+    CHECK(run.renderer.indirectDivisor() == 4);
+    const std::string report = engine::profileSummaryMarkdown(run.profiler);
     CHECK(report.find("lookup every 4 pixels per axis (was 2): GI") != std::string::npos);
     CHECK(report.find("with every knob at its floor") != std::string::npos);
 }

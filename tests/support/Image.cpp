@@ -79,8 +79,8 @@ void checkBackendsAgree(const Image& gl, const Image& vk, const char* what, floa
         peak = std::max({peak, t.r, t.g, t.b});
     REQUIRE(peak > 0.0f);
     const ImageDifference d = compareImages(gl, vk, fraction * peak);
-    MESSAGE(std::string(what) << " GL vs Vulkan: max difference " << d.maxAbs << " (peak " << peak << "), " << d.texelsOver
-                 << " pixels over " << fraction * peak);
+    MESSAGE(std::string(what) << " GL vs Vulkan: max difference " << d.maxAbs << " (peak " << peak << "), "
+                              << d.texelsOver << " pixels over " << fraction * peak);
     CHECK(d.texelsOver <= gl.texels.size() / 100);
 }
 
