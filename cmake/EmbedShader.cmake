@@ -9,6 +9,13 @@ endif()
 string(REGEX REPLACE "(..)(..)(..)(..)" "0x\\4\\3\\2\\1u," words "${hex}")
 string(REGEX REPLACE "(([^,]*,){8})" "\\1\n    " words "${words}")
 file(READ ${GLSL} glsl)
+# A vertex shader that writes gl_Layer needs GL_ARB_shader_viewport_layer_array in GLSL 4.50.
+# SPIRV-Cross (Debian 12) requests it only for the SPIR-V extension's capability, not for the core
+# ShaderLayer capability glslang emits for Vulkan 1.2+, so add it here.
+if(STAGE STREQUAL "Vertex" AND glsl MATCHES "gl_Layer" AND NOT glsl MATCHES "GL_ARB_shader_viewport_layer_array")
+  string(REGEX REPLACE "^#version 450\n" "#version 450\n#extension GL_ARB_shader_viewport_layer_array : require\n"
+                       glsl "${glsl}")
+endif()
 set(delim "lpv_glsl")
 file(WRITE ${OUT}
   "// Generated from ${NAME}; do not edit.\n"

@@ -17,16 +17,22 @@ layout(binding = 0, std140) uniform GeometryInject {
     vec4 lightDirection; // xyz: where the light travels; w: RSM area per VPL (m^2, across the light)
     mat4 invViewProjection; // camera surfels: clip -> world
     vec4 camera;       // xyz: camera position
-    ivec4 grid;        // x: GV cells per axis, y: slice being drawn, z: VPL count, w: samples per row
+    ivec4 grid;        // x: GV cells per axis, y: slice being drawn (not LAYERED), z: VPL count, w: samples per row
     vec4 whiteTexelFlux; // rgb: the flux an RSM texel of albedo 1 reflects
 } gv;
 
-// Where a surfel lands: the GV cell whose centre (an LPV corner) is nearest, if it is in the
-// slice being drawn, as a point position; else a position outside the clip volume.
+// Where a surfel lands: the GV cell whose centre (an LPV corner) is nearest, as a point position
+// and (LAYERED) the slice it picks; without LAYERED, only if it is in the slice being drawn. Else
+// a position outside the clip volume.
 vec4 surfelPosition(vec3 p) {
     ivec3 c = ivec3(floor((p - gv.gridOrigin.xyz) / gv.gridOrigin.w + 0.5));
     int n = gv.grid.x;
-    bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n))) && c.z == gv.grid.y;
+    bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
+#ifdef LAYERED
+    gl_Layer = clamp(c.z, 0, n - 1);
+#else
+    inside = inside && c.z == gv.grid.y;
+#endif
     return inside ? vec4((vec2(c.xy) + 0.5) / float(n) * 2.0 - 1.0, 0.0, 1.0) : PARKED_POINT;
 }
 

@@ -22,11 +22,11 @@ struct InjectUniforms {
 } // namespace
 
 GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepAlbedo)
-    : device_(device), lpvSize_(lpvSize) {
+    : device_(device), lpvSize_(lpvSize), layered_(device.caps().vertexShaderLayer) {
     using namespace rhi;
     const uint32_t g = lpvSize + 1;
-    // Coverage and albedo sums are rendered into (one slice per draw), the per-cell results are
-    // written by compute; all are sampled by later passes and read back by the tests.
+    // Coverage and albedo sums are rendered into (one layered draw, or one per slice), the per-cell results
+    // are written by compute; all are sampled by later passes and read back by the tests.
     const auto volume = [&](Format format, uint32_t size, uint32_t writeUsage, const char* name) {
         return device.createTexture({TextureKind::Tex3D, format, size, size, size, 1,
                                      writeUsage | kTextureSampled | kTextureTransfer, name, "gi.gv"});
@@ -41,7 +41,7 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepA
         albedo_ = volume(Format::RGBA8Unorm, lpvSize, kTextureStorage, "gv surfel albedo");
     }
     GraphicsPipelineDesc d;
-    d.vertex = &shaders::gv_vpl_vert;
+    d.vertex = layered_ ? &shaders::gv_vpl_layered_vert : &shaders::gv_vpl_slice_vert;
     d.fragment = keepAlbedo ? &shaders::gv_inject_albedo_frag : &shaders::gv_inject_coverage_frag;
     d.topology = PrimitiveTopology::PointList;
     BlendState max = BlendState::additive();
@@ -54,7 +54,7 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepA
     }
     d.debugName = "gv inject light surfels";
     vplPipeline_ = device.createPipeline(d);
-    d.vertex = &shaders::gv_camera_vert;
+    d.vertex = layered_ ? &shaders::gv_camera_layered_vert : &shaders::gv_camera_slice_vert;
     d.debugName = "gv inject camera surfels";
     cameraPipeline_ = device.createPipeline(d);
     facesPipeline_ = device.createPipeline(ComputePipelineDesc{
@@ -98,13 +98,17 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
         const TextureDesc& d = device_.desc(src.depth);
         cameraSamples = cameraSampleCount(d.width, d.height);
     }
-    for (uint32_t slice = 0; slice < g; ++slice) {
+    // As the radiance injection: one layered draw per surfel set, or every set once per slice.
+    const uint32_t passes = layered_ ? 1 : g;
+    for (uint32_t slice = 0; slice < passes; ++slice) {
         RenderPassDesc pass;
         pass.colors[0] = {coverage_, 0, slice, LoadOp::Load};
         pass.colors[1] = {cameraCoverage_, 0, slice, LoadOp::Load};
         pass.colors[2] = {albedoSum_, 0, slice, LoadOp::Load};
         pass.colorCount = albedoSum_ ? 3 : 2;
-        pass.debugName = "gv inject slice";
+        for (uint32_t c = 0; c < pass.colorCount; ++c)
+            pass.colors[c].layered = layered_;
+        pass.debugName = layered_ ? "gv inject" : "gv inject slice";
         cmd.beginRenderPass(pass);
         u.grid = glm::ivec4(int(g), int(slice), int(src.vplCount), int(kCameraSamplesPerRow));
         if (src.vplCount > 0) {

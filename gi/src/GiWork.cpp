@@ -31,12 +31,12 @@ WorkCounts vplClusterWork(const LpvSettings& s) {
     return w;
 }
 
-WorkCounts injectWork(const LpvSettings& s, uint64_t extraVpls) {
+WorkCounts injectWork(const LpvSettings& s, uint64_t extraVpls, VolumeDraw draw) {
     const uint64_t injectBytes = s.shFormat == ShFormat::Rgba32f ? 16 : 8;
     const uint64_t vpls = s.vplCount + extraVpls;
     WorkCounts w;
-    // Every VPL is submitted once per slice; one slice keeps it.
-    w.primitives = vpls * s.gridSize;
+    // Every VPL is submitted once, or once per slice (one slice keeps it).
+    w.primitives = vpls * (draw == VolumeDraw::Layered ? 1 : s.gridSize);
     w.aluOps = w.primitives * 20;
     w.pixelsShaded = vpls;
     w.texelsWritten = vpls * 3;
@@ -119,13 +119,13 @@ WorkCounts gatherPropagationWork(const LpvSettings& s) {
     return one * s.iterations;
 }
 
-WorkCounts occlusionWork(const LpvSettings& s, uint64_t cameraSamples) {
-    const uint64_t slices = s.gridSize + 1;
+WorkCounts occlusionWork(const LpvSettings& s, uint64_t cameraSamples, VolumeDraw draw) {
+    const uint64_t slices = draw == VolumeDraw::Layered ? 1 : s.gridSize + 1;
     const uint64_t surfels = s.vplCount + cameraSamples;
     const uint64_t cells = uint64_t(s.gridSize) * s.gridSize * s.gridSize;
     WorkCounts w;
-    // Every surfel is submitted once per slice (camera ones fetch depth and normal); one slice
-    // keeps it. Then 12 coverage fetches and one store per LPV cell.
+    // Every surfel is submitted once, or once per slice (camera ones fetch depth and normal each
+    // time); one slice keeps it. Then 12 coverage fetches and one store per LPV cell.
     w.primitives = surfels * slices;
     w.aluOps = w.primitives * 25 + cells * 20;
     w.pixelsShaded = surfels;

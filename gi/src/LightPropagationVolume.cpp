@@ -266,7 +266,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             src.cameraPosition = camera.position;
             geometry_->build(cmd, grid, src);
             work(occlusionWork(settings_,
-                               src.depth ? geometry_->cameraSampleCount(gbuffer.width, gbuffer.height) : 0));
+                               src.depth ? geometry_->cameraSampleCount(gbuffer.width, gbuffer.height) : 0,
+                               volumeDraw()));
         }
         {
             auto s = scope("inject");
@@ -274,7 +275,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             sources[0] = {vpls_, settings_.vplCount, glm::vec4(lightDir, 0.0f)};
             const uint32_t n = 1 + spotRsms_->sourcesReaching(grid, std::span(sources).subspan(1));
             volumes_->inject(cmd, std::span(sources.data(), n), grid, settings_.intensity);
-            work(injectWork(settings_, uint64_t(n - 1) * spotLightVplCount(settings_)));
+            work(injectWork(settings_, uint64_t(n - 1) * spotLightVplCount(settings_), volumeDraw()));
         }
         {
             auto s = scope("propagate");

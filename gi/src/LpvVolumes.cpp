@@ -76,7 +76,8 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
     : device_(device), settings_(settings),
       columnLength_(columnLength
                         ? columnLength
-                        : propagationColumnLength(settings.gridSize, device.caps().concurrentWorkgroups)) {
+                        : propagationColumnLength(settings.gridSize, device.caps().concurrentWorkgroups)),
+      layered_(device.caps().vertexShaderLayer) {
     using namespace rhi;
     const uint32_t n = settings.gridSize;
     const Format injectFormat = settings.shFormat == ShFormat::Rgba32f ? Format::RGBA32F : Format::RGBA16F;
@@ -101,7 +102,7 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
                  std::string(p ? "lpv partial sum pong " : "lpv partial sum ping ") + std::to_string(t),
                  "gi.lpv"});
     GraphicsPipelineDesc d;
-    d.vertex = &shaders::inject_vert;
+    d.vertex = layered_ ? &shaders::inject_layered_vert : &shaders::inject_slice_vert;
     d.fragment = &shaders::inject_frag;
     d.topology = PrimitiveTopology::PointList;
     d.colorFormats = {injectFormat, injectFormat, injectFormat};
@@ -150,12 +151,17 @@ void LpvVolumes::inject(rhi::CommandList& cmd, std::span<const VplSource> source
     InjectUniforms u;
     u.gridOrigin = glm::vec4(grid.origin, grid.cellSize);
     u.intensity = glm::vec4(intensity, 0, 0, 0);
-    for (uint32_t slice = 0; slice < settings_.gridSize; ++slice) {
+    // One layered draw per source where the device lets the vertex shader pick the slice; else
+    // every source once per slice (gridSize times the vertex work).
+    const uint32_t passes = layered_ ? 1 : settings_.gridSize;
+    for (uint32_t slice = 0; slice < passes; ++slice) {
         RenderPassDesc pass;
-        for (uint32_t c = 0; c < 3; ++c)
+        for (uint32_t c = 0; c < 3; ++c) {
             pass.colors[c] = {inject_[c], 0, slice, LoadOp::Load};
+            pass.colors[c].layered = layered_;
+        }
         pass.colorCount = 3;
-        pass.debugName = "lpv inject slice";
+        pass.debugName = layered_ ? "lpv inject" : "lpv inject slice";
         cmd.beginRenderPass(pass);
         cmd.bindPipeline(injectPipeline_);
         for (const VplSource& source : sources) {

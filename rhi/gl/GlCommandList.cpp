@@ -84,6 +84,8 @@ void GlCommandList::beginRenderPass(const RenderPassDesc& desc) {
     GlAttachment depth;
     uint32_t width = 0, height = 0;
     bool first = true;
+    const bool layered = isLayeredPass(desc, device_.caps());
+    uint32_t layerCount = 1;
     auto checkExtent = [&](const GlTexture& t, uint32_t mip) {
         if (first) {
             width = t.width(mip);
@@ -103,7 +105,17 @@ void GlCommandList::beginRenderPass(const RenderPassDesc& desc) {
             throw Error("beginRenderPass: texture '" + t.desc.debugName + "' has no mip " +
                         std::to_string(a.mipLevel) + " layer " + std::to_string(a.layer));
         checkExtent(t, a.mipLevel);
-        colors[i] = {t.id, t.desc.kind != TextureKind::Tex2D, a.mipLevel, a.layer};
+        if (layered) {
+            if (t.desc.kind == TextureKind::Tex2D || a.layer != 0)
+                throw Error(
+                    "beginRenderPass: texture '" + t.desc.debugName +
+                    "' cannot be a layered target (it needs to be an array or 3D texture, from layer 0)");
+            if (i > 0 && t.depthOrLayers(a.mipLevel) != layerCount)
+                throw Error("beginRenderPass '" + std::string(desc.debugName) +
+                            "': layered targets differ in their layer counts");
+            layerCount = t.depthOrLayers(a.mipLevel);
+        }
+        colors[i] = {t.id, !layered && t.desc.kind != TextureKind::Tex2D, a.mipLevel, a.layer};
     }
     if (desc.depth.texture) {
         const GlTexture& t = device_.textures.get(desc.depth.texture);

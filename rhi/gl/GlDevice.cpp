@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <string>
+#include <string_view>
 
 namespace lpv::rhi::gl {
 namespace {
@@ -21,6 +22,15 @@ uint32_t glInteger(const Functions& gl, GLenum name) {
     GLint v = 0;
     gl.glGetIntegerv(name, &v);
     return uint32_t(std::max(v, 0));
+}
+
+bool hasExtension(const Functions& gl, std::string_view name) {
+    const GLint count = GLint(glInteger(gl, GL_NUM_EXTENSIONS));
+    for (GLint i = 0; i < count; ++i) {
+        const auto* e = reinterpret_cast<const char*>(gl.glGetStringi(GL_EXTENSIONS, GLuint(i)));
+        if (e && name == e) return true;
+    }
+    return false;
 }
 
 } // namespace
@@ -60,6 +70,9 @@ GlDevice::GlDevice(const DeviceConfig& config, std::unique_ptr<platforms::GlCont
         std::min({glInteger(gl_, GL_MAX_DRAW_BUFFERS), glInteger(gl_, GL_MAX_COLOR_ATTACHMENTS),
                   RenderPassDesc::kMaxColorTargets});
     caps_.presentation = context_->hasDefaultFramebuffer();
+    // SPIRV-Cross writes gl_Layer in a vertex shader under this extension.
+    caps_.vertexShaderLayer =
+        config.vertexShaderLayer && hasExtension(gl_, "GL_ARB_shader_viewport_layer_array");
     if (isCpuRasterizer(caps_.deviceName)) caps_.concurrentWorkgroups = cpuRasterizerThreads();
 
     const uint64_t region = std::max(config.uniformRingBytes, 256u);

@@ -25,7 +25,7 @@ GLuint GlFramebufferCache::get(const GlAttachment* colors, uint32_t colorCount, 
     key_.push_back(colorCount | (depth ? 0x100u : 0u));
     auto addKey = [&](const GlAttachment& a) {
         key_.push_back(a.texture);
-        key_.push_back((uint64_t(a.mipLevel) << 32) | a.layer);
+        key_.push_back((uint64_t(a.oneLayer) << 63) | (uint64_t(a.mipLevel) << 32) | a.layer);
     };
     for (uint32_t i = 0; i < colorCount; ++i)
         addKey(colors[i]);
@@ -35,7 +35,7 @@ GLuint GlFramebufferCache::get(const GlAttachment* colors, uint32_t colorCount, 
     GLuint fbo = 0;
     gl_->glCreateFramebuffers(1, &fbo);
     auto attach = [&](GLenum point, const GlAttachment& a) {
-        if (a.layered)
+        if (a.oneLayer)
             gl_->glNamedFramebufferTextureLayer(fbo, point, a.texture, GLint(a.mipLevel), GLint(a.layer));
         else
             gl_->glNamedFramebufferTexture(fbo, point, a.texture, GLint(a.mipLevel));

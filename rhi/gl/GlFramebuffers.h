@@ -15,7 +15,7 @@ namespace lpv::rhi::gl {
 
 struct GlAttachment {
     GLuint texture = 0;
-    bool layered = false; // 3D or array texture: attach one layer / slice
+    bool oneLayer = false; // 3D or array texture: attach one layer / slice, not every one (layered)
     uint32_t mipLevel = 0;
     uint32_t layer = 0;
 };
@@ -32,7 +32,8 @@ public:
 private:
     const Functions* gl_ = nullptr;
     const ObjectLabeler* label_ = nullptr;
-    // Key: {colorCount | hasDepth << 8, then per attachment: texture name, mip << 32 | layer}.
+    // Key: {colorCount | hasDepth << 8, then per attachment: texture name, oneLayer << 63 | mip << 32 |
+    // layer}.
     std::map<std::vector<uint64_t>, GLuint> framebuffers_;
     std::vector<uint64_t> key_; // reused: a cache hit allocates nothing
 };

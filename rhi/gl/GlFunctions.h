@@ -12,6 +12,7 @@ namespace lpv::rhi::gl {
 #define LPV_GL_FUNCTIONS(X)                                                                                  \
     X(PFNGLGETINTEGERVPROC, glGetIntegerv)                                                                   \
     X(PFNGLGETSTRINGPROC, glGetString)                                                                       \
+    X(PFNGLGETSTRINGIPROC, glGetStringi)                                                                     \
     X(PFNGLENABLEPROC, glEnable)                                                                             \
     X(PFNGLDISABLEPROC, glDisable)                                                                           \
     X(PFNGLENABLEIPROC, glEnablei)                                                                           \

@@ -85,6 +85,7 @@ public:
         caps_.max3DTextureSize = 2048;
         caps_.max2DTextureSize = 16384;
         caps_.maxColorTargets = RenderPassDesc::kMaxColorTargets;
+        caps_.vertexShaderLayer = config.vertexShaderLayer;
     }
 
     BackendKind backend() const override { return BackendKind::Null; }
@@ -232,6 +233,7 @@ void NullCommandList::writeTimestamp(uint32_t slot) {
 
 void NullCommandList::beginRenderPass(const RenderPassDesc& desc) {
     requirePass(false, "beginRenderPass");
+    isLayeredPass(desc, device_.caps());
     for (uint32_t i = 0; i < desc.colorCount; ++i)
         device_.textures.get(desc.colors[i].texture);
     if (desc.depth.texture) device_.textures.get(desc.depth.texture);

@@ -30,6 +30,23 @@ void validateTextureDesc(const TextureDesc& desc, const Caps& caps) {
                     std::to_string(desc.depthOrLayers) + " exceeds the device's limits");
 }
 
+bool isLayeredPass(const RenderPassDesc& desc, const Caps& caps) {
+    uint32_t layered = 0;
+    for (uint32_t i = 0; i < desc.colorCount && i < RenderPassDesc::kMaxColorTargets; ++i)
+        layered += desc.colors[i].layered ? 1 : 0;
+    if (layered == 0) return false;
+    // The message is built only on failure: a valid pass allocates nothing.
+    const auto fail = [&](const char* why) {
+        throw Error("beginRenderPass '" + std::string(desc.debugName) + "': " + why);
+    };
+    if (!caps.vertexShaderLayer)
+        fail("layered targets need a vertex shader that writes gl_Layer, which this device lacks "
+             "(Caps::vertexShaderLayer)");
+    if (layered != desc.colorCount) fail("every color target must be layered, or none");
+    if (desc.depth.texture) fail("a layered pass takes no depth target");
+    return true;
+}
+
 void clipScissorToOrigin(int32_t& x, int32_t& y, uint32_t& width, uint32_t& height) {
     if (x < 0) {
         const uint32_t cut = uint32_t(-int64_t(x));

@@ -1,6 +1,7 @@
 // Argument checks every backend makes the same way, so misuse gives one message whatever the API.
 #pragma once
 
+#include "rhi/CommandList.h"
 #include "rhi/Device.h"
 
 #include <cstdint>
@@ -10,6 +11,11 @@ namespace lpv::rhi {
 // Throws rhi::Error naming the texture when its extent, format, kind or mip count is invalid or
 // beyond the device's limits.
 void validateTextureDesc(const TextureDesc& desc, const Caps& caps);
+
+// Whether a pass is layered (ColorAttachment::layered). Throws rhi::Error naming the pass when it
+// mixes layered and single-layer targets, has a depth target, or the device lacks
+// Caps::vertexShaderLayer. The backends check that the layer counts agree.
+bool isLayeredPass(const RenderPassDesc& desc, const Caps& caps);
 
 // Clips a scissor rectangle to the framebuffer's origin: Vulkan rejects negative offsets, and GL
 // must cut the same pixels.

@@ -89,6 +89,8 @@ void VulkanCommandList::beginRenderPass(const RenderPassDesc& desc) {
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     passTargetCount_ = 0;
     passExtent_ = {0, 0};
+    const bool layered = isLayeredPass(desc, device_.caps());
+    uint32_t layerCount = 1;
     auto checkExtent = [&](const VulkanTexture& t, uint32_t mip) {
         const VkExtent2D e{t.width(mip), t.height(mip)};
         if (passTargetCount_ == 0) {
@@ -107,10 +109,21 @@ void VulkanCommandList::beginRenderPass(const RenderPassDesc& desc) {
             throw Error("beginRenderPass: texture '" + t.desc.debugName + "' has no mip " +
                         std::to_string(a.mipLevel) + " layer " + std::to_string(a.layer));
         checkExtent(t, a.mipLevel);
+        if (layered) {
+            if (t.layeredViews.empty() || a.layer != 0)
+                throw Error(
+                    "beginRenderPass: texture '" + t.desc.debugName +
+                    "' cannot be a layered target (it needs to be an array or 3D texture, from layer 0)");
+            if (i > 0 && t.targetLayers(a.mipLevel) != layerCount)
+                throw Error("beginRenderPass '" + std::string(desc.debugName) +
+                            "': layered targets differ in their layer counts");
+            layerCount = t.targetLayers(a.mipLevel);
+        }
         transition(cmd_, t, a.mipLevel, 1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
         VkRenderingAttachmentInfo& c = colors[i];
         c = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        c.imageView = t.targetViews[t.targetBase[a.mipLevel] + a.layer];
+        c.imageView =
+            layered ? t.layeredViews[a.mipLevel] : t.targetViews[t.targetBase[a.mipLevel] + a.layer];
         c.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
         c.loadOp = toVkLoadOp(a.load);
         c.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
@@ -144,7 +157,7 @@ void VulkanCommandList::beginRenderPass(const RenderPassDesc& desc) {
     beginLabel(desc.debugName);
     VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
     info.renderArea = {{0, 0}, passExtent_};
-    info.layerCount = 1;
+    info.layerCount = layerCount;
     info.colorAttachmentCount = desc.colorCount;
     info.pColorAttachments = colors.data();
     info.pDepthAttachment = desc.depth.texture ? &depth : nullptr;

@@ -317,6 +317,7 @@ void VulkanContext::createDevice(bool needPresent) {
     f12.uniformBufferStandardLayout = has12.uniformBufferStandardLayout;
     f12.hostQueryReset = has12.hostQueryReset;
     f12.storageBuffer8BitAccess = has12.storageBuffer8BitAccess;
+    f12.shaderOutputLayer = has12.shaderOutputLayer;
     VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &f12};
     f11.shaderDrawParameters = has11.shaderDrawParameters;
     f11.storageBuffer16BitAccess = has11.storageBuffer16BitAccess;
@@ -339,6 +340,7 @@ void VulkanContext::createDevice(bool needPresent) {
     f.shaderInt16 = h.shaderInt16;
     f.imageCubeArray = h.imageCubeArray;
     samplerAnisotropy = h.samplerAnisotropy;
+    shaderOutputLayer = has12.shaderOutputLayer;
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

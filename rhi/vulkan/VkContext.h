@@ -42,6 +42,7 @@ public:
     uint32_t maxPushDescriptors = 0;
     std::string driverName;
     bool samplerAnisotropy = false;
+    bool shaderOutputLayer = false; // gl_Layer from the vertex shader
     bool debugUtils = false;
 
     PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;

@@ -84,6 +84,8 @@ void VulkanDevice::destroyBufferObject(VulkanBuffer& b) {
 
 void VulkanDevice::destroyTextureObject(VulkanTexture& t) {
     const VkDevice device = ctx_->device;
+    for (VkImageView v : t.layeredViews)
+        vkDestroyImageView(device, v, nullptr);
     for (VkImageView v : t.targetViews)
         vkDestroyImageView(device, v, nullptr);
     for (VkImageView v : t.mipViews)
@@ -209,6 +211,10 @@ TextureHandle VulkanDevice::createTexture(const TextureDesc& desc) {
                                                      attachment,
                                                      desc.debugName + " target mip " + std::to_string(mip) +
                                                          " layer " + std::to_string(layer)));
+                if (desc.kind != TextureKind::Tex2D && !isDepthFormat(desc.format))
+                    t.layeredViews.push_back(
+                        makeView(VK_IMAGE_VIEW_TYPE_2D_ARRAY, {t.aspect, mip, 1, 0, t.targetLayers(mip)},
+                                 attachment, desc.debugName + " layered target mip " + std::to_string(mip)));
             }
         }
     } catch (...) {

@@ -34,6 +34,9 @@ struct VulkanTexture {
     // first view of that mip.
     std::vector<VkImageView> targetViews;
     std::vector<uint32_t> targetBase;
+    // Array and 3D colour targets: one 2D-array view per mip over every layer or slice, for
+    // layered passes (ColorAttachment::layered).
+    std::vector<VkImageView> layeredViews;
 
     uint32_t arrayLayers() const { return desc.kind == TextureKind::Tex2DArray ? desc.depthOrLayers : 1; }
     uint32_t width(uint32_t mip) const { return desc.width >> mip ? desc.width >> mip : 1; }

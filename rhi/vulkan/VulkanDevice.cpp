@@ -51,6 +51,7 @@ VulkanDevice::VulkanDevice(const DeviceConfig& config) : config_(config) {
         caps_.max2DTextureSize = limits.maxImageDimension2D;
         caps_.maxColorTargets = std::min(limits.maxColorAttachments, RenderPassDesc::kMaxColorTargets);
         caps_.presentation = config.window != nullptr;
+        caps_.vertexShaderLayer = ctx_->shaderOutputLayer && config.vertexShaderLayer;
         if (ctx_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
             caps_.concurrentWorkgroups = cpuRasterizerThreads();
 

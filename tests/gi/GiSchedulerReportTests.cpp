@@ -173,8 +173,8 @@ struct AdaptedLpv {
 } // namespace
 
 TEST_CASE("gi budget: the LPV under adapt on the x360 profile brings its predicted GI time under budget") {
-    // 28 iterations: about 4.3 ms predicted on the Xbox 360.
-    AdaptedLpv run(platforms::loadPlatformProfile("x360"), 28);
+    // 44 iterations: about 3.8 ms predicted on the Xbox 360.
+    AdaptedLpv run(platforms::loadPlatformProfile("x360"), 44);
     std::optional<GiFrameCost> first, last;
     for (int f = 0; f < 60; ++f) {
         const auto cost = run.frame();
@@ -187,9 +187,9 @@ TEST_CASE("gi budget: the LPV under adapt on the x360 profile brings its predict
                                                       << run.lpv.schedule().load.iterations << " iterations");
     CHECK(first->ms > run.profile.giBudgetMs);
     CHECK(last->ms <= run.profile.giBudgetMs);
-    CHECK(run.lpv.schedule().load.iterations < 28);
+    CHECK(run.lpv.schedule().load.iterations < 44);
     const std::string report = engine::profileSummaryMarkdown(run.profiler);
-    CHECK(report.find("iterations 21 (was 28): GI") != std::string::npos);
+    CHECK(report.find("iterations 33 (was 44): GI") != std::string::npos);
 }
 
 TEST_CASE("gi budget: past the RSM, adapt makes the renderer look up fewer pixels") {

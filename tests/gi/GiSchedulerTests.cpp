@@ -199,7 +199,8 @@ TEST_CASE("gi budget: a loose budget gets every step back, in reverse order, and
     const test::ConsoleGiCost cost = test::x360Cascades(run.configured);
     const uint64_t bytes = cost.bytes(run.configured);
     const auto costOf = [&](const GiLoad& l, uint64_t f) { return std::pair(cost.frameMs(l, f), bytes); };
-    run.frames(200, GiBudget{3.2, bytes}, costOf);
+    // Half the configured cost: coarse updates and iterations both have to give.
+    run.frames(200, GiBudget{0.5 * cost.peakMs(run.configured), bytes}, costOf);
     const auto taken = run.steps(false);
     REQUIRE(taken.size() >= 3);
     const size_t logged = run.log.size();

@@ -126,6 +126,27 @@ TEST_CASE("rhi: a long point list, some points outside the clip volume") {
     }
 }
 
+TEST_CASE("rhi: one layered draw fills every slice of a 3D texture, each point picking its own") {
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            if (!device->caps().vertexShaderLayer) {
+                MESSAGE("backend " << backend.name
+                                   << " cannot pick the layer in a vertex shader; nothing to check");
+                return;
+            }
+            const Image img = drawLayeredPoints(*device);
+            for (uint32_t z = 0; z < kLayeredSize; ++z)
+                for (uint32_t y = 0; y < kLayeredSize; ++y)
+                    for (uint32_t x = 0; x < kLayeredSize; ++x)
+                        REQUIRE_MESSAGE(near(img.at(x, y, z), expectedLayeredTexel(x, y, z), 1e-3f),
+                                        "at " << x << "," << y << "," << z << " "
+                                              << describe(img.at(x, y, z)));
+            device.expectSilent();
+        }
+    }
+}
+
 TEST_CASE("rhi: render into one slice of a 3D texture, then sample it from compute") {
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {

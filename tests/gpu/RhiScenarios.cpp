@@ -181,6 +181,48 @@ glm::vec4 expectedPointTexel(uint32_t x, uint32_t y) {
     return hits * kBlendColor;
 }
 
+Image drawLayeredPoints(rhi::Device& device) {
+    using namespace rhi;
+    const TextureHandle volume = device.createTexture(
+        {TextureKind::Tex3D, Format::RGBA16F, kLayeredSize, kLayeredSize, kLayeredSize, 1,
+         kTextureColorTarget | kTextureSampled | kTextureTransfer, "layered volume", "test"});
+    GraphicsPipelineDesc pd;
+    pd.vertex = &shaders::layered_points_vert;
+    pd.fragment = &shaders::constant_frag;
+    pd.topology = PrimitiveTopology::PointList;
+    pd.colorFormats = {Format::RGBA16F};
+    pd.blend = {BlendState::additive()};
+    pd.debugName = "layered points";
+    const GraphicsPipelineHandle points = device.createPipeline(pd);
+
+    CommandList& cmd = device.beginFrame();
+    cmd.clearTexture(volume, {0, 0, 0, 0});
+    RenderPassDesc pass;
+    pass.colors[0] = {volume, 0, 0, LoadOp::Load};
+    pass.colors[0].layered = true;
+    pass.colorCount = 1;
+    pass.debugName = "layered points";
+    cmd.beginRenderPass(pass);
+    cmd.bindPipeline(points);
+    cmd.pushUniforms(0, &kBlendColor, sizeof(kBlendColor));
+    cmd.draw(kLayeredPointCount);
+    cmd.endRenderPass();
+    device.endFrame();
+    device.waitIdle();
+
+    Image out = readImage(device, volume);
+    device.destroy(points);
+    device.destroy(volume);
+    return out;
+}
+
+glm::vec4 expectedLayeredTexel(uint32_t x, uint32_t y, uint32_t z) {
+    float hits = 0.0f;
+    for (uint32_t i = 0; i < kLayeredPointCount; ++i)
+        if (i % 5 != 0 && i % 4 == x && i / 4 % 4 == y && i / 16 % 4 == z) hits += 1.0f;
+    return hits * kBlendColor;
+}
+
 InjectionResult injectIntoSlice(rhi::Device& device) {
     using namespace rhi;
     const TextureHandle volume = device.createTexture(

@@ -38,6 +38,14 @@ inline constexpr uint32_t kFirstPoint = 100;
 Image drawPoints(rhi::Device& device);
 glm::vec4 expectedPointTexel(uint32_t x, uint32_t y);
 
+// 4^3 RGBA16F volume cleared to 0, then kLayeredPointCount points (tests/shaders/layered_points.vert:
+// each picks its own slice with gl_Layer, every fifth is outside the clip volume) add kBlendColor
+// to their texel in one layered draw.
+inline constexpr uint32_t kLayeredSize = 4;
+inline constexpr uint32_t kLayeredPointCount = 200;
+Image drawLayeredPoints(rhi::Device& device);
+glm::vec4 expectedLayeredTexel(uint32_t x, uint32_t y, uint32_t z);
+
 // 8^3 RGBA16F volume: slice kInjectSlice receives kBlendColor twice (additive) through a render
 // pass, then a compute shader reads the whole volume through a sampler into a storage buffer.
 inline constexpr uint32_t kInjectSize = 8;

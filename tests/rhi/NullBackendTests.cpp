@@ -10,9 +10,10 @@
 using namespace lpv::rhi;
 
 namespace {
-std::unique_ptr<Device> nullDevice() {
+std::unique_ptr<Device> nullDevice(bool vertexShaderLayer = true) {
     DeviceConfig config;
     config.backend = BackendKind::Null;
+    config.vertexShaderLayer = vertexShaderLayer;
     return createDevice(config);
 }
 
@@ -105,6 +106,44 @@ TEST_CASE("null backend: frame and pass misuse is reported") {
     CHECK(back[3] == 4);
     CHECK(errorOf([&] { device->uploadBuffer(b, 8, data, sizeof(data)); }).find("exceeds its size") !=
           std::string::npos);
+}
+
+TEST_CASE("null backend: a layered pass is refused without the capability, with mixed targets or depth") {
+    for (const bool capable : {false, true}) {
+        auto device = nullDevice(capable);
+        CHECK(device->caps().vertexShaderLayer == capable);
+        const TextureHandle a = device->createTexture(
+            {TextureKind::Tex3D, Format::RGBA16F, 4, 4, 4, 1, kTextureColorTarget, "volume a"});
+        const TextureHandle b = device->createTexture(
+            {TextureKind::Tex3D, Format::RGBA16F, 4, 4, 4, 1, kTextureColorTarget, "volume b"});
+        const TextureHandle depth = device->createTexture(
+            {TextureKind::Tex2D, Format::D32F, 4, 4, 1, 1, kTextureDepthTarget, "depth"});
+        CommandList& cmd = device->beginFrame();
+        RenderPassDesc pass;
+        pass.colors[0] = {a, 0, 0, LoadOp::Load};
+        pass.colors[0].layered = true;
+        pass.colorCount = 1;
+        pass.debugName = "inject";
+        if (!capable) {
+            CHECK(errorOf([&] { cmd.beginRenderPass(pass); }).find("Caps::vertexShaderLayer") !=
+                  std::string::npos);
+        } else {
+            pass.colors[1] = {b, 0, 2, LoadOp::Load};
+            pass.colorCount = 2;
+            CHECK(errorOf([&] { cmd.beginRenderPass(pass); }).find("every color target must be layered") !=
+                  std::string::npos);
+            pass.colorCount = 1;
+            pass.depth = {depth};
+            CHECK(errorOf([&] { cmd.beginRenderPass(pass); }).find("no depth target") != std::string::npos);
+            pass.depth = {};
+            cmd.beginRenderPass(pass);
+            cmd.endRenderPass();
+        }
+        device->endFrame();
+        device->destroy(a);
+        device->destroy(b);
+        device->destroy(depth);
+    }
 }
 
 TEST_CASE("backend names parse, and unknown ones are rejected") {

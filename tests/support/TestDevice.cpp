@@ -2,6 +2,7 @@
 #include "TestDevice.h"
 
 #include <doctest/doctest.h>
+#include <utility>
 
 #include <sstream>
 #include <stdexcept>
@@ -42,9 +43,9 @@ void selectBackends(const std::string& list) {
     selection() = std::move(chosen);
 }
 
-TestDevice::TestDevice(const BackendUnderTest& backend)
+TestDevice::TestDevice(const BackendUnderTest& backend, rhi::DeviceConfig base)
     : messages_(std::make_shared<std::vector<std::string>>()) {
-    rhi::DeviceConfig config;
+    rhi::DeviceConfig config = std::move(base);
     config.backend = backend.kind;
     config.glHeadless = backend.glHeadless;
     config.allowFallback = false; // a test of one backend must never silently run on the other

@@ -25,7 +25,8 @@ const BackendUnderTest& backendByName(const std::string& name);
 
 class TestDevice {
 public:
-    explicit TestDevice(const BackendUnderTest& backend);
+    // `base`: further device settings; its backend, fallback and validation fields are replaced.
+    explicit TestDevice(const BackendUnderTest& backend, rhi::DeviceConfig base = {});
     ~TestDevice();
     rhi::Device& operator*() { return *device_; }
     rhi::Device* operator->() { return device_.get(); }

@@ -58,6 +58,7 @@ public:
 private:
     rhi::Device& device_;
     uint32_t lpvSize_;
+    bool layered_; // surfels in one layered draw (rhi Caps::vertexShaderLayer)
     rhi::TextureHandle coverage_, cameraCoverage_, faces_;
     // Per GV cell: rgb sum of surfel albedos, a: surfel count (RGBA16F, additive).
     rhi::TextureHandle albedoSum_, albedo_;

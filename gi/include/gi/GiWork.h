@@ -9,10 +9,15 @@
 
 namespace lpv::gi {
 
+// How points reach the slices of a volume: each once, its vertex picking the slice (a layered
+// pass, or the consoles' volume unwrapped into one 2D target), or each once per slice.
+enum class VolumeDraw : uint8_t { Layered, PerSlice };
+
 engine::WorkCounts rsmWork(const LpvSettings& s, uint64_t sceneTriangles);
 engine::WorkCounts vplClusterWork(const LpvSettings& s);
 // `extraVpls`: VPLs of further lights in the same pass (spot lights with an RSM).
-engine::WorkCounts injectWork(const LpvSettings& s, uint64_t extraVpls = 0);
+engine::WorkCounts injectWork(const LpvSettings& s, uint64_t extraVpls = 0,
+                              VolumeDraw draw = VolumeDraw::Layered);
 // The RSMs and VPL clustering of `lights` spot lights (SpotLightRsms), once per frame.
 engine::WorkCounts lightRsmWork(const LpvSettings& s, uint32_t lights, uint64_t sceneTriangles);
 // All iterations of the shipped kernel.
@@ -25,8 +30,9 @@ engine::WorkCounts propagateWork(const LpvSettings& s);
 // Bounces 2..gi.bounces of one cascade: per bounce a reflection pass, the propagation, the sum.
 engine::WorkCounts bounceWork(const LpvSettings& s);
 engine::WorkCounts gatherPropagationWork(const LpvSettings& s);
-// The geometry volume: light and camera surfels drawn per slice, then the face transmittance.
-engine::WorkCounts occlusionWork(const LpvSettings& s, uint64_t cameraSamples);
+// The geometry volume: light and camera surfels drawn into it, then the face transmittance.
+engine::WorkCounts occlusionWork(const LpvSettings& s, uint64_t cameraSamples,
+                                 VolumeDraw draw = VolumeDraw::Layered);
 engine::WorkCounts lookupWork(const LpvSettings& s, uint64_t pixels);
 
 } // namespace lpv::gi

@@ -12,6 +12,7 @@
 #include "engine/render/Renderer.h"
 #include "gi/GeometryVolume.h"
 #include "gi/GiScheduler.h"
+#include "gi/GiWork.h"
 #include "gi/GlossyReflections.h"
 #include "gi/LpvReference.h"
 #include "gi/LpvSettings.h"
@@ -79,6 +80,10 @@ public:
     rhi::BufferHandle vplBuffer() const { return vpls_; }
 
 private:
+    // How the volume passes (GeometryVolume, LpvVolumes) draw their points on this device.
+    VolumeDraw volumeDraw() const {
+        return device_.caps().vertexShaderLayer ? VolumeDraw::Layered : VolumeDraw::PerSlice;
+    }
     void remake(const LpvSettings& settings);
     void release();
 

@@ -87,6 +87,7 @@ private:
     rhi::Device& device_;
     LpvSettings settings_;
     uint32_t columnLength_;
+    bool layered_; // injection in one layered draw (rhi Caps::vertexShaderLayer)
     std::array<rhi::TextureHandle, 3> inject_, accum_;
     // Partial sums between iterations, ping and pong, packed (packedTexelCount texels per cell).
     std::array<std::array<rhi::TextureHandle, 3>, 2> partial_{};

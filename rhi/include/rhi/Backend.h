@@ -50,6 +50,9 @@ struct DeviceConfig {
     // Per-frame ring for CommandList::pushUniforms.
     uint32_t uniformRingBytes = 4u << 20;
     uint32_t maxTimestampsPerFrame = 128;
+    // false: report Caps::vertexShaderLayer off even where the device has it, so the callers'
+    // one-pass-per-slice paths can be run and compared against the layered ones.
+    bool vertexShaderLayer = true;
 };
 
 // Throws BackendUnavailable when no allowed backend starts.

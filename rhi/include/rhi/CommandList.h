@@ -24,6 +24,9 @@ struct ColorAttachment {
     uint32_t layer = 0; // array layer, or slice of a 3D texture
     LoadOp load = LoadOp::Clear;
     std::array<float, 4> clearColor{0.0f, 0.0f, 0.0f, 0.0f};
+    // Every layer (slice) of the mip at once; the vertex shader writes gl_Layer. Needs
+    // Caps::vertexShaderLayer, all colour targets layered with equal layer counts, and no depth.
+    bool layered = false;
 };
 
 struct DepthAttachment {

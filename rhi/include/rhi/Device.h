@@ -40,6 +40,9 @@ struct Caps {
     // for: a CPU rasterizer (lavapipe, llvmpipe) runs one per host thread, so kernels there want
     // few, long-running workgroups. 0 on GPUs: many, size the dispatch for occupancy.
     uint32_t concurrentWorkgroups = 0;
+    // A vertex shader may pick the layer (gl_Layer) of a layered render pass: one draw fills
+    // every slice of a volume (Vulkan shaderOutputLayer, GL_ARB_shader_viewport_layer_array).
+    bool vertexShaderLayer = false;
 };
 
 class Device {

@@ -1,7 +1,6 @@
-#version 450
-#extension GL_GOOGLE_include_directive : require
-// Injection: one point per VPL, drawn once per volume slice; VPLs whose cell is in another slice
-// are moved outside the clip volume. The cell follows the half-cell shifts along the normal and
+// Injection: one point per VPL. LAYERED: one draw into every slice, the vertex picks its cell's
+// (gl_Layer); otherwise drawn once per volume slice, and VPLs whose cell is in another slice are
+// moved outside the clip volume. The cell follows the half-cell shifts along the normal and
 // toward the light (gi/LpvReference.cpp does the same on the CPU).
 #include "lpv_common.glsl"
 
@@ -15,7 +14,7 @@ layout(binding = 0, std140) uniform Inject {
     vec4 gridOrigin;      // xyz: corner of cell 0; w: cell size
     vec4 lightDirection;  // w 0: xyz is where the light travels; w 1: xyz is the light's position
     vec4 intensity;       // x: gi.intensity
-    ivec4 grid;           // x: cells per axis, y: slice being drawn, z: VPL count
+    ivec4 grid;           // x: cells per axis, y: slice being drawn (not LAYERED), z: VPL count
 } inject;
 layout(binding = 1, std430) readonly buffer Vpls {
     Vpl vpls[];
@@ -33,8 +32,12 @@ void main() {
     vec3 p = v.position.xyz + 0.5 * cell * (v.normal.xyz - travel);
     ivec3 c = ivec3(floor((p - inject.gridOrigin.xyz) / cell));
     int n = inject.grid.x;
-    bool inside = v.position.w > 0.0 && all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n))) &&
-                  c.z == inject.grid.y;
+    bool inside = v.position.w > 0.0 && all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
+#ifdef LAYERED
+    gl_Layer = clamp(c.z, 0, n - 1);
+#else
+    inside = inside && c.z == inject.grid.y;
+#endif
     vNormal = v.normal.xyz;
     vFlux = v.flux.rgb * inject.intensity.x;
     gl_PointSize = 1.0;

@@ -1,7 +1,5 @@
-#version 450
-#extension GL_GOOGLE_include_directive : require
 // Geometry volume from the light's view: every VPL is also a surfel (the RSM block it clusters),
-// drawn once per GV slice like the radiance injection. Its area is the block's area across the
+// drawn into the GV like the radiance injection (gv_common.glsl: one layered draw, or per slice). Its area is the block's area across the
 // light divided by the cosine to the light (clamped, so grazing blocks do not explode).
 #include "gv_common.glsl"
 

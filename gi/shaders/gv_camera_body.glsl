@@ -1,5 +1,3 @@
-#version 450
-#extension GL_GOOGLE_include_directive : require
 // Geometry volume from the camera's view: a regular grid of G-buffer samples, each marking its
 // cell as holding a surface of its orientation (gv_inject_body.glsl says why not its area). Catches
 // what the light does not see: walls in shadow, surfaces facing away from it.
