@@ -395,7 +395,8 @@ void consolePrediction() {
                 spotX, spotP);
 
     // The console preset with every feature of this engine that runs: 3 cascades of 32^3, 8
-    // iterations, 2 bounces, occlusion (camera surfels in the finest cascade: 160 x 90 samples), RGBA8,
+    // iterations, 2 bounces (in the finest cascade, gi.bounce_cascades' default), occlusion (camera
+    // surfels in the finest cascade: 160 x 90 samples), RGBA8,
     // RSM 128^2, a 100k-triangle scene. Every cascade every frame, and as gi.budget_policy=adapt's
     // first step runs it (coarse cascades every 2 frames: the busiest frame updates one of them).
     gi::LpvSettings c = s;
@@ -420,7 +421,8 @@ void consolePrediction() {
         {"occlusion, coarse cascade", coarseOcclusion, 2, 1},
         {"inject (per cascade)", gi::injectWork(c), 3, 2},
         {"propagate (per cascade)", gi::propagateWork(c), 3, 2},
-        {"bounces (per cascade)", gi::bounceWork(c), 3, 2},
+        {"bounces (finest cascade, gi.bounce_cascades=1)", gi::bounceWork(c), c.bounceCascades,
+         c.bounceCascades},
         {"lookup (3 cascades, gi.resolution=half)", gi::lookupWork(c, lowPixels), 1, 1},
         {"glossy (gi.resolution=half)", gi::glossyWork(lowPixels), 1, 1},
         {"bilateral rebuild to 1280x720 (in render.lighting)", engine::indirectRebuildWork(pixels), 1, 1},
@@ -456,10 +458,11 @@ void consolePrediction() {
             return engine::predictCost(w, profile->throughput).ms;
         };
         const double perCascade = ms(gi::rsmWork(f, 100000)) + ms(gi::vplClusterWork(f)) +
-                                  ms(gi::injectWork(f)) + ms(gi::propagateWork(f)) + ms(gi::bounceWork(f));
-        const double total = 2 * perCascade + ms(gi::occlusionWork(f, 160u * 90u)) +
-                             ms(gi::occlusionWork(f, 0)) + ms(gi::lookupWork(f, floorPixels)) +
-                             ms(gi::glossyWork(floorPixels)) + ms(engine::indirectRebuildWork(pixels));
+                                  ms(gi::injectWork(f)) + ms(gi::propagateWork(f));
+        const double total = 2 * perCascade + f.bounceCascades * ms(gi::bounceWork(f)) +
+                             ms(gi::occlusionWork(f, 160u * 90u)) + ms(gi::occlusionWork(f, 0)) +
+                             ms(gi::lookupWork(f, floorPixels)) + ms(gi::glossyWork(floorPixels)) +
+                             ms(engine::indirectRebuildWork(pixels));
         std::printf(
             "Console preset on %s at adapt's floor (coarse cascades every %u frames, %u iterations, RSM "
             "%u^2, lookup every %u pixels per axis): predicted GI %.2f ms\n",

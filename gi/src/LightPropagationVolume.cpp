@@ -286,7 +286,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                                 &cascades_[c].result, c + 1 < cascades_.size() ? &handoff : nullptr);
             work(propagateWork(settings_));
         }
-        if (bounces_) {
+        if (bounces_ && settings_.bouncesIn(c)) {
             auto s = scope("bounces");
             bounces_->add(cmd, *volumes_, *geometry_, settings_.bounces, settings_.iterations,
                           cascades_[c].result);

@@ -48,6 +48,10 @@ const engine::BoolSetting kGlossy{
 const engine::IntSetting kBounces{
     "gi.bounces", 1, 1, 3,
     "Light bounces: 2-3 reflect the light the geometry volume blocks off its surfels (needs gi.occlusion)"};
+const engine::IntSetting kBounceCascades{
+    "gi.bounce_cascades", 1, 1, 4,
+    "Cascades, finest first, that add the further bounces of gi.bounces; the coarser ones carry one bounce "
+    "(each costs about a propagation)"};
 const engine::IntSetting kLightRsms{"gi.light_rsms", 1, 0, 4,
                                     "Spot lights (the brightest reaching the volume) with their own RSM: "
                                     "bounce light in the colour they hit"};
@@ -84,6 +88,7 @@ LpvSettings readLpvSettings(const engine::Config& config) {
     s.occlusion = config.get(kOcclusion);
     s.glossy = config.get(kGlossy);
     s.bounces = uint32_t(config.get(kBounces));
+    s.bounceCascades = uint32_t(config.get(kBounceCascades));
     s.lightRsms = uint32_t(config.get(kLightRsms));
     s.resolutionDivisor = config.get(kResolution);
     s.budgetPolicy = readGiBudgetPolicy(config);

@@ -103,6 +103,39 @@ TEST_CASE("gi: a second bounce lights the ceiling of a floor-lit Cornell box, an
     }
 }
 
+TEST_CASE("gi: further bounces are added in the gi.bounce_cascades finest cascades only") {
+    // Three cascades; the coarse ones are left as one bounce made them unless gi.bounce_cascades
+    // reaches them. (The finest also takes the coarse light beyond its border, so it is compared
+    // only against bounces=1.)
+    const auto frame = [](rhi::Device& device, uint32_t bounces, uint32_t bounceCascades) {
+        return renderSceneFrame(
+            device, floorLitCornellBox(),
+            {"gi.enabled=true", "render.debug_view=indirect", "render.ssao=false", "gi.cascades=3",
+             "gi.glossy=false", "gi.iterations=8", "gi.bounces=" + std::to_string(bounces),
+             "gi.bounce_cascades=" + std::to_string(bounceCascades)},
+            [](engine::Renderer& r) { r.sun().direction = glm::vec3(0.0f, -1.0f, 0.0f); });
+    };
+    const auto same = [](const std::array<Image, 3>& a, const std::array<Image, 3>& b) {
+        for (size_t ch = 0; ch < 3; ++ch)
+            if (a[ch].texels != b[ch].texels) return false;
+        return true;
+    };
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            const CornellFrame one = frame(*device, 1, 1), finest = frame(*device, 2, 1),
+                               all = frame(*device, 2, 3);
+            REQUIRE(one.cascadeVolumes.size() == 3);
+            CHECK_FALSE(same(finest.cascadeVolumes[0], one.cascadeVolumes[0]));
+            for (size_t c = 1; c < 3; ++c) {
+                CHECK(same(finest.cascadeVolumes[c], one.cascadeVolumes[c]));
+                CHECK_FALSE(same(all.cascadeVolumes[c], one.cascadeVolumes[c]));
+            }
+            device.expectSilent();
+        }
+    }
+}
+
 TEST_CASE("gi: GL and Vulkan compute the same light with 2 bounces") {
     CornellFrame gl, vk;
     {

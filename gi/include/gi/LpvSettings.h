@@ -31,6 +31,10 @@ struct LpvSettings {
     bool occlusion = true; // geometry volume attenuates propagation
     bool glossy = true;    // glossy reflections marched through the volume
     uint32_t bounces = 1;  // light reflected off the geometry volume's surfels (needs occlusion)
+    // The finest cascades that add the further bounces; coarser ones carry the first bounce only.
+    uint32_t bounceCascades = 1;
+    // Whether cascade c (0 = finest) adds the further bounces.
+    bool bouncesIn(uint32_t c) const { return bounces > 1 && c < bounceCascades; }
     GiBudgetPolicy budgetPolicy = GiBudgetPolicy::Fixed;
     // Spot lights with a reflective shadow map of their own (SpotLightRsms).
     uint32_t lightRsms = 1;
