@@ -423,7 +423,7 @@ void consolePrediction() {
         {"propagate (per cascade)", gi::propagateWork(c), 3, 2},
         {"bounces (finest cascade, gi.bounce_cascades=1)", gi::bounceWork(c), c.bounceCascades,
          c.bounceCascades},
-        {"lookup (3 cascades, gi.resolution=half)", gi::lookupWork(c, lowPixels), 1, 1},
+        {"lookup (up to 2 of 3 cascades per pixel, gi.resolution=half)", gi::lookupWork(c, lowPixels), 1, 1},
         {"glossy (gi.resolution=half)", gi::glossyWork(lowPixels), 1, 1},
         {"bilateral rebuild to 1280x720 (in render.lighting)", engine::indirectRebuildWork(pixels), 1, 1},
     };

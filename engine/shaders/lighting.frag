@@ -55,13 +55,17 @@ IndirectLight indirectAt(vec3 p, vec3 n) {
         ivec2 t = min(base + o, lowSize - 1);
         ivec2 source = min(t * divisor, fullSize - 1);
         float bilinear = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
-        vec3 e = texelFetch(indirectTexture, t, 0).rgb;
+        vec4 et = texelFetch(indirectTexture, t, 0);
+        vec3 e = et.rgb;
         vec3 g = texelFetch(glossyTexture, t, 0).rgb;
         plainIrradiance += bilinear * e;
         plainGlossy += bilinear * g;
-        float d = texelFetch(depthTexture, source, 0).r;
-        if (d >= 1.0) continue; // sky: no surface, no light
-        vec3 q = worldFromDepth((vec2(source) + 0.5) * frame.viewport.zw, d);
+        if (et.a <= 0.0) continue; // sky: no surface, no light
+        // The texel's point from its view depth (alpha, IndirectLighting's contract): along the ray
+        // through its pixel, a point h at any depth has view depth 1 / h.w, and the point scales
+        // linearly with view depth from the camera.
+        vec4 h = frame.invViewProjection * vec4((vec2(source) + 0.5) * frame.viewport.zw * 2.0 - 1.0, 0.5, 1.0);
+        vec3 q = frame.cameraPosition.xyz + (h.xyz / h.w - frame.cameraPosition.xyz) * (et.a * h.w);
         vec3 m = normalize(texelFetch(normalTexture, source, 0).xyz);
         float plane = abs(dot(q - p, n)) / tolerance;
         float w = bilinear * exp(-plane * plane) * pow(max(dot(m, n), 0.0), 16.0) + 1e-6 * bilinear;

@@ -109,18 +109,35 @@ void main() {
                  lookup.invViewProjection[col + 2] * clip.z + lookup.invViewProjection[col + 3];
     vec3 p = world.xyz / world.w;
     vec3 n = normalize(texelFetch(normalTexture, source, 0).xyz);
-    // Every cascade is looked up once (CASCADES is compile-time, so each lookup names its own
-    // textures: a dynamic choice would make a CPU rasterizer run every branch for every pixel),
-    // then folded from the coarsest in: each finer one takes over across its blend band.
-    vec3 e = surfaceIrradiance(CASCADES - 1, p, n);
-#if CASCADES > 3
-    e = mix(e, surfaceIrradiance(2, p, n), smoothstep(0.0, 1.0, clamp(insideness(2, p), 0.0, 1.0)));
+    // Finest first, each cascade gets the share of the answer its blend weight gives it of what
+    // the finer ones left; a point past a cascade's blend band (weight 1) leaves nothing for the
+    // coarser ones, so a pixel looks up one cascade, or two in a band. (Equal to folding from the
+    // coarsest in, mix by mix.) CASCADES is compile-time, so each lookup names its own textures:
+    // a dynamic cascade index would make a CPU rasterizer run every branch for every pixel.
+    vec3 e = vec3(0.0);
+    float left = 1.0;
+#if CASCADES > 1
+    {
+        float w = smoothstep(0.0, 1.0, clamp(insideness(0, p), 0.0, 1.0));
+        if (w > 0.0) e += w * surfaceIrradiance(0, p, n);
+        left = 1.0 - w;
+    }
 #endif
 #if CASCADES > 2
-    e = mix(e, surfaceIrradiance(1, p, n), smoothstep(0.0, 1.0, clamp(insideness(1, p), 0.0, 1.0)));
+    if (left > 0.0) {
+        float w = smoothstep(0.0, 1.0, clamp(insideness(1, p), 0.0, 1.0));
+        if (w > 0.0) e += left * w * surfaceIrradiance(1, p, n);
+        left *= 1.0 - w;
+    }
 #endif
-#if CASCADES > 1
-    e = mix(e, surfaceIrradiance(0, p, n), smoothstep(0.0, 1.0, clamp(insideness(0, p), 0.0, 1.0)));
+#if CASCADES > 3
+    if (left > 0.0) {
+        float w = smoothstep(0.0, 1.0, clamp(insideness(2, p), 0.0, 1.0));
+        if (w > 0.0) e += left * w * surfaceIrradiance(2, p, n);
+        left *= 1.0 - w;
+    }
 #endif
-    outIrradiance = vec4(e, 0.0);
+    if (left > 0.0) e += left * surfaceIrradiance(CASCADES - 1, p, n);
+    // The view depth (1 / world.w: clip w is the view depth), for the lighting pass's rebuild.
+    outIrradiance = vec4(e, 1.0 / world.w);
 }

@@ -142,8 +142,10 @@ WorkCounts lookupWork(const LpvSettings& s, uint64_t pixels) {
     const uint64_t lookups = s.damping ? 2 : 1;
     // Depth, normal, and 3 filtered volume fetches per lookup; a 3D (trilinear) fetch costs two
     // bilinear ones on the texture units the cost model describes.
-    // Every cascade is looked up (lpv_lookup.glsl folds them), so the volume fetches scale with them.
-    const uint64_t cascades = s.cascades;
+    // lpv_lookup.glsl looks up the finest cascade holding the point, and the next coarser one in
+    // its blend band: at most two per pixel, counted for every pixel (a wave that straddles a band
+    // runs both).
+    const uint64_t cascades = s.cascades < 2 ? s.cascades : 2;
     w.texelsRead = pixels * (2 + 3 * 2 * lookups * cascades);
     w.texelsWritten = pixels;
     w.aluOps = pixels * (30 + 25 * lookups * cascades);

@@ -34,8 +34,8 @@ struct ConsoleGiCost {
                 gi::propagateWork(s)};
     }
     // The lookup of one cascade per pixel: a synthetic load, so the tests exercise the knobs the
-    // scheduler turns. (The shipped lookup samples every cascade, which no knob changes; lpv_bench
-    // prints the console preset's prediction with it.)
+    // scheduler turns. (The shipped lookup samples up to two cascades per pixel, which no knob
+    // changes; lpv_bench prints the console preset's prediction with it.)
     engine::WorkCounts lookupPass(const gi::GiLoad& load) const {
         gi::LpvSettings s = settingsOf(load);
         s.cascades = 1;

@@ -83,7 +83,9 @@ WorkCounts indirectRebuildWork(uint64_t pixels) {
     // Neighbouring pixels share those texels, so memory traffic does not grow (the smaller
     // targets even save some); only fetches and arithmetic do.
     WorkCounts w;
-    w.texelsRead = pixels * (4 * 4 - 2);
+    // Per neighbour: irradiance with its view depth, glossy radiance, normal; less the two texels
+    // the full-resolution path reads.
+    w.texelsRead = pixels * (4 * 3 - 2);
     w.aluOps = pixels * 4 * 30;
     return w;
 }

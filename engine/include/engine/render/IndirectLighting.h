@@ -28,7 +28,9 @@ public:
     // into `target`, and the radiance a glossy surface reflects toward the camera before its
     // specular weight (RGBA16F, linear; 0 where there is none) into `glossyTarget`. The call must
     // fully overwrite both. Both are 1/resolutionDivisor() of the G-buffer per axis (rounded up):
-    // texel (x, y) holds the answer for G-buffer pixel (x, y) * divisor.
+    // texel (x, y) holds the answer for G-buffer pixel (x, y) * divisor. The irradiance's alpha
+    // holds that pixel's view depth (its clip-space w; 0 where there is no surface): the lighting
+    // pass's rebuild places the texel in space with it instead of fetching the G-buffer's depth.
     virtual void renderIndirect(rhi::CommandList& cmd, const CameraMatrices& camera,
                                 const GBufferView& gbuffer, rhi::TextureHandle target,
                                 rhi::TextureHandle glossyTarget, FrameProfiler* profiler) = 0;

@@ -45,7 +45,8 @@ struct FrameUniforms {
 
 // What the lighting pass adds per frame to rebuild every pixel's indirect and glossy light from
 // targets smaller than the frame (IndirectLighting::resolutionDivisor() > 1): four neighbours'
-// depth, normal, irradiance and glossy radiance and their weights, instead of one texel of each.
+// irradiance (with view depth), glossy radiance and normal and their weights, instead of one
+// texel of irradiance and glossy.
 WorkCounts indirectRebuildWork(uint64_t pixels);
 
 class Renderer {
