@@ -105,16 +105,8 @@ void GlCommandList::beginRenderPass(const RenderPassDesc& desc) {
             throw Error("beginRenderPass: texture '" + t.desc.debugName + "' has no mip " +
                         std::to_string(a.mipLevel) + " layer " + std::to_string(a.layer));
         checkExtent(t, a.mipLevel);
-        if (layered) {
-            if (t.desc.kind == TextureKind::Tex2D || a.layer != 0)
-                throw Error(
-                    "beginRenderPass: texture '" + t.desc.debugName +
-                    "' cannot be a layered target (it needs to be an array or 3D texture, from layer 0)");
-            if (i > 0 && t.depthOrLayers(a.mipLevel) != layerCount)
-                throw Error("beginRenderPass '" + std::string(desc.debugName) +
-                            "': layered targets differ in their layer counts");
-            layerCount = t.depthOrLayers(a.mipLevel);
-        }
+        if (layered)
+            layerCount = layeredTargetLayers(desc, i, t.desc, t.depthOrLayers(a.mipLevel), layerCount);
         colors[i] = {t.id, !layered && t.desc.kind != TextureKind::Tex2D, a.mipLevel, a.layer};
     }
     if (desc.depth.texture) {

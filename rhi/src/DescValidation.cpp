@@ -47,6 +47,17 @@ bool isLayeredPass(const RenderPassDesc& desc, const Caps& caps) {
     return true;
 }
 
+uint32_t layeredTargetLayers(const RenderPassDesc& desc, uint32_t index, const TextureDesc& texture,
+                             uint32_t layers, uint32_t passLayers) {
+    if (texture.kind == TextureKind::Tex2D || desc.colors[index].layer != 0)
+        throw Error("beginRenderPass: texture '" + texture.debugName +
+                    "' cannot be a layered target (it needs to be an array or 3D texture, from layer 0)");
+    if (index > 0 && layers != passLayers)
+        throw Error("beginRenderPass '" + std::string(desc.debugName) +
+                    "': layered targets differ in their layer counts");
+    return layers;
+}
+
 void clipScissorToOrigin(int32_t& x, int32_t& y, uint32_t& width, uint32_t& height) {
     if (x < 0) {
         const uint32_t cut = uint32_t(-int64_t(x));

@@ -17,6 +17,12 @@ void validateTextureDesc(const TextureDesc& desc, const Caps& caps);
 // Caps::vertexShaderLayer. The backends check that the layer counts agree.
 bool isLayeredPass(const RenderPassDesc& desc, const Caps& caps);
 
+// Colour target `index` of a layered pass, `layers` layers (or slices) at its mip: throws unless it
+// is an array or 3D texture bound from layer 0 with the layer count of the targets before it
+// (`passLayers`). Returns the pass's layer count.
+uint32_t layeredTargetLayers(const RenderPassDesc& desc, uint32_t index, const TextureDesc& texture,
+                             uint32_t layers, uint32_t passLayers);
+
 // Clips a scissor rectangle to the framebuffer's origin: Vulkan rejects negative offsets, and GL
 // must cut the same pixels.
 void clipScissorToOrigin(int32_t& x, int32_t& y, uint32_t& width, uint32_t& height);

@@ -109,16 +109,8 @@ void VulkanCommandList::beginRenderPass(const RenderPassDesc& desc) {
             throw Error("beginRenderPass: texture '" + t.desc.debugName + "' has no mip " +
                         std::to_string(a.mipLevel) + " layer " + std::to_string(a.layer));
         checkExtent(t, a.mipLevel);
-        if (layered) {
-            if (t.layeredViews.empty() || a.layer != 0)
-                throw Error(
-                    "beginRenderPass: texture '" + t.desc.debugName +
-                    "' cannot be a layered target (it needs to be an array or 3D texture, from layer 0)");
-            if (i > 0 && t.targetLayers(a.mipLevel) != layerCount)
-                throw Error("beginRenderPass '" + std::string(desc.debugName) +
-                            "': layered targets differ in their layer counts");
-            layerCount = t.targetLayers(a.mipLevel);
-        }
+        if (layered)
+            layerCount = layeredTargetLayers(desc, i, t.desc, t.targetLayers(a.mipLevel), layerCount);
         transition(cmd_, t, a.mipLevel, 1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
         VkRenderingAttachmentInfo& c = colors[i];
         c = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
