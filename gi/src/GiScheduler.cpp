@@ -18,7 +18,7 @@ const engine::EnumSetting<GiBudgetPolicy> kBudgetPolicy{
     GiBudgetPolicy::Fixed,
     {{GiBudgetPolicy::Fixed, "fixed"}, {GiBudgetPolicy::Adapt, "adapt"}},
     "GI over the platform budget: fixed only reports it; adapt updates coarse cascades less often, then "
-    "lowers iterations, then the RSM size, then gi.resolution"};
+    "lowers iterations, then the RSM size, then gi.resolution, then gi.bounces"};
 
 double mib(uint64_t bytes) {
     return double(bytes) / (1024.0 * 1024.0);
@@ -51,6 +51,9 @@ struct KnobText {
         case GiKnob::Resolution:
             std::snprintf(text.data(), text.size(), "lookup every %u pixels per axis", value);
             break;
+        case GiKnob::Bounces:
+            std::snprintf(text.data(), text.size(), "bounces %u", value);
+            break;
         case GiKnob::None:
             break;
         }
@@ -71,6 +74,9 @@ void setKnob(GiLoad& load, GiKnob knob, uint32_t value) {
         break;
     case GiKnob::Resolution:
         load.resolutionDivisor = value;
+        break;
+    case GiKnob::Bounces:
+        load.bounces = value;
         break;
     case GiKnob::None:
         break;
@@ -93,6 +99,7 @@ GiLoad giLoadOf(const LpvSettings& settings, uint32_t cascades) {
     load.iterations = settings.iterations;
     load.rsmSize = settings.rsmSize;
     load.resolutionDivisor = settings.resolutionDivisor;
+    load.bounces = std::max(settings.bounces, 1u);
     load.vplGridSide = std::max(settings.vplGridSide(), 1u);
     return load;
 }
@@ -101,6 +108,7 @@ void applyGiLoad(const GiLoad& load, LpvSettings& settings) {
     settings.iterations = load.iterations;
     settings.rsmSize = load.rsmSize;
     settings.resolutionDivisor = load.resolutionDivisor;
+    settings.bounces = load.bounces;
 }
 
 bool cascadeUpdatedOn(const GiLoad& load, uint32_t cascade, uint64_t frame) {
@@ -178,11 +186,13 @@ void GiBudgetScheduler::start(uint64_t frame, const GiLoad& configured, GiBudget
     setLoad(frame, configured);
     if (wasReduced)
         if (GiChange* c = addChange(GiKnob::None, 0, 0, true))
-            writeText(*c, "configured load again (%s, %s, %s, %s): gi settings or gi.budget_policy changed",
+            writeText(*c,
+                      "configured load again (%s, %s, %s, %s, %s): gi settings or gi.budget_policy changed",
                       KnobText(GiKnob::CoarseUpdateInterval, configured.coarseUpdateInterval).c_str(),
                       KnobText(GiKnob::Iterations, configured.iterations).c_str(),
                       KnobText(GiKnob::RsmSize, configured.rsmSize).c_str(),
-                      KnobText(GiKnob::Resolution, configured.resolutionDivisor).c_str());
+                      KnobText(GiKnob::Resolution, configured.resolutionDivisor).c_str(),
+                      KnobText(GiKnob::Bounces, configured.bounces).c_str());
 }
 
 void GiBudgetScheduler::setLoad(uint64_t frame, const GiLoad& load) {
@@ -248,12 +258,13 @@ void GiBudgetScheduler::judge(uint64_t frame, double ms, uint64_t bytes, const G
         } else if (!floorReported_) {
             floorReported_ = true;
             if (GiChange* c = addChange(GiKnob::None, 0, 0, false))
-                writeText(*c, "GI %.2f ms > %.2f ms budget with every knob at its floor (%s, %s, %s, %s)", ms,
-                          budget.ms,
+                writeText(*c, "GI %.2f ms > %.2f ms budget with every knob at its floor (%s, %s, %s, %s, %s)",
+                          ms, budget.ms,
                           KnobText(GiKnob::CoarseUpdateInterval, load_.coarseUpdateInterval).c_str(),
                           KnobText(GiKnob::Iterations, load_.iterations).c_str(),
                           KnobText(GiKnob::RsmSize, load_.rsmSize).c_str(),
-                          KnobText(GiKnob::Resolution, load_.resolutionDivisor).c_str());
+                          KnobText(GiKnob::Resolution, load_.resolutionDivisor).c_str(),
+                          KnobText(GiKnob::Bounces, load_.bounces).c_str());
         }
         return;
     }
@@ -334,7 +345,15 @@ bool GiBudgetScheduler::nextTimeStep(Step& step) const {
         step = {GiKnob::Iterations, load_.iterations, to};
         return true;
     }
-    return rsmStep(step) || resolutionStep(step);
+    return rsmStep(step) || resolutionStep(step) || bouncesStep(step);
+}
+
+bool GiBudgetScheduler::bouncesStep(Step& step) const {
+    // After the resolution: a further bounce is a whole propagation more in the finest cascades
+    // (gi.bounce_cascades), but its light is a fraction of the first's, so it goes last.
+    if (load_.bounces <= 1) return false;
+    step = {GiKnob::Bounces, load_.bounces, load_.bounces - 1};
+    return true;
 }
 
 bool GiBudgetScheduler::resolutionStep(Step& step) const {

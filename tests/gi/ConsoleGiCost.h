@@ -49,11 +49,14 @@ struct ConsoleGiCost {
             ms += passMs(w);
         return ms;
     }
-    // Predicted ms of GI on `frame`: the cascades due that frame, and the lookup.
+    // Predicted ms of GI on `frame`: the cascades due that frame (the finest gi.bounce_cascades
+    // with their further bounces), and the lookup.
     double frameMs(const gi::GiLoad& load, uint64_t frame) const {
         double ms = passMs(lookupPass(load));
+        const gi::LpvSettings s = settingsOf(load);
         for (uint32_t c = 0; c < load.cascades; ++c)
-            if (gi::cascadeUpdatedOn(load, c, frame)) ms += cascadeMs(load);
+            if (gi::cascadeUpdatedOn(load, c, frame))
+                ms += cascadeMs(load) + (s.bouncesIn(c) ? passMs(gi::bounceWork(s)) : 0.0);
         return ms;
     }
     // The worst frame of a coarse update cycle.

@@ -52,7 +52,11 @@ struct Run {
 };
 
 int rank(GiKnob k) {
-    return k == GiKnob::CoarseUpdateInterval ? 0 : k == GiKnob::Iterations ? 1 : k == GiKnob::RsmSize ? 2 : 3;
+    return k == GiKnob::CoarseUpdateInterval ? 0
+           : k == GiKnob::Iterations         ? 1
+           : k == GiKnob::RsmSize            ? 2
+           : k == GiKnob::Resolution         ? 3
+                                             : 4;
 }
 
 bool contains(std::string_view text, std::string_view part) {
@@ -156,6 +160,30 @@ TEST_CASE("gi budget: adapt brings 3 cascades under the x360 budget in the docum
         for (size_t i = 1; i < steps.size(); ++i)
             CHECK(rank(steps[i - 1].change.knob) <= rank(steps[i].change.knob));
         CHECK(steps.back().change.knob == GiKnob::Resolution);
+        CHECK(s.load.bounces == run.configured.bounces); // one bounce configured: nothing to take
+    }
+    SUBCASE("with 2 bounces configured, a budget under gi.resolution's floor takes the second bounce, last") {
+        run.configured.bounces = 2;
+        GiLoad floor = run.configured;
+        floor.coarseUpdateInterval = 2;
+        floor.iterations = run.scheduler.limits().minIterations;
+        floor.rsmSize = run.scheduler.limits().minRsmSize;
+        floor.resolutionDivisor = run.scheduler.limits().maxResolutionDivisor;
+        GiLoad oneBounce = floor;
+        oneBounce.bounces = 1;
+        MESSAGE("every other knob at its floor: " << cost.peakMs(floor) << " ms with 2 bounces, "
+                                                  << cost.peakMs(oneBounce) << " ms with 1");
+        REQUIRE(cost.peakMs(oneBounce) < 0.97 * cost.peakMs(floor));
+        const GiBudget budget{0.97 * cost.peakMs(floor), bytes};
+        const GiSchedule& s = run.frames(400, budget, costOf);
+        CHECK(cost.peakMs(s.load) <= budget.ms);
+        CHECK(s.load.resolutionDivisor == run.scheduler.limits().maxResolutionDivisor);
+        CHECK(s.load.bounces == 1);
+        const auto steps = run.steps(false);
+        REQUIRE(steps.size() >= 5);
+        for (size_t i = 1; i < steps.size(); ++i)
+            CHECK(rank(steps[i - 1].change.knob) <= rank(steps[i].change.knob));
+        CHECK(steps.back().change.knob == GiKnob::Bounces);
     }
     // Every step is named, with the reason, in its note.
     for (const Logged& l : run.log) {
@@ -172,6 +200,7 @@ TEST_CASE("gi budget: adapt brings 3 cascades under the x360 budget in the docum
         if (l.change.knob == GiKnob::Resolution)
             CHECK(contains(t, "lookup every " + std::to_string(l.change.to) + " pixels per axis (was " +
                                   std::to_string(l.change.from)));
+        if (l.change.knob == GiKnob::Bounces) CHECK(contains(t, "bounces 1 (was 2)"));
         CHECK(contains(t, "ms budget"));
     }
 }

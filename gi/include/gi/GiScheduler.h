@@ -5,6 +5,7 @@
 //   3. the RSM size (halved per step, down to a floor),
 //   4. the pixels looked up (gi.resolution: full -> half -> quarter per axis; the lighting pass
 //      rebuilds the rest),
+//   5. the bounces (gi.bounces: one fewer per step, down to the first bounce),
 // and gives steps back in reverse order once GI has stayed well under budget for a while and the
 // step is expected to fit. Memory over budget is helped only by a smaller RSM; past that it is
 // reported, since no time knob frees memory. Under fixed it changes nothing and reports.
@@ -56,13 +57,14 @@ struct GiLoad {
     uint32_t iterations = 8;
     uint32_t rsmSize = 256;
     uint32_t resolutionDivisor = 1; // per axis: the lookup and glossy march run on 1 in d^2 pixels
+    uint32_t bounces = 1;           // gi.bounces: the first is the propagated light itself
     // Not a knob: the RSM size must stay a multiple of the VPL grid side (gi.vpl_count's rule).
     uint32_t vplGridSide = 1;
     bool operator==(const GiLoad&) const = default;
 };
 
 GiLoad giLoadOf(const LpvSettings& settings, uint32_t cascades = 1);
-// Writes the knobs LpvSettings holds (iterations, rsm size, resolution) back into `settings`.
+// Writes the knobs LpvSettings holds (iterations, rsm size, resolution, bounces) back into `settings`.
 void applyGiLoad(const GiLoad& load, LpvSettings& settings);
 
 // Whether `cascade` updates on `frame`. Coarse cascades take turns (staggered phases), so with an
@@ -87,7 +89,7 @@ struct GiFrameCost {
 // the measured GI ms otherwise, and the GI bytes allocated now. Empty until a frame is checked.
 std::optional<GiFrameCost> giFrameCost(const engine::FrameProfiler& profiler);
 
-enum class GiKnob { None, CoarseUpdateInterval, Iterations, RsmSize, Resolution };
+enum class GiKnob { None, CoarseUpdateInterval, Iterations, RsmSize, Resolution, Bounces };
 
 inline constexpr size_t kGiChangeTextBytes = 192;
 
@@ -170,6 +172,7 @@ private:
     bool nextTimeStep(Step& step) const;
     bool rsmStep(Step& step) const;
     bool resolutionStep(Step& step) const;
+    bool bouncesStep(Step& step) const;
     void take(uint64_t frame, Step step, double ms, uint64_t bytes, const GiBudget& budget);
     void giveBack(uint64_t frame, double ms, double expectedMs, const GiBudget& budget);
     void setLoad(uint64_t frame, const GiLoad& load);
