@@ -442,7 +442,7 @@ void consolePrediction() {
         "(%u iterations, RSM %u^2, lookup every %u pixels per axis, 1 bounce):\n\n"
         "| pass | runs per frame | x360 | ps3 | x360 at floor | ps3 at floor |\n|---|---|---|---|---|---|\n",
         f.iterations, f.rsmSize, limits.maxResolutionDivisor);
-    double all[2] = {}, staggered[2] = {}, atFloor[2] = {};
+    double all[2] = {}, staggered[2] = {};
     for (const Pass& pass : passes) {
         const double x = engine::predictCost(pass.work, x360.throughput).ms;
         const double y = engine::predictCost(pass.work, ps3.throughput).ms;
@@ -452,7 +452,21 @@ void consolePrediction() {
                     pass.perFrameStaggered, x, y, fx, fy);
         all[0] += x * pass.perFrame, all[1] += y * pass.perFrame;
         staggered[0] += x * pass.perFrameStaggered, staggered[1] += y * pass.perFrameStaggered;
-        atFloor[0] += fx * pass.perFrameStaggered, atFloor[1] += fy * pass.perFrameStaggered;
+    }
+    // At the floor the coarse cascades update every 4 frames, each in two halves on two frames of
+    // its own (GiScheduler.h's CascadeWork): the busiest frame runs the finest cascade, the larger
+    // half of one coarse update, and the per-pixel passes.
+    double atFloor[2] = {};
+    for (int p = 0; p < 2; ++p) {
+        const platforms::Throughput& t = p == 0 ? x360.throughput : ps3.throughput;
+        const auto ms = [&](const engine::WorkCounts& w) { return engine::predictCost(w, t).ms; };
+        const double light = ms(gi::rsmWork(f, 100000)) + ms(gi::vplClusterWork(f));
+        const double fine = light + ms(gi::occlusionWork(f, 160u * 90u)) + ms(gi::injectWork(f)) +
+                            ms(gi::propagateWork(f)) + ms(gi::bounceWork(f));
+        const double coarseVolume =
+            ms(gi::occlusionWork(f, 0)) + ms(gi::injectWork(f)) + ms(gi::propagateWork(f));
+        atFloor[p] = fine + std::max(light, coarseVolume) + ms(gi::lookupWork(f, floorPixels)) +
+                     ms(gi::glossyWork(floorPixels)) + ms(engine::indirectRebuildWork(pixels));
     }
     std::printf(
         "\n(runs in brackets: coarse cascades every 2 frames, gi.budget_policy=adapt's first step)\n");

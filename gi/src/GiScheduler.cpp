@@ -111,15 +111,24 @@ void applyGiLoad(const GiLoad& load, LpvSettings& settings) {
     settings.bounces = load.bounces;
 }
 
-bool cascadeUpdatedOn(const GiLoad& load, uint32_t cascade, uint64_t frame) {
-    if (cascade == 0 || load.cascades <= 1 || load.coarseUpdateInterval <= 1) return true;
-    const uint32_t k = load.coarseUpdateInterval;
+uint32_t cascadeWorkOn(const GiLoad& load, uint32_t cascade, uint64_t frame) {
+    if (cascade == 0 || load.cascades <= 1 || load.coarseUpdateInterval <= 1) return kCascadeUpdate;
+    const uint64_t k = load.coarseUpdateInterval, coarse = load.cascades - 1, i = cascade - 1;
+    if (k >= 2 * coarse) {
+        // Two slots per coarse cascade, spread evenly over the cycle: light, then volume.
+        if (frame % k == (2 * i * k) / (2 * coarse)) return kCascadeLight;
+        if (frame % k == ((2 * i + 1) * k) / (2 * coarse)) return kCascadeVolume;
+        return 0;
+    }
     // Spread the coarse cascades evenly over the k frames of a cycle.
-    const uint32_t phase = ((cascade - 1) * k) / (load.cascades - 1);
-    return frame % k == phase % k;
+    return frame % k == ((i * k) / coarse) % k ? uint32_t(kCascadeUpdate) : 0u;
 }
 
-uint32_t coarseUpdatesInBusiestFrame(uint32_t cascades, uint32_t interval) {
+bool cascadeUpdatedOn(const GiLoad& load, uint32_t cascade, uint64_t frame) {
+    return (cascadeWorkOn(load, cascade, frame) & kCascadeVolume) != 0;
+}
+
+uint32_t coarseHalvesInBusiestFrame(uint32_t cascades, uint32_t interval) {
     if (cascades <= 1) return 0;
     GiLoad load;
     load.cascades = cascades;
@@ -127,8 +136,10 @@ uint32_t coarseUpdatesInBusiestFrame(uint32_t cascades, uint32_t interval) {
     uint32_t busiest = 0;
     for (uint32_t f = 0; f < load.coarseUpdateInterval; ++f) {
         uint32_t n = 0;
-        for (uint32_t c = 1; c < cascades; ++c)
-            n += cascadeUpdatedOn(load, c, f) ? 1 : 0;
+        for (uint32_t c = 1; c < cascades; ++c) {
+            const uint32_t work = cascadeWorkOn(load, c, f);
+            n += ((work & kCascadeLight) ? 1 : 0) + ((work & kCascadeVolume) ? 1 : 0);
+        }
         busiest = std::max(busiest, n);
     }
     return busiest;
@@ -327,12 +338,12 @@ void GiBudgetScheduler::reportStates(bool reportTime, bool timeOver, bool memory
 
 bool GiBudgetScheduler::nextTimeStep(Step& step) const {
     if (load_.cascades > 1) {
-        // A longer interval only helps when the busiest frame then updates fewer coarse cascades:
-        // with two coarse cascades, every 4 frames has the same worst frame as every 2.
-        const uint32_t now = coarseUpdatesInBusiestFrame(load_.cascades, load_.coarseUpdateInterval);
+        // A longer interval only helps when the busiest frame then runs less coarse work: with
+        // three coarse cascades, every 4 frames has the same worst frame as every 2.
+        const uint32_t now = coarseHalvesInBusiestFrame(load_.cascades, load_.coarseUpdateInterval);
         for (uint32_t k = std::max(load_.coarseUpdateInterval, 1u) * 2; k <= limits_.maxCoarseUpdateInterval;
              k *= 2)
-            if (coarseUpdatesInBusiestFrame(load_.cascades, k) < now) {
+            if (coarseHalvesInBusiestFrame(load_.cascades, k) < now) {
                 step = {GiKnob::CoarseUpdateInterval, load_.coarseUpdateInterval, k};
                 return true;
             }

@@ -107,9 +107,11 @@ LightPropagationVolume::~LightPropagationVolume() {
 
 void LightPropagationVolume::release() {
     device_.waitIdle();
-    for (size_t c = 1; c < cascades_.size(); ++c)
+    for (size_t c = 1; c < cascades_.size(); ++c) {
         for (rhi::TextureHandle t : cascades_[c].result)
             device_.destroy(t);
+        device_.destroy(cascades_[c].vpls);
+    }
     cascades_.clear();
     rsm_.reset();
     volumes_.reset();
@@ -136,6 +138,12 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     spotRsms_ = std::make_unique<SpotLightRsms>(device_, s);
     vpls_ = device_.createBuffer({uint64_t(s.vplCount) * 48, rhi::kBufferStorage | rhi::kBufferTransfer,
                                   rhi::MemoryAccess::GpuOnly, "vpls", "gi.vpl"});
+    // A coarse cascade's VPLs wait a frame for its volume half when the scheduler splits its update.
+    cascades_[0].vpls = vpls_;
+    for (uint32_t c = 1; c < s.cascades; ++c)
+        cascades_[c].vpls = device_.createBuffer(
+            {uint64_t(s.vplCount) * 48, rhi::kBufferStorage | rhi::kBufferTransfer,
+             rhi::MemoryAccess::GpuOnly, "vpls, cascade " + std::to_string(c), "gi.vpl"});
     made_ = true;
 }
 
@@ -143,16 +151,19 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
                                     const engine::CameraMatrices& camera, engine::FrameProfiler* profiler) {
     const LpvSettings configured = readLpvSettings(config);
     LpvSettings s = configured;
-    cascadeUpdates_ = ~0u;
+    lightUpdates_ = volumeUpdates_ = ~0u;
     if (profiler && configured.enabled) {
         // The scheduler always sees the configured load; what it returns is this frame's.
         const uint64_t frame = device_.frameIndex() + 1;
         schedule_ = scheduler_.schedule(frame, giFrameCost(*profiler), giBudgetOf(profile_),
                                         giLoadOf(configured, configured.cascades), configured.budgetPolicy);
         applyGiLoad(schedule_.load, s);
-        cascadeUpdates_ = 0;
-        for (uint32_t c = 0; c < configured.cascades; ++c)
-            if (schedule_.updatesCascade(c)) cascadeUpdates_ |= 1u << c;
+        lightUpdates_ = volumeUpdates_ = 0;
+        for (uint32_t c = 0; c < configured.cascades; ++c) {
+            const uint32_t halves = schedule_.cascadeWork(c);
+            if (halves & kCascadeLight) lightUpdates_ |= 1u << c;
+            if (halves & kCascadeVolume) volumeUpdates_ |= 1u << c;
+        }
         for (const GiChange& change : schedule_.changes())
             profiler->note(kGiBudgetNoteTopic, change.text());
     }
@@ -212,25 +223,27 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     }
     // Coarsest first: each finer cascade takes the light from beyond its border from the one
     // around it (CascadeHandoff).
-    uint32_t updated = 0;
     for (uint32_t c = uint32_t(cascades_.size()); c-- > 0;) {
         // A coarse cascade the scheduler skips this frame keeps last frame's result (a cascade
-        // that never had one updates regardless).
-        if (!(cascadeUpdates_ & (1u << c)) && (cascadesValid_ & (1u << c))) continue;
+        // that never had one updates regardless); its update may run in two halves on two frames.
+        const bool valid = (cascadesValid_ & (1u << c)) != 0;
+        const bool lightHalf = !valid || (lightUpdates_ & (1u << c));
+        const bool volumeHalf = !valid || (volumeUpdates_ & (1u << c));
+        if (!lightHalf && !volumeHalf) continue;
         cascadesValid_ |= 1u << c;
-        updated |= 1u << c;
         auto cascadeScope = scope(kCascadeScopes[c]);
-        // A skipped cascade keeps the placement its result was computed at; this one moves now.
-        cascades_[c].grid = cascades_[c].placement;
-        const VolumeGrid& grid = cascades_[c].grid;
-        {
-            auto s = scope("rsm");
-            rsm_->fit(grid, lightDir);
-            // Objects smaller than a cell of this cascade are left to the finer ones.
-            rsm_->render(cmd, *renderer_->scene(), lightDir, sun.radiance, c == 0 ? 0.0f : grid.cellSize);
-            work(rsmWork(settings_, renderer_->scene()->triangleCount()));
-        }
-        {
+        Cascade& cascade = cascades_[c];
+        if (lightHalf) {
+            // A skipped cascade keeps the placement its result was computed at; this one moves now.
+            cascade.lit = cascade.placement;
+            {
+                auto s = scope("rsm");
+                rsm_->fit(cascade.lit, lightDir);
+                // Objects smaller than a cell of this cascade are left to the finer ones.
+                rsm_->render(cmd, *renderer_->scene(), lightDir, sun.radiance,
+                             c == 0 ? 0.0f : cascade.lit.cellSize);
+                work(rsmWork(settings_, renderer_->scene()->triangleCount()));
+            }
             auto s = scope("vpl");
             ClusterUniforms u;
             u.invLightViewProjection = glm::inverse(rsm_->lightViewProjection());
@@ -240,19 +253,25 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             cmd.bindTexture(1, rsm_->depth(), pointSampler_);
             cmd.bindTexture(2, rsm_->normal(), pointSampler_);
             cmd.bindTexture(3, rsm_->flux(), pointSampler_);
-            cmd.bindStorageBuffer(4, vpls_);
+            cmd.bindStorageBuffer(4, cascade.vpls);
             cmd.dispatch((side + 7) / 8, (side + 7) / 8, 1);
             work(vplClusterWork(settings_));
+            const float texelsPerVpl = float(rsm_->size() / side) * float(rsm_->size() / side);
+            cascade.lightDirection = lightDir;
+            cascade.vplArea = rsm_->texelArea() * texelsPerVpl;
+            cascade.whiteTexelFlux = sun.radiance * rsm_->texelArea();
         }
+        if (!volumeHalf) continue;
+        cascade.grid = cascade.lit;
+        const VolumeGrid& grid = cascade.grid;
         if (geometry_) {
             auto s = scope("occlusion");
             GeometrySources src;
-            src.vpls = vpls_;
+            src.vpls = cascade.vpls;
             src.vplCount = settings_.vplCount;
-            const float texelsPerVpl = float(rsm_->size() / side) * float(rsm_->size() / side);
-            src.vplArea = rsm_->texelArea() * texelsPerVpl;
-            src.lightDirection = lightDir;
-            src.whiteTexelFlux = sun.radiance * rsm_->texelArea();
+            src.vplArea = cascade.vplArea;
+            src.lightDirection = cascade.lightDirection;
+            src.whiteTexelFlux = cascade.whiteTexelFlux;
             // Camera surfels in the finest cascade only: there a G-buffer sample is small next to
             // a cell and the coverage is stable as the camera moves; in a coarse cell one sample
             // of a small or partly seen surface would mark the whole cell, and whether one lands
@@ -272,7 +291,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         {
             auto s = scope("inject");
             std::array<VplSource, 1 + SpotLightRsms::kMaxLights> sources;
-            sources[0] = {vpls_, settings_.vplCount, glm::vec4(lightDir, 0.0f)};
+            sources[0] = {cascade.vpls, settings_.vplCount, glm::vec4(cascade.lightDirection, 0.0f)};
             const uint32_t n = 1 + spotRsms_->sourcesReaching(grid, std::span(sources).subspan(1));
             volumes_->inject(cmd, std::span(sources.data(), n), grid, settings_.intensity);
             work(injectWork(settings_, uint64_t(n - 1) * spotLightVplCount(settings_), volumeDraw()));

@@ -27,11 +27,15 @@ struct ConsoleGiCost {
         gi::applyGiLoad(load, s);
         return s;
     }
-    // The passes one cascade runs when it updates.
-    std::array<engine::WorkCounts, 4> cascadePasses(const gi::GiLoad& load) const {
+    // The passes of one cascade's update: its light half (RSM, VPLs), then its volume half
+    // (injection, propagation; the further bounces in the finest gi.bounce_cascades).
+    std::array<engine::WorkCounts, 2> lightPasses(const gi::GiLoad& load) const {
         const gi::LpvSettings s = settingsOf(load);
-        return {gi::rsmWork(s, sceneTriangles), gi::vplClusterWork(s), gi::injectWork(s),
-                gi::propagateWork(s)};
+        return {gi::rsmWork(s, sceneTriangles), gi::vplClusterWork(s)};
+    }
+    std::array<engine::WorkCounts, 2> volumePasses(const gi::GiLoad& load) const {
+        const gi::LpvSettings s = settingsOf(load);
+        return {gi::injectWork(s), gi::propagateWork(s)};
     }
     // The lookup of one cascade per pixel: a synthetic load, so the tests exercise the knobs the
     // scheduler turns. (The shipped lookup samples up to two cascades per pixel, which no knob
@@ -43,20 +47,24 @@ struct ConsoleGiCost {
     }
 
     double passMs(const engine::WorkCounts& w) const { return engine::predictCost(w, throughput).ms; }
-    double cascadeMs(const gi::GiLoad& load) const {
+    double cascadeMs(const gi::GiLoad& load, uint32_t cascade, uint32_t halves) const {
         double ms = 0;
-        for (const auto& w : cascadePasses(load))
-            ms += passMs(w);
+        if (halves & gi::kCascadeLight)
+            for (const auto& w : lightPasses(load))
+                ms += passMs(w);
+        if (halves & gi::kCascadeVolume) {
+            for (const auto& w : volumePasses(load))
+                ms += passMs(w);
+            const gi::LpvSettings s = settingsOf(load);
+            if (s.bouncesIn(cascade)) ms += passMs(gi::bounceWork(s));
+        }
         return ms;
     }
-    // Predicted ms of GI on `frame`: the cascades due that frame (the finest gi.bounce_cascades
-    // with their further bounces), and the lookup.
+    // Predicted ms of GI on `frame`: the halves of cascade updates due that frame, and the lookup.
     double frameMs(const gi::GiLoad& load, uint64_t frame) const {
         double ms = passMs(lookupPass(load));
-        const gi::LpvSettings s = settingsOf(load);
         for (uint32_t c = 0; c < load.cascades; ++c)
-            if (gi::cascadeUpdatedOn(load, c, frame))
-                ms += cascadeMs(load) + (s.bouncesIn(c) ? passMs(gi::bounceWork(s)) : 0.0);
+            ms += cascadeMs(load, c, gi::cascadeWorkOn(load, c, frame));
         return ms;
     }
     // The worst frame of a coarse update cycle.

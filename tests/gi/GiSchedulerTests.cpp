@@ -75,23 +75,39 @@ TEST_CASE("gi budget: the cascade update pattern staggers coarse cascades") {
         CHECK(cascadeUpdatedOn(load, 1, f) == (f % 2 == 0));
         CHECK(cascadeUpdatedOn(load, 2, f) == (f % 2 == 1));
     }
-    CHECK(coarseUpdatesInBusiestFrame(3, 1) == 2);
-    CHECK(coarseUpdatesInBusiestFrame(3, 2) == 1);
-    CHECK(coarseUpdatesInBusiestFrame(3, 4) == 1);
-    CHECK(coarseUpdatesInBusiestFrame(4, 2) == 2);
-    CHECK(coarseUpdatesInBusiestFrame(4, 4) == 1);
-    CHECK(coarseUpdatesInBusiestFrame(2, 4) == 1);
-    CHECK(coarseUpdatesInBusiestFrame(1, 4) == 0);
+    // In halves of a coarse update: 4 frames give each of 2 coarse cascades two frames of its own,
+    // light then volume; with 3 coarse cascades they do not.
+    CHECK(coarseHalvesInBusiestFrame(3, 1) == 4);
+    CHECK(coarseHalvesInBusiestFrame(3, 2) == 2);
+    CHECK(coarseHalvesInBusiestFrame(3, 4) == 1);
+    CHECK(coarseHalvesInBusiestFrame(4, 2) == 4);
+    CHECK(coarseHalvesInBusiestFrame(4, 4) == 2);
+    CHECK(coarseHalvesInBusiestFrame(2, 2) == 1);
+    CHECK(coarseHalvesInBusiestFrame(2, 4) == 1);
+    CHECK(coarseHalvesInBusiestFrame(1, 4) == 0);
+    load.coarseUpdateInterval = 4;
+    for (uint64_t f = 0; f < 8; ++f) {
+        CHECK(cascadeWorkOn(load, 0, f) == kCascadeUpdate);
+        CHECK(cascadeWorkOn(load, 1, f) == (f % 4 == 0   ? uint32_t(kCascadeLight)
+                                            : f % 4 == 1 ? uint32_t(kCascadeVolume)
+                                                         : 0u));
+        CHECK(cascadeWorkOn(load, 2, f) == (f % 4 == 2   ? uint32_t(kCascadeLight)
+                                            : f % 4 == 3 ? uint32_t(kCascadeVolume)
+                                                         : 0u));
+    }
     // Every coarse cascade still updates once per cycle.
     for (uint32_t cascades = 2; cascades <= 4; ++cascades)
         for (uint32_t k : {1u, 2u, 4u}) {
             load.cascades = cascades;
             load.coarseUpdateInterval = k;
             for (uint32_t c = 1; c < cascades; ++c) {
-                int updates = 0;
-                for (uint64_t f = 0; f < k; ++f)
+                int updates = 0, lights = 0;
+                for (uint64_t f = 0; f < k; ++f) {
                     updates += cascadeUpdatedOn(load, c, f) ? 1 : 0;
+                    lights += (cascadeWorkOn(load, c, f) & kCascadeLight) ? 1 : 0;
+                }
                 CHECK(updates == 1);
+                CHECK(lights == 1);
             }
         }
 }
@@ -105,7 +121,7 @@ TEST_CASE("gi budget: adapt brings 3 cascades under the x360 budget in the docum
     const uint64_t bytes = cost.bytes(run.configured);
     const auto costOf = [&](const GiLoad& l, uint64_t f) { return std::pair(cost.frameMs(l, f), bytes); };
 
-    SUBCASE("the x360 budget: coarse cascades every 2 frames, then iterations") {
+    SUBCASE("the x360 budget: coarse cascades every 2 frames, then every 4 (each update split in halves)") {
         const GiBudget budget{x360.giBudgetMs, bytes};
         const double before = cost.peakMs(run.configured);
         MESSAGE("configured: predicted " << before << " ms on the worst frame, budget " << budget.ms
@@ -121,18 +137,23 @@ TEST_CASE("gi budget: adapt brings 3 cascades under the x360 budget in the docum
             CHECK(run.ms[f] <= budget.ms);
         const auto steps = run.steps(false);
         REQUIRE(steps.size() >= 2);
-        CHECK(steps.front().change.knob == GiKnob::CoarseUpdateInterval);
-        CHECK(steps.front().change.to == 2);
-        CHECK(s.load.coarseUpdateInterval == 2); // 4 would not lighten the worst frame of 2 coarse cascades
-        CHECK(s.load.iterations < run.configured.iterations);
+        CHECK(steps[0].change.knob == GiKnob::CoarseUpdateInterval);
+        CHECK(steps[0].change.to == 2);
+        CHECK(steps[1].change.knob == GiKnob::CoarseUpdateInterval);
+        CHECK(steps[1].change.to == 4); // 2 frames per coarse cascade: light, then volume
+        CHECK(s.load.coarseUpdateInterval == 4);
         CHECK(run.steps(true).empty());
     }
     SUBCASE("a tighter budget reaches the RSM, after the iterations reached their floor") {
-        // Just under what coarse cascades every 2 frames and the fewest iterations cost.
+        // Between what coarse cascades every 4 frames and the fewest iterations cost and what the
+        // smallest RSM on top of them costs (on the x360 the RSM is mostly bound by its vertices).
         GiLoad floor = run.configured;
-        floor.coarseUpdateInterval = 2;
+        floor.coarseUpdateInterval = 4;
         floor.iterations = run.scheduler.limits().minIterations;
-        const GiBudget budget{0.97 * cost.peakMs(floor), bytes};
+        GiLoad smallRsm = floor;
+        smallRsm.rsmSize = run.scheduler.limits().minRsmSize;
+        REQUIRE(cost.peakMs(smallRsm) < cost.peakMs(floor));
+        const GiBudget budget{0.5 * (cost.peakMs(floor) + cost.peakMs(smallRsm)), bytes};
         const GiSchedule& s = run.frames(200, budget, costOf);
         CHECK(cost.peakMs(s.load) <= budget.ms);
         CHECK(s.load.rsmSize < run.configured.rsmSize);
@@ -146,7 +167,7 @@ TEST_CASE("gi budget: adapt brings 3 cascades under the x360 budget in the docum
     SUBCASE("a budget under the RSM's floor reaches gi.resolution, last") {
         // Just under what every other knob at its floor costs.
         GiLoad floor = run.configured;
-        floor.coarseUpdateInterval = 2;
+        floor.coarseUpdateInterval = 4;
         floor.iterations = run.scheduler.limits().minIterations;
         floor.rsmSize = run.scheduler.limits().minRsmSize;
         REQUIRE(run.configured.resolutionDivisor < run.scheduler.limits().maxResolutionDivisor);
@@ -165,7 +186,7 @@ TEST_CASE("gi budget: adapt brings 3 cascades under the x360 budget in the docum
     SUBCASE("with 2 bounces configured, a budget under gi.resolution's floor takes the second bounce, last") {
         run.configured.bounces = 2;
         GiLoad floor = run.configured;
-        floor.coarseUpdateInterval = 2;
+        floor.coarseUpdateInterval = 4;
         floor.iterations = run.scheduler.limits().minIterations;
         floor.rsmSize = run.scheduler.limits().minRsmSize;
         floor.resolutionDivisor = run.scheduler.limits().maxResolutionDivisor;
@@ -190,7 +211,8 @@ TEST_CASE("gi budget: adapt brings 3 cascades under the x360 budget in the docum
         INFO(l.change.text());
         const std::string_view t = l.change.text();
         if (l.change.knob == GiKnob::CoarseUpdateInterval)
-            CHECK(contains(t, "coarse cascades every 2 frames (was 1)"));
+            CHECK(contains(t, "coarse cascades every " + std::to_string(l.change.to) + " frames (was " +
+                                  std::to_string(l.change.from) + ")"));
         if (l.change.knob == GiKnob::Iterations)
             CHECK(contains(t, "iterations " + std::to_string(l.change.to) + " (was " +
                                   std::to_string(l.change.from)));
@@ -279,7 +301,7 @@ TEST_CASE("gi budget: noisy measured times settle instead of oscillating") {
         Run run;
         const test::ConsoleGiCost cost = test::x360Cascades(run.configured);
         GiLoad floor = run.configured;
-        floor.coarseUpdateInterval = 2;
+        floor.coarseUpdateInterval = 4;
         floor.iterations = run.scheduler.limits().minIterations;
         floor.rsmSize = run.scheduler.limits().minRsmSize;
         floor.resolutionDivisor = run.scheduler.limits().maxResolutionDivisor;

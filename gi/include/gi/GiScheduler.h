@@ -1,6 +1,7 @@
 // The GI budget scheduler: under gi.budget_policy=adapt it keeps GI inside the platform profile's
 // time and memory budgets by lowering, one step at a time and always in this order,
-//   1. how often the coarse cascades update (every 1 -> 2 -> 4 frames; only with cascades > 1),
+//   1. how often the coarse cascades update (every 1 -> 2 -> 4 frames; only with cascades > 1; with
+//      a frame or more of its own per coarse cascade, each update is split over two frames),
 //   2. the propagation iterations (a quarter, at least one, per step, down to a floor),
 //   3. the RSM size (halved per step, down to a floor),
 //   4. the pixels looked up (gi.resolution: full -> half -> quarter per axis; the lighting pass
@@ -19,7 +20,7 @@
 //                                            giLoadOf(configured, cascades), configured.budgetPolicy);
 //   LpvSettings effective = configured;
 //   applyGiLoad(s.load, effective);         // iterations, rsm size
-//   ... update cascade c only when s.updatesCascade(c) ...
+//   ... run the halves s.cascadeWork(c) of cascade c's update ...
 //   for (const GiChange& c : s.changes()) profiler.note(kGiBudgetNoteTopic, c.text());
 //
 // Feed it the configured knobs each frame, not what it returned: a change of the configured load
@@ -67,11 +68,20 @@ GiLoad giLoadOf(const LpvSettings& settings, uint32_t cascades = 1);
 // Writes the knobs LpvSettings holds (iterations, rsm size, resolution, bounces) back into `settings`.
 void applyGiLoad(const GiLoad& load, LpvSettings& settings);
 
-// Whether `cascade` updates on `frame`. Coarse cascades take turns (staggered phases), so with an
-// interval of k the busiest frame updates ceil(coarse cascades / k) of them, not all of them.
+// A cascade's update in two halves: its light (the RSM and its VPLs), then its volume (occlusion,
+// injection, propagation and bounces, which replace its result).
+enum CascadeWork : uint32_t { kCascadeLight = 1u, kCascadeVolume = 2u, kCascadeUpdate = 3u };
+// What of `cascade`'s update runs on `frame` (CascadeWork bits; 0: nothing). Coarse cascades take
+// turns (staggered phases), so with an interval of k the busiest frame updates ceil(coarse
+// cascades / k) of them, not all of them. Once the interval gives every coarse cascade two frames
+// of its own (k >= 2 x coarse cascades), its light runs on the first and its volume on the next:
+// the busiest frame then runs half of one coarse cascade's update.
+uint32_t cascadeWorkOn(const GiLoad& load, uint32_t cascade, uint64_t frame);
+// Whether `cascade`'s result is replaced on `frame` (its volume half runs).
 bool cascadeUpdatedOn(const GiLoad& load, uint32_t cascade, uint64_t frame);
-// The most coarse cascades any one frame updates under that pattern.
-uint32_t coarseUpdatesInBusiestFrame(uint32_t cascades, uint32_t interval);
+// The most halves of coarse-cascade updates any one frame runs under that pattern (a whole update
+// counts two).
+uint32_t coarseHalvesInBusiestFrame(uint32_t cascades, uint32_t interval);
 
 struct GiBudget {
     double ms = 0;      // <= 0: no time budget
@@ -115,6 +125,7 @@ public:
 
     std::span<const GiChange> changes() const { return {changes_.data(), changeCount_}; }
     bool updatesCascade(uint32_t cascade) const { return cascadeUpdatedOn(load, cascade, frame); }
+    uint32_t cascadeWork(uint32_t cascade) const { return cascadeWorkOn(load, cascade, frame); }
 
 private:
     friend class GiBudgetScheduler;

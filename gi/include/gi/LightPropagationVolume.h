@@ -96,14 +96,22 @@ private:
     // geometry, injection and partial sums) is shared: cascades are built one after another.
     struct Cascade {
         VolumeGrid grid;      // where `result` was computed: what the lookup and handoff use
-        VolumeGrid placement; // where the camera wants it now; becomes `grid` when it updates
+        VolumeGrid placement; // where the camera wants it now; becomes `lit` when its light updates
         std::array<rhi::TextureHandle, 3> result{}; // cascade 0: volumes_->accumulated()
+        // Its light half (GiScheduler.h's CascadeWork), kept for the volume half, which may run a
+        // frame later: where the RSM was fitted, its VPLs (cascade 0: vpls_), the light then.
+        VolumeGrid lit;
+        rhi::BufferHandle vpls;
+        glm::vec3 lightDirection{0.0f, -1.0f, 0.0f};
+        float vplArea = 0.0f;
+        glm::vec3 whiteTexelFlux{0.0f};
     };
     std::vector<Cascade> cascades_;
     GiBudgetScheduler scheduler_;
     GiSchedule schedule_;
-    uint32_t cascadeUpdates_ = ~0u; // bit c: cascade c updates this frame
-    uint32_t cascadesValid_ = 0;    // bit c: cascade c's result holds a solution
+    uint32_t lightUpdates_ = ~0u;  // bit c: cascade c's light half runs this frame
+    uint32_t volumeUpdates_ = ~0u; // bit c: cascade c's volume half runs this frame
+    uint32_t cascadesValid_ = 0;   // bit c: cascade c's result holds a solution
     const engine::Renderer* renderer_ = nullptr;
     std::unique_ptr<ReflectiveShadowMap> rsm_;
     std::unique_ptr<LpvVolumes> volumes_;
