@@ -1,7 +1,7 @@
 // The shipped propagation kernel, included by propagate_<format>.glsl (SH_FORMAT, the packed
 // texels that carry a cell's 12 coefficients between iterations, and their packing), compiled
-// once per role (gi/CMakeLists.txt): SEED before the first iteration, TO_RESULT on the last.
-// Roles are compile-time because a CPU rasterizer runs both sides of a uniform branch.
+// once per iteration role (gi/CMakeLists.txt): FROM_INJECTION on the first iteration, TO_RESULT on
+// the last. Roles are compile-time because a CPU rasterizer runs both sides of a uniform branch.
 //
 // Why it looks like this (figures in the README):
 // - Propagation is linear in the SH coefficients: the five faces a neighbour lights, each
@@ -11,12 +11,6 @@
 // - Linearity also folds the accumulation into the iteration (Horner's rule): with x the injected
 //   volume, y0 = x and y(k+1) = x + P y(k), so y(N) = x + Px + ... + P^N x is the accumulated
 //   result. No accumulation texture is read or written until the last iteration stores y(N).
-// - The partial-sum volumes carry a one-cell shell around the volume: what lies beyond the border.
-//   SEED writes y(0) = x inside and the shell once per propagation (nothing, or the coarser
-//   cascade's result: the handoff, constant over the iterations), so an iteration reads every
-//   neighbour with a plain load, without a bounds test or a select. Choosing the outside value
-//   per load cost the cascades with a handoff 3 trilinear fetches per load on a CPU rasterizer
-//   (which evaluates both sides for every lane): 3x the kernel without one.
 // - Memory operations dominate on every device we measured, so each thread owns a 2x2 column of
 //   cells and walks it along z: the z neighbours come from registers, the x/y neighbours inside
 //   the 2x2 from registers, and only the 8 cells around it are fetched per step (3 fetched cells
@@ -48,8 +42,9 @@ layout(binding = 0, std140) uniform Propagate {
     vec4 handoff; // xyz: the coarse volume's uvw at cell (0,0,0)'s centre; w: uvw per cell
 } params;
 #ifdef HANDOFF
-// Cascade handoff (SEED only): outside this volume the neighbours are the next coarser cascade's
-// result, so light from beyond the border flows in (Kaplanyan & Dachsbacher 2010).
+// Cascade handoff: outside this volume the neighbours are the next coarser cascade's result,
+// so light from beyond the border flows in (Kaplanyan & Dachsbacher 2010). A variant of its own:
+// a CPU rasterizer would evaluate the coarse lookups for every lane, inside or not.
 layout(binding = 20) uniform sampler3D coarseRed;
 layout(binding = 21) uniform sampler3D coarseGreen;
 layout(binding = 22) uniform sampler3D coarseBlue;
@@ -68,17 +63,7 @@ layout(binding = 3, INJECT_FORMAT) uniform readonly image3D injectedBlue;
 #define PARTIAL_IMAGE uimage3D
 #define PARTIAL_TEXEL uvec4
 #endif
-// Partial sums are (n + 2)^3 (odd n: one more) with the shell; cell c is at c + 1.
-#ifdef SEED
-// The other partial-sum volume: only its shell is written.
-layout(binding = 4, PACKED0_FORMAT) uniform writeonly PARTIAL_IMAGE shell0;
-#if PACKED_TEXELS > 1
-layout(binding = 5, PACKED1_FORMAT) uniform writeonly PARTIAL_IMAGE shell1;
-#endif
-#if PACKED_TEXELS > 2
-layout(binding = 6, PACKED2_FORMAT) uniform writeonly PARTIAL_IMAGE shell2;
-#endif
-#else
+#ifndef FROM_INJECTION
 layout(binding = 4, PACKED0_FORMAT) uniform readonly PARTIAL_IMAGE src0;
 #if PACKED_TEXELS > 1
 layout(binding = 5, PACKED1_FORMAT) uniform readonly PARTIAL_IMAGE src1;
@@ -168,17 +153,31 @@ Sh3 outside(ivec3 c) {
 #endif
 }
 
-// The injection volume at a cell inside the volume (clamped: with an odd n the 2x2 column may stick
-// out, and storeCell drops those cells).
-Sh3 loadInjected(ivec3 c, int n) {
-    const ivec3 k = min(c, ivec3(n - 1));
-    return Sh3(imageLoad(injectedRed, k), imageLoad(injectedGreen, k), imageLoad(injectedBlue, k));
+// Beyond the volume a cell reads outside(); the coordinate is clamped first so that no access is
+// ever out of range, and the choice is a select (mix with a bvec), not a branch: a CPU rasterizer
+// runs every branch with lane masks, and ?: or && on vectors compile to branches.
+Sh3 insideOr(ivec3 c, ivec3 k, Sh3 v) {
+    const bvec4 inside = bvec4(all(equal(c, k)));
+#ifdef HANDOFF
+    const Sh3 o = outside(c);
+#else
+    const Sh3 o = Sh3(vec4(0.0), vec4(0.0), vec4(0.0));
+#endif
+    return Sh3(mix(o.r, v.r, inside), mix(o.g, v.g, inside), mix(o.b, v.b, inside));
 }
 
-#ifndef SEED
-// The previous iteration's partial sum at a cell, or the shell's value one cell beyond the volume.
-Sh3 loadSource(ivec3 c) {
-    const ivec3 k = c + 1;
+// The injection volume at a cell, or outside() beyond the volume.
+Sh3 loadInjected(ivec3 c, int n) {
+    const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
+    return insideOr(c, k, Sh3(imageLoad(injectedRed, k), imageLoad(injectedGreen, k), imageLoad(injectedBlue, k)));
+}
+
+// The previous iteration's partial sum at a cell (outside() beyond the volume).
+Sh3 loadSource(ivec3 c, int n) {
+#ifdef FROM_INJECTION
+    return loadInjected(c, n);
+#else
+    const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
     PARTIAL_TEXEL t0 = imageLoad(src0, k), t1 = PARTIAL_TEXEL(0), t2 = PARTIAL_TEXEL(0);
 #if PACKED_TEXELS > 1
     t1 = imageLoad(src1, k);
@@ -186,21 +185,7 @@ Sh3 loadSource(ivec3 c) {
 #if PACKED_TEXELS > 2
     t2 = imageLoad(src2, k);
 #endif
-    return unpackCell(t0, t1, t2);
-}
-#endif
-
-void storePartial(ivec3 p, Sh3 v) {
-#ifndef TO_RESULT
-    PARTIAL_TEXEL t0, t1, t2;
-    packCell(v, t0, t1, t2);
-    imageStore(dst0, p, t0);
-#if PACKED_TEXELS > 1
-    imageStore(dst1, p, t1);
-#endif
-#if PACKED_TEXELS > 2
-    imageStore(dst2, p, t2);
-#endif
+    return insideOr(c, k, unpackCell(t0, t1, t2));
 #endif
 }
 
@@ -211,7 +196,15 @@ void storeCell(ivec3 c, int n, Sh3 v) {
     imageStore(resultGreen, c, encodeSh(v.g));
     imageStore(resultBlue, c, encodeSh(v.b));
 #else
-    storePartial(c + 1, v);
+    PARTIAL_TEXEL t0, t1, t2;
+    packCell(v, t0, t1, t2);
+    imageStore(dst0, c, t0);
+#if PACKED_TEXELS > 1
+    imageStore(dst1, c, t1);
+#endif
+#if PACKED_TEXELS > 2
+    imageStore(dst2, c, t2);
+#endif
 #endif
 }
 
@@ -225,31 +218,6 @@ vec3 faces(ivec3 c, int n) {
 #endif
 }
 
-#ifdef SEED
-// y(0) = x inside the volume and the shell around it, in both partial-sum volumes; one thread per
-// cell of the padded volume.
-void main() {
-    const int n = params.grid.x;
-    const ivec3 p = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(p, ivec3(n + 2 + (n & 1))))) return;
-    const ivec3 c = p - 1;
-    if (all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)))) {
-        storePartial(p, loadInjected(c, n));
-        return;
-    }
-    const Sh3 v = outside(c);
-    storePartial(p, v);
-    PARTIAL_TEXEL t0, t1, t2;
-    packCell(v, t0, t1, t2);
-    imageStore(shell0, p, t0);
-#if PACKED_TEXELS > 1
-    imageStore(shell1, p, t1);
-#endif
-#if PACKED_TEXELS > 2
-    imageStore(shell2, p, t2);
-#endif
-}
-#else
 void main() {
     const int n = params.grid.x;
     const ivec2 o = ivec2(gl_GlobalInvocationID.xy) * 2; // the 2x2 column: o, o+x, o+y, o+x+y
@@ -258,22 +226,22 @@ void main() {
     const int z1 = min(z0 + params.grid.y, n);
     // The column's cells below, at and above the current slice: 0 = (0,0), 1 = (1,0), 2 = (0,1),
     // 3 = (1,1) relative to o.
-    Sh3 below0 = loadSource(ivec3(o, z0 - 1)), below1 = loadSource(ivec3(o + ivec2(1, 0), z0 - 1));
-    Sh3 below2 = loadSource(ivec3(o + ivec2(0, 1), z0 - 1)), below3 = loadSource(ivec3(o + ivec2(1, 1), z0 - 1));
-    Sh3 at0 = loadSource(ivec3(o, z0)), at1 = loadSource(ivec3(o + ivec2(1, 0), z0));
-    Sh3 at2 = loadSource(ivec3(o + ivec2(0, 1), z0)), at3 = loadSource(ivec3(o + ivec2(1, 1), z0));
+    Sh3 below0 = loadSource(ivec3(o, z0 - 1), n), below1 = loadSource(ivec3(o + ivec2(1, 0), z0 - 1), n);
+    Sh3 below2 = loadSource(ivec3(o + ivec2(0, 1), z0 - 1), n), below3 = loadSource(ivec3(o + ivec2(1, 1), z0 - 1), n);
+    Sh3 at0 = loadSource(ivec3(o, z0), n), at1 = loadSource(ivec3(o + ivec2(1, 0), z0), n);
+    Sh3 at2 = loadSource(ivec3(o + ivec2(0, 1), z0), n), at3 = loadSource(ivec3(o + ivec2(1, 1), z0), n);
     vec3 face0 = faces(ivec3(o, z0), n), face1 = faces(ivec3(o + ivec2(1, 0), z0), n);
     vec3 face2 = faces(ivec3(o + ivec2(0, 1), z0), n), face3 = faces(ivec3(o + ivec2(1, 1), z0), n);
     for (int z = z0; z < z1; ++z) {
-        const Sh3 above0 = loadSource(ivec3(o, z + 1)), above1 = loadSource(ivec3(o + ivec2(1, 0), z + 1));
-        const Sh3 above2 = loadSource(ivec3(o + ivec2(0, 1), z + 1));
-        const Sh3 above3 = loadSource(ivec3(o + ivec2(1, 1), z + 1));
+        const Sh3 above0 = loadSource(ivec3(o, z + 1), n), above1 = loadSource(ivec3(o + ivec2(1, 0), z + 1), n);
+        const Sh3 above2 = loadSource(ivec3(o + ivec2(0, 1), z + 1), n);
+        const Sh3 above3 = loadSource(ivec3(o + ivec2(1, 1), z + 1), n);
         // The ring around the column in this slice: left, right, bottom (-y) and top (+y).
-        const Sh3 left0 = loadSource(ivec3(o + ivec2(-1, 0), z)), left2 = loadSource(ivec3(o + ivec2(-1, 1), z));
-        const Sh3 right1 = loadSource(ivec3(o + ivec2(2, 0), z)), right3 = loadSource(ivec3(o + ivec2(2, 1), z));
-        const Sh3 bottom0 = loadSource(ivec3(o + ivec2(0, -1), z));
-        const Sh3 bottom1 = loadSource(ivec3(o + ivec2(1, -1), z));
-        const Sh3 top2 = loadSource(ivec3(o + ivec2(0, 2), z)), top3 = loadSource(ivec3(o + ivec2(1, 2), z));
+        const Sh3 left0 = loadSource(ivec3(o + ivec2(-1, 0), z), n), left2 = loadSource(ivec3(o + ivec2(-1, 1), z), n);
+        const Sh3 right1 = loadSource(ivec3(o + ivec2(2, 0), z), n), right3 = loadSource(ivec3(o + ivec2(2, 1), z), n);
+        const Sh3 bottom0 = loadSource(ivec3(o + ivec2(0, -1), z), n);
+        const Sh3 bottom1 = loadSource(ivec3(o + ivec2(1, -1), z), n);
+        const Sh3 top2 = loadSource(ivec3(o + ivec2(0, 2), z), n), top3 = loadSource(ivec3(o + ivec2(1, 2), z), n);
 
         const vec3 faceAbove0 = faces(ivec3(o, z + 1), n), faceAbove1 = faces(ivec3(o + ivec2(1, 0), z + 1), n);
         const vec3 faceAbove2 = faces(ivec3(o + ivec2(0, 1), z + 1), n);
@@ -285,11 +253,15 @@ void main() {
         Sh3 out1 = gather(at0, right1, bottom1, at3, below1, above1, face1, vec3(faceRight1.x, face3.y, faceAbove1.z));
         Sh3 out2 = gather(left2, at3, at0, top2, below2, above2, face2, vec3(face3.x, faceTop2.y, faceAbove2.z));
         Sh3 out3 = gather(at2, right3, at1, top3, below3, above3, face3, vec3(faceRight3.x, faceTop3.y, faceAbove3.z));
-        // + x, read from the injection.
+        // + x: on the first iteration the source is x itself; later it is read from the injection.
+#ifdef FROM_INJECTION
+        out0 = add(out0, at0), out1 = add(out1, at1), out2 = add(out2, at2), out3 = add(out3, at3);
+#else
         out0 = add(out0, loadInjected(ivec3(o, z), n));
         out1 = add(out1, loadInjected(ivec3(o + ivec2(1, 0), z), n));
         out2 = add(out2, loadInjected(ivec3(o + ivec2(0, 1), z), n));
         out3 = add(out3, loadInjected(ivec3(o + ivec2(1, 1), z), n));
+#endif
         storeCell(ivec3(o, z), n, out0);
         storeCell(ivec3(o + ivec2(1, 0), z), n, out1);
         storeCell(ivec3(o + ivec2(0, 1), z), n, out2);
@@ -300,4 +272,3 @@ void main() {
         face0 = faceAbove0, face1 = faceAbove1, face2 = faceAbove2, face3 = faceAbove3;
     }
 }
-#endif

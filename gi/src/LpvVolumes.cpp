@@ -24,23 +24,27 @@ struct PropagateUniforms {
     glm::vec4 handoff;
 };
 
-// Kernel roles (propagate_body.glsl): the seed, with or without the coarser cascade around; an
-// iteration and the last one, with or without occlusion.
-enum Role { kSeed, kSeedHandoff, kNext, kLast, kNextOccluded, kLastOccluded, kRoles };
+// Iteration roles: first reads the injection, last writes the result, only does both.
+enum Role { kFirst, kNext, kLast, kOnly };
 
-const rhi::ShaderBinary& propagateShader(ShFormat f, int role) {
+const rhi::ShaderBinary& propagateShader(ShFormat f, int variant, int role) {
     using namespace shaders;
-#define LPV_ROLES(format)                                                                                    \
+#define LPV_ROLES(format, suffix)                                                                            \
     {                                                                                                        \
-        &propagate_##format##_seed_comp, &propagate_##format##_seed_handoff_comp,                            \
-            &propagate_##format##_next_comp, &propagate_##format##_last_comp,                                \
-            &propagate_##format##_next_occluded_comp, &propagate_##format##_last_occluded_comp               \
+        &propagate_##format##_first##suffix##_comp, &propagate_##format##_next##suffix##_comp,               \
+            &propagate_##format##_last##suffix##_comp, &propagate_##format##_only##suffix##_comp             \
     }
-    static const rhi::ShaderBinary* const table[3][kRoles] = {LPV_ROLES(rgba8), LPV_ROLES(rgba16f),
-                                                              LPV_ROLES(rgba32f)};
+    // Variant: bit 0 occlusion, bit 1 handoff.
+    static const rhi::ShaderBinary* const table[3][4][4] = {
+        {LPV_ROLES(rgba8, ), LPV_ROLES(rgba8, _occluded), LPV_ROLES(rgba8, _handoff),
+         LPV_ROLES(rgba8, _occluded_handoff)},
+        {LPV_ROLES(rgba16f, ), LPV_ROLES(rgba16f, _occluded), LPV_ROLES(rgba16f, _handoff),
+         LPV_ROLES(rgba16f, _occluded_handoff)},
+        {LPV_ROLES(rgba32f, ), LPV_ROLES(rgba32f, _occluded), LPV_ROLES(rgba32f, _handoff),
+         LPV_ROLES(rgba32f, _occluded_handoff)}};
 #undef LPV_ROLES
     const int row = f == ShFormat::Rgba8 ? 0 : f == ShFormat::Rgba16f ? 1 : 2;
-    return *table[row][role];
+    return *table[row][variant][role];
 }
 
 } // namespace
@@ -54,10 +58,6 @@ uint32_t packedTexelCount(ShFormat f) {
         break;
     }
     return 3;
-}
-
-uint32_t paddedPartialSize(uint32_t n) {
-    return n + 2 + (n & 1);
 }
 
 uint32_t propagationColumnLength(uint32_t n, uint32_t concurrentWorkgroups) {
@@ -94,11 +94,10 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
             volume(injectFormat, kTextureColorTarget | kTextureSampled | kTextureStorage, "injection");
         accum_[size_t(c)] = volume(shFormat, kTextureStorage | kTextureSampled, "accumulated");
     }
-    const uint32_t padded = paddedPartialSize(n);
     for (uint32_t t = 0; t < packedTexelCount(settings.shFormat); ++t)
         for (uint32_t p = 0; p < 2; ++p)
             partial_[p][t] = device.createTexture(
-                {TextureKind::Tex3D, packedTexelFormat(settings.shFormat, t), padded, padded, padded, 1,
+                {TextureKind::Tex3D, packedTexelFormat(settings.shFormat, t), n, n, n, 1,
                  kTextureStorage | kTextureSampled | kTextureTransfer,
                  std::string(p ? "lpv partial sum pong " : "lpv partial sum ping ") + std::to_string(t),
                  "gi.lpv"});
@@ -110,12 +109,12 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
     d.blend = {BlendState::additive()};
     d.debugName = "lpv inject";
     injectPipeline_ = device.createPipeline(d);
-    const char* roleNames[kRoles] = {
-        "lpv propagate seed", "lpv propagate seed (handoff)", "lpv propagate",
-        "lpv propagate last", "lpv propagate (occluded)",     "lpv propagate last (occluded)"};
-    for (int role = 0; role < kRoles; ++role)
-        propagatePipelines_[size_t(role)] = device.createPipeline(
-            ComputePipelineDesc{&propagateShader(settings.shFormat, role), roleNames[role]});
+    const char* roleNames[4] = {"lpv propagate first", "lpv propagate", "lpv propagate last",
+                                "lpv propagate once"};
+    for (int variant = 0; variant < 4; ++variant)
+        for (int role = 0; role < 4; ++role)
+            propagatePipelines_[size_t(variant)][size_t(role)] = device.createPipeline(
+                ComputePipelineDesc{&propagateShader(settings.shFormat, variant, role), roleNames[role]});
     SamplerDesc linear;
     linear.mipFilter = Filter::Nearest;
     linearSampler_ = device.createSampler(linear);
@@ -127,8 +126,9 @@ LpvVolumes::~LpvVolumes() {
         for (rhi::TextureHandle t : *set)
             if (t) device_.destroy(t);
     device_.destroy(injectPipeline_);
-    for (rhi::ComputePipelineHandle p : propagatePipelines_)
-        device_.destroy(p);
+    for (const auto& set : propagatePipelines_)
+        for (rhi::ComputePipelineHandle p : set)
+            device_.destroy(p);
     device_.destroy(linearSampler_);
 }
 
@@ -205,33 +205,24 @@ void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::Text
         const float ratio = handoff->fineGrid.cellSize / handoff->coarseGrid.cellSize;
         u.encode.y = ratio * ratio;
     }
-    // y(0) = x and the shell go to partial_[1] (the shell to partial_[0] too); y(k+1) = x + P y(k)
-    // goes to partial_[k % 2]; the last iteration writes y(N), the accumulated result, into target.
-    const uint32_t padded = paddedPartialSize(n);
-    cmd.bindPipeline(propagatePipelines_[size_t(handoff ? kSeedHandoff : kSeed)]);
-    cmd.pushUniforms(0, &u, sizeof(u));
-    if (handoff)
-        for (uint32_t c = 0; c < 3; ++c)
-            cmd.bindTexture(20 + c, handoff->coarse[c], linearSampler_);
-    for (uint32_t c = 0; c < 3; ++c)
-        cmd.bindStorageImage(1 + c, inject_[c]);
-    for (uint32_t t = 0; t < texels; ++t) {
-        cmd.bindStorageImage(4 + t, partial_[0][t]);
-        cmd.bindStorageImage(7 + t, partial_[1][t]);
-    }
-    cmd.dispatch((padded + 7) / 8, (padded + 7) / 8, padded);
+    // y(0) is the injection volume; y(k+1) = x + P y(k) goes to partial_[k % 2]; the last
+    // iteration writes y(N), the accumulated result, into accum_.
     for (uint32_t i = 0; i < iterations; ++i) {
-        const bool last = i + 1 == iterations;
-        const int role = faceTransmittance ? (last ? kLastOccluded : kNextOccluded) : (last ? kLast : kNext);
-        cmd.bindPipeline(propagatePipelines_[size_t(role)]);
+        const bool first = i == 0, last = i + 1 == iterations;
+        const int role = first && last ? kOnly : first ? kFirst : last ? kLast : kNext;
+        const int variant = (faceTransmittance ? 1 : 0) | (handoff ? 2 : 0);
+        cmd.bindPipeline(propagatePipelines_[size_t(variant)][size_t(role)]);
         cmd.pushUniforms(0, &u, sizeof(u));
         if (faceTransmittance) cmd.bindStorageImage(19, faceTransmittance);
+        if (handoff)
+            for (uint32_t c = 0; c < 3; ++c)
+                cmd.bindTexture(20 + c, handoff->coarse[c], linearSampler_);
         for (uint32_t c = 0; c < 3; ++c) {
             cmd.bindStorageImage(1 + c, inject_[c]);
             if (last) cmd.bindStorageImage(10 + c, target[c]);
         }
         for (uint32_t t = 0; t < texels; ++t) {
-            cmd.bindStorageImage(4 + t, partial_[(i + 1) % 2][t]);
+            if (!first) cmd.bindStorageImage(4 + t, partial_[(i + 1) % 2][t]);
             if (!last) cmd.bindStorageImage(7 + t, partial_[i % 2][t]);
         }
         cmd.dispatch((n + 15) / 16, (n + 15) / 16, (n + column - 1) / column);

@@ -1,8 +1,7 @@
 // The light propagation volume itself: injection of VPLs into a float volume (points drawn per
 // slice with additive blending), then N propagation iterations whose partial sums ping-pong
-// between two packed volumes with a shell of what lies beyond the border, the last writing the
-// accumulated volume in gi.sh_format. Three SH textures (R, G, B) for the injection and the
-// accumulation.
+// between two packed volumes, the last writing the accumulated volume in gi.sh_format. Three SH
+// textures (R, G, B) for the injection and the accumulation.
 #pragma once
 
 #include "gi/LpvReference.h"
@@ -22,9 +21,6 @@ namespace lpv::gi {
 // bits): see propagate_body.glsl.
 uint32_t packedTexelCount(ShFormat f);
 rhi::Format packedTexelFormat(ShFormat f, uint32_t texel);
-// Cells per axis of a partial-sum volume for an n^3 LPV: a shell of one cell around it holds what
-// lies beyond the border, and an odd n gets one more layer for the 2x2 columns that stick out.
-uint32_t paddedPartialSize(uint32_t n);
 
 // Cells per propagation thread along z for an n^3 volume: a CPU rasterizer runs one workgroup per
 // host thread and pays for every fetch, so there each thread walks a long column (its z
@@ -93,12 +89,11 @@ private:
     uint32_t columnLength_;
     bool layered_; // injection in one layered draw (rhi Caps::vertexShaderLayer)
     std::array<rhi::TextureHandle, 3> inject_, accum_;
-    // Partial sums between iterations, ping and pong, packed (packedTexelCount texels per cell),
-    // paddedPartialSize(n)^3 with the shell.
+    // Partial sums between iterations, ping and pong, packed (packedTexelCount texels per cell).
     std::array<std::array<rhi::TextureHandle, 3>, 2> partial_{};
     rhi::GraphicsPipelineHandle injectPipeline_;
-    // By kernel role (LpvVolumes.cpp's Role).
-    std::array<rhi::ComputePipelineHandle, 6> propagatePipelines_{};
+    // By variant (bit 0: occlusion, bit 1: handoff) and iteration role.
+    std::array<std::array<rhi::ComputePipelineHandle, 4>, 4> propagatePipelines_{};
     rhi::SamplerHandle linearSampler_; // the coarse cascade's result (handoff)
 };
 
