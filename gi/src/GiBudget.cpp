@@ -33,10 +33,13 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
         {"analytic light buffers (one per cascade)", "gi.lights",
          s.cascades * PointLightInjection::kBufferBytes},
     };
-    // Every further cascade keeps its own result; the scratch volumes above serve them in turn.
-    for (uint32_t c = 1; c < s.cascades; ++c)
+    // Every further cascade keeps its own result, and its VPLs (its update may be split over two
+    // frames); the scratch volumes above serve them in turn.
+    for (uint32_t c = 1; c < s.cascades; ++c) {
         out.push_back({"accumulation, cascade " + std::to_string(c) + " (3 SH textures)", "gi.lpv",
                        3 * cells * shBytes});
+        out.push_back({"vpl buffer, cascade " + std::to_string(c), "gi.vpl", uint64_t(s.vplCount) * 48});
+    }
     // Spot lights with their own RSM (SpotLightRsms): an RSM and a VPL buffer each.
     for (uint32_t k = 0; k < s.lightRsms; ++k) {
         const std::string light = "spot light " + std::to_string(k);
