@@ -1,9 +1,10 @@
 // GI benchmark, two parts, every backend in one run (compare ratios, not absolute times: this
 // machine is noisy):
-//  1. Propagation kernels: the shipped kernel against the straightforward 5-face gather kept here
-//     as the baseline, 32^3 x 8 iterations, RGBA16F, same injected VPLs; median GPU time of each,
-//     the speedup as the median of the per-run ratios (both kernels run in the same frame), and
-//     the largest difference between their results.
+//  1. Propagation kernels: the shipped kernel, with bounded partial sums (one cascade) and with a
+//     shell (several cascades, gi::partialSumShell), against the straightforward 5-face gather kept
+//     here as the baseline, 32^3 x 8 iterations, RGBA16F, same injected VPLs; median GPU time of
+//     each, the speedups as the medians of the per-run ratios (all three run in the same frame),
+//     and the largest difference between their results.
 //  1b. Analytic lights: the gi/lights pass alone (gi/PointLightInjection.h) for 128 and 1024 point
 //     lights of the lights hall, 32^3, RGBA16F; median GPU time.
 //  2. Frames: the Cornell box and the atrium at 1280x720 with GI on (3 cascades of 32^3, 8
@@ -115,7 +116,11 @@ void benchPropagation(const BenchBackend& b, int runs) {
     const BufferHandle vplBuffer = device->createBuffer(
         {vpls.size() * sizeof(GpuVpl), kBufferStorage, MemoryAccess::GpuOnly, "bench vpls", "bench"},
         vpls.data());
-    gi::LpvVolumes volumes(*device, s);
+    s.cascades = 1;
+    gi::LpvVolumes volumes(*device, s); // bounded partial sums
+    gi::LpvSettings cascaded = s;
+    cascaded.cascades = 3;
+    gi::LpvVolumes shellVolumes(*device, cascaded); // with the shell (seeded with nothing here)
     // Baseline volumes: per channel a ping, a pong and an accumulation, RGBA16F.
     std::array<TextureHandle, 3> start{}, ping{}, pong{}, acc{};
     for (int c = 0; c < 3; ++c) {
@@ -135,11 +140,12 @@ void benchPropagation(const BenchBackend& b, int runs) {
         ComputePipelineDesc{&bench::shaders::accumulate_baseline_comp, "baseline accumulate"});
     const glm::ivec4 params(32, 0, 0, 0);
 
-    std::vector<double> shipped, straightforward, ratios;
+    std::vector<double> shipped, shelled, straightforward, ratios, shellRatios;
     for (int run = 0; run < runs + 1; ++run) {
         CommandList& cmd = device->beginFrame();
         const uint64_t frame = device->frameIndex();
         volumes.inject(cmd, vplBuffer, uint32_t(vpls.size()), grid, {0, -1, 0}, 1.0f);
+        shellVolumes.inject(cmd, vplBuffer, uint32_t(vpls.size()), grid, {0, -1, 0}, 1.0f);
         // The baseline reads images: it starts from copies of the injected volume.
         for (int c = 0; c < 3; ++c) {
             cmd.copyTexture(volumes.injected()[size_t(c)], acc[size_t(c)]);
@@ -148,6 +154,8 @@ void benchPropagation(const BenchBackend& b, int runs) {
         cmd.writeTimestamp(0);
         volumes.propagate(cmd, s.iterations);
         cmd.writeTimestamp(1);
+        shellVolumes.propagate(cmd, s.iterations);
+        cmd.writeTimestamp(2);
         const std::array<TextureHandle, 3>* src = &start;
         for (uint32_t i = 0; i < s.iterations; ++i) {
             const std::array<TextureHandle, 3>* dst = (i % 2 == 0) ? &ping : &pong;
@@ -165,31 +173,35 @@ void benchPropagation(const BenchBackend& b, int runs) {
             }
             src = dst;
         }
-        cmd.writeTimestamp(2);
+        cmd.writeTimestamp(3);
         device->endFrame();
         device->waitIdle();
-        uint64_t ts[3] = {};
+        uint64_t ts[4] = {};
         if (run > 0 && device->readTimestamps(frame, ts)) {
             shipped.push_back(double(ts[1] - ts[0]) / 1e6);
-            straightforward.push_back(double(ts[2] - ts[1]) / 1e6);
+            shelled.push_back(double(ts[2] - ts[1]) / 1e6);
+            straightforward.push_back(double(ts[3] - ts[2]) / 1e6);
             ratios.push_back(straightforward.back() / shipped.back());
+            shellRatios.push_back(straightforward.back() / shelled.back());
         }
     }
     float worst = 0, peak = 0;
     for (int c = 0; c < 3; ++c) {
         const std::vector<float> a = readVolume(*device, volumes.accumulated()[size_t(c)]);
+        const std::vector<float> sh = readVolume(*device, shellVolumes.accumulated()[size_t(c)]);
         const std::vector<float> bsl = readVolume(*device, acc[size_t(c)]);
         for (size_t i = 0; i < a.size(); ++i) {
-            worst = std::max(worst, std::fabs(a[i] - bsl[i]));
+            worst = std::max({worst, std::fabs(a[i] - bsl[i]), std::fabs(sh[i] - bsl[i])});
             peak = std::max(peak, std::fabs(bsl[i]));
         }
     }
-    const double ms = median(shipped), base = median(straightforward);
-    // Both kernels run in the same frame, so the per-run ratio cancels most of the machine's noise;
+    // The kernels run in the same frame, so the per-run ratio cancels most of the machine's noise;
     // the quartiles say how much is left.
-    std::printf("| %-9s | %10.2f | %11.2f | %6.2fx | %5.2f-%5.2fx | %12.2e | %-16s |\n", b.name.c_str(), ms,
-                base, median(ratios), quantile(ratios, 0.25), quantile(ratios, 0.75),
-                peak > 0 ? worst / peak : 0.0,
+    std::printf("| %-9s | %10.2f | %8.2f | %11.2f | %6.2fx | %5.2f-%5.2fx | %6.2fx | %5.2f-%5.2fx | %12.2e | "
+                "%-16s |\n",
+                b.name.c_str(), median(shipped), median(shelled), median(straightforward), median(ratios),
+                quantile(ratios, 0.25), quantile(ratios, 0.75), median(shellRatios),
+                quantile(shellRatios, 0.25), quantile(shellRatios, 0.75), peak > 0 ? worst / peak : 0.0,
                 std::string(rhi::timestampSourceName(device->caps().timestampSource)).c_str());
     std::fflush(stdout);
     device->waitIdle();
@@ -529,14 +541,15 @@ int main(int argc, char** argv) {
     int failures = 0;
     if (want("propagation")) {
         std::printf(
-            "## Propagation, 32^3 x 8 iterations, RGBA16F (median of %d runs, ms; speedup: median of\n"
-            "## the per-run ratios baseline / shipped, both timed in the same frame; quartiles of those "
+            "## Propagation, 32^3 x 8 iterations, RGBA16F (median of %d runs, ms; shipped: bounded partial\n"
+            "## sums, as for one cascade; shell: with the shell of several cascades; speedups: medians of\n"
+            "## the per-run ratios baseline / shipped, all timed in the same frame; quartiles of those "
             "ratios)\n\n",
             kernelRuns);
-        std::printf("| backend   | shipped ms | baseline ms | speedup | quartiles    | max rel diff | timing "
-                    "source    |\n");
-        std::printf("|-----------|------------|-------------|---------|--------------|--------------|--------"
-                    "----------|\n");
+        std::printf("| backend   | shipped ms | shell ms | baseline ms | speedup | quartiles    | shell   | "
+                    "quartiles    | max rel diff | timing source    |\n");
+        std::printf("|-----------|------------|----------|-------------|---------|--------------|---------|-"
+                    "-------------|--------------|------------------|\n");
         for (const auto& b : backends) {
             try {
                 benchPropagation(b, kernelRuns);

@@ -1,7 +1,10 @@
 // The shipped propagation kernel, included by propagate_<format>.glsl (SH_FORMAT, the packed
 // texels that carry a cell's 12 coefficients between iterations, and their packing), compiled
-// once per iteration role (gi/CMakeLists.txt): FROM_INJECTION on the first iteration, TO_RESULT on
-// the last. Roles are compile-time because a CPU rasterizer runs both sides of a uniform branch.
+// once per role (gi/CMakeLists.txt). Partial sums come in two layouts (LpvVolumes.h,
+// partialSumShell): bounded (n^3: FROM_INJECTION on the first iteration, TO_RESULT on the last,
+// cells beyond the border chosen by a select) and, where a coarser cascade hands light in, SHELL
+// (a one-cell shell around the volume: SEED before the first iteration, then plain loads). Roles
+// are compile-time because a CPU rasterizer runs both sides of a uniform branch.
 //
 // Why it looks like this (figures in the README):
 // - Propagation is linear in the SH coefficients: the five faces a neighbour lights, each
@@ -11,6 +14,14 @@
 // - Linearity also folds the accumulation into the iteration (Horner's rule): with x the injected
 //   volume, y0 = x and y(k+1) = x + P y(k), so y(N) = x + Px + ... + P^N x is the accumulated
 //   result. No accumulation texture is read or written until the last iteration stores y(N).
+// - SHELL: the partial-sum volumes carry a one-cell shell around the volume, what lies beyond the
+//   border. SEED writes y(0) = x inside and the shell once per propagation (nothing, or the
+//   coarser cascade's result: the handoff, constant over the iterations), so an iteration reads
+//   every neighbour with a plain load, without a bounds test or a select. Choosing the handoff
+//   value per load cost 3 trilinear fetches per load on a CPU rasterizer (which evaluates both
+//   sides of a select for every lane): 35-37 ms instead of 14-16 per cascade on llvmpipe. The
+//   shell costs memory (34^3 instead of 32^3 cells, twice), so a single cascade, which has no
+//   handoff and selects a plain zero, keeps the bounded layout: the Xbox 360 budget holds one.
 // - Memory operations dominate on every device we measured, so each thread owns a 2x2 column of
 //   cells and walks it along z: the z neighbours come from registers, the x/y neighbours inside
 //   the 2x2 from registers, and only the 8 cells around it are fetched per step (3 fetched cells
@@ -42,9 +53,8 @@ layout(binding = 0, std140) uniform Propagate {
     vec4 handoff; // xyz: the coarse volume's uvw at cell (0,0,0)'s centre; w: uvw per cell
 } params;
 #ifdef HANDOFF
-// Cascade handoff: outside this volume the neighbours are the next coarser cascade's result,
-// so light from beyond the border flows in (Kaplanyan & Dachsbacher 2010). A variant of its own:
-// a CPU rasterizer would evaluate the coarse lookups for every lane, inside or not.
+// Cascade handoff (SEED only): outside this volume the neighbours are the next coarser cascade's
+// result, so light from beyond the border flows in (Kaplanyan & Dachsbacher 2010).
 layout(binding = 20) uniform sampler3D coarseRed;
 layout(binding = 21) uniform sampler3D coarseGreen;
 layout(binding = 22) uniform sampler3D coarseBlue;
@@ -63,7 +73,17 @@ layout(binding = 3, INJECT_FORMAT) uniform readonly image3D injectedBlue;
 #define PARTIAL_IMAGE uimage3D
 #define PARTIAL_TEXEL uvec4
 #endif
-#ifndef FROM_INJECTION
+// SHELL: partial sums are (n + 2)^3 (odd n: one more); cell c is at c + 1.
+#ifdef SEED
+// The other partial-sum volume: only its shell is written.
+layout(binding = 4, PACKED0_FORMAT) uniform writeonly PARTIAL_IMAGE shell0;
+#if PACKED_TEXELS > 1
+layout(binding = 5, PACKED1_FORMAT) uniform writeonly PARTIAL_IMAGE shell1;
+#endif
+#if PACKED_TEXELS > 2
+layout(binding = 6, PACKED2_FORMAT) uniform writeonly PARTIAL_IMAGE shell2;
+#endif
+#elif !defined(FROM_INJECTION)
 layout(binding = 4, PACKED0_FORMAT) uniform readonly PARTIAL_IMAGE src0;
 #if PACKED_TEXELS > 1
 layout(binding = 5, PACKED1_FORMAT) uniform readonly PARTIAL_IMAGE src1;
@@ -153,16 +173,39 @@ Sh3 outside(ivec3 c) {
 #endif
 }
 
-// Beyond the volume a cell reads outside(); the coordinate is clamped first so that no access is
-// ever out of range, and the choice is a select (mix with a bvec), not a branch: a CPU rasterizer
-// runs every branch with lane masks, and ?: or && on vectors compile to branches.
+#if !defined(SEED) && !defined(FROM_INJECTION)
+// The previous iteration's partial sum at texel k of the partial-sum volumes.
+Sh3 loadPartial(ivec3 k) {
+    PARTIAL_TEXEL t0 = imageLoad(src0, k), t1 = PARTIAL_TEXEL(0), t2 = PARTIAL_TEXEL(0);
+#if PACKED_TEXELS > 1
+    t1 = imageLoad(src1, k);
+#endif
+#if PACKED_TEXELS > 2
+    t2 = imageLoad(src2, k);
+#endif
+    return unpackCell(t0, t1, t2);
+}
+#endif
+
+#ifdef SHELL
+// The injection volume at a cell inside the volume (clamped: with an odd n the 2x2 column may stick
+// out, and storeCell drops those cells).
+Sh3 loadInjected(ivec3 c, int n) {
+    const ivec3 k = min(c, ivec3(n - 1));
+    return Sh3(imageLoad(injectedRed, k), imageLoad(injectedGreen, k), imageLoad(injectedBlue, k));
+}
+
+#ifndef SEED
+// The previous iteration's partial sum at a cell, or the shell's value one cell beyond the volume.
+Sh3 loadSource(ivec3 c, int n) { return loadPartial(c + 1); }
+#endif
+#else
+// Bounded: beyond the volume a cell reads outside(); the coordinate is clamped first so that no
+// access is ever out of range, and the choice is a select (mix with a bvec), not a branch: a CPU
+// rasterizer runs every branch with lane masks, and ?: or && on vectors compile to branches.
 Sh3 insideOr(ivec3 c, ivec3 k, Sh3 v) {
     const bvec4 inside = bvec4(all(equal(c, k)));
-#ifdef HANDOFF
     const Sh3 o = outside(c);
-#else
-    const Sh3 o = Sh3(vec4(0.0), vec4(0.0), vec4(0.0));
-#endif
     return Sh3(mix(o.r, v.r, inside), mix(o.g, v.g, inside), mix(o.b, v.b, inside));
 }
 
@@ -178,14 +221,22 @@ Sh3 loadSource(ivec3 c, int n) {
     return loadInjected(c, n);
 #else
     const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
-    PARTIAL_TEXEL t0 = imageLoad(src0, k), t1 = PARTIAL_TEXEL(0), t2 = PARTIAL_TEXEL(0);
+    return insideOr(c, k, loadPartial(k));
+#endif
+}
+#endif
+
+void storePartial(ivec3 p, Sh3 v) {
+#ifndef TO_RESULT
+    PARTIAL_TEXEL t0, t1, t2;
+    packCell(v, t0, t1, t2);
+    imageStore(dst0, p, t0);
 #if PACKED_TEXELS > 1
-    t1 = imageLoad(src1, k);
+    imageStore(dst1, p, t1);
 #endif
 #if PACKED_TEXELS > 2
-    t2 = imageLoad(src2, k);
+    imageStore(dst2, p, t2);
 #endif
-    return insideOr(c, k, unpackCell(t0, t1, t2));
 #endif
 }
 
@@ -196,14 +247,10 @@ void storeCell(ivec3 c, int n, Sh3 v) {
     imageStore(resultGreen, c, encodeSh(v.g));
     imageStore(resultBlue, c, encodeSh(v.b));
 #else
-    PARTIAL_TEXEL t0, t1, t2;
-    packCell(v, t0, t1, t2);
-    imageStore(dst0, c, t0);
-#if PACKED_TEXELS > 1
-    imageStore(dst1, c, t1);
-#endif
-#if PACKED_TEXELS > 2
-    imageStore(dst2, c, t2);
+#ifdef SHELL
+    storePartial(c + 1, v);
+#else
+    storePartial(c, v);
 #endif
 #endif
 }
@@ -218,6 +265,31 @@ vec3 faces(ivec3 c, int n) {
 #endif
 }
 
+#ifdef SEED
+// y(0) = x inside the volume and the shell around it, in both partial-sum volumes; one thread per
+// cell of the padded volume.
+void main() {
+    const int n = params.grid.x;
+    const ivec3 p = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(p, ivec3(n + 2 + (n & 1))))) return;
+    const ivec3 c = p - 1;
+    if (all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)))) {
+        storePartial(p, loadInjected(c, n));
+        return;
+    }
+    const Sh3 v = outside(c);
+    storePartial(p, v);
+    PARTIAL_TEXEL t0, t1, t2;
+    packCell(v, t0, t1, t2);
+    imageStore(shell0, p, t0);
+#if PACKED_TEXELS > 1
+    imageStore(shell1, p, t1);
+#endif
+#if PACKED_TEXELS > 2
+    imageStore(shell2, p, t2);
+#endif
+}
+#else
 void main() {
     const int n = params.grid.x;
     const ivec2 o = ivec2(gl_GlobalInvocationID.xy) * 2; // the 2x2 column: o, o+x, o+y, o+x+y
@@ -253,7 +325,8 @@ void main() {
         Sh3 out1 = gather(at0, right1, bottom1, at3, below1, above1, face1, vec3(faceRight1.x, face3.y, faceAbove1.z));
         Sh3 out2 = gather(left2, at3, at0, top2, below2, above2, face2, vec3(face3.x, faceTop2.y, faceAbove2.z));
         Sh3 out3 = gather(at2, right3, at1, top3, below3, above3, face3, vec3(faceRight3.x, faceTop3.y, faceAbove3.z));
-        // + x: on the first iteration the source is x itself; later it is read from the injection.
+        // + x: on a bounded first iteration the source is x itself; otherwise it is read from the
+        // injection.
 #ifdef FROM_INJECTION
         out0 = add(out0, at0), out1 = add(out1, at1), out2 = add(out2, at2), out3 = add(out3, at3);
 #else
@@ -272,3 +345,4 @@ void main() {
         face0 = faceAbove0, face1 = faceAbove1, face2 = faceAbove2, face3 = faceAbove3;
     }
 }
+#endif

@@ -20,6 +20,8 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
     uint64_t packedBytes = 0;
     for (uint32_t t = 0; t < packedTexelCount(s.shFormat); ++t)
         packedBytes += rhi::bytesPerPixel(packedTexelFormat(s.shFormat, t));
+    const uint64_t partialSize = partialSumSize(s); // with the shell around, for several cascades
+    const uint64_t partialCells = partialSize * partialSize * partialSize;
     const uint64_t gvCells = uint64_t(s.gridSize + 1) * (s.gridSize + 1) * (s.gridSize + 1);
     std::vector<GiResource> out = {
         {"rsm depth", "gi.rsm", rsm * 4},
@@ -27,8 +29,8 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
         {"rsm flux", "gi.rsm", rsm * 8},
         {"vpl buffer", "gi.vpl", uint64_t(s.vplCount) * 48},
         {"injection volume (3 SH textures)", "gi.lpv", 3 * cells * injectBytes},
-        {"propagation partial sums, ping (packed)", "gi.lpv", cells * packedBytes},
-        {"propagation partial sums, pong (packed)", "gi.lpv", cells * packedBytes},
+        {"propagation partial sums, ping (packed)", "gi.lpv", partialCells * packedBytes},
+        {"propagation partial sums, pong (packed)", "gi.lpv", partialCells * packedBytes},
         {"accumulation (3 SH textures)", "gi.lpv", 3 * cells * shBytes},
         {"analytic light buffers (one per cascade)", "gi.lights",
          s.cascades * PointLightInjection::kBufferBytes},

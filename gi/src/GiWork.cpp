@@ -77,7 +77,22 @@ WorkCounts propagateWork(const LpvSettings& s) {
     one.aluOps = cells * (6 * 3 * 10 + 12 + 5 * 12);
     // Each packed texel comes from memory about once (texture cache), x once, one store.
     one.bytesMoved = cells * (packedBytes + 3 * injectBytes + packedBytes);
-    return one * s.iterations;
+    WorkCounts all = one * s.iterations;
+    if (!partialSumShell(s)) return all;
+    // With a shell (several cascades), the seed before the first iteration: x copied into the
+    // partial sums, and the shell around them (beyond the border) written into both ping and pong;
+    // a cascade with a coarser one around samples it there (3 trilinear fetches, two bilinear
+    // each; counted for every cascade).
+    const uint64_t padded = partialSumSize(s);
+    const uint64_t shell = padded * padded * padded - cells;
+    WorkCounts seed;
+    seed.cells = cells + shell;
+    seed.texelsRead = cells * 3 + shell * 6;
+    seed.texelsWritten = (cells + 2 * shell) * packed;
+    seed.aluOps = (cells + shell) * (12 + 5 * 12);
+    seed.bytesMoved = cells * 3 * injectBytes + (cells + 2 * shell) * packedBytes;
+    all += seed;
+    return all;
 }
 
 WorkCounts bounceWork(const LpvSettings& s) {

@@ -6,6 +6,7 @@
 #include <glm/vec4.hpp>
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 
 namespace lpv::gi {
@@ -24,27 +25,63 @@ struct PropagateUniforms {
     glm::vec4 handoff;
 };
 
-// Iteration roles: first reads the injection, last writes the result, only does both.
-enum Role { kFirst, kNext, kLast, kOnly };
+// Kernel roles (propagate_body.glsl, gi/CMakeLists.txt). Bounded partial sums: the first
+// iteration reads the injection, the last writes the result, `only` does both; with or without
+// occlusion. With a shell: the seed (with or without the coarser cascade around), then iterations
+// and the last one, with or without occlusion.
+enum Role {
+    kFirst,
+    kNext,
+    kLast,
+    kOnly,
+    kFirstOccluded,
+    kNextOccluded,
+    kLastOccluded,
+    kOnlyOccluded,
+    kSeed,
+    kSeedHandoff,
+    kShellNext,
+    kShellLast,
+    kShellNextOccluded,
+    kShellLastOccluded,
+    kRoles
+};
+const char* const kRoleNames[kRoles] = {"lpv propagate first",
+                                        "lpv propagate",
+                                        "lpv propagate last",
+                                        "lpv propagate once",
+                                        "lpv propagate first (occluded)",
+                                        "lpv propagate (occluded)",
+                                        "lpv propagate last (occluded)",
+                                        "lpv propagate once (occluded)",
+                                        "lpv propagate seed",
+                                        "lpv propagate seed (handoff)",
+                                        "lpv propagate (shell)",
+                                        "lpv propagate last (shell)",
+                                        "lpv propagate (shell, occluded)",
+                                        "lpv propagate last (shell, occluded)"};
 
-const rhi::ShaderBinary& propagateShader(ShFormat f, int variant, int role) {
+bool shellRole(int role) {
+    return role >= kSeed;
+}
+
+const rhi::ShaderBinary& propagateShader(ShFormat f, int role) {
     using namespace shaders;
-#define LPV_ROLES(format, suffix)                                                                            \
+#define LPV_ROLES(format)                                                                                    \
     {                                                                                                        \
-        &propagate_##format##_first##suffix##_comp, &propagate_##format##_next##suffix##_comp,               \
-            &propagate_##format##_last##suffix##_comp, &propagate_##format##_only##suffix##_comp             \
+        &propagate_##format##_first_comp, &propagate_##format##_next_comp, &propagate_##format##_last_comp,  \
+            &propagate_##format##_only_comp, &propagate_##format##_first_occluded_comp,                      \
+            &propagate_##format##_next_occluded_comp, &propagate_##format##_last_occluded_comp,              \
+            &propagate_##format##_only_occluded_comp, &propagate_##format##_seed_comp,                       \
+            &propagate_##format##_seed_handoff_comp, &propagate_##format##_shell_next_comp,                  \
+            &propagate_##format##_shell_last_comp, &propagate_##format##_shell_next_occluded_comp,           \
+            &propagate_##format##_shell_last_occluded_comp                                                   \
     }
-    // Variant: bit 0 occlusion, bit 1 handoff.
-    static const rhi::ShaderBinary* const table[3][4][4] = {
-        {LPV_ROLES(rgba8, ), LPV_ROLES(rgba8, _occluded), LPV_ROLES(rgba8, _handoff),
-         LPV_ROLES(rgba8, _occluded_handoff)},
-        {LPV_ROLES(rgba16f, ), LPV_ROLES(rgba16f, _occluded), LPV_ROLES(rgba16f, _handoff),
-         LPV_ROLES(rgba16f, _occluded_handoff)},
-        {LPV_ROLES(rgba32f, ), LPV_ROLES(rgba32f, _occluded), LPV_ROLES(rgba32f, _handoff),
-         LPV_ROLES(rgba32f, _occluded_handoff)}};
+    static const rhi::ShaderBinary* const table[3][kRoles] = {LPV_ROLES(rgba8), LPV_ROLES(rgba16f),
+                                                              LPV_ROLES(rgba32f)};
 #undef LPV_ROLES
     const int row = f == ShFormat::Rgba8 ? 0 : f == ShFormat::Rgba16f ? 1 : 2;
-    return *table[row][variant][role];
+    return *table[row][role];
 }
 
 } // namespace
@@ -58,6 +95,15 @@ uint32_t packedTexelCount(ShFormat f) {
         break;
     }
     return 3;
+}
+
+bool partialSumShell(const LpvSettings& s) {
+    return s.cascades > 1;
+}
+
+uint32_t partialSumSize(const LpvSettings& s) {
+    const uint32_t n = s.gridSize;
+    return partialSumShell(s) ? n + 2 + (n & 1) : n;
 }
 
 uint32_t propagationColumnLength(uint32_t n, uint32_t concurrentWorkgroups) {
@@ -77,7 +123,7 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
       columnLength_(columnLength
                         ? columnLength
                         : propagationColumnLength(settings.gridSize, device.caps().concurrentWorkgroups)),
-      layered_(device.caps().vertexShaderLayer) {
+      layered_(device.caps().vertexShaderLayer), shell_(partialSumShell(settings)) {
     using namespace rhi;
     const uint32_t n = settings.gridSize;
     const Format injectFormat = settings.shFormat == ShFormat::Rgba32f ? Format::RGBA32F : Format::RGBA16F;
@@ -94,10 +140,11 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
             volume(injectFormat, kTextureColorTarget | kTextureSampled | kTextureStorage, "injection");
         accum_[size_t(c)] = volume(shFormat, kTextureStorage | kTextureSampled, "accumulated");
     }
+    const uint32_t padded = partialSumSize(settings);
     for (uint32_t t = 0; t < packedTexelCount(settings.shFormat); ++t)
         for (uint32_t p = 0; p < 2; ++p)
             partial_[p][t] = device.createTexture(
-                {TextureKind::Tex3D, packedTexelFormat(settings.shFormat, t), n, n, n, 1,
+                {TextureKind::Tex3D, packedTexelFormat(settings.shFormat, t), padded, padded, padded, 1,
                  kTextureStorage | kTextureSampled | kTextureTransfer,
                  std::string(p ? "lpv partial sum pong " : "lpv partial sum ping ") + std::to_string(t),
                  "gi.lpv"});
@@ -109,12 +156,10 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
     d.blend = {BlendState::additive()};
     d.debugName = "lpv inject";
     injectPipeline_ = device.createPipeline(d);
-    const char* roleNames[4] = {"lpv propagate first", "lpv propagate", "lpv propagate last",
-                                "lpv propagate once"};
-    for (int variant = 0; variant < 4; ++variant)
-        for (int role = 0; role < 4; ++role)
-            propagatePipelines_[size_t(variant)][size_t(role)] = device.createPipeline(
-                ComputePipelineDesc{&propagateShader(settings.shFormat, variant, role), roleNames[role]});
+    for (int role = 0; role < kRoles; ++role)
+        if (shellRole(role) == shell_)
+            propagatePipelines_[size_t(role)] = device.createPipeline(
+                ComputePipelineDesc{&propagateShader(settings.shFormat, role), kRoleNames[role]});
     SamplerDesc linear;
     linear.mipFilter = Filter::Nearest;
     linearSampler_ = device.createSampler(linear);
@@ -126,15 +171,14 @@ LpvVolumes::~LpvVolumes() {
         for (rhi::TextureHandle t : *set)
             if (t) device_.destroy(t);
     device_.destroy(injectPipeline_);
-    for (const auto& set : propagatePipelines_)
-        for (rhi::ComputePipelineHandle p : set)
-            device_.destroy(p);
+    for (rhi::ComputePipelineHandle p : propagatePipelines_)
+        if (p) device_.destroy(p);
     device_.destroy(linearSampler_);
 }
 
 bool LpvVolumes::matches(const LpvSettings& s) const {
     return s.gridSize == settings_.gridSize && s.shFormat == settings_.shFormat &&
-           s.rgba8Range == settings_.rgba8Range;
+           s.rgba8Range == settings_.rgba8Range && partialSumShell(s) == shell_;
 }
 
 void LpvVolumes::inject(rhi::CommandList& cmd, rhi::BufferHandle vpls, uint32_t vplCount,
@@ -190,6 +234,10 @@ std::array<rhi::TextureHandle, 3> LpvVolumes::createResult(const std::string& na
 
 void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::TextureHandle faceTransmittance,
                            const std::array<rhi::TextureHandle, 3>* result, const CascadeHandoff* handoff) {
+    // Bounded partial sums have nowhere to keep the coarser cascade's light (partialSumShell).
+    if (handoff && !shell_)
+        throw std::logic_error(
+            "LpvVolumes::propagate: a cascade handoff needs volumes made for several cascades");
     const std::array<rhi::TextureHandle, 3>& target = result ? *result : accum_;
     const uint32_t n = settings_.gridSize;
     const uint32_t column = columnLength_;
@@ -205,27 +253,49 @@ void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::Text
         const float ratio = handoff->fineGrid.cellSize / handoff->coarseGrid.cellSize;
         u.encode.y = ratio * ratio;
     }
-    // y(0) is the injection volume; y(k+1) = x + P y(k) goes to partial_[k % 2]; the last
-    // iteration writes y(N), the accumulated result, into accum_.
-    for (uint32_t i = 0; i < iterations; ++i) {
-        const bool first = i == 0, last = i + 1 == iterations;
-        const int role = first && last ? kOnly : first ? kFirst : last ? kLast : kNext;
-        const int variant = (faceTransmittance ? 1 : 0) | (handoff ? 2 : 0);
-        cmd.bindPipeline(propagatePipelines_[size_t(variant)][size_t(role)]);
+    const int occluded = faceTransmittance ? 1 : 0;
+    const auto bindIteration = [&](int role, uint32_t i, bool fromInjection, bool last) {
+        cmd.bindPipeline(propagatePipelines_[size_t(role)]);
         cmd.pushUniforms(0, &u, sizeof(u));
         if (faceTransmittance) cmd.bindStorageImage(19, faceTransmittance);
-        if (handoff)
-            for (uint32_t c = 0; c < 3; ++c)
-                cmd.bindTexture(20 + c, handoff->coarse[c], linearSampler_);
         for (uint32_t c = 0; c < 3; ++c) {
             cmd.bindStorageImage(1 + c, inject_[c]);
             if (last) cmd.bindStorageImage(10 + c, target[c]);
         }
         for (uint32_t t = 0; t < texels; ++t) {
-            if (!first) cmd.bindStorageImage(4 + t, partial_[(i + 1) % 2][t]);
+            if (!fromInjection) cmd.bindStorageImage(4 + t, partial_[(i + 1) % 2][t]);
             if (!last) cmd.bindStorageImage(7 + t, partial_[i % 2][t]);
         }
         cmd.dispatch((n + 15) / 16, (n + 15) / 16, (n + column - 1) / column);
+    };
+    if (!shell_) {
+        // y(0) is the injection volume; y(k+1) = x + P y(k) goes to partial_[k % 2]; the last
+        // iteration writes y(N), the accumulated result, into target.
+        for (uint32_t i = 0; i < iterations; ++i) {
+            const bool first = i == 0, last = i + 1 == iterations;
+            const int role = (first && last ? kOnly : first ? kFirst : last ? kLast : kNext) + 4 * occluded;
+            bindIteration(role, i, first, last);
+        }
+        return;
+    }
+    // y(0) = x and the shell go to partial_[1] (the shell to partial_[0] too); y(k+1) = x + P y(k)
+    // goes to partial_[k % 2]; the last iteration writes y(N), the accumulated result, into target.
+    const uint32_t padded = partialSumSize(settings_);
+    cmd.bindPipeline(propagatePipelines_[size_t(handoff ? kSeedHandoff : kSeed)]);
+    cmd.pushUniforms(0, &u, sizeof(u));
+    if (handoff)
+        for (uint32_t c = 0; c < 3; ++c)
+            cmd.bindTexture(20 + c, handoff->coarse[c], linearSampler_);
+    for (uint32_t c = 0; c < 3; ++c)
+        cmd.bindStorageImage(1 + c, inject_[c]);
+    for (uint32_t t = 0; t < texels; ++t) {
+        cmd.bindStorageImage(4 + t, partial_[0][t]);
+        cmd.bindStorageImage(7 + t, partial_[1][t]);
+    }
+    cmd.dispatch((padded + 7) / 8, (padded + 7) / 8, padded);
+    for (uint32_t i = 0; i < iterations; ++i) {
+        const bool last = i + 1 == iterations;
+        bindIteration((last ? kShellLast : kShellNext) + 2 * occluded, i, false, last);
     }
 }
 

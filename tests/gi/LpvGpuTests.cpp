@@ -75,12 +75,15 @@ TEST_CASE("gi: GPU injection and propagation match the CPU reference") {
     // The kernel's iteration roles (first, next, last; or one iteration doing both) and a grid
     // whose 2x2 columns stick out of the volume.
     // columnLength: 0 = the device's choice; 1 = what GPUs get; 5 = slabs that do not divide n.
+    // cascades: 1 keeps the partial sums bounded, more gives them a shell (partialSumShell), here
+    // holding nothing since no coarser cascade hands light in.
     struct Shape {
         uint32_t n;
         int iterations;
-        uint32_t columnLength;
+        uint32_t columnLength, cascades;
     };
-    const Shape shapes[] = {{16, 4, 0}, {17, 1, 0}, {16, 3, 1}, {17, 2, 5}};
+    const Shape shapes[] = {{16, 4, 0, 1}, {17, 1, 0, 1}, {16, 3, 1, 1}, {17, 2, 5, 1},
+                            {16, 4, 0, 3}, {17, 1, 0, 3}, {17, 2, 5, 3}};
     const std::vector<gi::Vpl> vpls = testVpls();
     const glm::vec3 light(0.0f, -1.0f, 0.0f);
     for (const Shape& shape : shapes) {
@@ -92,11 +95,12 @@ TEST_CASE("gi: GPU injection and propagation match the CPU reference") {
             for (const Case& c : cases) {
                 SUBCASE((backend.name + " " + std::string(gi::shFormatName(c.format)) + " " +
                          std::to_string(shape.n) + "^3 x " + std::to_string(shape.iterations) + " column " +
-                         std::to_string(shape.columnLength))
+                         std::to_string(shape.columnLength) + " cascades " + std::to_string(shape.cascades))
                             .c_str()) {
                     TestDevice device(backend);
                     gi::LpvSettings s;
                     s.gridSize = shape.n;
+                    s.cascades = shape.cascades;
                     s.shFormat = c.format;
                     // Range of the rgba8 encoding: the largest coefficient the accumulation reaches.
                     s.rgba8Range = 1.05f * [&] {

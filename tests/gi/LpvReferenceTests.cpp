@@ -191,6 +191,11 @@ TEST_CASE("gi cost model: the CryEngine 3 console setup predicts the published t
     // The shipped kernel on the same setup: rgba8 partial sums are one texel per cell, so 3 fetched
     // cells + 3 injected texels per cell and iteration, and a fraction of the gather's arithmetic.
     CHECK(propagateWork(s).texelsRead == 32768ull * 6ull * 6ull);
+    // With several cascades the partial sums carry a 34^3 shell, seeded once: x copied (3 texels a
+    // cell) and the 6,536 shell cells sampling the coarser cascade (6 texels each).
+    LpvSettings cascaded = s;
+    cascaded.cascades = 3;
+    CHECK(propagateWork(cascaded).texelsRead == 32768ull * 6ull * 6ull + 32768ull * 3ull + 6536ull * 6ull);
     CHECK(propagateWork(s).aluOps * 3 < gatherPropagationWork(s).aluOps);
     double shipped = 0;
     for (const auto& w : {rsmWork(s, 100000), vplClusterWork(s), injectWork(s, 0, VolumeDraw::PerSlice),

@@ -1,7 +1,8 @@
 // The light propagation volume itself: injection of VPLs into a float volume (points drawn per
 // slice with additive blending), then N propagation iterations whose partial sums ping-pong
-// between two packed volumes, the last writing the accumulated volume in gi.sh_format. Three SH
-// textures (R, G, B) for the injection and the accumulation.
+// between two packed volumes (with several cascades: with a shell of what lies beyond the border),
+// the last writing the accumulated volume in gi.sh_format. Three SH textures (R, G, B) for the injection and
+// the accumulation.
 #pragma once
 
 #include "gi/LpvReference.h"
@@ -21,6 +22,14 @@ namespace lpv::gi {
 // bits): see propagate_body.glsl.
 uint32_t packedTexelCount(ShFormat f);
 rhi::Format packedTexelFormat(ShFormat f, uint32_t texel);
+// Whether the partial sums carry a one-cell shell of what lies beyond the border: where a coarser
+// cascade hands its light in (gi.cascades > 1). Reading the handoff from a shell is 2-3x faster on
+// a CPU rasterizer than choosing it per load, but the shell costs memory, and a single cascade
+// (the Xbox 360 budget holds one) only ever reads a zero there.
+bool partialSumShell(const LpvSettings& s);
+// Cells per axis of a partial-sum volume: n, or with the shell n + 2 and for an odd n one more
+// layer for the 2x2 columns that stick out.
+uint32_t partialSumSize(const LpvSettings& s);
 
 // Cells per propagation thread along z for an n^3 volume: a CPU rasterizer runs one workgroup per
 // host thread and pays for every fetch, so there each thread walks a long column (its z
@@ -53,7 +62,7 @@ public:
     LpvVolumes(const LpvVolumes&) = delete;
     LpvVolumes& operator=(const LpvVolumes&) = delete;
 
-    // True when these volumes were made for the sizes and format of `settings`.
+    // True when these volumes were made for the sizes, format and partial-sum layout of `settings`.
     bool matches(const LpvSettings& settings) const;
 
     // Clears the injection volume and adds `vplCount` VPLs from `vpls` (std430 array of
@@ -69,7 +78,8 @@ public:
     // (GeometryVolume), the flux through every face is attenuated by it.
     // `result`: where the last iteration writes (a set from createResult(), e.g. another
     // cascade's); accumulated() when null. `handoff`: outside the volume, neighbours read the
-    // coarser cascade's result (in this volume's units) instead of nothing.
+    // coarser cascade's result (in this volume's units) instead of nothing; only for volumes with a
+    // shell (partialSumShell), std::logic_error otherwise.
     void propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::TextureHandle faceTransmittance = {},
                    const std::array<rhi::TextureHandle, 3>* result = nullptr,
                    const CascadeHandoff* handoff = nullptr);
@@ -89,11 +99,13 @@ private:
     uint32_t columnLength_;
     bool layered_; // injection in one layered draw (rhi Caps::vertexShaderLayer)
     std::array<rhi::TextureHandle, 3> inject_, accum_;
-    // Partial sums between iterations, ping and pong, packed (packedTexelCount texels per cell).
+    // Partial sums between iterations, ping and pong, packed (packedTexelCount texels per cell),
+    // partialSumSize^3.
     std::array<std::array<rhi::TextureHandle, 3>, 2> partial_{};
     rhi::GraphicsPipelineHandle injectPipeline_;
-    // By variant (bit 0: occlusion, bit 1: handoff) and iteration role.
-    std::array<std::array<rhi::ComputePipelineHandle, 4>, 4> propagatePipelines_{};
+    bool shell_; // partialSumShell
+    // By kernel role (LpvVolumes.cpp's Role); those of the other layout stay null.
+    std::array<rhi::ComputePipelineHandle, 14> propagatePipelines_{};
     rhi::SamplerHandle linearSampler_; // the coarse cascade's result (handoff)
 };
 
