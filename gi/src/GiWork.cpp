@@ -10,10 +10,10 @@ namespace lpv::gi {
 
 using engine::WorkCounts;
 
-WorkCounts rsmWork(const LpvSettings& s, uint64_t sceneTriangles) {
+WorkCounts rsmWork(const LpvSettings& s, uint64_t triangles) {
     const uint64_t texels = uint64_t(s.rsmSize) * s.rsmSize;
     WorkCounts w;
-    w.primitives = sceneTriangles;
+    w.primitives = triangles;
     w.pixelsShaded = texels;
     w.texelsRead = texels;        // albedo texture
     w.texelsWritten = texels * 3; // normal, flux, depth
@@ -45,16 +45,19 @@ WorkCounts injectWork(const LpvSettings& s, uint64_t extraVpls, VolumeDraw draw)
     return w;
 }
 
-WorkCounts lightRsmWork(const LpvSettings& s, uint32_t lights, uint64_t sceneTriangles) {
-    // Each light: the whole scene into a spot RSM of gi.rsm_size (one more position interpolant
-    // and the cone, window and solid angle per texel), clustered like the sun's into fewer VPLs.
+WorkCounts lightRsmWork(const LpvSettings& s, uint32_t lights, uint64_t triangles) {
+    // Each light: the scene in its cone into a spot RSM of gi.rsm_size (one more position
+    // interpolant and the cone, window and solid angle per texel), clustered like the sun's into
+    // fewer VPLs.
     const uint64_t texels = uint64_t(s.rsmSize) * s.rsmSize;
-    WorkCounts one = rsmWork(s, sceneTriangles);
+    WorkCounts one = rsmWork(s, 0);
     one.aluOps += texels * 15;
     WorkCounts cluster = vplClusterWork(s);
     cluster.bytesMoved -= (uint64_t(s.vplCount) - spotLightVplCount(s)) * 48;
     one += cluster;
-    return one * lights;
+    WorkCounts all = one * lights;
+    all.primitives += triangles;
+    return all;
 }
 
 WorkCounts propagateWork(const LpvSettings& s) {

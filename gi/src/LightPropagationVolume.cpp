@@ -218,8 +218,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     // cascade they reach.
     if (const uint32_t spotRsms = uint32_t(spotRsms_->selection().size())) {
         auto s = scope("lightrsm");
-        spotRsms_->render(cmd, *renderer_->scene(), renderer_->punctualLights());
-        work(lightRsmWork(settings_, spotRsms, renderer_->scene()->triangleCount()));
+        const uint64_t triangles = spotRsms_->render(cmd, *renderer_->scene(), renderer_->punctualLights());
+        work(lightRsmWork(settings_, spotRsms, triangles));
     }
     // Coarsest first: each finer cascade takes the light from beyond its border from the one
     // around it (CascadeHandoff).
@@ -240,9 +240,9 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                 auto s = scope("rsm");
                 rsm_->fit(cascade.lit, lightDir);
                 // Objects smaller than a cell of this cascade are left to the finer ones.
-                rsm_->render(cmd, *renderer_->scene(), lightDir, sun.radiance,
-                             c == 0 ? 0.0f : cascade.lit.cellSize);
-                work(rsmWork(settings_, renderer_->scene()->triangleCount()));
+                const uint64_t triangles = rsm_->render(cmd, *renderer_->scene(), lightDir, sun.radiance,
+                                                        c == 0 ? 0.0f : cascade.lit.cellSize);
+                work(rsmWork(settings_, triangles));
             }
             auto s = scope("vpl");
             ClusterUniforms u;

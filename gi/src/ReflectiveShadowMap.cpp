@@ -108,18 +108,18 @@ glm::mat4 ReflectiveShadowMap::fit(const VolumeGrid& grid, glm::vec3 lightDirect
     return viewProjection_;
 }
 
-void ReflectiveShadowMap::render(rhi::CommandList& cmd, const engine::GpuScene& scene,
-                                 glm::vec3 lightDirection, glm::vec3 sunIrradiance, float minObjectSize) {
+uint64_t ReflectiveShadowMap::render(rhi::CommandList& cmd, const engine::GpuScene& scene,
+                                     glm::vec3 lightDirection, glm::vec3 sunIrradiance, float minObjectSize) {
     if (light_ != RsmLight::Sun) throw rhi::Error("ReflectiveShadowMap::render() on a spot light's RSM");
     RsmUniforms u;
     u.lightViewProjection = viewProjection_;
     u.lightDirection = glm::vec4(glm::normalize(lightDirection), 0.0f);
     u.fluxScale = glm::vec4(sunIrradiance * texelArea_, 0.0f);
-    draw(cmd, scene, &u, sizeof(u), minObjectSize);
+    return draw(cmd, scene, &u, sizeof(u), minObjectSize);
 }
 
-void ReflectiveShadowMap::renderSpot(rhi::CommandList& cmd, const engine::GpuScene& scene,
-                                     const engine::Light& spot, float reach) {
+uint64_t ReflectiveShadowMap::renderSpot(rhi::CommandList& cmd, const engine::GpuScene& scene,
+                                         const engine::Light& spot, float reach) {
     if (light_ != RsmLight::Spot) throw rhi::Error("ReflectiveShadowMap::renderSpot() on the sun's RSM");
     const SpotRsmFit fit = fitSpotRsm(spot, reach);
     viewProjection_ = fit.viewProjection;
@@ -135,11 +135,11 @@ void ReflectiveShadowMap::renderSpot(rhi::CommandList& cmd, const engine::GpuSce
     const float cosOuter = std::cos(spot.outerConeAngle);
     u.cone = glm::vec4(cosOuter, std::max(std::cos(spot.innerConeAngle), cosOuter + 1e-4f), 0, 0);
     u.intensity = glm::vec4(spot.color * spot.intensity, 0.0f);
-    draw(cmd, scene, &u, sizeof(u), 0.0f);
+    return draw(cmd, scene, &u, sizeof(u), 0.0f);
 }
 
-void ReflectiveShadowMap::draw(rhi::CommandList& cmd, const engine::GpuScene& scene, const void* uniforms,
-                               uint32_t bytes, float minObjectSize) {
+uint64_t ReflectiveShadowMap::draw(rhi::CommandList& cmd, const engine::GpuScene& scene, const void* uniforms,
+                                   uint32_t bytes, float minObjectSize) {
     using namespace rhi;
     RenderPassDesc pass;
     pass.colors[0] = {normal_, 0, 0, LoadOp::Clear, {0, 1, 0, 0}};
@@ -152,13 +152,18 @@ void ReflectiveShadowMap::draw(rhi::CommandList& cmd, const engine::GpuScene& sc
     cmd.pushUniforms(0, uniforms, bytes);
     cmd.bindVertexBuffer(0, scene.vertices());
     cmd.bindIndexBuffer(scene.indices(), IndexType::Uint32);
+    uint64_t triangles = 0;
     for (const engine::GpuDraw& d : scene.draws()) {
-        if (d.worldSize < minObjectSize) continue;
+        // The light's view holds the volume and, toward the light, its occluders (fit()): nothing
+        // outside it can land in the map.
+        if (d.worldSize < minObjectSize || d.worldBounds.outsideClipVolume(viewProjection_)) continue;
         cmd.pushUniforms(1, &d.uniforms, sizeof(d.uniforms));
         cmd.bindTexture(2, d.baseColor, scene.materialSampler());
         cmd.drawIndexed(d.indexCount, 1, d.firstIndex);
+        triangles += d.indexCount / 3;
     }
     cmd.endRenderPass();
+    return triangles;
 }
 
 } // namespace lpv::gi

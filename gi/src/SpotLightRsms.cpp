@@ -115,13 +115,14 @@ bool SpotLightRsms::selected(uint32_t index) const {
     return false;
 }
 
-void SpotLightRsms::render(rhi::CommandList& cmd, const engine::GpuScene& scene,
-                           std::span<const engine::Light> lights) {
+uint64_t SpotLightRsms::render(rhi::CommandList& cmd, const engine::GpuScene& scene,
+                               std::span<const engine::Light> lights) {
+    uint64_t triangles = 0;
     const uint32_t side = spotLightVplSide(settings_);
     for (uint32_t k = 0; k < count_; ++k) {
         const engine::Light& spot = lights[selection_[k]];
         ReflectiveShadowMap& rsm = *rsms_[k];
-        rsm.renderSpot(cmd, scene, spot, farthestCorner(spot.position, reachGrid_));
+        triangles += rsm.renderSpot(cmd, scene, spot, farthestCorner(spot.position, reachGrid_));
         // The sun's clustering (vpl_cluster.comp): its unprojection holds for a perspective map.
         ClusterUniforms u;
         u.invLightViewProjection = glm::inverse(rsm.lightViewProjection());
@@ -134,6 +135,7 @@ void SpotLightRsms::render(rhi::CommandList& cmd, const engine::GpuScene& scene,
         cmd.bindStorageBuffer(4, vpls_[k]);
         cmd.dispatch((side + 7) / 8, (side + 7) / 8, 1);
     }
+    return triangles;
 }
 
 } // namespace lpv::gi

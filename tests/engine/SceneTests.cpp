@@ -6,6 +6,8 @@
 
 #include <doctest/doctest.h>
 
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 
 #include <cmath>
@@ -134,6 +136,31 @@ TEST_CASE("scenes: the Cornell box") {
     for (uint32_t i : s.indices)
         REQUIRE(i < s.vertices.size());
     CHECK(loadScene("cornell").triangleCount() == 120);
+}
+
+TEST_CASE("scenes: a box is outside a view's clip volume only when it lies beyond one of its planes") {
+    // An orthographic view of x, y in [-1, 1] and z in [-1, -5] (looking down -z from the origin),
+    // and a perspective one of 90 degrees, near 0.5, far 10.
+    const glm::mat4 ortho = glm::orthoRH_ZO(-1.0f, 1.0f, -1.0f, 1.0f, 1.0f, 5.0f);
+    const glm::mat4 perspective = glm::perspectiveRH_ZO(glm::radians(90.0f), 1.0f, 0.5f, 10.0f);
+    const auto box = [](glm::vec3 lo, glm::vec3 hi) {
+        Bounds b;
+        b.add(lo);
+        b.add(hi);
+        return b;
+    };
+    CHECK(!box({-0.5f, -0.5f, -3.0f}, {0.5f, 0.5f, -2.0f}).outsideClipVolume(ortho)); // inside
+    CHECK(!box({0.5f, -0.5f, -3.0f}, {3.0f, 0.5f, -2.0f}).outsideClipVolume(ortho));  // straddles x = 1
+    CHECK(box({1.5f, -0.5f, -3.0f}, {3.0f, 0.5f, -2.0f}).outsideClipVolume(ortho));   // beyond x = 1
+    CHECK(box({-0.5f, -3.0f, -3.0f}, {0.5f, -1.5f, -2.0f}).outsideClipVolume(ortho)); // below y = -1
+    CHECK(box({-0.5f, -0.5f, -0.5f}, {0.5f, 0.5f, 0.5f}).outsideClipVolume(ortho));   // before the near plane
+    CHECK(box({-0.5f, -0.5f, -9.0f}, {0.5f, 0.5f, -6.0f}).outsideClipVolume(ortho));  // past the far plane
+    CHECK(!box({-9.0f, -9.0f, -9.0f}, {9.0f, 9.0f, 9.0f}).outsideClipVolume(ortho));  // around it all
+    CHECK(Bounds{}.outsideClipVolume(ortho));                                         // empty
+    // Perspective: a box at depth 5 inside the 90-degree cone, one beside it, one behind the eye.
+    CHECK(!box({3.0f, -1.0f, -6.0f}, {4.0f, 1.0f, -5.0f}).outsideClipVolume(perspective));
+    CHECK(box({6.0f, -1.0f, -5.0f}, {7.0f, 1.0f, -4.0f}).outsideClipVolume(perspective));
+    CHECK(box({-1.0f, -1.0f, 1.0f}, {1.0f, 1.0f, 2.0f}).outsideClipVolume(perspective));
 }
 
 TEST_CASE("scenes: a glTF file written here loads with transforms, material, camera and light") {

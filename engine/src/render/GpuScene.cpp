@@ -123,8 +123,8 @@ GpuScene::GpuScene(rhi::Device& device, const Scene& scene) : device_(device) {
         d.indexCount = mesh.indexCount;
         d.baseColor = mat.baseColorTexture >= 0 ? textures_[size_t(mat.baseColorTexture)] : white_;
         d.normal = mat.normalTexture >= 0 ? textures_[size_t(mat.normalTexture)] : flatNormal_;
-        const glm::vec3 size = inst.worldBounds.empty() ? mesh.bounds.transformed(inst.transform).size()
-                                                        : inst.worldBounds.size();
+        d.worldBounds = inst.worldBounds.empty() ? mesh.bounds.transformed(inst.transform) : inst.worldBounds;
+        const glm::vec3 size = d.worldBounds.size();
         d.worldSize = std::max({size.x, size.y, size.z});
         d.uniforms.model = inst.transform;
         d.uniforms.normalMatrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(inst.transform))));

@@ -313,8 +313,10 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         glm::ivec4(int(directLights), config.get(kSsao) ? 1 : 0, int(shadowSize_), int(indirectDivisor_));
 
     const uint64_t pixels = uint64_t(width_) * height_;
-    const auto scope = [&](const char* name) {
-        return profiler ? std::optional<FrameProfiler::Scope>(profiler->scope(name, &cmd)) : std::nullopt;
+    const auto scope = [&](const char* name, bool gpuTimed = true) {
+        return profiler
+                   ? std::optional<FrameProfiler::Scope>(profiler->scope(name, gpuTimed ? &cmd : nullptr))
+                   : std::nullopt;
     };
     const auto work = [&](const WorkCounts& w) {
         if (profiler) profiler->setWork(w);
@@ -405,9 +407,15 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
             cmd.bindTexture(9, targets_.glossy, pointClamp_);
         });
         cmd.endMarker();
-        WorkCounts w = fullscreenWork(pixels, 8 + 9 * 4, 120 + 40 * uint64_t(directLights), 4 * 8 + 8);
-        if (indirectDivisor_ > 1) w += indirectRebuildWork(pixels);
-        work(w);
+        work(fullscreenWork(pixels, 8 + 9 * 4, 120 + 40 * uint64_t(directLights), 4 * 8 + 8));
+    }
+    if (indirectDivisor_ > 1) {
+        // The bilateral rebuild of the pixels the GI lookup skipped runs inside the lighting pass,
+        // so its time is measured there; its work is GI's (gi.resolution trades lookups for it), so
+        // it goes into a GI scope of its own, timed on the CPU only (nothing is recorded in it),
+        // where the predicted console GI time and the budget scheduler see it.
+        auto s = scope("gi.rebuild", false);
+        work(indirectRebuildWork(pixels));
     }
     {
         auto s = scope("render.tonemap");

@@ -26,6 +26,20 @@ Bounds Bounds::transformed(const glm::mat4& m) const {
     return out;
 }
 
+bool Bounds::outsideClipVolume(const glm::mat4& viewProjection) const {
+    if (empty()) return true;
+    // Outside when all 8 corners lie beyond the same one of the six planes.
+    uint32_t beyondAll = 0x3f;
+    for (int i = 0; i < 8 && beyondAll; ++i) {
+        const glm::vec3 corner{(i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z};
+        const glm::vec4 c = viewProjection * glm::vec4(corner, 1.0f);
+        const uint32_t beyond = (c.x < -c.w ? 1u : 0u) | (c.x > c.w ? 2u : 0u) | (c.y < -c.w ? 4u : 0u) |
+                                (c.y > c.w ? 8u : 0u) | (c.z < 0.0f ? 16u : 0u) | (c.z > c.w ? 32u : 0u);
+        beyondAll &= beyond;
+    }
+    return beyondAll != 0;
+}
+
 uint64_t Scene::triangleCount() const {
     uint64_t n = 0;
     for (const Instance& inst : instances)

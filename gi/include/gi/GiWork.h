@@ -13,13 +13,15 @@ namespace lpv::gi {
 // pass, or the consoles' volume unwrapped into one 2D target), or each once per slice.
 enum class VolumeDraw : uint8_t { Layered, PerSlice };
 
-engine::WorkCounts rsmWork(const LpvSettings& s, uint64_t sceneTriangles);
+// `triangles`: those drawn into the RSM (ReflectiveShadowMap::render culls to the light's view).
+engine::WorkCounts rsmWork(const LpvSettings& s, uint64_t triangles);
 engine::WorkCounts vplClusterWork(const LpvSettings& s);
 // `extraVpls`: VPLs of further lights in the same pass (spot lights with an RSM).
 engine::WorkCounts injectWork(const LpvSettings& s, uint64_t extraVpls = 0,
                               VolumeDraw draw = VolumeDraw::Layered);
-// The RSMs and VPL clustering of `lights` spot lights (SpotLightRsms), once per frame.
-engine::WorkCounts lightRsmWork(const LpvSettings& s, uint32_t lights, uint64_t sceneTriangles);
+// The RSMs and VPL clustering of `lights` spot lights (SpotLightRsms), once per frame; `triangles`:
+// drawn into all of them together.
+engine::WorkCounts lightRsmWork(const LpvSettings& s, uint32_t lights, uint64_t triangles);
 // All iterations of the shipped kernel.
 engine::WorkCounts propagateWork(const LpvSettings& s);
 // All iterations of the straightforward 5-face gather the CryEngine 3 shaders use (one cell per

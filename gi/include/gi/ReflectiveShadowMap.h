@@ -40,12 +40,14 @@ public:
     // Fits the light's projection around `grid`; returns the light view-projection.
     glm::mat4 fit(const VolumeGrid& grid, glm::vec3 lightDirection);
     // Draws the objects at least `minObjectSize` m across: a coarse cascade leaves out what is
-    // small next to its cells (a finer cascade carries it).
-    void render(rhi::CommandList& cmd, const engine::GpuScene& scene, glm::vec3 lightDirection,
-                glm::vec3 sunIrradiance, float minObjectSize = 0.0f);
-    // A spot RSM (RsmLight::Spot): fits it to `spot` (fitSpotRsm) and draws the scene.
-    void renderSpot(rhi::CommandList& cmd, const engine::GpuScene& scene, const engine::Light& spot,
-                    float reach);
+    // small next to its cells (a finer cascade carries it). Objects outside the light's view are
+    // skipped. Returns the triangles drawn (the pass's work).
+    uint64_t render(rhi::CommandList& cmd, const engine::GpuScene& scene, glm::vec3 lightDirection,
+                    glm::vec3 sunIrradiance, float minObjectSize = 0.0f);
+    // A spot RSM (RsmLight::Spot): fits it to `spot` (fitSpotRsm) and draws the scene in its view.
+    // Returns the triangles drawn.
+    uint64_t renderSpot(rhi::CommandList& cmd, const engine::GpuScene& scene, const engine::Light& spot,
+                        float reach);
 
     const glm::mat4& lightViewProjection() const { return viewProjection_; }
     float texelArea() const { return texelArea_; }
@@ -54,8 +56,8 @@ public:
     rhi::TextureHandle flux() const { return flux_; }
 
 private:
-    void draw(rhi::CommandList& cmd, const engine::GpuScene& scene, const void* uniforms, uint32_t bytes,
-              float minObjectSize);
+    uint64_t draw(rhi::CommandList& cmd, const engine::GpuScene& scene, const void* uniforms, uint32_t bytes,
+                  float minObjectSize);
 
     rhi::Device& device_;
     uint32_t size_;

@@ -40,8 +40,9 @@ public:
     bool selected(uint32_t index) const;
     std::span<const uint32_t> selection() const { return {selection_.data(), count_}; }
 
-    // Draws every selected light's RSM and clusters it into its VPLs.
-    void render(rhi::CommandList& cmd, const engine::GpuScene& scene, std::span<const engine::Light> lights);
+    // Draws every selected light's RSM and clusters it into its VPLs; returns the triangles drawn.
+    uint64_t render(rhi::CommandList& cmd, const engine::GpuScene& scene,
+                    std::span<const engine::Light> lights);
     // The selected lights' VPL buffers, for LpvVolumes::inject with the sun's (render() fills them).
     std::span<const VplSource> sources() const { return {sources_.data(), count_}; }
     // Those of sources() whose light can reach `grid` (a cascade: its range sphere meets the box),

@@ -35,6 +35,7 @@ struct GpuDraw {
     rhi::TextureHandle baseColor; // a 1x1 white texture when the material has none
     rhi::TextureHandle normal;    // a 1x1 flat normal when the material has none
     float worldSize = 0.0f;       // largest side of the world bounds (m): size filters use it
+    Bounds worldBounds;           // culling against a view (Bounds::outsideClipVolume)
     DrawUniforms uniforms;
 };
 

@@ -31,6 +31,10 @@ struct Bounds {
     glm::vec3 center() const { return 0.5f * (min + max); }
     glm::vec3 size() const { return empty() ? glm::vec3(0.0f) : max - min; }
     Bounds transformed(const glm::mat4& m) const;
+    // True when the box lies wholly outside the clip volume of `viewProjection` (-w <= x, y <= w,
+    // 0 <= z <= w): what it bounds cannot reach that view. Conservative: a box that straddles a
+    // corner of the volume counts as inside.
+    bool outsideClipVolume(const glm::mat4& viewProjection) const;
 };
 
 // RGBA8 pixels made in code or decoded from a file.
