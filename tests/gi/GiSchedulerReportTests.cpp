@@ -277,6 +277,39 @@ TEST_CASE(
             CHECK(preset.lastWorst <= preset.profile.giBudgetMs);
             CHECK(preset.run.lpv.schedule().stepsInEffect > 0);
             CHECK(!preset.run.lpv.schedule().timeOverBudget);
+            // At the floor each coarse update runs in halves on frames of their own: over the
+            // frames the profiler kept, no frame draws a coarse cascade's RSM and propagates it,
+            // the finest cascade runs whole every frame, and every coarse half does run.
+            const auto& scopes = preset.run.profiler.scopes();
+            uint64_t newest = 0;
+            preset.run.profiler.forEachFrame(
+                [&](const engine::FrameProfiler::FrameRecord& r) { newest = std::max(newest, r.frame); });
+            uint32_t frames = 0, lightHalves = 0, volumeHalves = 0;
+            preset.run.profiler.forEachFrame([&](const engine::FrameProfiler::FrameRecord& r) {
+                if (r.frame + 16 <= newest) return; // the last 16 frames, at the floor
+                ++frames;
+                for (uint32_t c = 0; c < 3; ++c) {
+                    const std::string cascade = "gi/cascade" + std::to_string(c);
+                    bool rsm = false, propagate = false;
+                    for (uint32_t k = 0; k < r.sampleCount; ++k) {
+                        const std::string& path = scopes[r.samples[k].scope].path;
+                        rsm = rsm || path == cascade + "/rsm";
+                        propagate = propagate || path == cascade + "/propagate";
+                    }
+                    if (c == 0) {
+                        CHECK(rsm);
+                        CHECK(propagate);
+                        continue;
+                    }
+                    CHECK_FALSE((rsm && propagate));
+                    lightHalves += rsm ? 1 : 0;
+                    volumeHalves += propagate ? 1 : 0;
+                }
+            });
+            // 2 coarse cascades, each with a light half and a volume half every 4 frames.
+            CHECK(frames == 16);
+            CHECK(lightHalves == frames / 2);
+            CHECK(volumeHalves == frames / 2);
         }
     }
 }
