@@ -445,8 +445,8 @@ void consolePrediction() {
         {"lookup (up to 2 of 3 cascades per pixel)", gi::lookupWork(c, lowPixels),
          gi::lookupWork(f, floorPixels), 1, 1},
         {"glossy", gi::glossyWork(lowPixels), gi::glossyWork(floorPixels), 1, 1},
-        {"bilateral rebuild to 1280x720 (in render.lighting)", engine::indirectRebuildWork(pixels),
-         engine::indirectRebuildWork(pixels), 1, 1},
+        {"bilateral rebuild to 1280x720 (gi.rebuild, runs in render.lighting)",
+         engine::indirectRebuildWork(pixels), engine::indirectRebuildWork(pixels), 1, 1},
     };
     std::printf(
         "\nConsole preset (3 x 32^3 cascades, 8 iterations, 2 bounces, occlusion, glossy, RGBA8, RSM "
