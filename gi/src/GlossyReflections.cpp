@@ -27,10 +27,14 @@ GlossyReflections::GlossyReflections(rhi::Device& device) : device_(device) {
     using namespace rhi;
     GraphicsPipelineDesc d;
     d.vertex = &engine::shaders::fullscreen_vert;
-    d.fragment = &shaders::lpv_glossy_frag;
     d.colorFormats = {Format::RGBA16F};
     d.debugName = "lpv glossy";
-    pipeline_ = device.createPipeline(d);
+    const rhi::ShaderBinary* marches[4] = {&shaders::lpv_glossy_1_frag, &shaders::lpv_glossy_2_frag,
+                                           &shaders::lpv_glossy_3_frag, &shaders::lpv_glossy_4_frag};
+    for (size_t c = 0; c < 4; ++c) {
+        d.fragment = marches[c];
+        pipelines_[c] = device.createPipeline(d);
+    }
     pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
     SamplerDesc linear;
     linear.mipFilter = Filter::Nearest;
@@ -38,7 +42,8 @@ GlossyReflections::GlossyReflections(rhi::Device& device) : device_(device) {
 }
 
 GlossyReflections::~GlossyReflections() {
-    device_.destroy(pipeline_);
+    for (rhi::GraphicsPipelineHandle p : pipelines_)
+        device_.destroy(p);
     device_.destroy(pointSampler_);
     device_.destroy(linearSampler_);
 }
@@ -65,7 +70,7 @@ void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatric
     pass.colorCount = 1;
     pass.debugName = "lpv glossy";
     cmd.beginRenderPass(pass);
-    cmd.bindPipeline(pipeline_);
+    cmd.bindPipeline(pipelines_[std::min<size_t>(cascades.size(), 4) - 1]);
     cmd.pushUniforms(0, &u, sizeof(u));
     cmd.bindTexture(1, gbuffer.depth, pointSampler_);
     cmd.bindTexture(2, gbuffer.normal, pointSampler_);

@@ -74,7 +74,7 @@ glm::vec4 sampleVolume(const Image& v, glm::vec3 uvw) {
     return sum;
 }
 
-// The march of lpv_glossy.frag on the CPU from the read-back volumes (roughness 0.1 as the test
+// The march of lpv_glossy.glsl on the CPU from the read-back volumes (roughness 0.1 as the test
 // floor): the finest cascade that holds the march's start half a cell inside its border, steps
 // until one leaves it.
 glm::vec3 referenceGlossy(const CornellFrame& f, glm::vec3 p, glm::vec3 n, glm::vec3 r) {

@@ -1,7 +1,7 @@
 // Glossy reflections from the LPV (gi.glossy): a fullscreen pass that marches a few cells along
 // each pixel's reflected view ray through the cascades and writes the radiance arriving along it
 // (linear RGBA16F) for the lighting pass to add under a Fresnel weight. The march and the roughness
-// cone are in gi/shaders/lpv_glossy.frag.
+// cone are in gi/shaders/lpv_glossy.glsl.
 #pragma once
 
 #include "engine/profiler/WorkCounts.h"
@@ -40,7 +40,8 @@ public:
 
 private:
     rhi::Device& device_;
-    rhi::GraphicsPipelineHandle pipeline_;
+    // By cascade count - 1: each march names its cascade's textures at compile time.
+    std::array<rhi::GraphicsPipelineHandle, 4> pipelines_{};
     rhi::SamplerHandle pointSampler_, linearSampler_;
 };
 
