@@ -42,11 +42,19 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
                        3 * cells * shBytes});
         out.push_back({"vpl buffer, cascade " + std::to_string(c), "gi.vpl", uint64_t(s.vplCount) * 48});
     }
-    // Spot lights with their own RSM (SpotLightRsms): an RSM and a VPL buffer each.
+    // Spot lights with their own RSM (SpotLightRsms): an RSM and a VPL buffer each; point lights
+    // six of each, a cube.
     for (uint32_t k = 0; k < s.lightRsms; ++k) {
         const std::string light = "spot light " + std::to_string(k);
         out.push_back({light + " rsm depth, normal, flux", "gi.rsm", rsm * (4 + 8 + 8)});
         out.push_back({light + " vpl buffer", "gi.vpl", uint64_t(spotLightVplCount(s)) * 48});
+    }
+    for (uint32_t k = 0; k < s.pointLightRsms; ++k) {
+        const std::string light = "point light " + std::to_string(k);
+        out.push_back(
+            {light + " cube rsm depth, normal, flux (6 faces)", "gi.rsm", kCubeFaces * rsm * (4 + 8 + 8)});
+        out.push_back(
+            {light + " vpl buffers (6 faces)", "gi.vpl", kCubeFaces * uint64_t(spotLightVplCount(s)) * 48});
     }
     if (s.occlusion) {
         out.push_back({"geometry volume coverage, light surfels", "gi.gv", gvCells * 4});

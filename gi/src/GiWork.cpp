@@ -45,8 +45,8 @@ WorkCounts injectWork(const LpvSettings& s, uint64_t extraVpls, VolumeDraw draw)
     return w;
 }
 
-WorkCounts lightRsmWork(const LpvSettings& s, uint32_t lights, uint64_t triangles) {
-    // Each light: the scene in its cone into a spot RSM of gi.rsm_size (one more position
+WorkCounts lightRsmWork(const LpvSettings& s, uint32_t rsms, uint64_t triangles) {
+    // Each RSM: the scene in its frustum into a spot RSM of gi.rsm_size (one more position
     // interpolant and the cone, window and solid angle per texel), clustered like the sun's into
     // fewer VPLs.
     const uint64_t texels = uint64_t(s.rsmSize) * s.rsmSize;
@@ -55,7 +55,7 @@ WorkCounts lightRsmWork(const LpvSettings& s, uint32_t lights, uint64_t triangle
     WorkCounts cluster = vplClusterWork(s);
     cluster.bytesMoved -= (uint64_t(s.vplCount) - spotLightVplCount(s)) * 48;
     one += cluster;
-    WorkCounts all = one * lights;
+    WorkCounts all = one * rsms;
     all.primitives += triangles;
     return all;
 }

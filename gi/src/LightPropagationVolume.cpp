@@ -168,11 +168,15 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
             profiler->note(kGiBudgetNoteTopic, change.text());
     }
     renderer_ = &renderer;
-    // RSMs for as many spot lights as the scene has, up to gi.light_rsms: none for a scene without.
-    s.lightRsms = std::min(s.lightRsms, spotLightCount(renderer.punctualLights()));
+    // RSMs for as many spot (point) lights as the scene has, up to gi.light_rsms
+    // (gi.point_light_rsms): none for a scene without.
+    s.lightRsms = std::min(s.lightRsms, lightCount(renderer.punctualLights(), engine::LightType::Spot));
+    s.pointLightRsms =
+        std::min(s.pointLightRsms, lightCount(renderer.punctualLights(), engine::LightType::Point));
     const bool resized = !made_ || s.rsmSize != settings_.rsmSize || s.vplCount != settings_.vplCount ||
                          !volumes_->matches(s) || s.occlusion != (geometry_ != nullptr) ||
-                         (s.bounces > 1) != (bounces_ != nullptr) || s.lightRsms != settings_.lightRsms;
+                         (s.bounces > 1) != (bounces_ != nullptr) || s.lightRsms != settings_.lightRsms ||
+                         s.pointLightRsms != settings_.pointLightRsms;
     if (s.enabled && resized) {
         checkGiBudget(s, profile_); // throws before anything changes
         remake(s);
@@ -216,10 +220,10 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     const uint32_t side = settings_.vplGridSide();
     // The spot lights' RSMs follow the lights, not the cascades: drawn once, injected into each
     // cascade they reach.
-    if (const uint32_t spotRsms = uint32_t(spotRsms_->selection().size())) {
+    if (const uint32_t lightRsms = spotRsms_->rsmCount()) {
         auto s = scope("lightrsm");
         const uint64_t triangles = spotRsms_->render(cmd, *renderer_->scene(), renderer_->punctualLights());
-        work(lightRsmWork(settings_, spotRsms, triangles));
+        work(lightRsmWork(settings_, lightRsms, triangles));
     }
     // Coarsest first: each finer cascade takes the light from beyond its border from the one
     // around it (CascadeHandoff).
@@ -290,7 +294,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         }
         {
             auto s = scope("inject");
-            std::array<VplSource, 1 + SpotLightRsms::kMaxLights> sources;
+            std::array<VplSource, 1 + SpotLightRsms::kMaxRsms> sources;
             sources[0] = {cascade.vpls, settings_.vplCount, glm::vec4(cascade.lightDirection, 0.0f)};
             const uint32_t n = 1 + spotRsms_->sourcesReaching(grid, std::span(sources).subspan(1));
             volumes_->inject(cmd, std::span(sources.data(), n), grid, settings_.intensity);
@@ -408,7 +412,7 @@ void LightPropagationVolume::renderDebugOverlay(rhi::CommandList& cmd, const eng
         cmd.pushUniforms(0, &camera.viewProjection, sizeof(camera.viewProjection));
         cmd.bindStorageBuffer(1, vpls_);
         cmd.draw(settings_.vplCount);
-        for (const VplSource& spot : spotRsms_->sources()) { // and the spot lights' with an RSM
+        for (const VplSource& spot : spotRsms_->sources()) { // and the lights' with an RSM
             cmd.bindStorageBuffer(1, spot.vpls);
             cmd.draw(spot.count);
         }

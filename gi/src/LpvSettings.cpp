@@ -55,6 +55,10 @@ const engine::IntSetting kBounceCascades{
 const engine::IntSetting kLightRsms{"gi.light_rsms", 1, 0, 4,
                                     "Spot lights (the brightest reaching the volume) with their own RSM: "
                                     "bounce light in the colour they hit"};
+const engine::IntSetting kPointLightRsms{
+    "gi.point_light_rsms", 0, 0, 2,
+    "Point lights (the brightest reaching the volume) with a cube RSM of their own, six gi.rsm_size faces: "
+    "bounce light in the colour they hit"};
 const engine::EnumSetting<uint32_t> kResolution{
     "gi.resolution",
     2u,
@@ -90,6 +94,7 @@ LpvSettings readLpvSettings(const engine::Config& config) {
     s.bounces = uint32_t(config.get(kBounces));
     s.bounceCascades = uint32_t(config.get(kBounceCascades));
     s.lightRsms = uint32_t(config.get(kLightRsms));
+    s.pointLightRsms = uint32_t(config.get(kPointLightRsms));
     s.resolutionDivisor = config.get(kResolution);
     s.budgetPolicy = readGiBudgetPolicy(config);
     const uint32_t side = s.vplGridSide();

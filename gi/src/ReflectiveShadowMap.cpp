@@ -32,24 +32,38 @@ glm::vec3 spotAxis(const engine::Light& spot) {
     const float length = glm::length(spot.direction);
     return length > 0.0f ? spot.direction / length : glm::vec3(0.0f, -1.0f, 0.0f);
 }
-} // namespace
 
-SpotRsmFit fitSpotRsm(const engine::Light& spot, float reach) {
+// A square perspective frustum from `light` along `axis` with sides at tanHalfAngle.
+SpotRsmFit fitPerspective(const engine::Light& light, glm::vec3 axis, float tanHalfAngle, float reach) {
     SpotRsmFit f;
-    const glm::vec3 axis = spotAxis(spot);
     const glm::vec3 up = std::fabs(axis.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
-    // 1% wider than the cone, so its rim lands inside the outermost texels, not on the edge.
-    const float halfAngle = std::clamp(spot.outerConeAngle, 0.01f, kMaxSpotRsmHalfAngle);
-    f.tanHalfAngle = std::tan(halfAngle) * 1.01f;
-    f.farPlane = std::max(spot.range > 0.0f ? std::min(spot.range, reach) : reach, 0.1f);
+    f.tanHalfAngle = tanHalfAngle;
+    f.farPlane = std::max(light.range > 0.0f ? std::min(light.range, reach) : reach, 0.1f);
     // Depth precision follows far / near; 1/500 keeps D32F's reconstructed positions within
     // a millimetre at 10 m.
     f.nearPlane = std::max(0.02f, f.farPlane / 500.0f);
-    const glm::mat4 view = glm::lookAt(spot.position, spot.position + axis, up);
+    const glm::mat4 view = glm::lookAt(light.position, light.position + axis, up);
     const glm::mat4 projection =
         glm::perspectiveRH_ZO(2.0f * std::atan(f.tanHalfAngle), 1.0f, f.nearPlane, f.farPlane);
     f.viewProjection = projection * view;
     return f;
+}
+} // namespace
+
+SpotRsmFit fitSpotRsm(const engine::Light& spot, float reach) {
+    // 1% wider than the cone, so its rim lands inside the outermost texels, not on the edge.
+    const float halfAngle = std::clamp(spot.outerConeAngle, 0.01f, kMaxSpotRsmHalfAngle);
+    return fitPerspective(spot, spotAxis(spot), std::tan(halfAngle) * 1.01f, reach);
+}
+
+glm::vec3 cubeFaceAxis(uint32_t face) {
+    glm::vec3 axis(0.0f);
+    axis[int(face / 2) % 3] = face % 2 == 0 ? 1.0f : -1.0f;
+    return axis;
+}
+
+SpotRsmFit fitCubeFace(const engine::Light& point, uint32_t face, float reach) {
+    return fitPerspective(point, cubeFaceAxis(face), 1.0f, reach);
 }
 
 ReflectiveShadowMap::ReflectiveShadowMap(rhi::Device& device, uint32_t size, RsmLight light)
@@ -121,7 +135,24 @@ uint64_t ReflectiveShadowMap::render(rhi::CommandList& cmd, const engine::GpuSce
 uint64_t ReflectiveShadowMap::renderSpot(rhi::CommandList& cmd, const engine::GpuScene& scene,
                                          const engine::Light& spot, float reach) {
     if (light_ != RsmLight::Spot) throw rhi::Error("ReflectiveShadowMap::renderSpot() on the sun's RSM");
-    const SpotRsmFit fit = fitSpotRsm(spot, reach);
+    // As the analytic lights (gi/AnalyticLight.cpp): smoothstep needs edge0 < edge1.
+    const float cosOuter = std::cos(spot.outerConeAngle);
+    return renderPerspective(cmd, scene, spot, spotAxis(spot), fitSpotRsm(spot, reach), cosOuter,
+                             std::max(std::cos(spot.innerConeAngle), cosOuter + 1e-4f));
+}
+
+uint64_t ReflectiveShadowMap::renderCubeFace(rhi::CommandList& cmd, const engine::GpuScene& scene,
+                                             const engine::Light& point, uint32_t face, float reach) {
+    if (light_ != RsmLight::Spot) throw rhi::Error("ReflectiveShadowMap::renderCubeFace() on the sun's RSM");
+    // No cone: every direction of the face gets the light's intensity (smoothstep from -1 is 1
+    // over the whole face, whose directions are within 55 degrees of its axis).
+    return renderPerspective(cmd, scene, point, cubeFaceAxis(face), fitCubeFace(point, face, reach), -1.0f,
+                             -1.0f + 1e-4f);
+}
+
+uint64_t ReflectiveShadowMap::renderPerspective(rhi::CommandList& cmd, const engine::GpuScene& scene,
+                                                const engine::Light& light, glm::vec3 axis,
+                                                const SpotRsmFit& fit, float cosOuter, float cosInner) {
     viewProjection_ = fit.viewProjection;
     // A texel's side on the image plane at 1 m is 2 tan / size: its area there is the solid angle
     // of the texel on the axis. texelArea_ is that area at the far plane (for the surfels' size).
@@ -129,12 +160,11 @@ uint64_t ReflectiveShadowMap::renderSpot(rhi::CommandList& cmd, const engine::Gp
     texelArea_ = texel * texel * fit.farPlane * fit.farPlane;
     SpotRsmUniforms u;
     u.lightViewProjection = viewProjection_;
-    u.lightPosition = glm::vec4(spot.position, spot.range > 0.0f ? 1.0f / (spot.range * spot.range) : 0.0f);
-    u.spotDirection = glm::vec4(spotAxis(spot), texel * texel);
-    // As the analytic lights (gi/AnalyticLight.cpp): smoothstep needs edge0 < edge1.
-    const float cosOuter = std::cos(spot.outerConeAngle);
-    u.cone = glm::vec4(cosOuter, std::max(std::cos(spot.innerConeAngle), cosOuter + 1e-4f), 0, 0);
-    u.intensity = glm::vec4(spot.color * spot.intensity, 0.0f);
+    u.lightPosition =
+        glm::vec4(light.position, light.range > 0.0f ? 1.0f / (light.range * light.range) : 0.0f);
+    u.spotDirection = glm::vec4(axis, texel * texel);
+    u.cone = glm::vec4(cosOuter, cosInner, 0, 0);
+    u.intensity = glm::vec4(light.color * light.intensity, 0.0f);
     return draw(cmd, scene, &u, sizeof(u), 0.0f);
 }
 

@@ -1,4 +1,4 @@
-// Spot lights with their own RSM: the choice of lights, their RSMs and VPL clustering.
+// Spot and point lights with their own RSM: the choice of lights, their RSMs and VPL clustering.
 #include "gi/SpotLightRsms.h"
 
 #include "GiShaders.h"
@@ -39,19 +39,19 @@ uint32_t spotLightVplSide(const LpvSettings& settings) {
     return side % 2 == 0 ? side / 2 : side; // rsm % side == 0, so rsm % (side / 2) == 0
 }
 
-uint32_t spotLightCount(std::span<const engine::Light> lights) {
-    return uint32_t(std::count_if(lights.begin(), lights.end(),
-                                  [](const engine::Light& l) { return l.type == engine::LightType::Spot; }));
+uint32_t lightCount(std::span<const engine::Light> lights, engine::LightType type) {
+    return uint32_t(
+        std::count_if(lights.begin(), lights.end(), [&](const engine::Light& l) { return l.type == type; }));
 }
 
-uint32_t selectRsmSpotLights(std::span<const engine::Light> lights, const VolumeGrid& grid,
-                             std::span<uint32_t> out) {
+uint32_t selectRsmLights(std::span<const engine::Light> lights, engine::LightType type,
+                         const VolumeGrid& grid, std::span<uint32_t> out) {
     uint32_t count = 0;
-    std::array<float, SpotLightRsms::kMaxLights> scores{};
+    std::array<float, SpotLightRsms::kMaxLights> scores{}; // at most 4 of either kind
     const uint32_t capacity = uint32_t(std::min(out.size(), scores.size()));
     for (uint32_t i = 0; i < uint32_t(lights.size()); ++i) {
         const engine::Light& l = lights[i];
-        if (l.type != engine::LightType::Spot || !reachesVolume(analyticLight(l, 1.0f), grid)) continue;
+        if (l.type != type || !reachesVolume(analyticLight(l, 1.0f), grid)) continue;
         const float score = importance(l, grid);
         // Insertion into the sorted top list; an equal score stays behind the earlier light.
         uint32_t at = count;
@@ -70,15 +70,16 @@ uint32_t selectRsmSpotLights(std::span<const engine::Light> lights, const Volume
 }
 
 SpotLightRsms::SpotLightRsms(rhi::Device& device, const LpvSettings& settings)
-    : device_(device), settings_(settings), capacity_(std::min(settings.lightRsms, kMaxLights)) {
+    : device_(device), settings_(settings), capacity_(std::min(settings.lightRsms, kMaxLights)),
+      pointCapacity_(std::min(settings.pointLightRsms, kMaxPointLights)) {
     using namespace rhi;
-    for (uint32_t k = 0; k < capacity_; ++k) {
+    for (uint32_t k = 0; k < capacity_ + kCubeFaces * pointCapacity_; ++k) {
         rsms_[k] = std::make_unique<ReflectiveShadowMap>(device, settings.rsmSize, RsmLight::Spot);
         vpls_[k] =
             device.createBuffer({uint64_t(spotLightVplCount(settings)) * 48, kBufferStorage | kBufferTransfer,
                                  MemoryAccess::GpuOnly, "spot light vpls " + std::to_string(k), "gi.vpl"});
     }
-    if (capacity_ > 0)
+    if (capacity_ + pointCapacity_ > 0)
         clusterPipeline_ =
             device.createPipeline(ComputePipelineDesc{&shaders::vpl_cluster_comp, "spot light vpl cluster"});
     pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
@@ -86,31 +87,39 @@ SpotLightRsms::SpotLightRsms(rhi::Device& device, const LpvSettings& settings)
 
 SpotLightRsms::~SpotLightRsms() {
     device_.waitIdle();
-    for (uint32_t k = 0; k < capacity_; ++k)
-        device_.destroy(vpls_[k]);
+    for (rhi::BufferHandle b : vpls_)
+        if (b) device_.destroy(b);
     if (clusterPipeline_) device_.destroy(clusterPipeline_);
     device_.destroy(pointSampler_);
 }
 
 void SpotLightRsms::select(std::span<const engine::Light> lights, const VolumeGrid& reach) {
-    count_ = selectRsmSpotLights(lights, reach, std::span(selection_.data(), capacity_));
+    count_ = selectRsmLights(lights, engine::LightType::Spot, reach, std::span(selection_.data(), capacity_));
+    pointCount_ = selectRsmLights(lights, engine::LightType::Point, reach,
+                                  std::span(selection_.data() + count_, pointCapacity_));
     reachGrid_ = reach;
-    for (uint32_t k = 0; k < count_; ++k) {
-        const engine::Light& spot = lights[selection_[k]];
-        sources_[k] = {vpls_[k], spotLightVplCount(settings_), glm::vec4(spot.position, 1.0f)};
-        reach_[k] = analyticLight(spot, 1.0f);
+    // RSM slots: one per spot, then six per point light, each face its own VPL source (the VPLs'
+    // half-cell shift runs along their own line from the light either way).
+    rsmCount_ = 0;
+    for (uint32_t k = 0; k < count_ + pointCount_; ++k) {
+        const engine::Light& light = lights[selection_[k]];
+        for (uint32_t f = 0; f < (k < count_ ? 1u : kCubeFaces); ++f, ++rsmCount_) {
+            sources_[rsmCount_] = {vpls_[rsmCount_], spotLightVplCount(settings_),
+                                   glm::vec4(light.position, 1.0f)};
+            reach_[rsmCount_] = analyticLight(light, 1.0f);
+        }
     }
 }
 
 uint32_t SpotLightRsms::sourcesReaching(const VolumeGrid& grid, std::span<VplSource> out) const {
     uint32_t n = 0;
-    for (uint32_t k = 0; k < count_ && n < out.size(); ++k)
+    for (uint32_t k = 0; k < rsmCount_ && n < out.size(); ++k)
         if (reachesVolume(reach_[k], grid)) out[n++] = sources_[k];
     return n;
 }
 
 bool SpotLightRsms::selected(uint32_t index) const {
-    for (uint32_t k = 0; k < count_; ++k)
+    for (uint32_t k = 0; k < count_ + pointCount_; ++k)
         if (selection_[k] == index) return true;
     return false;
 }
@@ -118,24 +127,34 @@ bool SpotLightRsms::selected(uint32_t index) const {
 uint64_t SpotLightRsms::render(rhi::CommandList& cmd, const engine::GpuScene& scene,
                                std::span<const engine::Light> lights) {
     uint64_t triangles = 0;
-    const uint32_t side = spotLightVplSide(settings_);
-    for (uint32_t k = 0; k < count_; ++k) {
-        const engine::Light& spot = lights[selection_[k]];
-        ReflectiveShadowMap& rsm = *rsms_[k];
-        triangles += rsm.renderSpot(cmd, scene, spot, farthestCorner(spot.position, reachGrid_));
-        // The sun's clustering (vpl_cluster.comp): its unprojection holds for a perspective map.
-        ClusterUniforms u;
-        u.invLightViewProjection = glm::inverse(rsm.lightViewProjection());
-        u.sizes = glm::ivec4(int(rsm.size()), int(side), int(rsm.size() / side), 0);
-        cmd.bindPipeline(clusterPipeline_);
-        cmd.pushUniforms(0, &u, sizeof(u));
-        cmd.bindTexture(1, rsm.depth(), pointSampler_);
-        cmd.bindTexture(2, rsm.normal(), pointSampler_);
-        cmd.bindTexture(3, rsm.flux(), pointSampler_);
-        cmd.bindStorageBuffer(4, vpls_[k]);
-        cmd.dispatch((side + 7) / 8, (side + 7) / 8, 1);
+    uint32_t slot = 0;
+    for (uint32_t k = 0; k < count_ + pointCount_; ++k) {
+        const engine::Light& light = lights[selection_[k]];
+        const float reach = farthestCorner(light.position, reachGrid_);
+        for (uint32_t f = 0; f < (k < count_ ? 1u : kCubeFaces); ++f, ++slot) {
+            ReflectiveShadowMap& rsm = *rsms_[slot];
+            triangles += k < count_ ? rsm.renderSpot(cmd, scene, light, reach)
+                                    : rsm.renderCubeFace(cmd, scene, light, f, reach);
+            cluster(cmd, slot);
+        }
     }
     return triangles;
+}
+
+void SpotLightRsms::cluster(rhi::CommandList& cmd, uint32_t slot) {
+    // The sun's clustering (vpl_cluster.comp): its unprojection holds for a perspective map.
+    const uint32_t side = spotLightVplSide(settings_);
+    const ReflectiveShadowMap& rsm = *rsms_[slot];
+    ClusterUniforms u;
+    u.invLightViewProjection = glm::inverse(rsm.lightViewProjection());
+    u.sizes = glm::ivec4(int(rsm.size()), int(side), int(rsm.size() / side), 0);
+    cmd.bindPipeline(clusterPipeline_);
+    cmd.pushUniforms(0, &u, sizeof(u));
+    cmd.bindTexture(1, rsm.depth(), pointSampler_);
+    cmd.bindTexture(2, rsm.normal(), pointSampler_);
+    cmd.bindTexture(3, rsm.flux(), pointSampler_);
+    cmd.bindStorageBuffer(4, vpls_[slot]);
+    cmd.dispatch((side + 7) / 8, (side + 7) / 8, 1);
 }
 
 } // namespace lpv::gi

@@ -246,17 +246,7 @@ TEST_CASE("gi: GL and Vulkan compute the same analytic lights") {
     const engine::Scene hall = engine::buildLightHall();
     const std::vector<std::string> on = {"gi.enabled=true", "render.debug_view=indirect",
                                          "render.ssao=false"};
-    CornellFrame gl, vk;
-    {
-        TestDevice device(backendByName("gl-egl"));
-        gl = renderSceneFrame(*device, hall, on, kNoSun);
-        device.expectSilent();
-    }
-    {
-        TestDevice device(backendByName("vulkan"));
-        vk = renderSceneFrame(*device, hall, on, kNoSun);
-        device.expectSilent();
-    }
+    const FramesOnBothApis f = renderOnGlAndVulkan(hall, on, kNoSun);
     // Tolerance as for the sun's indirect light: 1% of the brightest value on 99% of the pixels.
-    checkBackendsAgree(gl.hdr, vk.hdr, "analytic lights");
+    checkBackendsAgree(f.gl.hdr, f.vk.hdr, "analytic lights");
 }

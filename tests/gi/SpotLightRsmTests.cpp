@@ -1,7 +1,7 @@
-// Spot lights with their own RSM on the CPU (gi/SpotLightRsms.h, gi/ReflectiveShadowMap.h): the
-// perspective fit holds the whole cone and no more than it needs, its depth range follows the range
-// and the volume, the choice of lights, the cascades each light's VPLs go to, and the budget counts
-// their memory.
+// Spot and point lights with their own RSM on the CPU (gi/SpotLightRsms.h,
+// gi/ReflectiveShadowMap.h): the perspective fit holds the whole cone and no more than it needs, its
+// depth range follows the range and the volume, a point light's six cube faces tile the sphere, the
+// choice of lights, the cascades each light's VPLs go to, and the budget counts their memory.
 #include "../support/TestDevice.h"
 
 #include "gi/GiBudget.h"
@@ -101,15 +101,15 @@ TEST_CASE("spot rsm: the lights that matter most to the volume are chosen, in a 
     lights.push_back(dark);
 
     std::array<uint32_t, 4> out{};
-    REQUIRE(selectRsmSpotLights(lights, grid, std::span(out.data(), 2)) == 2);
+    REQUIRE(selectRsmLights(lights, engine::LightType::Spot, grid, std::span(out.data(), 2)) == 2);
     CHECK(out[0] == 2); // the earlier of the two equally bright lights first
     CHECK(out[1] == 4);
-    REQUIRE(selectRsmSpotLights(lights, grid, out) == 4);
+    REQUIRE(selectRsmLights(lights, engine::LightType::Spot, grid, out) == 4);
     CHECK(out[2] == 1);
     // 40 over (40 - 4)^2 m^2 is less than 2 over the volume's half-extent squared.
     CHECK(out[3] == 5);
-    CHECK(selectRsmSpotLights(lights, grid, std::span(out.data(), 0)) == 0);
-    CHECK(selectRsmSpotLights(std::span(lights.data(), 1), grid, out) == 0);
+    CHECK(selectRsmLights(lights, engine::LightType::Spot, grid, std::span(out.data(), 0)) == 0);
+    CHECK(selectRsmLights(std::span(lights.data(), 1), engine::LightType::Spot, grid, out) == 0);
 }
 
 TEST_CASE("spot rsm: the GI budget counts every spot light's RSM and VPLs") {
@@ -150,4 +150,55 @@ TEST_CASE("spot rsm: a cascade gets the VPLs of the spot lights that reach it, a
         CHECK(v.count == s.vplCount / 4);
     }
     CHECK(rsms.sourcesReaching(fine, std::span(out.data(), 1)) == 1);
+}
+
+TEST_CASE("point rsm: a point light's six cube faces tile the sphere, and their texels add up to 4 pi") {
+    engine::Light point;
+    point.type = engine::LightType::Point;
+    point.position = {1.0f, 2.0f, -3.0f};
+    // Directions spread over the sphere (a Fibonacci spiral): each lands inside exactly one face.
+    const int n = 2000;
+    int once = 0;
+    for (int i = 0; i < n; ++i) {
+        const float z = 1.0f - (2.0f * float(i) + 1.0f) / float(n);
+        const float r = std::sqrt(1.0f - z * z), phi = 2.39996323f * float(i);
+        const glm::vec3 d(r * std::cos(phi), r * std::sin(phi), z);
+        int faces = 0;
+        for (uint32_t f = 0; f < kCubeFaces; ++f) {
+            const SpotRsmFit fit = fitCubeFace(point, f, 10.0f);
+            const glm::vec4 c = fit.viewProjection * glm::vec4(point.position + 5.0f * d, 1.0f);
+            if (std::fabs(c.x) <= c.w && std::fabs(c.y) <= c.w && c.z >= 0.0f && c.z <= c.w) ++faces;
+        }
+        once += faces == 1 ? 1 : 0;
+    }
+    CHECK(once == n);
+    // The shader's texel solid angle (the axis texel's, times cos^3 off the axis) over a 90-degree
+    // face of 256^2 texels, six times: the whole sphere.
+    const uint32_t size = 256;
+    const double texel = 2.0 / size;
+    double sphere = 0.0;
+    for (uint32_t y = 0; y < size; ++y)
+        for (uint32_t x = 0; x < size; ++x) {
+            const double u = -1.0 + (x + 0.5) * texel, v = -1.0 + (y + 0.5) * texel;
+            sphere += kCubeFaces * texel * texel / std::pow(1.0 + u * u + v * v, 1.5);
+        }
+    MESSAGE("six faces of 256^2 texels: " << sphere << " sr (4 pi = " << 4.0 * 3.14159265358979 << ")");
+    CHECK(sphere == doctest::Approx(4.0 * 3.14159265358979).epsilon(1e-4));
+    for (uint32_t f = 0; f < kCubeFaces; ++f)
+        CHECK(fitCubeFace(point, f, 10.0f).tanHalfAngle == 1.0f);
+}
+
+TEST_CASE("point rsm: the GI budget counts a point light's six RSMs and VPL buffers") {
+    LpvSettings s;
+    s.lightRsms = 0;
+    const uint64_t none = giBytes(giResources(s));
+    s.pointLightRsms = 2;
+    const uint64_t perFace =
+        uint64_t(s.rsmSize) * s.rsmSize * (4 + 8 + 8) + uint64_t(spotLightVplCount(s)) * 48;
+    CHECK(giBytes(giResources(s)) == none + 2 * kCubeFaces * perFace);
+    // 7.8 MiB for one point light at the defaults (RSM 256, 4096 VPLs): the PC's 64 MiB hold it,
+    // the consoles' 3 MiB do not.
+    s.pointLightRsms = 1;
+    CHECK(giBytes(giResources(s)) - none == kCubeFaces * perFace);
+    CHECK(kCubeFaces * perFace > (7ull << 20));
 }

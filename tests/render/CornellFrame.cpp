@@ -1,6 +1,8 @@
 // Cornell box frames for the render and GI tests.
 #include "CornellFrame.h"
 
+#include "../support/TestDevice.h"
+
 #include "engine/config/Config.h"
 #include "engine/scene/BuiltinScenes.h"
 #include "gi/LightPropagationVolume.h"
@@ -83,6 +85,22 @@ CornellFrame renderCornell(rhi::Device& device, const std::vector<std::string>& 
             if (sunDirection) renderer.sun().direction = glm::normalize(*sunDirection);
         },
         width, height, frames, cameraOffset);
+}
+
+FramesOnBothApis renderOnGlAndVulkan(const engine::Scene& scene, const std::vector<std::string>& settings,
+                                     const std::function<void(engine::Renderer&)>& prepare) {
+    FramesOnBothApis out;
+    {
+        TestDevice device(backendByName("gl-egl"));
+        out.gl = renderSceneFrame(*device, scene, settings, prepare);
+        device.expectSilent();
+    }
+    {
+        TestDevice device(backendByName("vulkan"));
+        out.vk = renderSceneFrame(*device, scene, settings, prepare);
+        device.expectSilent();
+    }
+    return out;
 }
 
 } // namespace lpv::test

@@ -57,6 +57,14 @@ CornellFrame renderSceneFrame(rhi::Device& device, engine::Scene scene,
                               uint32_t width = 320, uint32_t height = 240, int frames = 1,
                               glm::vec3 cameraOffset = glm::vec3(0.0f));
 
+// The same frame of `scene` on gl-egl and on Vulkan (each device's messages checked silent), for
+// the tests that compare the two APIs.
+struct FramesOnBothApis {
+    CornellFrame gl, vk;
+};
+FramesOnBothApis renderOnGlAndVulkan(const engine::Scene& scene, const std::vector<std::string>& settings,
+                                     const std::function<void(engine::Renderer&)>& prepare = {});
+
 float luminance(glm::vec4 c);
 
 } // namespace lpv::test

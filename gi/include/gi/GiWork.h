@@ -19,9 +19,9 @@ engine::WorkCounts vplClusterWork(const LpvSettings& s);
 // `extraVpls`: VPLs of further lights in the same pass (spot lights with an RSM).
 engine::WorkCounts injectWork(const LpvSettings& s, uint64_t extraVpls = 0,
                               VolumeDraw draw = VolumeDraw::Layered);
-// The RSMs and VPL clustering of `lights` spot lights (SpotLightRsms), once per frame; `triangles`:
-// drawn into all of them together.
-engine::WorkCounts lightRsmWork(const LpvSettings& s, uint32_t lights, uint64_t triangles);
+// The `rsms` RSMs of spot and point lights (SpotLightRsms: one per spot, six per point light) and
+// their VPL clustering, once per frame; `triangles`: drawn into all of them together.
+engine::WorkCounts lightRsmWork(const LpvSettings& s, uint32_t rsms, uint64_t triangles);
 // All iterations of the shipped kernel.
 engine::WorkCounts propagateWork(const LpvSettings& s);
 // All iterations of the straightforward 5-face gather the CryEngine 3 shaders use (one cell per

@@ -60,8 +60,8 @@ public:
         return settings_.enabled ? settings_.resolutionDivisor : 1;
     }
     // With gi.analytic_lights the volume carries the point and spot lights (see PointLightInjection),
-    // except the spot lights with an RSM of their own (gi.light_rsms): those the lighting pass lights
-    // per pixel, and the volume carries their bounce.
+    // except the spot and point lights with an RSM of their own (gi.light_rsms, gi.point_light_rsms):
+    // those the lighting pass lights per pixel, and the volume carries their bounce.
     bool carriesPunctualLight(uint32_t index) const override {
         return settings_.enabled && made_ && analyticLights_ && !spotRsms_->selected(index);
     }

@@ -1,6 +1,7 @@
 // A reflective shadow map. The sun's is fitted tightly around the light volume and snapped to its
 // own texels, so a moving camera (and volume) shifts the RSM by whole texels and it does not swim.
-// A spot light's is a perspective view from the light around its cone (SpotLightRsms).
+// A spot light's is a perspective view from the light around its cone; a point light's is a cube
+// of six such views of 90 degrees (SpotLightRsms).
 // Targets: depth, world normal, reflected flux per texel.
 #pragma once
 
@@ -29,6 +30,13 @@ struct SpotRsmFit {
 };
 SpotRsmFit fitSpotRsm(const engine::Light& spot, float reach);
 
+// A point light's RSM is a cube: six faces, +x, -x, +y, -y, +z, -z from the light.
+inline constexpr uint32_t kCubeFaces = 6;
+glm::vec3 cubeFaceAxis(uint32_t face);
+// Face `face` of a point light's cube RSM: a square frustum of exactly 90 degrees along
+// cubeFaceAxis(face), so the six tile the sphere around the light without overlap.
+SpotRsmFit fitCubeFace(const engine::Light& point, uint32_t face, float reach);
+
 class ReflectiveShadowMap {
 public:
     ReflectiveShadowMap(rhi::Device& device, uint32_t size, RsmLight light = RsmLight::Sun);
@@ -48,6 +56,10 @@ public:
     // Returns the triangles drawn.
     uint64_t renderSpot(rhi::CommandList& cmd, const engine::GpuScene& scene, const engine::Light& spot,
                         float reach);
+    // Face `face` of a point light's cube RSM (RsmLight::Spot maps; fitCubeFace): the light's
+    // intensity through every texel of the face, no cone edge. Returns the triangles drawn.
+    uint64_t renderCubeFace(rhi::CommandList& cmd, const engine::GpuScene& scene, const engine::Light& point,
+                            uint32_t face, float reach);
 
     const glm::mat4& lightViewProjection() const { return viewProjection_; }
     float texelArea() const { return texelArea_; }
@@ -56,6 +68,11 @@ public:
     rhi::TextureHandle flux() const { return flux_; }
 
 private:
+    // A perspective RSM of `light` (spot or point) through `fit` along `axis`, weighted by the cone
+    // from cosOuter to cosInner (smoothstep of the cosine to the axis).
+    uint64_t renderPerspective(rhi::CommandList& cmd, const engine::GpuScene& scene,
+                               const engine::Light& light, glm::vec3 axis, const SpotRsmFit& fit,
+                               float cosOuter, float cosInner);
     uint64_t draw(rhi::CommandList& cmd, const engine::GpuScene& scene, const void* uniforms, uint32_t bytes,
                   float minObjectSize);
 

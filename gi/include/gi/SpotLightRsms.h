@@ -1,11 +1,12 @@
-// Spot lights with a reflective shadow map of their own (gi.light_rsms; Kaplanyan 2009: "several
-// lights inject into one shared volume"). Each frame the spot lights that matter most to the
-// volume get a perspective RSM around their cone, rendered once (not per cascade: the fit follows
-// the light, not the volume) and clustered into a VPL buffer of their own; the LPV injects those
-// VPLs into every cascade after the sun's, so a spot light's bounce carries the colour of what it
-// hits and propagates (and is occluded) like the sun's. The lighting pass lights these spots per
-// pixel; the others stay analytic (PointLightInjection). RSMs and buffers are made with the
-// volumes, never in a frame.
+// Spot and point lights with a reflective shadow map of their own (gi.light_rsms spots,
+// gi.point_light_rsms point lights; Kaplanyan 2009: "several lights inject into one shared
+// volume"). Each frame the lights that matter most to the volume get a perspective RSM around a
+// spot's cone, or a cube of six 90-degree faces around a point light, rendered once (not per
+// cascade: the fit follows the light, not the volume) and clustered into VPL buffers of their own
+// (one per RSM); the LPV injects those VPLs into every cascade after the sun's, so the light's
+// bounce carries the colour of what it hits and propagates (and is occluded) like the sun's. The
+// lighting pass lights these lights per pixel; the others stay analytic (PointLightInjection).
+// RSMs and buffers are made with the volumes, never in a frame.
 #pragma once
 
 #include "engine/render/GpuScene.h"
@@ -24,42 +25,51 @@ namespace lpv::gi {
 
 class SpotLightRsms {
 public:
-    static constexpr uint32_t kMaxLights = 4; // gi.light_rsms' upper limit
+    static constexpr uint32_t kMaxLights = 4;      // gi.light_rsms' upper limit
+    static constexpr uint32_t kMaxPointLights = 2; // gi.point_light_rsms' upper limit
+    static constexpr uint32_t kMaxRsms = kMaxLights + kMaxPointLights * kCubeFaces;
 
-    // settings.lightRsms RSMs of settings.rsmSize, each with a buffer of spotLightVplSide(settings)^2
-    // VPLs.
+    // settings.lightRsms + 6 x settings.pointLightRsms RSMs of settings.rsmSize, each with a buffer
+    // of spotLightVplSide(settings)^2 VPLs.
     SpotLightRsms(rhi::Device& device, const LpvSettings& settings);
     ~SpotLightRsms();
     SpotLightRsms(const SpotLightRsms&) = delete;
     SpotLightRsms& operator=(const SpotLightRsms&) = delete;
 
-    // Picks this frame's lights (selectRsmSpotLights) for the volume `reach` (the coarsest
-    // cascade: every cascade lies inside it). Call before the renderer asks selected().
+    // Picks this frame's spot and point lights (selectRsmLights) for the volume `reach` (the
+    // coarsest cascade: every cascade lies inside it). Call before the renderer asks selected().
     void select(std::span<const engine::Light> lights, const VolumeGrid& reach);
     // True when light `index` of the lights given to select() has an RSM this frame.
     bool selected(uint32_t index) const;
-    std::span<const uint32_t> selection() const { return {selection_.data(), count_}; }
+    // The chosen lights (indices into the lights given to select()): spots, then point lights.
+    std::span<const uint32_t> selection() const { return {selection_.data(), count_ + pointCount_}; }
+    // RSMs drawn this frame: one per chosen spot, six per chosen point light.
+    uint32_t rsmCount() const { return rsmCount_; }
 
-    // Draws every selected light's RSM and clusters it into its VPLs; returns the triangles drawn.
+    // Draws every selected light's RSM(s) and clusters each into its VPLs; returns the triangles
+    // drawn.
     uint64_t render(rhi::CommandList& cmd, const engine::GpuScene& scene,
                     std::span<const engine::Light> lights);
-    // The selected lights' VPL buffers, for LpvVolumes::inject with the sun's (render() fills them).
-    std::span<const VplSource> sources() const { return {sources_.data(), count_}; }
+    // The VPL buffers of the RSMs drawn, for LpvVolumes::inject with the sun's (render() fills them).
+    std::span<const VplSource> sources() const { return {sources_.data(), rsmCount_}; }
     // Those of sources() whose light can reach `grid` (a cascade: its range sphere meets the box),
     // copied to `out`; returns how many. A cascade gets no VPLs that cannot land in it.
     uint32_t sourcesReaching(const VolumeGrid& grid, std::span<VplSource> out) const;
     const ReflectiveShadowMap& rsm(uint32_t slot) const { return *rsms_.at(slot); }
 
 private:
+    // Clusters RSM `slot` into its VPL buffer.
+    void cluster(rhi::CommandList& cmd, uint32_t slot);
+
     rhi::Device& device_;
     LpvSettings settings_;
-    uint32_t capacity_ = 0;
-    std::array<std::unique_ptr<ReflectiveShadowMap>, kMaxLights> rsms_;
-    std::array<rhi::BufferHandle, kMaxLights> vpls_{};
-    std::array<uint32_t, kMaxLights> selection_{};
-    std::array<VplSource, kMaxLights> sources_{};
-    std::array<AnalyticLight, kMaxLights> reach_{}; // each selected light's range, for sourcesReaching()
-    uint32_t count_ = 0;
+    uint32_t capacity_ = 0, pointCapacity_ = 0; // lights
+    std::array<std::unique_ptr<ReflectiveShadowMap>, kMaxRsms> rsms_;
+    std::array<rhi::BufferHandle, kMaxRsms> vpls_{};
+    std::array<uint32_t, kMaxLights + kMaxPointLights> selection_{};
+    std::array<VplSource, kMaxRsms> sources_{};
+    std::array<AnalyticLight, kMaxRsms> reach_{}; // each RSM's light's range, for sourcesReaching()
+    uint32_t count_ = 0, pointCount_ = 0, rsmCount_ = 0;
     VolumeGrid reachGrid_; // the volume the lights were chosen for
     rhi::ComputePipelineHandle clusterPipeline_;
     rhi::SamplerHandle pointSampler_;
@@ -75,16 +85,16 @@ inline uint32_t spotLightVplCount(const LpvSettings& settings) {
     return spotLightVplSide(settings) * spotLightVplSide(settings);
 }
 
-// How many of `lights` are spot lights.
-uint32_t spotLightCount(std::span<const engine::Light> lights);
+// How many of `lights` are of `type`.
+uint32_t lightCount(std::span<const engine::Light> lights, engine::LightType type);
 
-// The spot lights of `lights` that matter most to the volume at `grid`, at most `out.size()` of
+// The lights of `type` in `lights` that matter most to the volume at `grid`, at most `out.size()` of
 // them, as indices into `lights`, most important first; returns how many. A light counts when its
 // range reaches the volume and it is not dark; importance is its intensity's luminance over the
 // squared distance from the volume's centre, no less than the squared half-extent (so the lights
 // inside the volume rank by intensity alone). Ties keep the lights' order: the choice is
 // deterministic and stable from frame to frame while nothing moves.
-uint32_t selectRsmSpotLights(std::span<const engine::Light> lights, const VolumeGrid& grid,
-                             std::span<uint32_t> out);
+uint32_t selectRsmLights(std::span<const engine::Light> lights, engine::LightType type,
+                         const VolumeGrid& grid, std::span<uint32_t> out);
 
 } // namespace lpv::gi
