@@ -175,8 +175,8 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
         std::min(s.pointLightRsms, lightCount(renderer.punctualLights(), engine::LightType::Point));
     const bool resized = !made_ || s.rsmSize != settings_.rsmSize || s.vplCount != settings_.vplCount ||
                          !volumes_->matches(s) || s.occlusion != (geometry_ != nullptr) ||
-                         (s.bounces > 1) != (bounces_ != nullptr) || s.lightRsms != settings_.lightRsms ||
-                         s.pointLightRsms != settings_.pointLightRsms;
+                         (s.bounces > 1) != (bounces_ != nullptr) || s.cascades != settings_.cascades ||
+                         s.lightRsms != settings_.lightRsms || s.pointLightRsms != settings_.pointLightRsms;
     if (s.enabled && resized) {
         checkGiBudget(s, profile_); // throws before anything changes
         remake(s);
@@ -218,7 +218,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     cmd.beginMarker("gi");
     static const char* const kCascadeScopes[4] = {"cascade0", "cascade1", "cascade2", "cascade3"};
     const uint32_t side = settings_.vplGridSide();
-    // The spot lights' RSMs follow the lights, not the cascades: drawn once, injected into each
+    // The spot and point lights' RSMs follow the lights, not the cascades: drawn once, injected into each
     // cascade they reach.
     if (const uint32_t lightRsms = spotRsms_->rsmCount()) {
         auto s = scope("lightrsm");

@@ -330,3 +330,17 @@ TEST_CASE(
     const std::string report = engine::profileSummaryMarkdown(preset.run.profiler);
     CHECK(report.find("with every knob at its floor") != std::string::npos);
 }
+
+TEST_CASE("gi: changing gi.cascades while the game runs remakes the cascades (with the game's frame loop)") {
+    AdaptedLpv run(platforms::loadPlatformProfile("pc"),
+                   {"gi.enabled=true", "gi.cascades=3", "gi.budget_policy=fixed"}, engine::buildCornellBox(),
+                   160, 120);
+    run.frame();
+    CHECK(run.lpv.cascadeCount() == 3);
+    for (const uint32_t cascades : {2u, 4u, 1u, 3u}) {
+        run.config.applyOverride("gi.cascades=" + std::to_string(cascades), "test");
+        run.frame();
+        CHECK(run.lpv.cascadeCount() == cascades);
+        CHECK(run.lpv.settings().cascades == cascades);
+    }
+}
