@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace lpv::gi {
 
@@ -41,7 +42,7 @@ void injectReference(ShVolume& volume, const VolumeGrid& grid, const std::vector
     }
 }
 
-ShVolume propagateStep(const ShVolume& src) {
+ShVolume propagateStep(const ShVolume& src, const ShBorder& outside) {
     const int n = int(src.size());
     ShVolume dst(src.size());
     std::array<std::array<PropagationFace, 5>, 6> faces;
@@ -58,10 +59,11 @@ ShVolume propagateStep(const ShVolume& src) {
                 for (int a = 0; a < 6; ++a) {
                     // The neighbour sits on the opposite side of the axis it sends along.
                     const glm::ivec3 nb = glm::ivec3(x, y, z) - kAxes[size_t(a)];
-                    if (glm::any(glm::lessThan(nb, glm::ivec3(0))) ||
-                        glm::any(glm::greaterThanEqual(nb, glm::ivec3(n))))
-                        continue;
-                    const ShCell& in = src.at(uint32_t(nb.x), uint32_t(nb.y), uint32_t(nb.z));
+                    const bool beyond = glm::any(glm::lessThan(nb, glm::ivec3(0))) ||
+                                        glm::any(glm::greaterThanEqual(nb, glm::ivec3(n)));
+                    if (beyond && !outside) continue;
+                    const ShCell in =
+                        beyond ? outside(nb) : src.at(uint32_t(nb.x), uint32_t(nb.y), uint32_t(nb.z));
                     for (int f = 0; f < 5; ++f) {
                         const PropagationFace& face = faces[size_t(a)][size_t(f)];
                         const glm::vec4 basis = shBasis(face.evalDirection);
@@ -92,6 +94,20 @@ ShVolume propagateReference(const ShVolume& injected, int iterations, std::vecto
         }
     }
     return accumulated;
+}
+
+ShVolume propagateWithBorder(const ShVolume& injected, int iterations, const ShBorder& outside) {
+    ShVolume y = injected;
+    for (int i = 0; i < iterations; ++i) {
+        ShVolume next = propagateStep(y, outside);
+        for (size_t c = 0; c < next.cells().size(); ++c) {
+            next.cells()[c].r += injected.cells()[c].r;
+            next.cells()[c].g += injected.cells()[c].g;
+            next.cells()[c].b += injected.cells()[c].b;
+        }
+        y = std::move(next);
+    }
+    return y;
 }
 
 } // namespace lpv::gi

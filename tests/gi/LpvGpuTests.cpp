@@ -2,6 +2,7 @@
 // bleeding in the Cornell box, GI off, GL/Vulkan agreement, and refused configurations.
 #include "../render/CornellFrame.h"
 #include "../support/TestDevice.h"
+#include "GpuVpls.h"
 
 #include "engine/config/Config.h"
 #include "gi/GiBudget.h"
@@ -11,16 +12,15 @@
 
 #include <doctest/doctest.h>
 
+#include <glm/gtc/packing.hpp>
+
+#include <algorithm>
 #include <cmath>
 
 using namespace lpv;
 using namespace lpv::test;
 
 namespace {
-
-struct GpuVpl {
-    glm::vec4 position, normal, flux;
-};
 
 // A deterministic scatter of VPLs inside a 16^3 volume of 0.5 m cells.
 std::vector<gi::Vpl> testVpls() {
@@ -58,6 +58,14 @@ float relativeError(const gi::ShVolume& ref, const std::array<Image, 3>& gpu, bo
                 }
             }
     return worst / peak;
+}
+
+// The largest coefficient magnitude of a cell.
+float largestCoefficient(const gi::ShCell& cell) {
+    float m = 0.0f;
+    for (int k = 0; k < 4; ++k)
+        m = std::max({m, std::fabs(cell.r[k]), std::fabs(cell.g[k]), std::fabs(cell.b[k])});
+    return m;
 }
 
 } // namespace
@@ -106,19 +114,10 @@ TEST_CASE("gi: GPU injection and propagation match the CPU reference") {
                     s.rgba8Range = 1.05f * [&] {
                         float m = 0;
                         for (const gi::ShCell& cell : propagated.cells())
-                            for (int k = 0; k < 4; ++k)
-                                m = std::max(
-                                    {m, std::fabs(cell.r[k]), std::fabs(cell.g[k]), std::fabs(cell.b[k])});
+                            m = std::max(m, largestCoefficient(cell));
                         return m;
                     }();
-                    std::vector<GpuVpl> gpuVpls;
-                    for (const gi::Vpl& v : vpls)
-                        gpuVpls.push_back(
-                            {glm::vec4(v.position, 1), glm::vec4(v.normal, 0), glm::vec4(v.flux, 0)});
-                    const rhi::BufferHandle buffer = device->createBuffer(
-                        {gpuVpls.size() * sizeof(GpuVpl), rhi::kBufferStorage | rhi::kBufferTransfer,
-                         rhi::MemoryAccess::GpuOnly, "test vpls", "test"},
-                        gpuVpls.data());
+                    const rhi::BufferHandle buffer = uploadVpls(*device, vpls);
                     {
                         gi::LpvVolumes volumes(*device, s, shape.columnLength);
                         rhi::CommandList& cmd = device->beginFrame();
@@ -140,6 +139,136 @@ TEST_CASE("gi: GPU injection and propagation match the CPU reference") {
                         CHECK(accErr <= c.propagateTolerance);
                     }
                     device->destroy(buffer);
+                    device.expectSilent();
+                }
+            }
+        }
+    }
+}
+
+TEST_CASE("gi: propagation takes in a coarser cascade's light beyond its border as the CPU reference does") {
+    // The shell's seed samples the coarser cascade's result (trilinear) at every cell around the
+    // volume. A field linear in x is what trilinear filtering reproduces exactly, so the CPU knows
+    // the border: the coarse field at the cell's centre, times (fine cell / coarse cell)^2.
+    struct Case {
+        gi::ShFormat format;
+        float tolerance; // relative to the largest coefficient, as in the test above
+    };
+    const Case cases[] = {
+        {gi::ShFormat::Rgba32f, 1e-4f}, {gi::ShFormat::Rgba16f, 4e-3f}, {gi::ShFormat::Rgba8, 0.05f}};
+    struct Shape {
+        uint32_t n;
+        int iterations;
+        uint32_t columnLength;
+    };
+    const Shape shapes[] = {{16, 4, 0}, {17, 3, 1}}; // an odd size, and the column GPUs get
+    const std::vector<gi::Vpl> vpls = testVpls();
+    const glm::vec3 light(0.0f, -1.0f, 0.0f);
+    const auto field = [](glm::vec3 p) {
+        gi::ShCell c;
+        c.r = (0.2f + 0.05f * p.x) * glm::vec4(1.0f, 0.3f, -0.2f, 0.4f);
+        c.g = (0.1f + 0.02f * p.x) * glm::vec4(1.0f, -0.1f, 0.5f, 0.2f);
+        c.b = (0.3f - 0.01f * p.x) * glm::vec4(1.0f, 0.2f, 0.2f, -0.3f);
+        return c;
+    };
+    for (const Shape& shape : shapes) {
+        const gi::VolumeGrid fine{{0.0f, 0.0f, 0.0f}, 0.5f, shape.n};
+        const gi::VolumeGrid coarse{{-4.0f, -4.0f, -4.0f}, 1.0f, shape.n}; // twice the cells, around it
+        gi::ShVolume injected(shape.n);
+        gi::injectReference(injected, fine, vpls, light);
+        const float scale = (fine.cellSize / coarse.cellSize) * (fine.cellSize / coarse.cellSize);
+        const gi::ShBorder border = [&](glm::ivec3 c) {
+            gi::ShCell v = field(fine.origin + (glm::vec3(c) + 0.5f) * fine.cellSize);
+            v.r *= scale, v.g *= scale, v.b *= scale;
+            return v;
+        };
+        const gi::ShVolume expected = gi::propagateWithBorder(injected, shape.iterations, border);
+        // The border's light is a good part of the result: without it the reference is off by more
+        // than twice the loosest tolerance below.
+        std::array<Image, 3> without;
+        {
+            const gi::ShVolume alone = gi::propagateReference(injected, shape.iterations);
+            for (int ch = 0; ch < 3; ++ch) {
+                without[size_t(ch)].width = without[size_t(ch)].height = without[size_t(ch)].depth = shape.n;
+                for (const gi::ShCell& cell : alone.cells())
+                    without[size_t(ch)].texels.push_back(ch == 0 ? cell.r : ch == 1 ? cell.g : cell.b);
+            }
+        }
+        const float borderShare = relativeError(expected, without, false, 0.0f);
+        REQUIRE(borderShare > 0.1f);
+        float range = 0.0f; // of the rgba8 encoding: the largest coefficient, coarse or result
+        for (const gi::ShCell& cell : expected.cells())
+            range = std::max(range, largestCoefficient(cell));
+        for (uint32_t i = 0; i < coarse.size; ++i) {
+            range = std::max(range,
+                             largestCoefficient(field(coarse.origin + (float(i) + 0.5f) * coarse.cellSize)));
+        }
+        range *= 1.05f;
+        for (const auto& backend : selectedBackends()) {
+            for (const Case& c : cases) {
+                SUBCASE((backend.name + " " + std::string(gi::shFormatName(c.format)) + " " +
+                         std::to_string(shape.n) + "^3 x " + std::to_string(shape.iterations))
+                            .c_str()) {
+                    TestDevice device(backend);
+                    gi::LpvSettings s;
+                    s.gridSize = shape.n;
+                    s.cascades = 3; // partial sums with a shell: where a handoff goes
+                    s.shFormat = c.format;
+                    s.rgba8Range = range;
+                    // The coarser cascade's result, in the volumes' format (range-encoded for rgba8).
+                    std::array<rhi::TextureHandle, 3> coarseResult{};
+                    for (int ch = 0; ch < 3; ++ch) {
+                        std::vector<float> f32;
+                        std::vector<uint16_t> f16;
+                        std::vector<uint8_t> u8;
+                        for (uint32_t z = 0; z < shape.n; ++z)
+                            for (uint32_t y = 0; y < shape.n; ++y)
+                                for (uint32_t x = 0; x < shape.n; ++x) {
+                                    const gi::ShCell cell =
+                                        field(coarse.origin + (glm::vec3(x, y, z) + 0.5f) * coarse.cellSize);
+                                    const glm::vec4 v = ch == 0 ? cell.r : ch == 1 ? cell.g : cell.b;
+                                    for (int k = 0; k < 4; ++k) {
+                                        f32.push_back(v[k]);
+                                        f16.push_back(uint16_t(glm::packHalf1x16(v[k])));
+                                        const float e = std::clamp(v[k] / range * 0.5f + 0.5f, 0.0f, 1.0f);
+                                        u8.push_back(uint8_t(std::lround(e * 255.0f)));
+                                    }
+                                }
+                        coarseResult[size_t(ch)] = device->createTexture(
+                            {rhi::TextureKind::Tex3D, gi::shTextureFormat(c.format), shape.n, shape.n,
+                             shape.n, 1, rhi::kTextureSampled | rhi::kTextureTransfer, "test coarse cascade",
+                             "test"});
+                        const void* data =
+                            c.format == gi::ShFormat::Rgba32f   ? static_cast<const void*>(f32.data())
+                            : c.format == gi::ShFormat::Rgba16f ? static_cast<const void*>(f16.data())
+                                                                : static_cast<const void*>(u8.data());
+                        const uint64_t bytes = c.format == gi::ShFormat::Rgba32f   ? f32.size() * 4
+                                               : c.format == gi::ShFormat::Rgba16f ? f16.size() * 2
+                                                                                   : u8.size();
+                        device->uploadTexture(coarseResult[size_t(ch)], 0, data, bytes);
+                    }
+                    const rhi::BufferHandle buffer = uploadVpls(*device, vpls);
+                    {
+                        gi::LpvVolumes volumes(*device, s, shape.columnLength);
+                        const gi::CascadeHandoff handoff{coarseResult, coarse, fine};
+                        rhi::CommandList& cmd = device->beginFrame();
+                        volumes.inject(cmd, buffer, uint32_t(vpls.size()), fine, light, 1.0f);
+                        volumes.propagate(cmd, uint32_t(shape.iterations), {}, nullptr, &handoff);
+                        device->endFrame();
+                        device->waitIdle();
+                        std::array<Image, 3> acc;
+                        for (int ch = 0; ch < 3; ++ch)
+                            acc[size_t(ch)] = readImage(*device, volumes.accumulated()[size_t(ch)]);
+                        const float err = relativeError(expected, acc, volumes.encoded(), s.rgba8Range);
+                        MESSAGE(backend.name
+                                << " " << gi::shFormatName(c.format) << " " << shape.n << "^3: error " << err
+                                << " against the reference with the border (which is " << borderShare
+                                << " of the peak away from the one without)");
+                        CHECK(err <= c.tolerance);
+                    }
+                    device->destroy(buffer);
+                    for (rhi::TextureHandle t : coarseResult)
+                        device->destroy(t);
                     device.expectSilent();
                 }
             }

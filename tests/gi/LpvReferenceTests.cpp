@@ -124,6 +124,38 @@ TEST_CASE("gi reference: propagation is linear in the SH coefficients of a chann
                 doctest::Approx(pa.cells()[i].r[c] + 2.0f * pb.cells()[i].r[c]).epsilon(1e-5).scale(1e-6));
 }
 
+TEST_CASE("gi reference: the kernel's form with a border equals the accumulation, and takes light in") {
+    ShVolume x(6);
+    x.at(2, 2, 2).r = {1.0f, 0.3f, -0.2f, 0.1f};
+    x.at(4, 1, 3).g = {0.5f, -0.1f, 0.2f, 0.4f};
+    // Nothing beyond the border: y(N) = x + P x + ... + P^N x, the accumulation.
+    const ShVolume sum = propagateReference(x, 5);
+    const ShVolume horner = propagateWithBorder(x, 5, [](glm::ivec3) { return ShCell{}; });
+    float worst = 0.0f, peak = 0.0f;
+    for (size_t i = 0; i < sum.cells().size(); ++i)
+        for (int c = 0; c < 4; ++c) {
+            worst = std::max({worst, std::fabs(horner.cells()[i].r[c] - sum.cells()[i].r[c]),
+                              std::fabs(horner.cells()[i].g[c] - sum.cells()[i].g[c])});
+            peak = std::max({peak, std::fabs(sum.cells()[i].r[c]), std::fabs(sum.cells()[i].g[c])});
+        }
+    REQUIRE(peak > 0.0f);
+    CHECK(worst <= 1e-6f * peak); // float rounding, summed in another order
+    // Light beyond the -x border (a lobe travelling +x) reaches the first layer of cells after one
+    // step and, being held there at every step, keeps arriving: more with more iterations.
+    const ShBorder fromLeft = [](glm::ivec3 c) {
+        ShCell cell;
+        if (c.x < 0) cell.b = shCosineLobe({1.0f, 0.0f, 0.0f});
+        return cell;
+    };
+    const ShVolume one = propagateWithBorder(ShVolume(6), 1, fromLeft);
+    const ShVolume four = propagateWithBorder(ShVolume(6), 4, fromLeft);
+    CHECK(one.at(0, 3, 3).b.x > 0.0f);
+    CHECK(one.at(1, 3, 3).b.x == 0.0f);
+    CHECK(four.at(0, 3, 3).b.x > one.at(0, 3, 3).b.x);
+    CHECK(four.at(3, 3, 3).b.x > 0.0f);
+    CHECK(four.at(3, 3, 3).r.x == 0.0f);
+}
+
 TEST_CASE("gi reference: the five faces of a neighbour are one sparse matrix (the GPU kernel's form)") {
     // Sum W_f lobe(n_f) basis(w_f)^T over the 5 faces for each axis and compare every entry with
     // the closed form the kernel uses.

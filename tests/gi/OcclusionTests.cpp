@@ -60,54 +60,58 @@ TEST_CASE("gi: a thin wall keeps the light of a lit area out of a dark room (occ
     const std::vector<GpuVpl> vpls = scene();
     const gi::VolumeGrid grid{{0.0f, 0.0f, 0.0f}, kCell, kCells};
     const glm::vec3 light = glm::normalize(glm::vec3(1.0f, -1.0f, 0.0f));
-    for (const auto& backend : selectedBackends()) {
-        SUBCASE(backend.name.c_str()) {
-            TestDevice device(backend);
-            gi::LpvSettings s;
-            s.gridSize = kCells;
-            s.shFormat = gi::ShFormat::Rgba32f;
-            const rhi::BufferHandle buffer = device->createBuffer(
-                {vpls.size() * sizeof(GpuVpl), rhi::kBufferStorage | rhi::kBufferTransfer,
-                 rhi::MemoryAccess::GpuOnly, "test vpls", "test"},
-                vpls.data());
-            float open = 0.0f, walled = 0.0f, wallCoverage = 0.0f;
-            {
-                gi::LpvVolumes volumes(*device, s);
-                gi::GeometryVolume geometry(*device, kCells, false);
-                for (bool occlusion : {false, true}) {
-                    rhi::CommandList& cmd = device->beginFrame();
-                    gi::GeometrySources src;
-                    src.vpls = buffer;
-                    src.vplCount = uint32_t(vpls.size());
-                    // Every surfel stands for kSpacing^2 of surface; the wall faces the light's x.
-                    src.vplArea = kSpacing * kSpacing * std::abs(glm::dot(light, glm::vec3(1, 0, 0)));
-                    src.lightDirection = light;
-                    geometry.build(cmd, grid, src);
-                    volumes.inject(cmd, buffer, uint32_t(vpls.size()), grid, light, 1.0f);
-                    volumes.propagate(cmd, 8,
-                                      occlusion ? geometry.faceTransmittance() : rhi::TextureHandle{});
-                    device->endFrame();
-                    device->waitIdle();
-                    (occlusion ? walled : open) = roomLight(*device, volumes);
+    // One cascade (bounded partial sums, as on the Xbox 360) and several (partial sums with a
+    // shell): both occluded propagation kernels.
+    for (const auto& backend : selectedBackends())
+        for (const uint32_t cascades : {1u, 3u}) {
+            SUBCASE((backend.name + ", " + std::to_string(cascades) + " cascades").c_str()) {
+                TestDevice device(backend);
+                gi::LpvSettings s;
+                s.gridSize = kCells;
+                s.cascades = cascades;
+                s.shFormat = gi::ShFormat::Rgba32f;
+                const rhi::BufferHandle buffer = device->createBuffer(
+                    {vpls.size() * sizeof(GpuVpl), rhi::kBufferStorage | rhi::kBufferTransfer,
+                     rhi::MemoryAccess::GpuOnly, "test vpls", "test"},
+                    vpls.data());
+                float open = 0.0f, walled = 0.0f, wallCoverage = 0.0f;
+                {
+                    gi::LpvVolumes volumes(*device, s);
+                    gi::GeometryVolume geometry(*device, kCells, false);
+                    for (bool occlusion : {false, true}) {
+                        rhi::CommandList& cmd = device->beginFrame();
+                        gi::GeometrySources src;
+                        src.vpls = buffer;
+                        src.vplCount = uint32_t(vpls.size());
+                        // Every surfel stands for kSpacing^2 of surface; the wall faces the light's x.
+                        src.vplArea = kSpacing * kSpacing * std::abs(glm::dot(light, glm::vec3(1, 0, 0)));
+                        src.lightDirection = light;
+                        geometry.build(cmd, grid, src);
+                        volumes.inject(cmd, buffer, uint32_t(vpls.size()), grid, light, 1.0f);
+                        volumes.propagate(cmd, 8,
+                                          occlusion ? geometry.faceTransmittance() : rhi::TextureHandle{});
+                        device->endFrame();
+                        device->waitIdle();
+                        (occlusion ? walled : open) = roomLight(*device, volumes);
+                    }
+                    // The faces in the wall's plane: cell 8's -x faces, away from the volume's edges.
+                    const Image faces = readImage(*device, geometry.faceTransmittance());
+                    for (uint32_t z = 1; z + 1 < kCells; ++z)
+                        for (uint32_t y = 1; y + 1 < kCells; ++y)
+                            wallCoverage += 1.0f - faces.at(8, y, z).x;
+                    wallCoverage /= float((kCells - 2) * (kCells - 2));
+                    // Faces elsewhere are open (the floor surfels only cover faces along y).
+                    CHECK(faces.at(4, 5, 5).x == doctest::Approx(1.0f));
+                    CHECK(faces.at(12, 5, 5).x == doctest::Approx(1.0f));
                 }
-                // The faces in the wall's plane: cell 8's -x faces, away from the volume's edges.
-                const Image faces = readImage(*device, geometry.faceTransmittance());
-                for (uint32_t z = 1; z + 1 < kCells; ++z)
-                    for (uint32_t y = 1; y + 1 < kCells; ++y)
-                        wallCoverage += 1.0f - faces.at(8, y, z).x;
-                wallCoverage /= float((kCells - 2) * (kCells - 2));
-                // Faces elsewhere are open (the floor surfels only cover faces along y).
-                CHECK(faces.at(4, 5, 5).x == doctest::Approx(1.0f));
-                CHECK(faces.at(12, 5, 5).x == doctest::Approx(1.0f));
+                MESSAGE(backend.name << ", " << cascades << " cascades: light in the room without occlusion "
+                                     << open << ", with " << walled << " (" << 100.0f * walled / open
+                                     << "%); wall faces covered " << wallCoverage);
+                REQUIRE(open > 0.0f);
+                CHECK(wallCoverage > 0.9f);
+                CHECK(walled <= 0.10f * open);
+                device->destroy(buffer);
+                device.expectSilent();
             }
-            MESSAGE(backend.name << ": light in the room without occlusion " << open << ", with " << walled
-                                 << " (" << 100.0f * walled / open << "%); wall faces covered "
-                                 << wallCoverage);
-            REQUIRE(open > 0.0f);
-            CHECK(wallCoverage > 0.9f);
-            CHECK(walled <= 0.10f * open);
-            device->destroy(buffer);
-            device.expectSilent();
         }
-    }
 }

@@ -7,6 +7,7 @@
 // albedo; by the red wall one bleeds red and the lighting pass lights it per pixel; GL and Vulkan agree.
 #include "../render/CornellFrame.h"
 #include "../support/TestDevice.h"
+#include "GpuVpls.h"
 
 #include "engine/render/GpuScene.h"
 #include "engine/scene/BuiltinScenes.h"
@@ -28,10 +29,6 @@ using namespace lpv;
 using namespace lpv::test;
 
 namespace {
-
-struct GpuVpl {
-    glm::vec4 position, normal, flux;
-};
 
 engine::Light spotLight(glm::vec3 position, glm::vec3 target, float inner, float outer, float intensity) {
     engine::Light l;
@@ -160,21 +157,13 @@ TEST_CASE("gi: VPLs of a light at a point shift along the line from it; lights s
         if (!gi::injectionCell(grid, v, {0, -1, 0}, constant) || own != constant) ++moved;
     }
     REQUIRE(moved >= 2);
-    const auto upload = [](rhi::Device& device, const std::vector<gi::Vpl>& vpls) {
-        std::vector<GpuVpl> gpu;
-        for (const gi::Vpl& v : vpls)
-            gpu.push_back({glm::vec4(v.position, 1), glm::vec4(v.normal, 0), glm::vec4(v.flux, 0)});
-        return device.createBuffer({gpu.size() * sizeof(GpuVpl), rhi::kBufferStorage | rhi::kBufferTransfer,
-                                    rhi::MemoryAccess::GpuOnly, "test vpls", "test"},
-                                   gpu.data());
-    };
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
             TestDevice device(backend);
             gi::LpvSettings s;
             s.gridSize = grid.size;
             s.shFormat = gi::ShFormat::Rgba32f; // float injection volume
-            const rhi::BufferHandle sun = upload(*device, sunVpls), spot = upload(*device, spotVpls);
+            const rhi::BufferHandle sun = uploadVpls(*device, sunVpls), spot = uploadVpls(*device, spotVpls);
             float worst = 0.0f, peak = 0.0f;
             {
                 gi::LpvVolumes volumes(*device, s);

@@ -6,6 +6,7 @@
 #include <glm/vec4.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace lpv::gi {
@@ -54,12 +55,20 @@ bool injectionCell(const VolumeGrid& grid, const Vpl& vpl, glm::vec3 lightDirect
 void injectReference(ShVolume& volume, const VolumeGrid& grid, const std::vector<Vpl>& vpls,
                      glm::vec3 lightDirection);
 
-// One propagation step: every cell gathers from its 6 neighbours through 5 faces each.
-ShVolume propagateStep(const ShVolume& source);
+// What lies beyond a volume's border, by cell (a coarser cascade's light, in this volume's units).
+using ShBorder = std::function<ShCell(glm::ivec3)>;
+
+// One propagation step: every cell gathers from its 6 neighbours through 5 faces each; neighbours
+// beyond the volume hold `outside` (nothing when empty).
+ShVolume propagateStep(const ShVolume& source, const ShBorder& outside = {});
 
 // `iterations` steps, each propagating the previous step's result (never the initial volume),
 // all accumulated onto the injected volume. `perIteration`, if given, receives each step's L0 total.
 ShVolume propagateReference(const ShVolume& injected, int iterations,
                             std::vector<glm::vec3>* perIteration = nullptr);
+// The shipped kernel's form with light from beyond the border (a cascade handoff): y(0) = x,
+// y(k+1) = x + P(y(k), outside), the border holding `outside` at every step. With nothing outside
+// it equals propagateReference.
+ShVolume propagateWithBorder(const ShVolume& injected, int iterations, const ShBorder& outside);
 
 } // namespace lpv::gi
