@@ -27,7 +27,7 @@ layout(binding = 0, std140) uniform Glossy {
 } glossy;
 layout(binding = 1) uniform sampler2D depthTexture;
 layout(binding = 2) uniform sampler2D normalTexture;
-// Cascade c's R, G, B volumes at bindings 3 + 3c .. 5 + 3c (unused cascades bound to cascade 0).
+// Cascade c's R, G, B volumes at bindings 3 + 3c .. 5 + 3c (unused cascades bound to the coarsest).
 layout(binding = 3) uniform sampler3D lpv0r;
 layout(binding = 4) uniform sampler3D lpv0g;
 layout(binding = 5) uniform sampler3D lpv0b;

@@ -31,8 +31,8 @@
 // - On llvmpipe (Mesa 22.3; in-process A/B runs of CPU time, this 2-core machine being noisy):
 //   every per-cell read is an imageLoad of a storage image, which llvmpipe compiles to a gather;
 //   texelFetch goes through its sampler code and cost 13-20% more of the whole kernel.
-//   Out-of-volume cells are chosen with mix(bvec) selects: ?: and && on vectors compile to
-//   branches, and a CPU rasterizer runs every branch under lane masks.
+//   In the bounded layout out-of-volume cells are chosen with mix(bvec) selects: ?: and && on
+//   vectors compile to branches, and a CPU rasterizer runs every branch under lane masks.
 // - RGBA16F partial sums used to be packed halves (an RGBA32UI and an RG32UI texel: 2 fetches per
 //   cell instead of 3), but Mesa's GL front end lowers packHalf2x16/unpackHalf2x16 to integer
 //   code, and on Vulkan too the unpacking cost more than the fetch it saved: as RGBA16F

@@ -11,7 +11,7 @@
 namespace lpv::gi {
 namespace {
 
-// std140 block `Glossy` of lpv_glossy.frag.
+// std140 block `Glossy` of lpv_glossy.glsl.
 struct GlossyUniforms {
     glm::mat4 invViewProjection;
     glm::vec4 cameraPosition;

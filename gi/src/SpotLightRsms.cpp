@@ -47,6 +47,7 @@ uint32_t lightCount(std::span<const engine::Light> lights, engine::LightType typ
 uint32_t selectRsmLights(std::span<const engine::Light> lights, engine::LightType type,
                          const VolumeGrid& grid, std::span<uint32_t> out) {
     uint32_t count = 0;
+    if (out.empty()) return 0; // none wanted (gi.point_light_rsms=0): skip the scoring
     std::array<float, SpotLightRsms::kMaxLights> scores{}; // at most 4 of either kind
     const uint32_t capacity = uint32_t(std::min(out.size(), scores.size()));
     for (uint32_t i = 0; i < uint32_t(lights.size()); ++i) {
@@ -77,7 +78,7 @@ SpotLightRsms::SpotLightRsms(rhi::Device& device, const LpvSettings& settings)
         rsms_[k] = std::make_unique<ReflectiveShadowMap>(device, settings.rsmSize, RsmLight::Spot);
         vpls_[k] =
             device.createBuffer({uint64_t(spotLightVplCount(settings)) * 48, kBufferStorage | kBufferTransfer,
-                                 MemoryAccess::GpuOnly, "spot light vpls " + std::to_string(k), "gi.vpl"});
+                                 MemoryAccess::GpuOnly, "light rsm vpls " + std::to_string(k), "gi.vpl"});
     }
     if (capacity_ + pointCapacity_ > 0)
         clusterPipeline_ =
@@ -103,18 +104,25 @@ void SpotLightRsms::select(std::span<const engine::Light> lights, const VolumeGr
     rsmCount_ = 0;
     for (uint32_t k = 0; k < count_ + pointCount_; ++k) {
         const engine::Light& light = lights[selection_[k]];
+        const float far = farthestCorner(light.position, reach);
         for (uint32_t f = 0; f < (k < count_ ? 1u : kCubeFaces); ++f, ++rsmCount_) {
             sources_[rsmCount_] = {vpls_[rsmCount_], spotLightVplCount(settings_),
                                    glm::vec4(light.position, 1.0f)};
             reach_[rsmCount_] = analyticLight(light, 1.0f);
+            // As render() fits it.
+            frusta_[rsmCount_] =
+                (k < count_ ? fitSpotRsm(light, far) : fitCubeFace(light, f, far)).viewProjection;
         }
     }
 }
 
 uint32_t SpotLightRsms::sourcesReaching(const VolumeGrid& grid, std::span<VplSource> out) const {
     uint32_t n = 0;
+    engine::Bounds box;
+    box.add(grid.origin);
+    box.add(grid.origin + glm::vec3(grid.cellSize * float(grid.size)));
     for (uint32_t k = 0; k < rsmCount_ && n < out.size(); ++k)
-        if (reachesVolume(reach_[k], grid)) out[n++] = sources_[k];
+        if (reachesVolume(reach_[k], grid) && !box.outsideClipVolume(frusta_[k])) out[n++] = sources_[k];
     return n;
 }
 

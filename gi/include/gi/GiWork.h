@@ -16,7 +16,7 @@ enum class VolumeDraw : uint8_t { Layered, PerSlice };
 // `triangles`: those drawn into the RSM (ReflectiveShadowMap::render culls to the light's view).
 engine::WorkCounts rsmWork(const LpvSettings& s, uint64_t triangles);
 engine::WorkCounts vplClusterWork(const LpvSettings& s);
-// `extraVpls`: VPLs of further lights in the same pass (spot lights with an RSM).
+// `extraVpls`: VPLs of further lights in the same pass (spot and point lights with an RSM).
 engine::WorkCounts injectWork(const LpvSettings& s, uint64_t extraVpls = 0,
                               VolumeDraw draw = VolumeDraw::Layered);
 // The `rsms` RSMs of spot and point lights (SpotLightRsms: one per spot, six per point light) and

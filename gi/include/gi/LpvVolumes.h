@@ -49,7 +49,7 @@ struct VplSource {
     rhi::BufferHandle vpls;
     uint32_t count = 0;
     // w 0: xyz is the direction a distant light travels (the sun); w 1: xyz is the position of a
-    // light at a point (a spot light), each VPL's direction then runs from it.
+    // light at a point (a spot or point light), each VPL's direction then runs from it.
     glm::vec4 light{0.0f, -1.0f, 0.0f, 0.0f};
 };
 

@@ -40,7 +40,7 @@ public:
     // adds them to `result` (volumes.accumulated() when null): cascade `cascade`'s result, placed
     // at `grid`. Call after the propagation of every cascade (a coarser cascade's result is also
     // what the finer ones take in at their borders, and must not carry these lights then).
-    // `skip`: indices into `lights` left out (spot lights with an RSM of their own, SpotLightRsms).
+    // `skip`: indices into `lights` left out (spot and point lights with an RSM of their own, SpotLightRsms).
     // Returns the lights added.
     uint32_t inject(rhi::CommandList& cmd, std::span<const engine::Light> lights, const LpvVolumes& volumes,
                     const VolumeGrid& grid, float intensityScale,

@@ -52,10 +52,10 @@ public:
                     std::span<const engine::Light> lights);
     // The VPL buffers of the RSMs drawn, for LpvVolumes::inject with the sun's (render() fills them).
     std::span<const VplSource> sources() const { return {sources_.data(), rsmCount_}; }
-    // Those of sources() whose light can reach `grid` (a cascade: its range sphere meets the box),
-    // copied to `out`; returns how many. A cascade gets no VPLs that cannot land in it.
+    // Those of sources() whose RSM can hold part of `grid` (a cascade: the light's range sphere and
+    // the RSM's frustum, a spot's or a cube face's, both meet the box), copied to `out`; returns how
+    // many. A cascade gets no VPLs that cannot land in it.
     uint32_t sourcesReaching(const VolumeGrid& grid, std::span<VplSource> out) const;
-    const ReflectiveShadowMap& rsm(uint32_t slot) const { return *rsms_.at(slot); }
 
 private:
     // Clusters RSM `slot` into its VPL buffer.
@@ -69,6 +69,7 @@ private:
     std::array<uint32_t, kMaxLights + kMaxPointLights> selection_{};
     std::array<VplSource, kMaxRsms> sources_{};
     std::array<AnalyticLight, kMaxRsms> reach_{}; // each RSM's light's range, for sourcesReaching()
+    std::array<glm::mat4, kMaxRsms> frusta_{};    // each RSM's view-projection, for sourcesReaching()
     uint32_t count_ = 0, pointCount_ = 0, rsmCount_ = 0;
     VolumeGrid reachGrid_; // the volume the lights were chosen for
     rhi::ComputePipelineHandle clusterPipeline_;
