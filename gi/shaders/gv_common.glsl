@@ -19,6 +19,10 @@ layout(binding = 0, std140) uniform GeometryInject {
     vec4 camera;       // xyz: camera position
     ivec4 grid;        // x: GV cells per axis, y: slice being drawn (not LAYERED), z: VPL count, w: samples per row
     vec4 whiteTexelFlux; // rgb: the flux an RSM texel of albedo 1 reflects
+    // FROM_POINT (the surfels of a spot or point light's RSM): xyz the light's position, w the solid
+    // angle of a VPL's texel block on the RSM's axis (sr); and the axis.
+    vec4 lightPosition;
+    vec4 lightAxis;
 } gv;
 
 // Where a surfel lands: the GV cell whose centre (an LPV corner) is nearest, as a point position

@@ -4,7 +4,7 @@
 // follows the screen, so summing their areas would make the coverage change whenever the camera
 // moves; the max does not.
 layout(location = 0) flat in vec3 vCoverage;
-layout(location = 1) flat in int vFromCamera;
+layout(location = 1) flat in int vFromCamera; // 0: the sun's surfel, 1: the camera's, 2: a spot or point light's
 layout(location = 2) flat in vec3 vAlbedo;
 layout(location = 0) out vec4 outLightCoverage;
 layout(location = 1) out vec4 outCameraCoverage;
@@ -16,9 +16,9 @@ layout(location = 2) out vec4 outAlbedo;
 #endif
 
 void main() {
-    outLightCoverage = vFromCamera != 0 ? vec4(0.0) : vec4(vCoverage, 1.0);
-    outCameraCoverage = vFromCamera != 0 ? vec4(vCoverage, 1.0) : vec4(0.0);
+    outLightCoverage = vFromCamera != 1 ? vec4(vCoverage, 1.0) : vec4(0.0);
+    outCameraCoverage = vFromCamera == 1 ? vec4(vCoverage, 1.0) : vec4(0.0);
 #ifdef KEEP_ALBEDO
-    outAlbedo = vec4(vAlbedo, 1.0);
+    outAlbedo = vFromCamera != 2 ? vec4(vAlbedo, 1.0) : vec4(0.0);
 #endif
 }

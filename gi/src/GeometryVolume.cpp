@@ -17,6 +17,8 @@ struct InjectUniforms {
     glm::vec4 camera;
     glm::ivec4 grid;
     glm::vec4 whiteTexelFlux;
+    glm::vec4 lightPosition;
+    glm::vec4 lightAxis;
 };
 
 } // namespace
@@ -54,6 +56,9 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepA
     }
     d.debugName = "gv inject light surfels";
     vplPipeline_ = device.createPipeline(d);
+    d.vertex = layered_ ? &shaders::gv_vpl_point_layered_vert : &shaders::gv_vpl_point_slice_vert;
+    d.debugName = "gv inject point light surfels";
+    pointLightPipeline_ = device.createPipeline(d);
     d.vertex = layered_ ? &shaders::gv_camera_layered_vert : &shaders::gv_camera_slice_vert;
     d.debugName = "gv inject camera surfels";
     cameraPipeline_ = device.createPipeline(d);
@@ -70,6 +75,7 @@ GeometryVolume::~GeometryVolume() {
     if (albedoSum_) device_.destroy(albedoSum_);
     if (albedo_) device_.destroy(albedo_);
     device_.destroy(vplPipeline_);
+    device_.destroy(pointLightPipeline_);
     device_.destroy(cameraPipeline_);
     device_.destroy(facesPipeline_);
     device_.destroy(pointSampler_);
@@ -116,6 +122,17 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
             cmd.pushUniforms(0, &u, sizeof(u));
             cmd.bindStorageBuffer(1, src.vpls);
             cmd.draw(src.vplCount);
+        }
+        for (const PointLightSurfels& light : src.pointLights) {
+            if (light.count == 0) continue;
+            InjectUniforms lu = u;
+            lu.grid.z = int(light.count);
+            lu.lightPosition = glm::vec4(light.position, light.vplSolidAngle);
+            lu.lightAxis = glm::vec4(light.axis, 0.0f);
+            cmd.bindPipeline(pointLightPipeline_);
+            cmd.pushUniforms(0, &lu, sizeof(lu));
+            cmd.bindStorageBuffer(1, light.vpls);
+            cmd.draw(light.count);
         }
         if (cameraSamples > 0) {
             cmd.bindPipeline(cameraPipeline_);

@@ -137,9 +137,10 @@ WorkCounts gatherPropagationWork(const LpvSettings& s) {
     return one * s.iterations;
 }
 
-WorkCounts occlusionWork(const LpvSettings& s, uint64_t cameraSamples, VolumeDraw draw) {
+WorkCounts occlusionWork(const LpvSettings& s, uint64_t cameraSamples, VolumeDraw draw,
+                         uint64_t lightRsmSurfels) {
     const uint64_t slices = draw == VolumeDraw::Layered ? 1 : s.gridSize + 1;
-    const uint64_t surfels = s.vplCount + cameraSamples;
+    const uint64_t surfels = s.vplCount + cameraSamples + lightRsmSurfels;
     const uint64_t cells = uint64_t(s.gridSize) * s.gridSize * s.gridSize;
     WorkCounts w;
     // Every surfel is submitted once, or once per slice (camera ones fetch depth and normal each

@@ -287,10 +287,16 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             }
             src.invViewProjection = camera.invViewProjection;
             src.cameraPosition = camera.position;
+            // The spot and point lights' RSM surfels that can land in this cascade.
+            std::array<PointLightSurfels, SpotLightRsms::kMaxRsms> lights;
+            src.pointLights = std::span(lights.data(), spotRsms_->surfelsReaching(grid, lights));
+            uint64_t lightSurfels = 0;
+            for (const PointLightSurfels& l : src.pointLights)
+                lightSurfels += l.count;
             geometry_->build(cmd, grid, src);
             work(occlusionWork(settings_,
                                src.depth ? geometry_->cameraSampleCount(gbuffer.width, gbuffer.height) : 0,
-                               volumeDraw()));
+                               volumeDraw(), lightSurfels));
         }
         {
             auto s = scope("inject");

@@ -37,6 +37,7 @@ glm::vec3 spotAxis(const engine::Light& spot) {
 SpotRsmFit fitPerspective(const engine::Light& light, glm::vec3 axis, float tanHalfAngle, float reach) {
     SpotRsmFit f;
     const glm::vec3 up = std::fabs(axis.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+    f.axis = axis;
     f.tanHalfAngle = tanHalfAngle;
     f.farPlane = std::max(light.range > 0.0f ? std::min(light.range, reach) : reach, 0.1f);
     // Depth precision follows far / near; 1/500 keeps D32F's reconstructed positions within

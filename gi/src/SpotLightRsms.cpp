@@ -110,19 +110,43 @@ void SpotLightRsms::select(std::span<const engine::Light> lights, const VolumeGr
                                    glm::vec4(light.position, 1.0f)};
             reach_[rsmCount_] = analyticLight(light, 1.0f);
             // As render() fits it.
-            frusta_[rsmCount_] =
-                (k < count_ ? fitSpotRsm(light, far) : fitCubeFace(light, f, far)).viewProjection;
+            const SpotRsmFit fit = k < count_ ? fitSpotRsm(light, far) : fitCubeFace(light, f, far);
+            frusta_[rsmCount_] = fit.viewProjection;
+            // A VPL's block of texels: (size / side)^2 texels of (2 tan / size)^2 sr each on the axis.
+            const float block = 2.0f * fit.tanHalfAngle / float(spotLightVplSide(settings_));
+            surfels_[rsmCount_] = {vpls_[rsmCount_], spotLightVplCount(settings_), light.position, fit.axis,
+                                   block * block};
         }
     }
 }
 
-uint32_t SpotLightRsms::sourcesReaching(const VolumeGrid& grid, std::span<VplSource> out) const {
-    uint32_t n = 0;
+namespace {
+engine::Bounds boxOf(const VolumeGrid& grid) {
     engine::Bounds box;
     box.add(grid.origin);
     box.add(grid.origin + glm::vec3(grid.cellSize * float(grid.size)));
-    for (uint32_t k = 0; k < rsmCount_ && n < out.size(); ++k)
-        if (reachesVolume(reach_[k], grid) && !box.outsideClipVolume(frusta_[k])) out[n++] = sources_[k];
+    return box;
+}
+} // namespace
+
+bool SpotLightRsms::reaches(uint32_t slot, const VolumeGrid& grid, const engine::Bounds& box) const {
+    return reachesVolume(reach_[slot], grid) && !box.outsideClipVolume(frusta_[slot]);
+}
+
+uint32_t SpotLightRsms::sourcesReaching(const VolumeGrid& grid, std::span<VplSource> out) const {
+    return copyReaching(grid, std::span<const VplSource>(sources_.data(), rsmCount_), out);
+}
+
+uint32_t SpotLightRsms::surfelsReaching(const VolumeGrid& grid, std::span<PointLightSurfels> out) const {
+    return copyReaching(grid, std::span<const PointLightSurfels>(surfels_.data(), rsmCount_), out);
+}
+
+template <typename T>
+uint32_t SpotLightRsms::copyReaching(const VolumeGrid& grid, std::span<const T> all, std::span<T> out) const {
+    const engine::Bounds box = boxOf(grid);
+    uint32_t n = 0;
+    for (uint32_t k = 0; k < all.size() && n < out.size(); ++k)
+        if (reaches(k, grid, box)) out[n++] = all[k];
     return n;
 }
 

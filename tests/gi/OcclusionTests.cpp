@@ -1,6 +1,6 @@
 // Occlusion on each backend: a thin wall between a lit area and a dark room. The wall's surfels go
-// into the geometry volume; with occlusion the light that reaches the room must be at most 10% of
-// what reaches it without.
+// into the geometry volume, from the sun's RSM or from a point light's; with occlusion the light
+// that reaches the room must be at most 10% of what reaches it without.
 #include "../support/Image.h"
 #include "../support/TestDevice.h"
 #include "gi/GeometryVolume.h"
@@ -54,11 +54,46 @@ float roomLight(rhi::Device& device, const gi::LpvVolumes& volumes) {
     return sum;
 }
 
+rhi::BufferHandle upload(rhi::Device& device, const std::vector<GpuVpl>& vpls) {
+    return device.createBuffer({vpls.size() * sizeof(GpuVpl), rhi::kBufferStorage | rhi::kBufferTransfer,
+                                rhi::MemoryAccess::GpuOnly, "test vpls", "test"},
+                               vpls.data());
+}
+
+// The scene's light (`light`, its VPLs travelling along `direction`) propagated 8 times through
+// the geometry volume built from `surfels`, without occlusion and with it.
+struct WallRun {
+    float open = 0.0f, walled = 0.0f;
+    float wallCoverage = 0.0f; // of the faces in the wall's plane, away from the volume's edges
+    Image faces;               // face transmittance
+};
+WallRun runWall(rhi::Device& device, gi::LpvVolumes& volumes, gi::GeometryVolume& geometry,
+                rhi::BufferHandle light, uint32_t count, glm::vec3 direction,
+                const gi::GeometrySources& surfels) {
+    const gi::VolumeGrid grid{{0.0f, 0.0f, 0.0f}, kCell, kCells};
+    WallRun run;
+    for (bool occlusion : {false, true}) {
+        rhi::CommandList& cmd = device.beginFrame();
+        geometry.build(cmd, grid, surfels);
+        volumes.inject(cmd, light, count, grid, direction, 1.0f);
+        volumes.propagate(cmd, 8, occlusion ? geometry.faceTransmittance() : rhi::TextureHandle{});
+        device.endFrame();
+        device.waitIdle();
+        (occlusion ? run.walled : run.open) = roomLight(device, volumes);
+    }
+    // The wall's plane: cell 8's -x faces.
+    run.faces = readImage(device, geometry.faceTransmittance());
+    for (uint32_t z = 1; z + 1 < kCells; ++z)
+        for (uint32_t y = 1; y + 1 < kCells; ++y)
+            run.wallCoverage += 1.0f - run.faces.at(8, y, z).x;
+    run.wallCoverage /= float((kCells - 2) * (kCells - 2));
+    return run;
+}
+
 } // namespace
 
 TEST_CASE("gi: a thin wall keeps the light of a lit area out of a dark room (occlusion)") {
     const std::vector<GpuVpl> vpls = scene();
-    const gi::VolumeGrid grid{{0.0f, 0.0f, 0.0f}, kCell, kCells};
     const glm::vec3 light = glm::normalize(glm::vec3(1.0f, -1.0f, 0.0f));
     // One cascade (bounded partial sums, as on the Xbox 360) and several (partial sums with a
     // shell): both occluded propagation kernels.
@@ -70,48 +105,85 @@ TEST_CASE("gi: a thin wall keeps the light of a lit area out of a dark room (occ
                 s.gridSize = kCells;
                 s.cascades = cascades;
                 s.shFormat = gi::ShFormat::Rgba32f;
-                const rhi::BufferHandle buffer = device->createBuffer(
-                    {vpls.size() * sizeof(GpuVpl), rhi::kBufferStorage | rhi::kBufferTransfer,
-                     rhi::MemoryAccess::GpuOnly, "test vpls", "test"},
-                    vpls.data());
-                float open = 0.0f, walled = 0.0f, wallCoverage = 0.0f;
+                const rhi::BufferHandle buffer = upload(*device, vpls);
+                WallRun run;
                 {
                     gi::LpvVolumes volumes(*device, s);
                     gi::GeometryVolume geometry(*device, kCells, false);
-                    for (bool occlusion : {false, true}) {
-                        rhi::CommandList& cmd = device->beginFrame();
-                        gi::GeometrySources src;
-                        src.vpls = buffer;
-                        src.vplCount = uint32_t(vpls.size());
-                        // Every surfel stands for kSpacing^2 of surface; the wall faces the light's x.
-                        src.vplArea = kSpacing * kSpacing * std::abs(glm::dot(light, glm::vec3(1, 0, 0)));
-                        src.lightDirection = light;
-                        geometry.build(cmd, grid, src);
-                        volumes.inject(cmd, buffer, uint32_t(vpls.size()), grid, light, 1.0f);
-                        volumes.propagate(cmd, 8,
-                                          occlusion ? geometry.faceTransmittance() : rhi::TextureHandle{});
-                        device->endFrame();
-                        device->waitIdle();
-                        (occlusion ? walled : open) = roomLight(*device, volumes);
-                    }
-                    // The faces in the wall's plane: cell 8's -x faces, away from the volume's edges.
-                    const Image faces = readImage(*device, geometry.faceTransmittance());
-                    for (uint32_t z = 1; z + 1 < kCells; ++z)
-                        for (uint32_t y = 1; y + 1 < kCells; ++y)
-                            wallCoverage += 1.0f - faces.at(8, y, z).x;
-                    wallCoverage /= float((kCells - 2) * (kCells - 2));
-                    // Faces elsewhere are open (the floor surfels only cover faces along y).
-                    CHECK(faces.at(4, 5, 5).x == doctest::Approx(1.0f));
-                    CHECK(faces.at(12, 5, 5).x == doctest::Approx(1.0f));
+                    gi::GeometrySources src;
+                    src.vpls = buffer;
+                    src.vplCount = uint32_t(vpls.size());
+                    // Every surfel stands for kSpacing^2 of surface; the wall faces the light's x.
+                    src.vplArea = kSpacing * kSpacing * std::abs(glm::dot(light, glm::vec3(1, 0, 0)));
+                    src.lightDirection = light;
+                    run = runWall(*device, volumes, geometry, buffer, uint32_t(vpls.size()), light, src);
                 }
+                // Faces elsewhere are open (the floor surfels only cover faces along y).
+                CHECK(run.faces.at(4, 5, 5).x == doctest::Approx(1.0f));
+                CHECK(run.faces.at(12, 5, 5).x == doctest::Approx(1.0f));
                 MESSAGE(backend.name << ", " << cascades << " cascades: light in the room without occlusion "
-                                     << open << ", with " << walled << " (" << 100.0f * walled / open
-                                     << "%); wall faces covered " << wallCoverage);
-                REQUIRE(open > 0.0f);
-                CHECK(wallCoverage > 0.9f);
-                CHECK(walled <= 0.10f * open);
+                                     << run.open << ", with " << run.walled << " ("
+                                     << 100.0f * run.walled / run.open << "%); wall faces covered "
+                                     << run.wallCoverage);
+                REQUIRE(run.open > 0.0f);
+                CHECK(run.wallCoverage > 0.9f);
+                CHECK(run.walled <= 0.10f * run.open);
                 device->destroy(buffer);
                 device.expectSilent();
             }
         }
+}
+
+TEST_CASE("gi: the surfels of a spot or point light's RSM block like the sun's (occlusion)") {
+    // The same wall, seen this time only by a light at a point 3 m in front of it (a perspective
+    // RSM looking +x): its VPLs are the wall's surfels. A block of texels of solid angle h^2 / D^2
+    // on the axis covers h^2 of a plane D away across the axis, wherever on the plane, so the wall's
+    // VPL grid of spacing h covers it as the sun's surfels do. The sun adds no surfels here.
+    const std::vector<GpuVpl> vpls = scene();
+    std::vector<GpuVpl> wall;
+    for (const GpuVpl& v : vpls)
+        if (v.normal.x < 0.0f) wall.push_back(v);
+    const glm::vec3 sunLight = glm::normalize(glm::vec3(1.0f, -1.0f, 0.0f));
+    const glm::vec3 pointLight(1.0f, 4.0f, 4.0f);
+    const float distance = (kWallX - 0.01f) - pointLight.x;
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            gi::LpvSettings s;
+            s.gridSize = kCells;
+            s.cascades = 1;
+            s.shFormat = gi::ShFormat::Rgba32f;
+            const rhi::BufferHandle light = upload(*device, vpls), surfels = upload(*device, wall);
+            WallRun run;
+            float albedoWeight = 0.0f;
+            {
+                gi::LpvVolumes volumes(*device, s);
+                gi::GeometryVolume geometry(*device, kCells, true);
+                const gi::PointLightSurfels point{surfels,
+                                                  uint32_t(wall.size()),
+                                                  pointLight,
+                                                  {1.0f, 0.0f, 0.0f},
+                                                  kSpacing * kSpacing / (distance * distance)};
+                gi::GeometrySources src;
+                src.pointLights = std::span(&point, 1);
+                run = runWall(*device, volumes, geometry, light, uint32_t(vpls.size()), sunLight, src);
+                // Coverage only: the light's flux holds its falloff, so these surfels give no albedo.
+                const Image albedo = readImage(*device, geometry.surfelAlbedo());
+                for (const glm::vec4& t : albedo.texels)
+                    albedoWeight = std::max(albedoWeight, t.w);
+            }
+            CHECK(run.faces.at(4, 5, 5).x == doctest::Approx(1.0f));
+            MESSAGE(backend.name << ": light in the room without occlusion " << run.open
+                                 << ", with the point light's surfels " << run.walled << " ("
+                                 << 100.0f * run.walled / run.open << "%); wall faces covered "
+                                 << run.wallCoverage);
+            REQUIRE(run.open > 0.0f);
+            CHECK(run.wallCoverage > 0.9f);
+            CHECK(run.walled <= 0.10f * run.open);
+            CHECK(albedoWeight == 0.0f);
+            device->destroy(light);
+            device->destroy(surfels);
+            device.expectSilent();
+        }
+    }
 }

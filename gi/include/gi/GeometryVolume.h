@@ -1,5 +1,6 @@
-// The geometry volume (GV) of the occlusion pass: surfels from the light's view (every VPL is the
-// RSM block it clusters) and from the camera's depth buffer (a grid of G-buffer samples) are added
+// The geometry volume (GV) of the occlusion pass: surfels from the lights' views (every VPL is the
+// RSM block it clusters: the sun's, and the spot and point lights' with an RSM) and from the
+// camera's depth buffer (a grid of G-buffer samples) are added
 // into a volume whose cells are centred on the LPV's cell corners, then turned into the
 // transmittance of every LPV cell face that propagation multiplies its flux by (fuzzy blocking,
 // Kaplanyan & Dachsbacher 2010). See gv_common.glsl for what a cell holds.
@@ -10,7 +11,19 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <span>
+
 namespace lpv::gi {
+
+// The surfels of a spot's or point light's (perspective) RSM: its VPLs, and what gives a VPL its
+// area: the light's position, the RSM's axis and a VPL's texel block's solid angle on that axis.
+struct PointLightSurfels {
+    rhi::BufferHandle vpls;
+    uint32_t count = 0;
+    glm::vec3 position{0.0f};
+    glm::vec3 axis{0.0f, -1.0f, 0.0f};
+    float vplSolidAngle = 0.0f; // sr
+};
 
 struct GeometrySources {
     rhi::BufferHandle vpls; // the frame's VPLs (LightPropagationVolume's layout)
@@ -25,6 +38,8 @@ struct GeometrySources {
     glm::vec3 whiteTexelFlux{0.0f};
     glm::mat4 invViewProjection{1.0f};
     glm::vec3 cameraPosition{0.0f};
+    // Spot and point lights with an RSM: their surfels block too (coverage only, no albedo).
+    std::span<const PointLightSurfels> pointLights;
 };
 
 class GeometryVolume {
@@ -62,7 +77,7 @@ private:
     rhi::TextureHandle coverage_, cameraCoverage_, faces_;
     // Per GV cell: rgb sum of surfel albedos, a: surfel count (RGBA16F, additive).
     rhi::TextureHandle albedoSum_, albedo_;
-    rhi::GraphicsPipelineHandle vplPipeline_, cameraPipeline_;
+    rhi::GraphicsPipelineHandle vplPipeline_, pointLightPipeline_, cameraPipeline_;
     rhi::ComputePipelineHandle facesPipeline_;
     rhi::SamplerHandle pointSampler_;
 };

@@ -33,8 +33,9 @@ engine::WorkCounts propagateWork(const LpvSettings& s);
 engine::WorkCounts bounceWork(const LpvSettings& s);
 engine::WorkCounts gatherPropagationWork(const LpvSettings& s);
 // The geometry volume: light and camera surfels drawn into it, then the face transmittance.
+// `lightRsmSurfels`: VPLs of spot and point lights' RSMs drawn as surfels too.
 engine::WorkCounts occlusionWork(const LpvSettings& s, uint64_t cameraSamples,
-                                 VolumeDraw draw = VolumeDraw::Layered);
+                                 VolumeDraw draw = VolumeDraw::Layered, uint64_t lightRsmSurfels = 0);
 engine::WorkCounts lookupWork(const LpvSettings& s, uint64_t pixels);
 
 } // namespace lpv::gi

@@ -25,7 +25,8 @@ constexpr float kMaxSpotRsmHalfAngle = 1.2217305f;
 // needs it), whichever is nearer.
 struct SpotRsmFit {
     glm::mat4 viewProjection{1.0f};
-    float tanHalfAngle = 0.0f; // of the frustum's sides
+    glm::vec3 axis{0.0f, 0.0f, -1.0f}; // where the frustum looks
+    float tanHalfAngle = 0.0f;         // of the frustum's sides
     float nearPlane = 0.0f, farPlane = 0.0f;
 };
 SpotRsmFit fitSpotRsm(const engine::Light& spot, float reach);

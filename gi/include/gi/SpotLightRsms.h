@@ -12,6 +12,7 @@
 #include "engine/render/GpuScene.h"
 #include "engine/scene/Scene.h"
 #include "gi/AnalyticLight.h"
+#include "gi/GeometryVolume.h"
 #include "gi/LpvSettings.h"
 #include "gi/LpvVolumes.h"
 #include "gi/ReflectiveShadowMap.h"
@@ -56,10 +57,17 @@ public:
     // the RSM's frustum, a spot's or a cube face's, both meet the box), copied to `out`; returns how
     // many. A cascade gets no VPLs that cannot land in it.
     uint32_t sourcesReaching(const VolumeGrid& grid, std::span<VplSource> out) const;
+    // The same RSMs' VPLs as surfels for the geometry volume of `grid`.
+    uint32_t surfelsReaching(const VolumeGrid& grid, std::span<PointLightSurfels> out) const;
 
 private:
     // Clusters RSM `slot` into its VPL buffer.
     void cluster(rhi::CommandList& cmd, uint32_t slot);
+    // Whether RSM `slot` can hold part of `grid`, whose box is `box`.
+    bool reaches(uint32_t slot, const VolumeGrid& grid, const engine::Bounds& box) const;
+    // Copies the entries of `all` (one per RSM slot) whose RSM reaches `grid` into `out`.
+    template <typename T>
+    uint32_t copyReaching(const VolumeGrid& grid, std::span<const T> all, std::span<T> out) const;
 
     rhi::Device& device_;
     LpvSettings settings_;
@@ -70,6 +78,7 @@ private:
     std::array<VplSource, kMaxRsms> sources_{};
     std::array<AnalyticLight, kMaxRsms> reach_{}; // each RSM's light's range, for sourcesReaching()
     std::array<glm::mat4, kMaxRsms> frusta_{};    // each RSM's view-projection, for sourcesReaching()
+    std::array<PointLightSurfels, kMaxRsms> surfels_{};
     uint32_t count_ = 0, pointCount_ = 0, rsmCount_ = 0;
     VolumeGrid reachGrid_; // the volume the lights were chosen for
     rhi::ComputePipelineHandle clusterPipeline_;
