@@ -15,7 +15,7 @@
 //   cascade at compile time: with the cascade chosen per pixel at run time, a CPU rasterizer ran
 //   every cascade's fetches at every step for every pixel (the atrium's march: 115 ms, 33 ms with
 //   one cascade's fetches, on llvmpipe).
-#include "lpv_common.glsl"
+#include "lpv_cascades.glsl"
 
 layout(binding = 0, std140) uniform Glossy {
     mat4 invViewProjection;
@@ -27,40 +27,16 @@ layout(binding = 0, std140) uniform Glossy {
 } glossy;
 layout(binding = 1) uniform sampler2D depthTexture;
 layout(binding = 2) uniform sampler2D normalTexture;
-// Cascade c's R, G, B volumes at bindings 3 + 3c .. 5 + 3c (unused cascades bound to the coarsest).
-layout(binding = 3) uniform sampler3D lpv0r;
-layout(binding = 4) uniform sampler3D lpv0g;
-layout(binding = 5) uniform sampler3D lpv0b;
-layout(binding = 6) uniform sampler3D lpv1r;
-layout(binding = 7) uniform sampler3D lpv1g;
-layout(binding = 8) uniform sampler3D lpv1b;
-layout(binding = 9) uniform sampler3D lpv2r;
-layout(binding = 10) uniform sampler3D lpv2g;
-layout(binding = 11) uniform sampler3D lpv2b;
-layout(binding = 12) uniform sampler3D lpv3r;
-layout(binding = 13) uniform sampler3D lpv3g;
-layout(binding = 14) uniform sampler3D lpv3b;
 
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outRadiance;
 
-vec4 decode(vec4 v) { return glossy.grid.y != 0 ? decodeShRange(v, glossy.encode.x) : v; }
-
-// The intensity of cascade c at uvw weighted by `lobe`, per channel (c constant in every call).
+// Cascade c's intensity at uvw weighted by `lobe`, per channel (c constant in every call).
 vec3 project(int c, vec3 uvw, vec4 lobe) {
-    if (c == 0) return vec3(dot(decode(texture(lpv0r, uvw)), lobe), dot(decode(texture(lpv0g, uvw)), lobe),
-                            dot(decode(texture(lpv0b, uvw)), lobe));
-    if (c == 1) return vec3(dot(decode(texture(lpv1r, uvw)), lobe), dot(decode(texture(lpv1g, uvw)), lobe),
-                            dot(decode(texture(lpv1b, uvw)), lobe));
-    if (c == 2) return vec3(dot(decode(texture(lpv2r, uvw)), lobe), dot(decode(texture(lpv2g, uvw)), lobe),
-                            dot(decode(texture(lpv2b, uvw)), lobe));
-    return vec3(dot(decode(texture(lpv3r, uvw)), lobe), dot(decode(texture(lpv3g, uvw)), lobe),
-                dot(decode(texture(lpv3b, uvw)), lobe));
+    return projectCascade(c, uvw, lobe, glossy.grid.y != 0 ? glossy.encode.x : 0.0);
 }
 
-vec3 uvwIn(int c, vec3 p) {
-    return (p - glossy.gridOrigin[c].xyz) / (glossy.gridOrigin[c].w * float(glossy.grid.x));
-}
+vec3 uvwIn(int c, vec3 p) { return uvwInVolume(glossy.gridOrigin[c], glossy.grid.x, p); }
 
 // The march starts half a cell out along the normal (like the lookup, so the first step is not
 // inside the surface); cascade c holds it when that start is half a cell inside its border, so

@@ -7,7 +7,7 @@
 // Cascades: the finest cascade that holds the point answers; in a band inside its border (a
 // quarter of its half-extent, CryEngine's e_GIBlendRatio) it fades into the next coarser one, so
 // the irradiance is continuous across cascade borders.
-#include "lpv_common.glsl"
+#include "lpv_cascades.glsl"
 
 layout(binding = 0, std140) uniform Lookup {
     mat4 invViewProjection;
@@ -19,40 +19,16 @@ layout(binding = 0, std140) uniform Lookup {
 } lookup;
 layout(binding = 1) uniform sampler2D depthTexture;
 layout(binding = 2) uniform sampler2D normalTexture;
-// Cascade c's R, G, B volumes at bindings 3 + 3c .. 5 + 3c (unused cascades bound to cascade 0).
-layout(binding = 3) uniform sampler3D lpv0r;
-layout(binding = 4) uniform sampler3D lpv0g;
-layout(binding = 5) uniform sampler3D lpv0b;
-layout(binding = 6) uniform sampler3D lpv1r;
-layout(binding = 7) uniform sampler3D lpv1g;
-layout(binding = 8) uniform sampler3D lpv1b;
-layout(binding = 9) uniform sampler3D lpv2r;
-layout(binding = 10) uniform sampler3D lpv2g;
-layout(binding = 11) uniform sampler3D lpv2b;
-layout(binding = 12) uniform sampler3D lpv3r;
-layout(binding = 13) uniform sampler3D lpv3g;
-layout(binding = 14) uniform sampler3D lpv3b;
 
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outIrradiance;
 
-vec4 decode(vec4 v) { return lookup.grid.y != 0 ? decodeShRange(v, lookup.encode.x) : v; }
-
-// The intensity of cascade c at uvw integrated against `lobe`, per channel.
+// Cascade c's intensity at uvw weighted by `lobe`, per channel (c constant in every call).
 vec3 project(int c, vec3 uvw, vec4 lobe) {
-    if (c == 0) return vec3(dot(decode(texture(lpv0r, uvw)), lobe), dot(decode(texture(lpv0g, uvw)), lobe),
-                            dot(decode(texture(lpv0b, uvw)), lobe));
-    if (c == 1) return vec3(dot(decode(texture(lpv1r, uvw)), lobe), dot(decode(texture(lpv1g, uvw)), lobe),
-                            dot(decode(texture(lpv1b, uvw)), lobe));
-    if (c == 2) return vec3(dot(decode(texture(lpv2r, uvw)), lobe), dot(decode(texture(lpv2g, uvw)), lobe),
-                            dot(decode(texture(lpv2b, uvw)), lobe));
-    return vec3(dot(decode(texture(lpv3r, uvw)), lobe), dot(decode(texture(lpv3g, uvw)), lobe),
-                dot(decode(texture(lpv3b, uvw)), lobe));
+    return projectCascade(c, uvw, lobe, lookup.grid.y != 0 ? lookup.encode.x : 0.0);
 }
 
-vec3 uvwIn(int c, vec3 p) {
-    return (p - lookup.gridOrigin[c].xyz) / (lookup.gridOrigin[c].w * float(lookup.grid.x));
-}
+vec3 uvwIn(int c, vec3 p) { return uvwInVolume(lookup.gridOrigin[c], lookup.grid.x, p); }
 
 vec3 irradianceAt(int c, vec3 p, vec3 n) {
     vec3 uvw = uvwIn(c, p);

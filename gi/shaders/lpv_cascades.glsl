@@ -1,0 +1,41 @@
+// The cascades' result volumes as the fullscreen GI passes sample them (lpv_lookup.glsl,
+// lpv_glossy.glsl): cascade c's R, G, B volumes at bindings 3 + 3c .. 5 + 3c (unused cascades bound
+// to the coarsest), and the SH of each channel at a point integrated against a lobe.
+#ifndef LPV_CASCADES_GLSL
+#define LPV_CASCADES_GLSL
+
+#include "lpv_common.glsl"
+
+layout(binding = 3) uniform sampler3D lpv0r;
+layout(binding = 4) uniform sampler3D lpv0g;
+layout(binding = 5) uniform sampler3D lpv0b;
+layout(binding = 6) uniform sampler3D lpv1r;
+layout(binding = 7) uniform sampler3D lpv1g;
+layout(binding = 8) uniform sampler3D lpv1b;
+layout(binding = 9) uniform sampler3D lpv2r;
+layout(binding = 10) uniform sampler3D lpv2g;
+layout(binding = 11) uniform sampler3D lpv2b;
+layout(binding = 12) uniform sampler3D lpv3r;
+layout(binding = 13) uniform sampler3D lpv3g;
+layout(binding = 14) uniform sampler3D lpv3b;
+
+// `range` > 0: the volumes are rgba8, range-encoded.
+vec3 projectVolumes(sampler3D r, sampler3D g, sampler3D b, vec3 uvw, vec4 lobe, float range) {
+    vec4 sr = texture(r, uvw), sg = texture(g, uvw), sb = texture(b, uvw);
+    if (range > 0.0) sr = decodeShRange(sr, range), sg = decodeShRange(sg, range), sb = decodeShRange(sb, range);
+    return vec3(dot(sr, lobe), dot(sg, lobe), dot(sb, lobe));
+}
+
+// Cascade c's intensity at uvw weighted by `lobe`, per channel. Call it with a constant c: a
+// cascade chosen per pixel at run time makes a CPU rasterizer fetch every cascade's volumes.
+vec3 projectCascade(int c, vec3 uvw, vec4 lobe, float range) {
+    if (c == 0) return projectVolumes(lpv0r, lpv0g, lpv0b, uvw, lobe, range);
+    if (c == 1) return projectVolumes(lpv1r, lpv1g, lpv1b, uvw, lobe, range);
+    if (c == 2) return projectVolumes(lpv2r, lpv2g, lpv2b, uvw, lobe, range);
+    return projectVolumes(lpv3r, lpv3g, lpv3b, uvw, lobe, range);
+}
+
+// Where p lies in the volume whose cell 0's corner and cell size are `origin` (xyz, w), in uvw.
+vec3 uvwInVolume(vec4 origin, int cells, vec3 p) { return (p - origin.xyz) / (origin.w * float(cells)); }
+
+#endif
