@@ -226,17 +226,21 @@ Sh3 loadSource(ivec3 c, int n) {
 }
 #endif
 
+// Stores packed texels t0..t2 at p in the partial-sum images NAME0..NAME2 (as many as the format has).
+#if PACKED_TEXELS > 2
+#define STORE_PACKED(NAME, p, t0, t1, t2) \
+    imageStore(NAME##0, p, t0), imageStore(NAME##1, p, t1), imageStore(NAME##2, p, t2)
+#elif PACKED_TEXELS > 1
+#define STORE_PACKED(NAME, p, t0, t1, t2) imageStore(NAME##0, p, t0), imageStore(NAME##1, p, t1)
+#else
+#define STORE_PACKED(NAME, p, t0, t1, t2) imageStore(NAME##0, p, t0)
+#endif
+
 void storePartial(ivec3 p, Sh3 v) {
 #ifndef TO_RESULT
     PARTIAL_TEXEL t0, t1, t2;
     packCell(v, t0, t1, t2);
-    imageStore(dst0, p, t0);
-#if PACKED_TEXELS > 1
-    imageStore(dst1, p, t1);
-#endif
-#if PACKED_TEXELS > 2
-    imageStore(dst2, p, t2);
-#endif
+    STORE_PACKED(dst, p, t0, t1, t2);
 #endif
 }
 
@@ -277,17 +281,11 @@ void main() {
         storePartial(p, loadInjected(c, n));
         return;
     }
-    const Sh3 v = outside(c);
-    storePartial(p, v);
+    // Beyond the border: the same texels in both partial-sum volumes.
     PARTIAL_TEXEL t0, t1, t2;
-    packCell(v, t0, t1, t2);
-    imageStore(shell0, p, t0);
-#if PACKED_TEXELS > 1
-    imageStore(shell1, p, t1);
-#endif
-#if PACKED_TEXELS > 2
-    imageStore(shell2, p, t2);
-#endif
+    packCell(outside(c), t0, t1, t2);
+    STORE_PACKED(dst, p, t0, t1, t2);
+    STORE_PACKED(shell, p, t0, t1, t2);
 }
 #else
 void main() {
