@@ -10,6 +10,7 @@ find_package(CLI11 REQUIRED)
 find_package(TinyGLTF REQUIRED)
 find_package(tinyexr REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
+find_package(meshoptimizer REQUIRED)
 
 pkg_check_modules(EGL REQUIRED IMPORTED_TARGET egl)
 pkg_check_modules(OSMESA REQUIRED IMPORTED_TARGET osmesa)

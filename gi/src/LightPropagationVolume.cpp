@@ -244,8 +244,9 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                 auto s = scope("rsm");
                 rsm_->fit(cascade.lit, lightDir);
                 // Objects smaller than a cell of this cascade are left to the finer ones.
-                const uint64_t triangles = rsm_->render(cmd, *renderer_->scene(), lightDir, sun.radiance,
-                                                        c == 0 ? 0.0f : cascade.lit.cellSize);
+                const uint64_t triangles =
+                    rsm_->render(cmd, *renderer_->scene(), lightDir, sun.radiance,
+                                 c == 0 ? 0.0f : cascade.lit.cellSize, settings_.rsmLodTexels);
                 work(rsmWork(settings_, triangles));
             }
             auto s = scope("vpl");

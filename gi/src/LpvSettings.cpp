@@ -17,6 +17,10 @@ const engine::IntSetting kCascades{"gi.cascades", 3, 1, 4,
 const engine::IntSetting kIterations{"gi.iterations", 8, 1, 64, "Propagation iterations per frame"};
 const engine::IntSetting kRsmSize{"gi.rsm_size", 256, 32, 2048,
                                   "Reflective shadow map resolution (texels per side)"};
+const engine::FloatSetting kRsmLodTexels{
+    "gi.rsm_lod_texels", 0.5, 0.0, 16.0,
+    "Geometric error allowed in an RSM, in its texels: each object is drawn at the coarsest level of detail "
+    "(simplified at load) that strays less; 0 draws every mesh in full"};
 const engine::IntSetting kVplCount{
     "gi.vpl_count", 4096, 16, 262144,
     "VPLs after clustering the RSM (a square number whose side divides gi.rsm_size)"};
@@ -82,6 +86,7 @@ LpvSettings readLpvSettings(const engine::Config& config) {
     s.cellSize = float(config.get(kCellSize));
     s.iterations = uint32_t(config.get(kIterations));
     s.rsmSize = uint32_t(config.get(kRsmSize));
+    s.rsmLodTexels = float(config.get(kRsmLodTexels));
     s.vplCount = uint32_t(config.get(kVplCount));
     s.intensity = float(config.get(kIntensity));
     s.shFormat = config.get(kShFormat);

@@ -120,40 +120,47 @@ glm::mat4 ReflectiveShadowMap::fit(const VolumeGrid& grid, glm::vec3 lightDirect
                                                  -c.z - 4.0f * radius, -c.z + radius);
     viewProjection_ = projection * view;
     texelArea_ = texel * texel;
+    texelSide_ = texel;
     return viewProjection_;
 }
 
 uint64_t ReflectiveShadowMap::render(rhi::CommandList& cmd, const engine::GpuScene& scene,
-                                     glm::vec3 lightDirection, glm::vec3 sunIrradiance, float minObjectSize) {
+                                     glm::vec3 lightDirection, glm::vec3 sunIrradiance, float minObjectSize,
+                                     float lodTexels) {
     if (light_ != RsmLight::Sun) throw rhi::Error("ReflectiveShadowMap::render() on a spot light's RSM");
     RsmUniforms u;
     u.lightViewProjection = viewProjection_;
     u.lightDirection = glm::vec4(glm::normalize(lightDirection), 0.0f);
     u.fluxScale = glm::vec4(sunIrradiance * texelArea_, 0.0f);
-    return draw(cmd, scene, &u, sizeof(u), minObjectSize);
+    // An orthographic texel is the same size everywhere in the view.
+    const float maxError = lodTexels * texelSide_;
+    return draw(cmd, scene, &u, sizeof(u), minObjectSize,
+                [maxError](const engine::GpuDraw&) { return maxError; });
 }
 
 uint64_t ReflectiveShadowMap::renderSpot(rhi::CommandList& cmd, const engine::GpuScene& scene,
-                                         const engine::Light& spot, float reach) {
+                                         const engine::Light& spot, float reach, float lodTexels) {
     if (light_ != RsmLight::Spot) throw rhi::Error("ReflectiveShadowMap::renderSpot() on the sun's RSM");
     // As the analytic lights (gi/AnalyticLight.cpp): smoothstep needs edge0 < edge1.
     const float cosOuter = std::cos(spot.outerConeAngle);
     return renderPerspective(cmd, scene, spot, spotAxis(spot), fitSpotRsm(spot, reach), cosOuter,
-                             std::max(std::cos(spot.innerConeAngle), cosOuter + 1e-4f));
+                             std::max(std::cos(spot.innerConeAngle), cosOuter + 1e-4f), lodTexels);
 }
 
 uint64_t ReflectiveShadowMap::renderCubeFace(rhi::CommandList& cmd, const engine::GpuScene& scene,
-                                             const engine::Light& point, uint32_t face, float reach) {
+                                             const engine::Light& point, uint32_t face, float reach,
+                                             float lodTexels) {
     if (light_ != RsmLight::Spot) throw rhi::Error("ReflectiveShadowMap::renderCubeFace() on the sun's RSM");
     // No cone: every direction of the face gets the light's intensity (smoothstep from -1 is 1
     // over the whole face, whose directions are within 55 degrees of its axis).
     return renderPerspective(cmd, scene, point, cubeFaceAxis(face), fitCubeFace(point, face, reach), -1.0f,
-                             -1.0f + 1e-4f);
+                             -1.0f + 1e-4f, lodTexels);
 }
 
 uint64_t ReflectiveShadowMap::renderPerspective(rhi::CommandList& cmd, const engine::GpuScene& scene,
                                                 const engine::Light& light, glm::vec3 axis,
-                                                const SpotRsmFit& fit, float cosOuter, float cosInner) {
+                                                const SpotRsmFit& fit, float cosOuter, float cosInner,
+                                                float lodTexels) {
     viewProjection_ = fit.viewProjection;
     // A texel's side on the image plane at 1 m is 2 tan / size: its area there is the solid angle
     // of the texel on the axis. texelArea_ is that area at the far plane (for the surfels' size).
@@ -166,11 +173,19 @@ uint64_t ReflectiveShadowMap::renderPerspective(rhi::CommandList& cmd, const eng
     u.spotDirection = glm::vec4(axis, texel * texel);
     u.cone = glm::vec4(cosOuter, cosInner, 0, 0);
     u.intensity = glm::vec4(light.color * light.intensity, 0.0f);
-    return draw(cmd, scene, &u, sizeof(u), 0.0f);
+    // A perspective texel grows with distance: an object is drawn for its nearest point to the light.
+    const float errorPerMetre = lodTexels * texel;
+    const glm::vec3 eye = light.position;
+    const float nearPlane = fit.nearPlane;
+    return draw(cmd, scene, &u, sizeof(u), 0.0f, [=](const engine::GpuDraw& d) {
+        const glm::vec3 nearest = glm::clamp(eye, d.worldBounds.min, d.worldBounds.max);
+        return errorPerMetre * std::max(nearPlane, glm::length(nearest - eye));
+    });
 }
 
+template <class MaxError>
 uint64_t ReflectiveShadowMap::draw(rhi::CommandList& cmd, const engine::GpuScene& scene, const void* uniforms,
-                                   uint32_t bytes, float minObjectSize) {
+                                   uint32_t bytes, float minObjectSize, MaxError&& maxError) {
     using namespace rhi;
     RenderPassDesc pass;
     pass.colors[0] = {normal_, 0, 0, LoadOp::Clear, {0, 1, 0, 0}};
@@ -190,8 +205,9 @@ uint64_t ReflectiveShadowMap::draw(rhi::CommandList& cmd, const engine::GpuScene
         if (d.worldSize < minObjectSize || d.worldBounds.outsideClipVolume(viewProjection_)) continue;
         cmd.pushUniforms(1, &d.uniforms, sizeof(d.uniforms));
         cmd.bindTexture(2, d.baseColor, scene.materialSampler());
-        cmd.drawIndexed(d.indexCount, 1, d.firstIndex);
-        triangles += d.indexCount / 3;
+        const engine::DrawLod& lod = d.lodWithin(maxError(d));
+        cmd.drawIndexed(lod.indexCount, 1, lod.firstIndex);
+        triangles += lod.indexCount / 3;
     }
     cmd.endRenderPass();
     return triangles;

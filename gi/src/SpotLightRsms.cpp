@@ -165,8 +165,8 @@ uint64_t SpotLightRsms::render(rhi::CommandList& cmd, const engine::GpuScene& sc
         const float reach = farthestCorner(light.position, reachGrid_);
         for (uint32_t f = 0; f < (k < count_ ? 1u : kCubeFaces); ++f, ++slot) {
             ReflectiveShadowMap& rsm = *rsms_[slot];
-            triangles += k < count_ ? rsm.renderSpot(cmd, scene, light, reach)
-                                    : rsm.renderCubeFace(cmd, scene, light, f, reach);
+            triangles += k < count_ ? rsm.renderSpot(cmd, scene, light, reach, settings_.rsmLodTexels)
+                                    : rsm.renderCubeFace(cmd, scene, light, f, reach, settings_.rsmLodTexels);
             cluster(cmd, slot);
         }
     }

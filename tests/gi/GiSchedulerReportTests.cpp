@@ -234,12 +234,13 @@ struct ConsolePresetRun {
     AdaptedLpv run;
     double first = 0, lastWorst = 0;
 
-    ConsolePresetRun(const char* console, float atriumDetail)
+    ConsolePresetRun(const char* console, float atriumDetail,
+                     const char* rsmLodTexels = "gi.rsm_lod_texels=0.5")
         : profile(liftedMemory(console)),
           run(profile,
               {"gi.enabled=true", "gi.sh_format=rgba8", "gi.rsm_size=128", "gi.vpl_count=1024",
                "gi.cascades=3", "gi.iterations=8", "gi.bounces=2", "gi.occlusion=true", "gi.glossy=true",
-               "gi.resolution=half", "gi.cell_size=1.0", "gi.budget_policy=adapt"},
+               "gi.resolution=half", "gi.cell_size=1.0", "gi.budget_policy=adapt", rsmLodTexels},
               engine::buildAtrium(atriumDetail), 1280, 720) {
         const int frames = 240;
         for (int f = 0; f < frames; ++f) {
@@ -272,7 +273,8 @@ TEST_CASE(
         SUBCASE(console) {
             ConsolePresetRun preset(console, 0.4f);
             CHECK(preset.run.scene.triangleCount() < 110000);
-            CHECK(preset.first > 2 * preset.profile.giBudgetMs); // the preset as configured: about 2x over
+            // The preset as configured: about 1.9x over (2.0-2.2x before the RSMs drew levels of detail).
+            CHECK(preset.first > 1.8 * preset.profile.giBudgetMs);
             CHECK(preset.lastWorst > 0.0);
             CHECK(preset.lastWorst <= preset.profile.giBudgetMs);
             CHECK(preset.run.lpv.schedule().stepsInEffect > 0);
@@ -314,11 +316,16 @@ TEST_CASE(
     }
 }
 
-TEST_CASE(
-    "gi budget: in the full atrium the PS3 stays over with every knob at its floor, and the report says so") {
+TEST_CASE("gi budget: in the full atrium the PS3 fits with the RSMs' levels of detail; with full meshes it "
+          "stays over with every knob at its floor, and the report says so") {
     // 258k triangles: the RSM of the finest cascade, which sees them all and updates every frame,
-    // is bound by the PS3's triangle setup (about 0.9 ms), and no knob lowers the triangles.
-    ConsolePresetRun preset("ps3", 1.0f);
+    // is bound by the PS3's triangle setup (about 0.9 ms in full). Levels of detail within half a
+    // texel of the map (which grows as the scheduler shrinks the map) take most of them away.
+    ConsolePresetRun lod("ps3", 1.0f);
+    CHECK(lod.lastWorst <= lod.profile.giBudgetMs);
+    CHECK(!lod.run.lpv.schedule().timeOverBudget);
+
+    ConsolePresetRun preset("ps3", 1.0f, "gi.rsm_lod_texels=0");
     CHECK(preset.lastWorst > preset.profile.giBudgetMs);
     const GiLoad& load = preset.run.lpv.schedule().load;
     CHECK(load.coarseUpdateInterval == 4);

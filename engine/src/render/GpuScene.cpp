@@ -69,9 +69,15 @@ GpuScene::GpuScene(rhi::Device& device, const Scene& scene) : device_(device) {
     vertices_ = device.createBuffer({scene.vertices.size() * sizeof(Vertex), kBufferVertex | kBufferTransfer,
                                      MemoryAccess::GpuOnly, scene.name + " vertices", "scene.geometry"},
                                     scene.vertices.data());
-    indices_ = device.createBuffer({scene.indices.size() * sizeof(uint32_t), kBufferIndex | kBufferTransfer,
+    // Levels of detail go after the scene's indices, so one index buffer serves every level.
+    std::vector<uint32_t> indices = scene.indices;
+    std::vector<std::vector<MeshLod>> meshLods;
+    meshLods.reserve(scene.meshes.size());
+    for (const Mesh& mesh : scene.meshes)
+        meshLods.push_back(simplifyMesh(scene, mesh, indices));
+    indices_ = device.createBuffer({indices.size() * sizeof(uint32_t), kBufferIndex | kBufferTransfer,
                                     MemoryAccess::GpuOnly, scene.name + " indices", "scene.geometry"},
-                                   scene.indices.data());
+                                   indices.data());
     const uint8_t white[4] = {255, 255, 255, 255}, flat[4] = {128, 128, 255, 255};
     white_ = solidTexture(device, white, Format::RGBA8Srgb, "white");
     flatNormal_ = solidTexture(device, flat, Format::RGBA8Unorm, "flat normal");
@@ -121,6 +127,13 @@ GpuScene::GpuScene(rhi::Device& device, const Scene& scene) : device_(device) {
         GpuDraw d;
         d.firstIndex = mesh.firstIndex;
         d.indexCount = mesh.indexCount;
+        d.lods[0] = {mesh.firstIndex, mesh.indexCount, 0.0f};
+        // A mesh's error grows with the instance's largest axis scale.
+        const glm::mat3 linear(inst.transform);
+        const float scale =
+            std::max({glm::length(linear[0]), glm::length(linear[1]), glm::length(linear[2])});
+        for (const MeshLod& lod : meshLods[inst.mesh])
+            d.lods[d.lodCount++] = {lod.firstIndex, lod.indexCount, lod.error * scale};
         d.baseColor = mat.baseColorTexture >= 0 ? textures_[size_t(mat.baseColorTexture)] : white_;
         d.normal = mat.normalTexture >= 0 ? textures_[size_t(mat.normalTexture)] : flatNormal_;
         d.worldBounds = inst.worldBounds.empty() ? mesh.bounds.transformed(inst.transform) : inst.worldBounds;

@@ -21,6 +21,8 @@ struct LpvSettings {
     uint32_t cascades = 3;
     uint32_t iterations = 8;
     uint32_t rsmSize = 256;
+    // Geometric error an RSM may draw with, in its texels (engine::GpuDraw::lodWithin); 0: full meshes.
+    float rsmLodTexels = 0.5f;
     uint32_t vplCount = 4096;
     float intensity = 1.0f;
     ShFormat shFormat = ShFormat::Rgba16f;

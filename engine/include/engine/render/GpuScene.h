@@ -1,13 +1,16 @@
-// A scene's GPU copy: vertex and index buffers, material textures with CPU-built mip chains, the
-// punctual-light buffer and the per-draw constants. Made once when a scene is set; a frame only
+// A scene's GPU copy: vertex and index buffers (with each mesh's coarser levels of detail after
+// the scene's own indices), material textures with CPU-built mip chains, the punctual-light buffer
+// and the per-draw constants. Made once when a scene is set; a frame only
 // binds what is here.
 #pragma once
 
+#include "engine/scene/MeshLods.h"
 #include "engine/scene/Scene.h"
 #include "rhi/Device.h"
 
 #include <glm/mat4x4.hpp>
 
+#include <array>
 #include <vector>
 
 namespace lpv::engine {
@@ -29,14 +32,32 @@ struct GpuPunctualLight {
     glm::vec4 cone;
 };
 
-struct GpuDraw {
+// An index range of one level of detail and how far (m, in the world) it strays from the mesh.
+struct DrawLod {
     uint32_t firstIndex = 0;
     uint32_t indexCount = 0;
+    float worldError = 0.0f;
+};
+
+struct GpuDraw {
+    uint32_t firstIndex = 0; // the full mesh, as lods[0]
+    uint32_t indexCount = 0;
+    // lods[0] is the full mesh; each further level is coarser (MeshLods.h).
+    std::array<DrawLod, kMaxMeshLods> lods{};
+    uint32_t lodCount = 1;
     rhi::TextureHandle baseColor; // a 1x1 white texture when the material has none
     rhi::TextureHandle normal;    // a 1x1 flat normal when the material has none
     float worldSize = 0.0f;       // largest side of the world bounds (m): size filters use it
     Bounds worldBounds;           // culling against a view (Bounds::outsideClipVolume)
     DrawUniforms uniforms;
+
+    // The coarsest level that strays at most `maxError` m from the mesh (the full mesh when none).
+    const DrawLod& lodWithin(float maxError) const {
+        uint32_t k = 0;
+        while (k + 1 < lodCount && lods[k + 1].worldError <= maxError)
+            ++k;
+        return lods[k];
+    }
 };
 
 class GpuScene {
