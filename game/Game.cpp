@@ -70,6 +70,15 @@ void toggle(engine::Config& config, const char* name) {
     config.stage(*d, !std::get<bool>(config.value(*d)), "key");
 }
 
+// The GI's "indirect" view is the renderer's indirect view: gi.debug_view=indirect, from a file,
+// the command line or a key, shows what render.debug_view=indirect does.
+void followGiIndirectView(engine::Config& config, const std::string& source) {
+    const engine::SettingDecl* gi = engine::SettingRegistry::global().find("gi.debug_view");
+    if (gi && std::get<std::string>(config.value(*gi)) == "indirect")
+        config.set(*engine::SettingRegistry::global().find("render.debug_view"), std::string("indirect"),
+                   source);
+}
+
 } // namespace
 
 int runGame(const GameOptions& opt) {
@@ -78,6 +87,7 @@ int runGame(const GameOptions& opt) {
         config.loadFile(file);
     for (const auto& [source, assignment] : opt.overrides)
         config.applyOverride(assignment, source);
+    followGiIndirectView(config, "gi.debug_view");
     if (!opt.cameraPath.empty() && !engine::isCameraPath(opt.cameraPath))
         throw engine::ConfigError("--camera-path", 0,
                                   "unknown camera path '" + opt.cameraPath + "' (orbit, flythrough)");
@@ -141,11 +151,7 @@ int runGame(const GameOptions& opt) {
         if (fw == 0 || fh == 0) continue; // minimised
         const std::vector<const engine::SettingDecl*> changes = config.applyPending();
         for (const engine::SettingDecl* changed : changes) {
-            // The GI's "indirect" view is the renderer's indirect view.
-            if (changed->name == "gi.debug_view" &&
-                std::get<std::string>(config.value(*changed)) == "indirect")
-                config.set(*engine::SettingRegistry::global().find("render.debug_view"),
-                           std::string("indirect"), changed->name);
+            if (changed->name == "gi.debug_view") followGiIndirectView(config, changed->name);
             log::info("game: " + changed->name + " = " + changed->format(config.value(*changed)) +
                       (changed->apply == engine::Apply::Restart ? " (takes effect after a restart)" : ""));
         }

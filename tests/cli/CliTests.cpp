@@ -70,3 +70,36 @@ TEST_CASE("cli: --help-config lists the settings") {
     CHECK(r.output.find("render.backend (enum, default auto, allowed auto, gl, vulkan, null)") !=
           std::string::npos);
 }
+
+namespace {
+std::string fileBytes(const std::string& path) {
+    std::string out;
+    if (FILE* f = std::fopen(path.c_str(), "rb")) {
+        std::array<char, 4096> buffer{};
+        size_t n = 0;
+        while ((n = std::fread(buffer.data(), 1, buffer.size(), f)) > 0)
+            out.append(buffer.data(), n);
+        std::fclose(f);
+    }
+    return out;
+}
+} // namespace
+
+TEST_CASE("cli: gi.debug_view=indirect given at startup shows the indirect view") {
+    // It used to follow only a change made while running (a key or the console): set in a file or
+    // on the command line it was silently ignored.
+    const std::string common = "--headless --backend gl --width 96 --height 64 --set gi.enabled=true ";
+    const Result gi = runGame(common + "--set gi.debug_view=indirect --screenshot /tmp/lpv_cli_gi_view.png");
+    const Result render =
+        runGame(common + "--set render.debug_view=indirect --screenshot /tmp/lpv_cli_render_view.png");
+    const Result final = runGame(common + "--screenshot /tmp/lpv_cli_final_view.png");
+    REQUIRE_MESSAGE(gi.exitCode == 0, gi.output);
+    REQUIRE_MESSAGE(render.exitCode == 0, render.output);
+    REQUIRE_MESSAGE(final.exitCode == 0, final.output);
+    const std::string a = fileBytes("/tmp/lpv_cli_gi_view.png"),
+                      b = fileBytes("/tmp/lpv_cli_render_view.png"),
+                      c = fileBytes("/tmp/lpv_cli_final_view.png");
+    REQUIRE(!a.empty());
+    CHECK(a == b);
+    CHECK(a != c);
+}
