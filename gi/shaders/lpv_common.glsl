@@ -22,4 +22,12 @@ vec4 decodeShRange(vec4 v, float range) { return (v * 2.0 - 1.0) * range; }
 // through its slow clipping path (2-3x the injection and occlusion passes' time).
 const vec4 PARKED_POINT = vec4(-4.0, -4.0, 2.0, 1.0);
 
+// m x clip with m's columns read at col .. col + 3, where col is a uniform that is 0. lavapipe
+// specializes a shader on uniform values it loads at constant offsets and recompiles it when they
+// change: a camera or light matrix read that way recompiled the lookup, the glossy march and the
+// VPL clustering on every frame the camera or sun moved. A macro, not a function: a mat4 passed by
+// value would be loaded at constant offsets again.
+#define MUL_COLUMNS_AT(m, col, clip) \
+    ((m)[(col)] * (clip).x + (m)[(col) + 1] * (clip).y + (m)[(col) + 2] * (clip).z + (m)[(col) + 3] * (clip).w)
+
 #endif

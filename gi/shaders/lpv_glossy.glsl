@@ -80,12 +80,11 @@ void main() {
         outRadiance = vec4(0.0);
         return;
     }
-    // Columns at an index the compiler cannot fold (pixels.w is 0), as in lpv_lookup.glsl: a
-    // constant-offset camera matrix makes lavapipe recompile this shader whenever the camera moves.
+    // Columns at an index the compiler cannot fold (pixels.w is 0; MUL_COLUMNS_AT), as in
+    // lpv_lookup.glsl.
     int col = glossy.pixels.w;
     vec4 clip = vec4(uv * 2.0 - 1.0, depth, 1.0);
-    vec4 world = glossy.invViewProjection[col] * clip.x + glossy.invViewProjection[col + 1] * clip.y +
-                 glossy.invViewProjection[col + 2] * clip.z + glossy.invViewProjection[col + 3];
+    vec4 world = MUL_COLUMNS_AT(glossy.invViewProjection, col, clip);
     vec3 p = world.xyz / world.w;
     vec3 n = normalize(normalRoughness.xyz);
     vec3 v = normalize(glossy.cameraPosition.xyz - p);

@@ -76,13 +76,11 @@ void main() {
         return;
     }
     vec4 clip = vec4(uv * 2.0 - 1.0, depth, 1.0);
-    // The camera matrix's columns at an index the compiler cannot fold (pixels.w is 0): lavapipe
-    // specializes a shader on uniform values it loads at constant offsets and recompiles it when
-    // they change, which for this matrix was every frame the camera moved (600-850 ms a frame
-    // with a cold shader cache, against 45 ms).
+    // The camera matrix's columns at an index the compiler cannot fold (pixels.w is 0;
+    // MUL_COLUMNS_AT): read at constant offsets, it made lavapipe recompile this shader on every
+    // frame the camera moved (600-850 ms a frame with a cold shader cache, against 45 ms).
     int col = lookup.pixels.w;
-    vec4 world = lookup.invViewProjection[col] * clip.x + lookup.invViewProjection[col + 1] * clip.y +
-                 lookup.invViewProjection[col + 2] * clip.z + lookup.invViewProjection[col + 3];
+    vec4 world = MUL_COLUMNS_AT(lookup.invViewProjection, col, clip);
     vec3 p = world.xyz / world.w;
     vec3 n = normalize(texelFetch(normalTexture, source, 0).xyz);
     // Finest first, each cascade gets the share of the answer its blend weight gives it of what

@@ -3,6 +3,8 @@
 // VPL down-sampling: each thread clusters one block of RSM texels into one VPL, weighting position
 // and normal by the texels' flux luminance (intensity-aware clustering) and summing the flux, so
 // the total reflected flux is unchanged.
+#include "lpv_common.glsl"
+
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 struct Vpl {
@@ -30,10 +32,9 @@ void main() {
     float rsmSize = float(params.sizes.x);
     vec3 position = vec3(0.0), normal = vec3(0.0), flux = vec3(0.0);
     float weight = 0.0, texels = 0.0;
-    // The matrix's columns at an index the compiler cannot fold (sizes.w is 0): lavapipe
-    // specializes a shader on uniform values it loads at constant offsets and recompiles it when
-    // they change, which for this matrix was every frame the sun moved (90-130 ms per cascade
-    // with a cold shader cache, against 2 ms).
+    // The matrix's columns at an index the compiler cannot fold (sizes.w is 0; MUL_COLUMNS_AT):
+    // read at constant offsets, lavapipe recompiled this shader on every frame the sun moved
+    // (90-130 ms per cascade with a cold shader cache, against 2 ms).
     const int col = params.sizes.w;
     for (int y = 0; y < block; ++y)
         for (int x = 0; x < block; ++x) {
@@ -43,8 +44,7 @@ void main() {
             vec3 f = texelFetch(rsmFlux, t, 0).rgb;
             float w = dot(f, vec3(0.2126, 0.7152, 0.0722)) + 1e-8;
             vec4 clip = vec4((vec2(t) + 0.5) / rsmSize * 2.0 - 1.0, depth, 1.0);
-            vec4 world = params.invLightViewProjection[col] * clip.x + params.invLightViewProjection[col + 1] * clip.y +
-                         params.invLightViewProjection[col + 2] * clip.z + params.invLightViewProjection[col + 3];
+            vec4 world = MUL_COLUMNS_AT(params.invLightViewProjection, col, clip);
             position += w * world.xyz / world.w;
             normal += w * texelFetch(rsmNormal, t, 0).xyz;
             flux += f;
