@@ -125,8 +125,6 @@ GpuScene::GpuScene(rhi::Device& device, const Scene& scene) : device_(device) {
         const Mesh& mesh = scene.meshes[inst.mesh];
         const Material& mat = scene.materials[mesh.material];
         GpuDraw d;
-        d.firstIndex = mesh.firstIndex;
-        d.indexCount = mesh.indexCount;
         d.lods[0] = {mesh.firstIndex, mesh.indexCount, 0.0f};
         // A mesh's error grows with the instance's largest axis scale.
         const glm::mat3 linear(inst.transform);

@@ -334,7 +334,7 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         cmd.bindIndexBuffer(scene_->indices(), IndexType::Uint32);
         for (const GpuDraw& d : scene_->draws()) {
             cmd.pushUniforms(1, &d.uniforms, sizeof(d.uniforms));
-            cmd.drawIndexed(d.indexCount, 1, d.firstIndex);
+            cmd.drawIndexed(d.lods[0].indexCount, 1, d.lods[0].firstIndex);
         }
         cmd.endRenderPass();
         cmd.endMarker();
@@ -363,7 +363,7 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
             cmd.pushUniforms(1, &d.uniforms, sizeof(d.uniforms));
             cmd.bindTexture(2, d.baseColor, scene_->materialSampler());
             cmd.bindTexture(3, d.normal, scene_->materialSampler());
-            cmd.drawIndexed(d.indexCount, 1, d.firstIndex);
+            cmd.drawIndexed(d.lods[0].indexCount, 1, d.lods[0].firstIndex);
         }
         cmd.endRenderPass();
         cmd.endMarker();

@@ -40,8 +40,6 @@ struct DrawLod {
 };
 
 struct GpuDraw {
-    uint32_t firstIndex = 0; // the full mesh, as lods[0]
-    uint32_t indexCount = 0;
     // lods[0] is the full mesh; each further level is coarser (MeshLods.h).
     std::array<DrawLod, kMaxMeshLods> lods{};
     uint32_t lodCount = 1;
