@@ -1,6 +1,7 @@
 // No heap allocation in a steady-state frame: operator new is counted while frames of the full
 // pipeline (renderer, profiler, LPV) are recorded and submitted, after warm-up frames have filled
-// the caches: the Cornell box, and the lights hall for the analytic lights and a spot light RSM.
+// the caches: the Cornell box, and the lights hall for the analytic lights and a spot light RSM
+// (and its shadow map).
 // Only allocations on the frame's own thread count: lavapipe JIT-compiles shader variants with
 // LLVM on its queue thread, which is the driver's business. Runs without validation layers, whose
 // own bookkeeping allocates on the calling thread.
@@ -128,6 +129,13 @@ TEST_CASE("steady state: the lights hall with analytic lights and a spot light R
                 // Its work counts the triangles drawn in the spot light's view: the hall's few large
                 // boxes all reach it.
                 CHECK(rsm->work == gi::lightRsmWork(lpv.settings(), 1, hall.triangleCount()));
+                // That spot, lit per pixel, also got a shadow map (render.spot_shadows), drawn in
+                // these frames too.
+                const auto shadow =
+                    std::find_if(scopes.begin(), scopes.end(),
+                                 [](const engine::ScopeInfo& s) { return s.path == "render.spot_shadows"; });
+                REQUIRE(shadow != scopes.end());
+                CHECK(shadow->work.primitives > 0);
             };
             const uint64_t n = steadyStateAllocations(backend, hall, 0.25f, check);
             MESSAGE(backend.name << ": " << n << " allocations in 4 steady-state frames");

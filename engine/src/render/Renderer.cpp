@@ -18,6 +18,11 @@ namespace {
 
 const IntSetting kShadowMapSize{"render.shadow_map_size", 2048, 256, 8192,
                                 "Sun shadow map resolution (texels per side)"};
+const IntSetting kSpotShadows{"render.spot_shadows", 2, 0, int(SpotShadows::kMaxMaps),
+                              "Spot lights lit per pixel that get a shadow map (those nearest and brightest "
+                              "to the camera); the others are unshadowed"};
+const IntSetting kSpotShadowSize{"render.spot_shadow_map_size", 512, 128, 4096,
+                                 "Spot light shadow map resolution (texels per side)"};
 const BoolSetting kSsao{"render.ssao", true, "Screen-space ambient occlusion on the indirect light"};
 const FloatSetting kSsaoRadius{"render.ssao_radius", 0.5, 0.01, 10.0, "SSAO sampling radius in metres"};
 const FloatSetting kSsaoStrength{"render.ssao_strength", 1.0, 0.0, 2.0, "SSAO darkening at full occlusion"};
@@ -108,11 +113,13 @@ Renderer::Renderer(rhi::Device& device, uint32_t width, uint32_t height)
     shadowCompare_ = device.createSampler(compare);
     createTargets(uint32_t(std::get<int64_t>(kShadowMapSize.decl().defaultValue)));
     createPipelines();
+    spotShadows_ = std::make_unique<SpotShadows>(device);
 }
 
 Renderer::~Renderer() {
     device_.waitIdle();
     scene_.reset();
+    spotShadows_.reset();
     if (directLights_) device_.destroy(directLights_);
     destroyTargets();
     for (auto p : {gbufferPipeline_, shadowPipeline_, ssaoPipeline_, ssaoBlurPipeline_, lightingPipeline_,
@@ -231,6 +238,9 @@ void Renderer::setScene(const Scene& scene) {
     punctualLights_.clear();
     for (const Light& l : scene.lights)
         if (l.type != LightType::Directional) punctualLights_.push_back(l);
+    sceneSpots_ = 0;
+    for (const GpuPunctualLight& l : scene_->lightRecords())
+        sceneSpots_ += l.directionType.w > 1.5f ? 1 : 0;
     for (const Light& l : scene.lights)
         if (l.type == LightType::Directional) {
             sun_.direction = glm::normalize(l.direction);
@@ -294,6 +304,14 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         createIndirectTargets(divisor);
     }
 
+    // As many spot shadow maps as asked for, but no more than the scene has spots (memory): remade
+    // on a settings or scene change only.
+    const uint32_t wantSpotMaps = std::min(uint32_t(config.get(kSpotShadows)), sceneSpots_);
+    const uint32_t wantSpotSize = uint32_t(config.get(kSpotShadowSize));
+    if (wantSpotMaps != spotShadows_->mapCount() ||
+        (wantSpotMaps > 0 && wantSpotSize != spotShadows_->size()))
+        spotShadows_->resize(wantSpotMaps, wantSpotSize);
+
     const glm::vec3 ambient = config.get(kAmbient);
     frame_.viewProjection = camera.viewProjection;
     frame_.invViewProjection = camera.invViewProjection;
@@ -343,6 +361,16 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         w.texelsWritten = uint64_t(shadowSize_) * shadowSize_;
         w.bytesMoved = w.texelsWritten * 4 + scene_->triangleCount() * 3 * sizeof(Vertex);
         work(w);
+    }
+    if (spotShadows_->mapCount() > 0) {
+        auto s = scope("render.spot_shadows");
+        cmd.beginMarker("spot shadows");
+        const std::span<const GpuPunctualLight> lit =
+            lightBuffer == scene_->lights() ? std::span(scene_->lightRecords()).first(directLights)
+                                            : std::span(directRecords_).first(directLights);
+        spotShadows_->render(cmd, *scene_, lit, camera, bounds_);
+        cmd.endMarker();
+        work(spotShadows_->work());
     }
     {
         auto s = scope("render.gbuffer");
@@ -405,9 +433,14 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
             cmd.bindTexture(7, targets_.indirect, pointClamp_);
             cmd.bindStorageBuffer(8, lightBuffer);
             cmd.bindTexture(9, targets_.glossy, pointClamp_);
+            cmd.pushUniforms(10, &spotShadows_->uniforms(), sizeof(SpotShadowUniforms));
+            for (uint32_t k = 0; k < SpotShadows::kMaxMaps; ++k)
+                cmd.bindTexture(11 + k, spotShadows_->map(k, targets_.shadow), shadowCompare_);
         });
         cmd.endMarker();
-        work(fullscreenWork(pixels, 8 + 9 * 4, 120 + 40 * uint64_t(directLights), 4 * 8 + 8));
+        // Each shadowed spot adds its 3x3 compares where it lights (counted as every pixel).
+        work(fullscreenWork(pixels, 8 + 9 * 4 + 9 * uint64_t(spotShadows_->activeCount()),
+                            120 + 40 * uint64_t(directLights), 4 * 8 + 8));
     }
     if (indirectDivisor_ > 1) {
         // The bilateral rebuild of the pixels the GI lookup skipped runs inside the lighting pass,

@@ -1,0 +1,17 @@
+#version 450
+// A spot light's shadow map (SpotShadows): depth only, seen from the light.
+layout(location = 0) in vec3 inPosition;
+layout(binding = 1, std140) uniform Draw {
+    mat4 model;
+    mat4 normalMatrix;
+    vec4 baseColor;
+    vec4 emissive;
+    vec4 material;
+} draw;
+layout(binding = 2, std140) uniform SpotShadow {
+    mat4 viewProjection;
+} light;
+
+void main() {
+    gl_Position = light.viewProjection * draw.model * vec4(inPosition, 1.0);
+}
