@@ -23,17 +23,15 @@ layout(binding = 8, std430) readonly buffer Lights {
     PunctualLight lights[];
 };
 layout(binding = 9) uniform sampler2D glossyTexture;
-// Spot lights with a shadow map this frame (SpotShadows): map k belongs to light light[k] of the
-// list above (-1: none).
-layout(binding = 10, std140) uniform SpotShadows {
-    mat4 viewProjection[4];
-    ivec4 light;
-    vec4 texelAtMetre; // per map: a texel's side at 1 m from the light
-} spotShadows;
-layout(binding = 11) uniform sampler2DShadow spotShadow0;
-layout(binding = 12) uniform sampler2DShadow spotShadow1;
-layout(binding = 13) uniform sampler2DShadow spotShadow2;
-layout(binding = 14) uniform sampler2DShadow spotShadow3;
+// Spot and point lights with a shadow map this frame (LightShadows): views in tiles of one atlas.
+layout(binding = 10, std140) uniform LightShadows {
+    mat4 viewProjection[16];
+    vec4 tile[16];   // per view: xy its corner in the atlas, zw its size (uv)
+    ivec4 light[6];  // per light: x its index in the list above, y its first view, z views (1 or 6)
+    vec4 params[6];  // per light: x a texel's side at 1 m from the light
+    ivec4 count;     // x: lights with a map
+} shadows;
+layout(binding = 11) uniform sampler2DShadow shadowAtlas;
 
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outColor;
@@ -103,31 +101,44 @@ float sunShadow(vec3 p, vec3 n) {
     return lit / 9.0;
 }
 
-// 3x3 PCF of hardware-filtered compares in a perspective map; outside it, lit (the cone's own
-// falloff is zero there).
-float spotShadowIn(sampler2DShadow map, int k, vec3 p, vec3 n, float distance) {
+// View `view`'s shadow at p: 3x3 PCF of hardware-filtered compares inside its tile; outside the
+// view, lit (a spot's cone falloff is zero there; a point light's faces cover every direction).
+float shadowInView(int view, float texelAtMetre, vec3 p, vec3 n, float distance) {
     // A texel grows with distance from the light: offset along the normal by one and a half of
     // them against acne, the pipeline's slope bias handles the rest.
-    float texel = spotShadows.texelAtMetre[k] * distance;
-    vec4 s = spotShadows.viewProjection[k] * vec4(p + n * 1.5 * texel, 1.0);
+    vec4 s = shadows.viewProjection[view] * vec4(p + n * (1.5 * texelAtMetre * distance), 1.0);
     if (s.w <= 0.0) return 1.0;
     vec3 c = s.xyz / s.w;
     vec2 uv = c.xy * 0.5 + 0.5;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || c.z > 1.0) return 1.0;
-    vec2 step = 1.0 / vec2(textureSize(map, 0));
+    vec4 tile = shadows.tile[view];
+    vec2 step = 1.0 / vec2(textureSize(shadowAtlas, 0));
+    // The taps stay inside the tile: its neighbours hold other views.
+    vec2 lo = tile.xy + 1.5 * step, hi = tile.xy + tile.zw - 1.5 * step;
+    vec2 at = clamp(tile.xy + uv * tile.zw, lo, hi);
     float lit = 0.0;
     for (int y = -1; y <= 1; ++y)
-        for (int x = -1; x <= 1; ++x) lit += texture(map, vec3(uv + vec2(x, y) * step, c.z));
+        for (int x = -1; x <= 1; ++x) lit += texture(shadowAtlas, vec3(at + vec2(x, y) * step, c.z));
     return lit / 9.0;
 }
 
-// Light i's shadow (1: lit). Each map names its own texture: the branch is the same for every
-// pixel, where a texture chosen per pixel would make a CPU rasterizer sample all four.
-float spotShadow(int i, vec3 p, vec3 n, float distance) {
-    if (i == spotShadows.light.x) return spotShadowIn(spotShadow0, 0, p, n, distance);
-    if (i == spotShadows.light.y) return spotShadowIn(spotShadow1, 1, p, n, distance);
-    if (i == spotShadows.light.z) return spotShadowIn(spotShadow2, 2, p, n, distance);
-    if (i == spotShadows.light.w) return spotShadowIn(spotShadow3, 3, p, n, distance);
+// The face of a point light's cube (+x, -x, +y, -y, +z, -z) that direction d (from the light) lies in.
+int cubeFace(vec3 d) {
+    vec3 a = abs(d);
+    if (a.x >= a.y && a.x >= a.z) return d.x >= 0.0 ? 0 : 1;
+    if (a.y >= a.z) return d.y >= 0.0 ? 2 : 3;
+    return d.z >= 0.0 ? 4 : 5;
+}
+
+// Light i's shadow at p (1: lit; the light without a map this frame: 1). `fromLight`: p - the
+// light's position.
+float lightShadow(int i, vec3 p, vec3 n, vec3 fromLight) {
+    for (int k = 0; k < shadows.count.x; ++k) {
+        ivec4 l = shadows.light[k];
+        if (l.x != i) continue;
+        int view = l.z == 6 ? l.y + cubeFace(fromLight) : l.y;
+        return shadowInView(view, shadows.params[k].x, p, n, length(fromLight));
+    }
     return 1.0;
 }
 
@@ -158,10 +169,8 @@ void main() {
             float ratio = sqrt(d2) / l.positionRange.w;
             atten *= clamp(1.0 - ratio * ratio * ratio * ratio, 0.0, 1.0);
         }
-        if (l.directionType.w > 1.5) {
-            atten *= smoothstep(l.cone.x, l.cone.y, dot(-dir, l.directionType.xyz));
-            if (atten > 0.0) atten *= spotShadow(i, p, n, sqrt(d2));
-        }
+        if (l.directionType.w > 1.5) atten *= smoothstep(l.cone.x, l.cone.y, dot(-dir, l.directionType.xyz));
+        if (atten > 0.0 && shadows.count.x > 0) atten *= lightShadow(i, p, n, -toLight);
         irradiance += l.colorIntensity.rgb * l.colorIntensity.w * atten * max(dot(n, dir), 0.0);
     }
     vec3 direct = albedo / PI * irradiance;

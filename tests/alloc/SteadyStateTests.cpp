@@ -133,7 +133,7 @@ TEST_CASE("steady state: the lights hall with analytic lights and a spot light R
                 // these frames too.
                 const auto shadow =
                     std::find_if(scopes.begin(), scopes.end(),
-                                 [](const engine::ScopeInfo& s) { return s.path == "render.spot_shadows"; });
+                                 [](const engine::ScopeInfo& s) { return s.path == "render.light_shadows"; });
                 REQUIRE(shadow != scopes.end());
                 CHECK(shadow->work.primitives > 0);
             };

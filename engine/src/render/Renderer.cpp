@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 namespace lpv::engine {
@@ -18,11 +19,15 @@ namespace {
 
 const IntSetting kShadowMapSize{"render.shadow_map_size", 2048, 256, 8192,
                                 "Sun shadow map resolution (texels per side)"};
-const IntSetting kSpotShadows{"render.spot_shadows", 2, 0, int(SpotShadows::kMaxMaps),
+const IntSetting kSpotShadows{"render.spot_shadows", 2, 0, int(LightShadows::kMaxSpots),
                               "Spot lights lit per pixel that get a shadow map (those nearest and brightest "
                               "to the camera); the others are unshadowed"};
-const IntSetting kSpotShadowSize{"render.spot_shadow_map_size", 512, 128, 4096,
-                                 "Spot light shadow map resolution (texels per side)"};
+const IntSetting kPointShadows{"render.point_shadows", 1, 0, int(LightShadows::kMaxPointLights),
+                               "Point lights lit per pixel that get a shadow map of six faces (those nearest "
+                               "and brightest to the camera); the others are unshadowed"};
+const IntSetting kLightShadowSize{"render.light_shadow_map_size", 512, 128, 2048,
+                                  "Spot light shadow map and point light shadow face resolution (texels per "
+                                  "side)"};
 const BoolSetting kSsao{"render.ssao", true, "Screen-space ambient occlusion on the indirect light"};
 const FloatSetting kSsaoRadius{"render.ssao_radius", 0.5, 0.01, 10.0, "SSAO sampling radius in metres"};
 const FloatSetting kSsaoStrength{"render.ssao_strength", 1.0, 0.0, 2.0, "SSAO darkening at full occlusion"};
@@ -113,13 +118,13 @@ Renderer::Renderer(rhi::Device& device, uint32_t width, uint32_t height)
     shadowCompare_ = device.createSampler(compare);
     createTargets(uint32_t(std::get<int64_t>(kShadowMapSize.decl().defaultValue)));
     createPipelines();
-    spotShadows_ = std::make_unique<SpotShadows>(device);
+    lightShadows_ = std::make_unique<LightShadows>(device);
 }
 
 Renderer::~Renderer() {
     device_.waitIdle();
     scene_.reset();
-    spotShadows_.reset();
+    lightShadows_.reset();
     if (directLights_) device_.destroy(directLights_);
     destroyTargets();
     for (auto p : {gbufferPipeline_, shadowPipeline_, ssaoPipeline_, ssaoBlurPipeline_, lightingPipeline_,
@@ -238,9 +243,9 @@ void Renderer::setScene(const Scene& scene) {
     punctualLights_.clear();
     for (const Light& l : scene.lights)
         if (l.type != LightType::Directional) punctualLights_.push_back(l);
-    sceneSpots_ = 0;
+    sceneSpots_ = scenePointLights_ = 0;
     for (const GpuPunctualLight& l : scene_->lightRecords())
-        sceneSpots_ += l.directionType.w > 1.5f ? 1 : 0;
+        (l.directionType.w > 1.5f ? sceneSpots_ : scenePointLights_) += 1;
     for (const Light& l : scene.lights)
         if (l.type == LightType::Directional) {
             sun_.direction = glm::normalize(l.direction);
@@ -304,13 +309,20 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         createIndirectTargets(divisor);
     }
 
-    // As many spot shadow maps as asked for, but no more than the scene has spots (memory): remade
-    // on a settings or scene change only.
-    const uint32_t wantSpotMaps = std::min(uint32_t(config.get(kSpotShadows)), sceneSpots_);
-    const uint32_t wantSpotSize = uint32_t(config.get(kSpotShadowSize));
-    if (wantSpotMaps != spotShadows_->mapCount() ||
-        (wantSpotMaps > 0 && wantSpotSize != spotShadows_->size()))
-        spotShadows_->resize(wantSpotMaps, wantSpotSize);
+    // As many light shadow maps as asked for, but for no more lights than the scene has and the
+    // lighting pass can be left to light (memory): the atlas is remade on a settings or scene
+    // change only.
+    const auto limit = [&](LightType type) {
+        return indirect ? indirect->perPixelLightLimit(type) : std::numeric_limits<uint32_t>::max();
+    };
+    const uint32_t wantSpots =
+        std::min({uint32_t(config.get(kSpotShadows)), sceneSpots_, limit(LightType::Spot)});
+    const uint32_t wantPoints =
+        std::min({uint32_t(config.get(kPointShadows)), scenePointLights_, limit(LightType::Point)});
+    const uint32_t wantTile = uint32_t(config.get(kLightShadowSize));
+    if (wantSpots != lightShadows_->spotCapacity() || wantPoints != lightShadows_->pointLightCapacity() ||
+        ((wantSpots > 0 || wantPoints > 0) && wantTile != lightShadows_->tileSize()))
+        lightShadows_->resize(wantSpots, wantPoints, wantTile);
 
     const glm::vec3 ambient = config.get(kAmbient);
     frame_.viewProjection = camera.viewProjection;
@@ -362,15 +374,15 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         w.bytesMoved = w.texelsWritten * 4 + scene_->triangleCount() * 3 * sizeof(Vertex);
         work(w);
     }
-    if (spotShadows_->mapCount() > 0) {
-        auto s = scope("render.spot_shadows");
-        cmd.beginMarker("spot shadows");
+    if (lightShadows_->spotCapacity() + lightShadows_->pointLightCapacity() > 0) {
+        auto s = scope("render.light_shadows");
+        cmd.beginMarker("light shadows");
         const std::span<const GpuPunctualLight> lit =
             lightBuffer == scene_->lights() ? std::span(scene_->lightRecords()).first(directLights)
                                             : std::span(directRecords_).first(directLights);
-        spotShadows_->render(cmd, *scene_, lit, camera, bounds_);
+        lightShadows_->render(cmd, *scene_, lit, camera, bounds_);
         cmd.endMarker();
-        work(spotShadows_->work());
+        work(lightShadows_->work());
     }
     {
         auto s = scope("render.gbuffer");
@@ -433,13 +445,12 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
             cmd.bindTexture(7, targets_.indirect, pointClamp_);
             cmd.bindStorageBuffer(8, lightBuffer);
             cmd.bindTexture(9, targets_.glossy, pointClamp_);
-            cmd.pushUniforms(10, &spotShadows_->uniforms(), sizeof(SpotShadowUniforms));
-            for (uint32_t k = 0; k < SpotShadows::kMaxMaps; ++k)
-                cmd.bindTexture(11 + k, spotShadows_->map(k, targets_.shadow), shadowCompare_);
+            cmd.pushUniforms(10, &lightShadows_->uniforms(), sizeof(LightShadowUniforms));
+            cmd.bindTexture(11, lightShadows_->atlas(targets_.shadow), shadowCompare_);
         });
         cmd.endMarker();
-        // Each shadowed spot adds its 3x3 compares where it lights (counted as every pixel).
-        work(fullscreenWork(pixels, 8 + 9 * 4 + 9 * uint64_t(spotShadows_->activeCount()),
+        // Each shadowed light adds its 3x3 compares where it lights (counted as every pixel).
+        work(fullscreenWork(pixels, 8 + 9 * 4 + 9 * uint64_t(lightShadows_->activeCount()),
                             120 + 40 * uint64_t(directLights), 4 * 8 + 8));
     }
     if (indirectDivisor_ > 1) {

@@ -65,6 +65,12 @@ public:
     bool carriesPunctualLight(uint32_t index) const override {
         return settings_.enabled && made_ && analyticLights_ && !spotRsms_->selected(index);
     }
+    // While the volume carries the punctual lights, only those with an RSM are lit per pixel.
+    uint32_t perPixelLightLimit(engine::LightType type) const override {
+        if (!(settings_.enabled && made_ && analyticLights_))
+            return IndirectLighting::perPixelLightLimit(type);
+        return type == engine::LightType::Spot ? settings_.lightRsms : settings_.pointLightRsms;
+    }
 
     const LpvSettings& settings() const { return settings_; }
     // The finest cascade's placement (cascade(c) for the others).

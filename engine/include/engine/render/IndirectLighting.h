@@ -4,10 +4,12 @@
 #pragma once
 
 #include "engine/render/CameraMatrices.h"
+#include "engine/scene/Scene.h"
 #include "rhi/CommandList.h"
 #include "rhi/Handle.h"
 
 #include <cstdint>
+#include <limits>
 
 namespace lpv::engine {
 
@@ -52,6 +54,13 @@ public:
     virtual bool carriesPunctualLight(uint32_t index) const {
         (void)index;
         return false;
+    }
+    // At most how many point (spot) lights carriesPunctualLight() may leave to the lighting pass
+    // while the provider's settings stay as they are: the renderer makes shadow maps for no more.
+    // Unlimited by default.
+    virtual uint32_t perPixelLightLimit(LightType type) const {
+        (void)type;
+        return std::numeric_limits<uint32_t>::max();
     }
 };
 

@@ -1,8 +1,8 @@
-// The deferred renderer: sun shadow map, spot shadow maps (SpotShadows), G-buffer (albedo,
-// normal, emissive, depth), SSAO, indirect light (from an IndirectLighting provider or the ambient
-// constant), HDR lighting and tone mapping to sRGB. Every pass goes through the RHI with a debug
-// marker and a profiler scope. Targets are made at construction and on resize or when a setting
-// that sizes them changes, never in a steady-state frame.
+// The deferred renderer: sun shadow map, spot and point light shadow maps (LightShadows),
+// G-buffer (albedo, normal, emissive, depth), SSAO, indirect light (from an IndirectLighting
+// provider or the ambient constant), HDR lighting and tone mapping to sRGB. Every pass goes through
+// the RHI with a debug marker and a profiler scope. Targets are made at construction and on resize
+// or when a setting that sizes them changes, never in a steady-state frame.
 #pragma once
 
 #include "engine/config/Config.h"
@@ -10,7 +10,7 @@
 #include "engine/render/CameraMatrices.h"
 #include "engine/render/GpuScene.h"
 #include "engine/render/IndirectLighting.h"
-#include "engine/render/SpotShadows.h"
+#include "engine/render/LightShadows.h"
 #include "rhi/Device.h"
 
 #include <glm/vec3.hpp>
@@ -85,8 +85,9 @@ public:
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
     const FrameUniforms& frameUniforms() const { return frame_; }
-    // The spot lights' shadow maps (render.spot_shadows) as the last frame chose and drew them.
-    const SpotShadows& spotShadows() const { return *spotShadows_; }
+    // The spot and point lights' shadow maps (render.spot_shadows, render.point_shadows) as the
+    // last frame chose and drew them.
+    const LightShadows& lightShadows() const { return *lightShadows_; }
 
 private:
     struct Targets {
@@ -117,8 +118,8 @@ private:
     rhi::BufferHandle directLights_;
     std::vector<uint32_t> directIndices_, uploadedIndices_; // into the scene's light records
     std::vector<GpuPunctualLight> directRecords_;
-    std::unique_ptr<SpotShadows> spotShadows_;
-    uint32_t sceneSpots_ = 0; // spot lights in the scene: no more shadow maps than that
+    std::unique_ptr<LightShadows> lightShadows_;
+    uint32_t sceneSpots_ = 0, scenePointLights_ = 0; // no more shadow maps than the scene has lights
     FrameUniforms frame_{};
 };
 

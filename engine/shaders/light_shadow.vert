@@ -1,5 +1,5 @@
 #version 450
-// A spot light's shadow map (SpotShadows): depth only, seen from the light.
+// One view of a spot or point light's shadow map (LightShadows): depth only, seen from the light.
 layout(location = 0) in vec3 inPosition;
 layout(binding = 1, std140) uniform Draw {
     mat4 model;
@@ -8,7 +8,7 @@ layout(binding = 1, std140) uniform Draw {
     vec4 emissive;
     vec4 material;
 } draw;
-layout(binding = 2, std140) uniform SpotShadow {
+layout(binding = 2, std140) uniform LightShadowView {
     mat4 viewProjection;
 } light;
 
