@@ -455,7 +455,7 @@ void consolePrediction() {
     const LightRsmTriangles lightTriangles = atriumLightRsmTriangles(s.rsmSize);
     const auto lightMs = [&](const platforms::PlatformProfile& p, uint32_t rsms, uint64_t triangles) {
         return engine::predictCost(gi::lightRsmWork(s, rsms, triangles), p.throughput).ms +
-               engine::predictCost(gi::injectWork(s, rsms * gi::spotLightVplCount(s)), p.throughput).ms -
+               engine::predictCost(gi::injectWork(s, rsms * gi::spotLightVplSlots(s)), p.throughput).ms -
                engine::predictCost(gi::injectWork(s), p.throughput).ms;
     };
     std::printf("  plus one spot light RSM of 128^2 (gi.light_rsms=1; a spot over the atrium's court, "

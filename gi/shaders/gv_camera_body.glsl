@@ -11,22 +11,79 @@ layout(location = 0) flat out vec3 vCoverage;
 layout(location = 1) flat out int vFromCamera;
 layout(location = 2) flat out vec3 vAlbedo;
 
+// Sample (column, row) of the grid: its G-buffer pixel, depth, world position and normal.
+struct CameraSample {
+    bool valid;
+    vec3 p;
+    vec3 n;
+    ivec2 pixel;
+};
+
+CameraSample cameraSample(ivec2 index, int cols, int rows, ivec2 size) {
+    CameraSample s;
+    vec2 uv = (vec2(index) + 0.5) / vec2(cols, rows);
+    s.pixel = clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1);
+    float depth = texelFetch(gbufferDepth, s.pixel, 0).r;
+    s.n = texelFetch(gbufferNormal, s.pixel, 0).xyz;
+    // Clip space has y pointing down the image and depth 0..1 (engine/render/CameraMatrices.h).
+    vec4 world = gv.invViewProjection * vec4(uv.x * 2.0 - 1.0, uv.y * 2.0 - 1.0, depth, 1.0);
+    s.p = world.xyz / world.w;
+    s.valid = all(greaterThanEqual(index, ivec2(0))) && all(lessThan(index, ivec2(cols, rows))) && depth < 1.0 &&
+              dot(s.n, s.n) > 0.25;
+    s.n = normalize(s.n);
+    return s;
+}
+
+// Whether neighbour q lies on sample s's surface: near its tangent plane and facing alike.
+bool sameSurface(CameraSample s, CameraSample q) {
+    vec3 d = q.p - s.p;
+    return q.valid && abs(dot(d, s.n)) <= 0.1 * length(d) + 1e-4 && dot(q.n, s.n) > 0.9;
+}
+
 void main() {
     ivec2 size = textureSize(gbufferDepth, 0);
     int cols = gv.grid.w;
     int rows = max(1, (cols * size.y + size.x / 2) / size.x);
-    ivec2 sampleIndex = ivec2(gl_VertexIndex % cols, gl_VertexIndex / cols);
-    vec2 uv = (vec2(sampleIndex) + 0.5) / vec2(cols, rows);
-    ivec2 pixel = min(ivec2(uv * vec2(size)), size - 1);
-    float depth = texelFetch(gbufferDepth, pixel, 0).r;
-    vec3 normal = texelFetch(gbufferNormal, pixel, 0).xyz;
-    // Clip space has y pointing down the image and depth 0..1 (engine/render/CameraMatrices.h).
-    vec4 world = gv.invViewProjection * vec4(uv.x * 2.0 - 1.0, uv.y * 2.0 - 1.0, depth, 1.0);
-    vec3 p = world.xyz / world.w;
-    vCoverage = abs(normalize(normal));
+    // Vertex 7 s + k (GeometryVolume::kCameraPointsPerSample) of sample s: the sample itself
+    // (k = 0); the point half way to its right (k = 1) or lower (k = 2) neighbour when that lies on
+    // its surface more than half a cell away; and toward each of its four neighbours that does not
+    // lie on its surface, the edge of its footprint (k = 3..6). Where the samples lie more than a
+    // cell apart on a surface (seen at a grazing angle, or far away), or a surface ends between two
+    // of them, the cells in between were marked or not depending on where the samples fell, and the
+    // coverage flickered as the camera moved (965 of the Cornell box's 5,064 camera-covered GV cells
+    // changed for a third of a cell of camera motion; 216 with these points). Most points are
+    // parked: a near surface's samples lie closer than that, and most neighbours share a surface.
+    int sampleNumber = gl_VertexIndex / 7, k = gl_VertexIndex % 7;
+    ivec2 index = ivec2(sampleNumber % cols, sampleNumber / cols);
+    CameraSample s = cameraSample(index, cols, rows, size);
+    vec3 p = s.p;
+    bool valid = s.valid;
+    if (k >= 3 && valid) {
+        // Toward a neighbour on another surface (or none), where the points between samples stop:
+        // the edge of the sample's footprint, where the ray through the screen half a sample to
+        // that side meets its tangent plane, at most a cell away (a grazing plane would put it far
+        // off). Toward a neighbour on its own surface the points above cover the way.
+        ivec2 side = k == 3 ? ivec2(1, 0) : k == 4 ? ivec2(-1, 0) : k == 5 ? ivec2(0, 1) : ivec2(0, -1);
+        valid = !sameSurface(s, cameraSample(index + side, cols, rows, size));
+        vec2 uv = (vec2(index) + 0.5 + 0.5 * vec2(side)) / vec2(cols, rows);
+        vec4 w = gv.invViewProjection * vec4(uv * 2.0 - 1.0, 0.5, 1.0);
+        vec3 dir = w.xyz / w.w - gv.camera.xyz;
+        float along = dot(dir, s.n);
+        if (abs(along) < 1e-6) {
+            valid = false;
+        } else {
+            vec3 d = gv.camera.xyz + dir * (dot(s.p - gv.camera.xyz, s.n) / along) - s.p;
+            p = s.p + d * min(1.0, gv.gridOrigin.w / max(length(d), 1e-6));
+        }
+    } else if (k > 0 && valid) {
+        CameraSample q = cameraSample(index + (k == 1 ? ivec2(1, 0) : ivec2(0, 1)), cols, rows, size);
+        vec3 d = q.p - s.p;
+        valid = sameSurface(s, q) && length(d) > 0.5 * gv.gridOrigin.w;
+        p = s.p + 0.5 * d;
+    }
+    vCoverage = abs(s.n);
     vFromCamera = 1;
-    vAlbedo = texelFetch(gbufferAlbedo, pixel, 0).rgb;
+    vAlbedo = texelFetch(gbufferAlbedo, s.pixel, 0).rgb;
     gl_PointSize = 1.0;
-    bool valid = sampleIndex.y < rows && depth < 1.0 && dot(normal, normal) > 0.25;
     gl_Position = valid ? surfelPosition(p) : PARKED_POINT;
 }

@@ -4,7 +4,7 @@
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 layout(binding = 0, std140) uniform Faces {
-    ivec4 grid; // x: LPV cells per axis (the GV has one more)
+    ivec4 grid; // x: LPV cells per axis (the GV has one more), y: 1 when camera surfels were drawn
 } params;
 layout(binding = 1) uniform sampler3D lightCoverage;
 layout(binding = 2, rgba8) uniform writeonly image3D transmittance;
@@ -16,18 +16,51 @@ layout(binding = 4) uniform sampler3D albedoSum;
 layout(binding = 5, rgba8) uniform writeonly image3D surfelAlbedo;
 #endif
 
-// A GV cell's coverage: the light's estimate, or the camera's where that sees more.
-vec3 gv(ivec3 c) {
-    return max(min(texelFetch(lightCoverage, c, 0).xyz, vec3(1.0)), texelFetch(cameraCoverage, c, 0).xyz);
+// Component `axis` of the camera's coverage of GV cell c; 0 outside the volume.
+float camera(ivec3 c, int axis) {
+    int n = params.grid.x + 1;
+    bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
+    return inside ? texelFetch(cameraCoverage, c, 0)[axis] : 0.0;
+}
+
+// The blocking of the lower face along `axis` of LPV cell c: the mean coverage along `axis` of the
+// four GV cells at its corners (c + u i + v j, i, j in 0..1; u, v span the face). A corner's
+// coverage is the light's estimate, or the camera's where that sees more. The camera's is closed
+// over one-cell holes: a corner whose two neighbours in the face's plane (along u, or along v)
+// both are covered counts as covered too. The camera misses a wall's cells where another object's
+// silhouette just hides them, and which ones changes as the camera moves (the Cornell box's back
+// wall behind the short box's top): light then leaked through the hole, or not, from one frame to
+// the next. The corners' neighbours overlap: the 12 cells of a 4 x 4 patch of the plane less its
+// corners are fetched once.
+float faceBlocking(ivec3 c, int axis, ivec3 u, ivec3 v) {
+    float sum = 0.0;
+    if (params.grid.y == 0) {
+        for (int k = 0; k < 4; ++k)
+            sum += min(texelFetch(lightCoverage, c + u * (k & 1) + v * (k >> 1), 0)[axis], 1.0);
+        return sum * 0.25;
+    }
+    // seen[i + 1][j + 1]: the camera's coverage at c + u i + v j, i, j in -1..2 (corners unused).
+    float seen[4][4];
+    for (int i = -1; i <= 2; ++i)
+        for (int j = -1; j <= 2; ++j) {
+            bool corner = (i == -1 || i == 2) && (j == -1 || j == 2);
+            seen[i + 1][j + 1] = corner ? 0.0 : camera(c + u * i + v * j, axis);
+        }
+    for (int k = 0; k < 4; ++k) {
+        int i = (k & 1) + 1, j = (k >> 1) + 1;
+        float closed = max(seen[i][j], max(min(seen[i - 1][j], seen[i + 1][j]), min(seen[i][j - 1], seen[i][j + 1])));
+        float l = min(texelFetch(lightCoverage, c + u * (k & 1) + v * (k >> 1), 0)[axis], 1.0);
+        sum += max(l, closed);
+    }
+    return sum * 0.25;
 }
 
 void main() {
     ivec3 c = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(c, ivec3(params.grid.x)))) return;
     // The lower x face spans corners (x, y..y+1, z..z+1); likewise for y and z.
-    float bx = (gv(c).x + gv(c + ivec3(0, 1, 0)).x + gv(c + ivec3(0, 0, 1)).x + gv(c + ivec3(0, 1, 1)).x) * 0.25;
-    float by = (gv(c).y + gv(c + ivec3(1, 0, 0)).y + gv(c + ivec3(0, 0, 1)).y + gv(c + ivec3(1, 0, 1)).y) * 0.25;
-    float bz = (gv(c).z + gv(c + ivec3(1, 0, 0)).z + gv(c + ivec3(0, 1, 0)).z + gv(c + ivec3(1, 1, 0)).z) * 0.25;
+    const ivec3 X = ivec3(1, 0, 0), Y = ivec3(0, 1, 0), Z = ivec3(0, 0, 1);
+    float bx = faceBlocking(c, 0, Y, Z), by = faceBlocking(c, 1, X, Z), bz = faceBlocking(c, 2, X, Y);
     imageStore(transmittance, c, vec4(clamp(vec3(1.0) - vec3(bx, by, bz), 0.0, 1.0), 1.0));
 #ifdef KEEP_ALBEDO
     vec4 albedo = vec4(0.0);

@@ -1,7 +1,8 @@
 // Geometry volume from the light's view: every VPL is also a surfel (the RSM block it clusters),
 // drawn into the GV like the radiance injection (gv_common.glsl: one layered draw, or per slice).
-// Its area is the block's area across the light divided by the cosine to the light (clamped, so
-// grazing blocks do not explode). The sun's RSM is orthographic: every block has the same area
+// Its area is its share of the block's area across the light (normal.w: a block split at a depth
+// edge gives each VPL its texels' share, vpl_cluster.comp) divided by the cosine to the light
+// (clamped, so grazing blocks do not explode). The sun's RSM is orthographic: every block has the same area
 // across the light. FROM_POINT, a spot's or a point light's (a perspective map): a block subtends
 // the axis block's solid angle times cos^3 off the axis, at the VPL's squared distance. Those
 // surfels add coverage but no albedo: their flux holds the light's cone and falloff, which the
@@ -10,7 +11,7 @@
 
 struct Vpl {
     vec4 position;
-    vec4 normal;
+    vec4 normal; // w: its share of the block's texels
     vec4 flux;
 };
 layout(binding = 1, std430) readonly buffer Vpls {
@@ -28,13 +29,13 @@ void main() {
     float d2 = max(dot(toSurfel, toSurfel), 1e-8);
     vec3 w = toSurfel * inversesqrt(d2);
     float cosAxis = max(dot(w, gv.lightAxis.xyz), 0.0);
-    float across = gv.lightPosition.w * cosAxis * cosAxis * cosAxis * d2;
+    float across = gv.lightPosition.w * v.normal.w * cosAxis * cosAxis * cosAxis * d2;
     float cosLight = max(abs(dot(v.normal.xyz, w)), 0.25);
     vCoverage = surfelCoverage(v.normal.xyz, across / cosLight);
     vFromCamera = 2; // light coverage, no albedo (gv_inject_body.glsl)
 #else
     float cosLight = max(abs(dot(v.normal.xyz, gv.lightDirection.xyz)), 0.25);
-    vCoverage = surfelCoverage(v.normal.xyz, gv.lightDirection.w / cosLight);
+    vCoverage = surfelCoverage(v.normal.xyz, gv.lightDirection.w * v.normal.w / cosLight);
     vFromCamera = 0;
 #endif
     // The cluster's flux over what as many white texels would reflect (flux.w: its texel count).

@@ -140,11 +140,12 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
             cmd.bindTexture(1, src.depth, pointSampler_);
             cmd.bindTexture(2, src.normal, pointSampler_);
             cmd.bindTexture(3, src.albedo ? src.albedo : src.normal, pointSampler_);
-            cmd.draw(cameraSamples);
+            cmd.draw(cameraSamples * kCameraPointsPerSample); // gv_camera_body.glsl
         }
         cmd.endRenderPass();
     }
-    const glm::ivec4 faceGrid(int(lpvSize_), 0, 0, 0);
+    // y: camera surfels drawn (only then is the camera's coverage closed over holes).
+    const glm::ivec4 faceGrid(int(lpvSize_), cameraSamples > 0 ? 1 : 0, 0, 0);
     cmd.bindPipeline(facesPipeline_);
     cmd.pushUniforms(0, &faceGrid, sizeof(faceGrid));
     cmd.bindTexture(1, coverage_, pointSampler_);

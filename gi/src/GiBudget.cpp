@@ -27,7 +27,7 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
         {"rsm depth", "gi.rsm", rsm * 4},
         {"rsm normal", "gi.rsm", rsm * 8},
         {"rsm flux", "gi.rsm", rsm * 8},
-        {"vpl buffer", "gi.vpl", uint64_t(s.vplCount) * 48},
+        {"vpl buffer", "gi.vpl", uint64_t(s.vplSlots()) * 48},
         {"injection volume (3 SH textures)", "gi.lpv", 3 * cells * injectBytes},
         {"propagation partial sums, ping (packed)", "gi.lpv", partialCells * packedBytes},
         {"propagation partial sums, pong (packed)", "gi.lpv", partialCells * packedBytes},
@@ -40,21 +40,21 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
     for (uint32_t c = 1; c < s.cascades; ++c) {
         out.push_back({"accumulation, cascade " + std::to_string(c) + " (3 SH textures)", "gi.lpv",
                        3 * cells * shBytes});
-        out.push_back({"vpl buffer, cascade " + std::to_string(c), "gi.vpl", uint64_t(s.vplCount) * 48});
+        out.push_back({"vpl buffer, cascade " + std::to_string(c), "gi.vpl", uint64_t(s.vplSlots()) * 48});
     }
     // Spot lights with their own RSM (SpotLightRsms): an RSM and a VPL buffer each; point lights
     // six of each, a cube.
     for (uint32_t k = 0; k < s.lightRsms; ++k) {
         const std::string light = "spot light " + std::to_string(k);
         out.push_back({light + " rsm depth, normal, flux", "gi.rsm", rsm * (4 + 8 + 8)});
-        out.push_back({light + " vpl buffer", "gi.vpl", uint64_t(spotLightVplCount(s)) * 48});
+        out.push_back({light + " vpl buffer", "gi.vpl", uint64_t(spotLightVplSlots(s)) * 48});
     }
     for (uint32_t k = 0; k < s.pointLightRsms; ++k) {
         const std::string light = "point light " + std::to_string(k);
         out.push_back(
             {light + " cube rsm depth, normal, flux (6 faces)", "gi.rsm", kCubeFaces * rsm * (4 + 8 + 8)});
         out.push_back(
-            {light + " vpl buffers (6 faces)", "gi.vpl", kCubeFaces * uint64_t(spotLightVplCount(s)) * 48});
+            {light + " vpl buffers (6 faces)", "gi.vpl", kCubeFaces * uint64_t(spotLightVplSlots(s)) * 48});
     }
     if (s.occlusion) {
         out.push_back({"geometry volume coverage, light surfels", "gi.gv", gvCells * 4});

@@ -2,6 +2,7 @@
 // writes, times the threads dispatched (or points/pixels drawn).
 #include "gi/GiWork.h"
 
+#include "gi/GeometryVolume.h"
 #include "gi/LpvVolumes.h"
 #include "gi/SpotLightRsms.h"
 #include "rhi/Format.h"
@@ -25,15 +26,18 @@ WorkCounts rsmWork(const LpvSettings& s, uint64_t triangles) {
 WorkCounts vplClusterWork(const LpvSettings& s) {
     const uint64_t texels = uint64_t(s.rsmSize) * s.rsmSize;
     WorkCounts w;
-    w.texelsRead = texels * 3;
-    w.aluOps = texels * 30; // unproject, weight, three weighted sums
-    w.bytesMoved = texels * (4 + 8 + 8) + uint64_t(s.vplCount) * 48;
+    // The block's depth range, then one pass per depth layer (each reads every depth, flux and
+    // normal of its own texels).
+    w.texelsRead = texels * 5;
+    w.aluOps = texels * 40; // unproject, weight, three weighted sums, the layer test
+    w.bytesMoved = texels * (4 + 8 + 8) + uint64_t(s.vplSlots()) * 48;
     return w;
 }
 
 WorkCounts injectWork(const LpvSettings& s, uint64_t extraVpls, VolumeDraw draw) {
     const uint64_t injectBytes = s.shFormat == ShFormat::Rgba32f ? 16 : 8;
-    const uint64_t vpls = s.vplCount + extraVpls;
+    // Every slot is drawn (an empty one is parked outside the volume).
+    const uint64_t vpls = s.vplSlots() + extraVpls;
     WorkCounts w;
     // Every VPL is submitted once, or once per slice (one slice keeps it).
     w.primitives = vpls * (draw == VolumeDraw::Layered ? 1 : s.gridSize);
@@ -53,7 +57,7 @@ WorkCounts lightRsmWork(const LpvSettings& s, uint32_t rsms, uint64_t triangles)
     WorkCounts one = rsmWork(s, 0);
     one.aluOps += texels * 15;
     WorkCounts cluster = vplClusterWork(s);
-    cluster.bytesMoved -= (uint64_t(s.vplCount) - spotLightVplCount(s)) * 48;
+    cluster.bytesMoved -= (uint64_t(s.vplSlots()) - spotLightVplSlots(s)) * 48;
     one += cluster;
     WorkCounts all = one * rsms;
     all.primitives += triangles;
@@ -140,17 +144,28 @@ WorkCounts gatherPropagationWork(const LpvSettings& s) {
 WorkCounts occlusionWork(const LpvSettings& s, uint64_t cameraSamples, VolumeDraw draw,
                          uint64_t lightRsmSurfels) {
     const uint64_t slices = draw == VolumeDraw::Layered ? 1 : s.gridSize + 1;
-    const uint64_t surfels = s.vplCount + cameraSamples + lightRsmSurfels;
+    // A camera sample draws GeometryVolume::kCameraPointsPerSample points (itself, the half-way
+    // points to two neighbours on its surface, the edges of its footprint), each submitted even
+    // where it is parked.
+    const uint64_t cameraPoints = cameraSamples * GeometryVolume::kCameraPointsPerSample;
+    const uint64_t surfels = s.vplSlots() + cameraPoints + lightRsmSurfels;
     const uint64_t cells = uint64_t(s.gridSize) * s.gridSize * s.gridSize;
     WorkCounts w;
-    // Every surfel is submitted once, or once per slice (camera ones fetch depth and normal each
-    // time); one slice keeps it. Then 12 coverage fetches and one store per LPV cell.
+    // Every surfel is submitted once, or once per slice (camera points fetch their sample's depth,
+    // normal and albedo, and all but the sample's own a neighbour's depth and normal, each time);
+    // one slice keeps it.
+    // Then per LPV cell 12 coverage values of the light's, and with camera surfels the camera's
+    // closed over holes (a 4 x 4 patch less its corners per face: 36 fetches), and one store.
+    const uint64_t faceFetches = cameraSamples > 0 ? 12 + 36 : 12;
     w.primitives = surfels * slices;
-    w.aluOps = w.primitives * 25 + cells * 20;
+    w.aluOps = w.primitives * 25 + cameraPoints * 20 * slices + cells * (cameraSamples > 0 ? 60 : 20);
     w.pixelsShaded = surfels;
-    w.texelsRead = cameraSamples * 2 * slices + cells * 12;
+    constexpr uint64_t points = GeometryVolume::kCameraPointsPerSample;
+    w.texelsRead = cameraSamples * (3 * points + 2 * (points - 1)) * slices + cells * faceFetches;
     w.texelsWritten = surfels + cells;
-    w.bytesMoved = w.primitives * 48 + surfels * 16 + cells * (12 * 8 + 4);
+    // The camera patches' fetches overlap from cell to cell: its volume (RGBA8) comes from memory
+    // about twice.
+    w.bytesMoved = w.primitives * 48 + surfels * 16 + cells * (12 * 8 + (cameraSamples > 0 ? 8 : 0) + 4);
     w.cells = cells;
     return w;
 }

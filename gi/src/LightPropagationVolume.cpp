@@ -136,13 +136,13 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     if (s.bounces > 1) bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_);
     pointLights_ = std::make_unique<PointLightInjection>(device_, s);
     spotRsms_ = std::make_unique<SpotLightRsms>(device_, s);
-    vpls_ = device_.createBuffer({uint64_t(s.vplCount) * 48, rhi::kBufferStorage | rhi::kBufferTransfer,
+    vpls_ = device_.createBuffer({uint64_t(s.vplSlots()) * 48, rhi::kBufferStorage | rhi::kBufferTransfer,
                                   rhi::MemoryAccess::GpuOnly, "vpls", "gi.vpl"});
     // A coarse cascade's VPLs wait a frame for its volume half when the scheduler splits its update.
     cascades_[0].vpls = vpls_;
     for (uint32_t c = 1; c < s.cascades; ++c)
         cascades_[c].vpls = device_.createBuffer(
-            {uint64_t(s.vplCount) * 48, rhi::kBufferStorage | rhi::kBufferTransfer,
+            {uint64_t(s.vplSlots()) * 48, rhi::kBufferStorage | rhi::kBufferTransfer,
              rhi::MemoryAccess::GpuOnly, "vpls, cascade " + std::to_string(c), "gi.vpl"});
     made_ = true;
 }
@@ -273,7 +273,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             auto s = scope("occlusion");
             GeometrySources src;
             src.vpls = cascade.vpls;
-            src.vplCount = settings_.vplCount;
+            src.vplCount = settings_.vplSlots();
             src.vplArea = cascade.vplArea;
             src.lightDirection = cascade.lightDirection;
             src.whiteTexelFlux = cascade.whiteTexelFlux;
@@ -302,10 +302,10 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         {
             auto s = scope("inject");
             std::array<VplSource, 1 + SpotLightRsms::kMaxRsms> sources;
-            sources[0] = {cascade.vpls, settings_.vplCount, glm::vec4(cascade.lightDirection, 0.0f)};
+            sources[0] = {cascade.vpls, settings_.vplSlots(), glm::vec4(cascade.lightDirection, 0.0f)};
             const uint32_t n = 1 + spotRsms_->sourcesReaching(grid, std::span(sources).subspan(1));
             volumes_->inject(cmd, std::span(sources.data(), n), grid, settings_.intensity);
-            work(injectWork(settings_, uint64_t(n - 1) * spotLightVplCount(settings_), volumeDraw()));
+            work(injectWork(settings_, uint64_t(n - 1) * spotLightVplSlots(settings_), volumeDraw()));
         }
         {
             auto s = scope("propagate");
@@ -418,7 +418,7 @@ void LightPropagationVolume::renderDebugOverlay(rhi::CommandList& cmd, const eng
         cmd.bindPipeline(pointsPipeline_);
         cmd.pushUniforms(0, &camera.viewProjection, sizeof(camera.viewProjection));
         cmd.bindStorageBuffer(1, vpls_);
-        cmd.draw(settings_.vplCount);
+        cmd.draw(settings_.vplSlots());
         for (const VplSource& spot : spotRsms_->sources()) { // and the lights' with an RSM
             cmd.bindStorageBuffer(1, spot.vpls);
             cmd.draw(spot.count);

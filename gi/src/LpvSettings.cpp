@@ -74,6 +74,10 @@ const engine::IntSetting kDebugSlice{"gi.debug_slice", 16, 0, 63,
 
 } // namespace
 
+uint32_t LpvSettings::vplSlots() const {
+    return vplCount * kVplsPerCluster;
+}
+
 uint32_t LpvSettings::vplGridSide() const {
     return uint32_t(std::lround(std::sqrt(double(vplCount))));
 }

@@ -77,7 +77,7 @@ SpotLightRsms::SpotLightRsms(rhi::Device& device, const LpvSettings& settings)
     for (uint32_t k = 0; k < capacity_ + kCubeFaces * pointCapacity_; ++k) {
         rsms_[k] = std::make_unique<ReflectiveShadowMap>(device, settings.rsmSize, RsmLight::Spot);
         vpls_[k] =
-            device.createBuffer({uint64_t(spotLightVplCount(settings)) * 48, kBufferStorage | kBufferTransfer,
+            device.createBuffer({uint64_t(spotLightVplSlots(settings)) * 48, kBufferStorage | kBufferTransfer,
                                  MemoryAccess::GpuOnly, "light rsm vpls " + std::to_string(k), "gi.vpl"});
     }
     if (capacity_ + pointCapacity_ > 0)
@@ -106,7 +106,7 @@ void SpotLightRsms::select(std::span<const engine::Light> lights, const VolumeGr
         const engine::Light& light = lights[selection_[k]];
         const float far = farthestCorner(light.position, reach);
         for (uint32_t f = 0; f < (k < count_ ? 1u : kCubeFaces); ++f, ++rsmCount_) {
-            sources_[rsmCount_] = {vpls_[rsmCount_], spotLightVplCount(settings_),
+            sources_[rsmCount_] = {vpls_[rsmCount_], spotLightVplSlots(settings_),
                                    glm::vec4(light.position, 1.0f)};
             reach_[rsmCount_] = analyticLight(light, 1.0f);
             // As render() fits it.
@@ -114,7 +114,7 @@ void SpotLightRsms::select(std::span<const engine::Light> lights, const VolumeGr
             frusta_[rsmCount_] = fit.viewProjection;
             // A VPL's block of texels: (size / side)^2 texels of (2 tan / size)^2 sr each on the axis.
             const float block = 2.0f * fit.tanHalfAngle / float(spotLightVplSide(settings_));
-            surfels_[rsmCount_] = {vpls_[rsmCount_], spotLightVplCount(settings_), light.position, fit.axis,
+            surfels_[rsmCount_] = {vpls_[rsmCount_], spotLightVplSlots(settings_), light.position, fit.axis,
                                    block * block};
         }
     }

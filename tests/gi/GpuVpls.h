@@ -1,4 +1,5 @@
-// VPLs as the GPU passes read them (std430 {vec4 position (w: valid), vec4 normal, vec4 flux}),
+// VPLs as the GPU passes read them (std430 {vec4 position (w: valid), vec4 normal (w: its share of
+// its RSM block's area), vec4 flux}),
 // for tests that inject their own.
 #pragma once
 
@@ -19,7 +20,7 @@ struct GpuVpl {
 inline rhi::BufferHandle uploadVpls(rhi::Device& device, const std::vector<gi::Vpl>& vpls) {
     std::vector<GpuVpl> gpu;
     for (const gi::Vpl& v : vpls)
-        gpu.push_back({glm::vec4(v.position, 1), glm::vec4(v.normal, 0), glm::vec4(v.flux, 0)});
+        gpu.push_back({glm::vec4(v.position, 1), glm::vec4(v.normal, 1), glm::vec4(v.flux, 0)});
     return device.createBuffer({gpu.size() * sizeof(GpuVpl), rhi::kBufferStorage | rhi::kBufferTransfer,
                                 rhi::MemoryAccess::GpuOnly, "test vpls", "test"},
                                gpu.data());

@@ -20,7 +20,7 @@ using namespace lpv::test;
 namespace {
 
 struct GpuVpl {
-    glm::vec4 position, normal, flux;
+    glm::vec4 position, normal, flux; // normal.w: the share of its block's area (all of it here)
 };
 
 // 16^3 cells of 0.5 m from the origin. The wall is the plane x = 4 m (between cells 7 and 8),
@@ -33,11 +33,11 @@ std::vector<GpuVpl> scene() {
     // Lit floor: bright VPLs facing up.
     for (float x = 0.5f; x <= 3.5f; x += kSpacing)
         for (float z = 0.25f; z < 8.0f; z += kSpacing)
-            v.push_back({{x, 0.3f, z, 1}, {0, 1, 0, 0}, {0.05f, 0.05f, 0.05f, 0}});
+            v.push_back({{x, 0.3f, z, 1}, {0, 1, 0, 1}, {0.05f, 0.05f, 0.05f, 0}});
     // The wall's lit face, facing the lit area: reflects a little and, as a surfel, blocks.
     for (float y = 0.125f; y < 8.0f; y += kSpacing)
         for (float z = 0.125f; z < 8.0f; z += kSpacing)
-            v.push_back({{kWallX - 0.01f, y, z, 1}, {-1, 0, 0, 0}, {0.01f, 0.01f, 0.01f, 0}});
+            v.push_back({{kWallX - 0.01f, y, z, 1}, {-1, 0, 0, 1}, {0.01f, 0.01f, 0.01f, 0}});
     return v;
 }
 

@@ -118,9 +118,11 @@ TEST_CASE("spot rsm: the GI budget counts every spot light's RSM and VPLs") {
     const uint64_t none = giBytes(giResources(s));
     s.lightRsms = 2;
     const auto resources = giResources(s);
-    // A quarter of the sun's VPLs: 256^2 texels in blocks of 8x8.
+    // A quarter of the sun's VPL blocks: 256^2 texels in blocks of 8x8, two VPL slots each.
     CHECK(spotLightVplCount(s) == s.vplCount / 4);
-    const uint64_t perLight = uint64_t(s.rsmSize) * s.rsmSize * (4 + 8 + 8) + uint64_t(s.vplCount / 4) * 48;
+    CHECK(spotLightVplSlots(s) == s.vplCount / 4 * kVplsPerCluster);
+    const uint64_t perLight =
+        uint64_t(s.rsmSize) * s.rsmSize * (4 + 8 + 8) + uint64_t(s.vplCount / 4) * kVplsPerCluster * 48;
     CHECK(giBytes(resources) == none + 2 * perLight);
     CHECK(std::count_if(resources.begin(), resources.end(), [](const GiResource& r) {
               return r.name.find("spot light 1") != std::string::npos;
@@ -147,7 +149,7 @@ TEST_CASE("spot rsm: a cascade gets the VPLs of the spot lights that reach it, a
     CHECK(out[1].light == glm::vec4(lights[2].position, 1.0f));
     for (const VplSource& v : rsms.sources()) {
         CHECK(v.vpls);
-        CHECK(v.count == s.vplCount / 4);
+        CHECK(v.count == s.vplCount / 4 * kVplsPerCluster);
     }
     CHECK(rsms.sourcesReaching(fine, std::span(out.data(), 1)) == 1);
 }
@@ -207,7 +209,7 @@ TEST_CASE("point rsm: the GI budget counts a point light's six RSMs and VPL buff
     const uint64_t none = giBytes(giResources(s));
     s.pointLightRsms = 2;
     const uint64_t perFace =
-        uint64_t(s.rsmSize) * s.rsmSize * (4 + 8 + 8) + uint64_t(spotLightVplCount(s)) * 48;
+        uint64_t(s.rsmSize) * s.rsmSize * (4 + 8 + 8) + uint64_t(spotLightVplSlots(s)) * 48;
     CHECK(giBytes(giResources(s)) == none + 2 * kCubeFaces * perFace);
     // 7.8 MiB for one point light at the defaults (RSM 256, 4096 VPLs): the PC's 64 MiB hold it,
     // the consoles' 3 MiB do not.

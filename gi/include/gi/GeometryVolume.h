@@ -46,6 +46,9 @@ class GeometryVolume {
 public:
     // Camera samples per row of the depth buffer (rows follow its aspect).
     static constexpr uint32_t kCameraSamplesPerRow = 160;
+    // Points each camera sample draws (gv_camera_body.glsl): itself, the point half way to each of
+    // two neighbours on its surface, and the edges of its footprint toward the four neighbours.
+    static constexpr uint32_t kCameraPointsPerSample = 7;
 
     // keepAlbedo: also gather the surfels' albedo (surfelAlbedo()), which only multiple bounces
     // read (gi.bounces > 1); it costs 8 bytes per GV cell and 4 per LPV cell (GiBudget.cpp), more

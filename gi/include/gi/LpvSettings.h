@@ -48,8 +48,15 @@ struct LpvSettings {
 
     // Side of the VPL grid the RSM is clustered into (sqrt of vplCount).
     uint32_t vplGridSide() const;
+    // VPL slots of the sun's RSM: each of the vplCount blocks has kVplsPerCluster.
+    uint32_t vplSlots() const;
     bool operator==(const LpvSettings&) const = default;
 };
+
+// A block of RSM texels clusters into up to this many VPLs (vpl_cluster.comp): one per depth layer
+// when the block spans a depth edge, the second slot left empty otherwise. Buffers, draws and
+// budgets count slots.
+inline constexpr uint32_t kVplsPerCluster = 2;
 
 // Reads and cross-checks the settings (vpl count against RSM size). Throws engine::ConfigError.
 LpvSettings readLpvSettings(const engine::Config& config);

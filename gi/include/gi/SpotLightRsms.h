@@ -94,6 +94,10 @@ uint32_t spotLightVplSide(const LpvSettings& settings);
 inline uint32_t spotLightVplCount(const LpvSettings& settings) {
     return spotLightVplSide(settings) * spotLightVplSide(settings);
 }
+// The VPL slots of a spot light RSM's buffer: kVplsPerCluster per block.
+inline uint32_t spotLightVplSlots(const LpvSettings& settings) {
+    return spotLightVplCount(settings) * kVplsPerCluster;
+}
 
 // How many of `lights` are of `type`.
 uint32_t lightCount(std::span<const engine::Light> lights, engine::LightType type);
