@@ -50,9 +50,9 @@ void main() {
     // lie on its surface, the edge of its footprint (k = 3..6). Where the samples lie more than a
     // cell apart on a surface (seen at a grazing angle, or far away), or a surface ends between two
     // of them, the cells in between were marked or not depending on where the samples fell, and the
-    // coverage flickered as the camera moved (965 of the Cornell box's 5,064 camera-covered GV cells
-    // changed for a third of a cell of camera motion; 216 with these points). Most points are
-    // parked: a near surface's samples lie closer than that, and most neighbours share a surface.
+    // coverage flickered as the camera moved (965 of the Cornell box's some 5,000 camera-covered
+    // GV cells changed for a third of a cell of camera motion; 216 with these points). Most points
+    // are parked: a near surface's samples lie closer than that, and most neighbours share one.
     int sampleNumber = gl_VertexIndex / 7, k = gl_VertexIndex % 7;
     ivec2 index = ivec2(sampleNumber % cols, sampleNumber / cols);
     CameraSample s = cameraSample(index, cols, rows, size);

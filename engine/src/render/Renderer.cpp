@@ -128,7 +128,7 @@ Renderer::~Renderer() {
     if (directLights_) device_.destroy(directLights_);
     destroyTargets();
     for (auto p : {gbufferPipeline_, shadowPipeline_, ssaoPipeline_, ssaoBlurPipeline_, lightingPipeline_,
-                   tonemapPipeline_})
+                   lightingShadowedPipeline_, tonemapPipeline_})
         device_.destroy(p);
     for (auto s : {linearClamp_, pointClamp_, shadowCompare_})
         device_.destroy(s);
@@ -212,6 +212,8 @@ void Renderer::createPipelines() {
     ssaoPipeline_ = fullscreenPipeline(device_, shaders::ssao_frag, Format::R32F, "ssao");
     ssaoBlurPipeline_ = fullscreenPipeline(device_, shaders::ssao_blur_frag, Format::R32F, "ssao blur");
     lightingPipeline_ = fullscreenPipeline(device_, shaders::lighting_frag, Format::RGBA16F, "lighting");
+    lightingShadowedPipeline_ = fullscreenPipeline(device_, shaders::lighting_shadowed_frag, Format::RGBA16F,
+                                                   "lighting, light shadows");
     tonemapPipeline_ = fullscreenPipeline(device_, shaders::tonemap_frag, Format::RGBA8Srgb, "tone map");
 }
 
@@ -435,19 +437,23 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
     {
         auto s = scope("render.lighting");
         cmd.beginMarker("lighting");
-        fullscreenPass(cmd, targets_.hdr, lightingPipeline_, "lighting", frame_, [&] {
-            cmd.bindTexture(1, targets_.albedo, pointClamp_);
-            cmd.bindTexture(2, targets_.normal, pointClamp_);
-            cmd.bindTexture(3, targets_.emissive, pointClamp_);
-            cmd.bindTexture(4, targets_.depth, pointClamp_);
-            cmd.bindTexture(5, targets_.shadow, shadowCompare_);
-            cmd.bindTexture(6, targets_.ao, pointClamp_);
-            cmd.bindTexture(7, targets_.indirect, pointClamp_);
-            cmd.bindStorageBuffer(8, lightBuffer);
-            cmd.bindTexture(9, targets_.glossy, pointClamp_);
-            cmd.pushUniforms(10, &lightShadows_->uniforms(), sizeof(LightShadowUniforms));
-            cmd.bindTexture(11, lightShadows_->atlas(targets_.shadow), shadowCompare_);
-        });
+        // The variant with the lights' shadow atlas only in frames where a light has a map.
+        const bool lightShadows = lightShadows_->activeCount() > 0;
+        fullscreenPass(cmd, targets_.hdr, lightShadows ? lightingShadowedPipeline_ : lightingPipeline_,
+                       "lighting", frame_, [&] {
+                           cmd.bindTexture(1, targets_.albedo, pointClamp_);
+                           cmd.bindTexture(2, targets_.normal, pointClamp_);
+                           cmd.bindTexture(3, targets_.emissive, pointClamp_);
+                           cmd.bindTexture(4, targets_.depth, pointClamp_);
+                           cmd.bindTexture(5, targets_.shadow, shadowCompare_);
+                           cmd.bindTexture(6, targets_.ao, pointClamp_);
+                           cmd.bindTexture(7, targets_.indirect, pointClamp_);
+                           cmd.bindStorageBuffer(8, lightBuffer);
+                           cmd.bindTexture(9, targets_.glossy, pointClamp_);
+                           if (!lightShadows) return;
+                           cmd.pushUniforms(10, &lightShadows_->uniforms(), sizeof(LightShadowUniforms));
+                           cmd.bindTexture(11, lightShadows_->atlas(targets_.shadow), shadowCompare_);
+                       });
         cmd.endMarker();
         // Each shadowed light adds its 3x3 compares where it lights (counted as every pixel).
         work(fullscreenWork(pixels, 8 + 9 * 4 + 9 * uint64_t(lightShadows_->activeCount()),

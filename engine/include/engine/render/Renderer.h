@@ -108,7 +108,7 @@ private:
     uint32_t indirectDivisor_ = 1;
     Targets targets_;
     rhi::GraphicsPipelineHandle gbufferPipeline_, shadowPipeline_, ssaoPipeline_, ssaoBlurPipeline_,
-        lightingPipeline_, tonemapPipeline_;
+        lightingPipeline_, lightingShadowedPipeline_, tonemapPipeline_;
     rhi::SamplerHandle linearClamp_, pointClamp_, shadowCompare_;
     std::unique_ptr<GpuScene> scene_;
     Bounds bounds_;

@@ -1,8 +1,10 @@
-#version 450
-#extension GL_GOOGLE_include_directive : require
 // Deferred lighting into the HDR target: the shadowed sun, punctual lights, emissive, and the
 // indirect irradiance (filled by the GI, or the ambient constant) times SSAO. Lambertian diffuse,
-// plus the GI's glossy radiance under a Schlick Fresnel weight (0 without GI).
+// plus the GI's glossy radiance under a Schlick Fresnel weight (0 without GI). Two variants
+// (engine/CMakeLists.txt): `lighting` for frames where no punctual light has a shadow map, and
+// `lighting_shadowed` (LIGHT_SHADOWS) with the lights' shadow atlas; the renderer picks one per
+// frame. With the shadow lookups compiled in, even unexecuted, llvmpipe's lighting pass took 30%
+// longer in the atrium, which has no punctual light at all.
 #include "common.glsl"
 
 struct PunctualLight {
@@ -23,6 +25,7 @@ layout(binding = 8, std430) readonly buffer Lights {
     PunctualLight lights[];
 };
 layout(binding = 9) uniform sampler2D glossyTexture;
+#ifdef LIGHT_SHADOWS
 // Spot and point lights with a shadow map this frame (LightShadows): views in tiles of one atlas.
 layout(binding = 10, std140) uniform LightShadows {
     mat4 viewProjection[16];
@@ -32,6 +35,7 @@ layout(binding = 10, std140) uniform LightShadows {
     ivec4 count;     // x: lights with a map
 } shadows;
 layout(binding = 11) uniform sampler2DShadow shadowAtlas;
+#endif
 
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outColor;
@@ -101,6 +105,7 @@ float sunShadow(vec3 p, vec3 n) {
     return lit / 9.0;
 }
 
+#ifdef LIGHT_SHADOWS
 // View `view`'s shadow at p: 3x3 PCF of hardware-filtered compares inside its tile; outside the
 // view, lit (a spot's cone falloff is zero there; a point light's faces cover every direction).
 float shadowInView(int view, float texelAtMetre, vec3 p, vec3 n, float distance) {
@@ -130,16 +135,27 @@ int cubeFace(vec3 d) {
     return d.z >= 0.0 ? 4 : 5;
 }
 
-// Light i's shadow at p (1: lit; the light without a map this frame: 1). `fromLight`: p - the
-// light's position.
-float lightShadow(int i, vec3 p, vec3 n, vec3 fromLight) {
-    for (int k = 0; k < shadows.count.x; ++k) {
-        ivec4 l = shadows.light[k];
-        if (l.x != i) continue;
-        int view = l.z == 6 ? l.y + cubeFace(fromLight) : l.y;
-        return shadowInView(view, shadows.params[k].x, p, n, length(fromLight));
+// Whether light i of the list has a shadow map this frame.
+bool hasShadowMap(int i) {
+    for (int k = 0; k < shadows.count.x; ++k)
+        if (shadows.light[k].x == i) return true;
+    return false;
+}
+#endif
+
+// The irradiance punctual light l gives a surface at p with normal n, unshadowed: inverse square,
+// the range's window, a spot's cone.
+vec3 punctualIrradiance(PunctualLight l, vec3 p, vec3 n) {
+    vec3 toLight = l.positionRange.xyz - p;
+    float d2 = max(dot(toLight, toLight), 1e-4);
+    vec3 dir = toLight * inversesqrt(d2);
+    float atten = 1.0 / d2;
+    if (l.positionRange.w > 0.0) {
+        float ratio = sqrt(d2) / l.positionRange.w;
+        atten *= clamp(1.0 - ratio * ratio * ratio * ratio, 0.0, 1.0);
     }
-    return 1.0;
+    if (l.directionType.w > 1.5) atten *= smoothstep(l.cone.x, l.cone.y, dot(-dir, l.directionType.xyz));
+    return l.colorIntensity.rgb * l.colorIntensity.w * atten * max(dot(n, dir), 0.0);
 }
 
 void main() {
@@ -159,20 +175,21 @@ void main() {
 
     vec3 L = -frame.sunDirection.xyz;
     vec3 irradiance = frame.sunRadiance.rgb * max(dot(n, L), 0.0) * shadow;
-    for (int i = 0; i < frame.counts.x; ++i) {
-        PunctualLight l = lights[i];
-        vec3 toLight = l.positionRange.xyz - p;
-        float d2 = max(dot(toLight, toLight), 1e-4);
-        vec3 dir = toLight * inversesqrt(d2);
-        float atten = 1.0 / d2;
-        if (l.positionRange.w > 0.0) {
-            float ratio = sqrt(d2) / l.positionRange.w;
-            atten *= clamp(1.0 - ratio * ratio * ratio * ratio, 0.0, 1.0);
-        }
-        if (l.directionType.w > 1.5) atten *= smoothstep(l.cone.x, l.cone.y, dot(-dir, l.directionType.xyz));
-        if (atten > 0.0 && shadows.count.x > 0) atten *= lightShadow(i, p, n, -toLight);
-        irradiance += l.colorIntensity.rgb * l.colorIntensity.w * atten * max(dot(n, dir), 0.0);
+#ifdef LIGHT_SHADOWS
+    // The lights without a shadow map this frame, then those with one.
+    for (int i = 0; i < frame.counts.x; ++i)
+        if (!hasShadowMap(i)) irradiance += punctualIrradiance(lights[i], p, n);
+    for (int k = 0; k < shadows.count.x; ++k) {
+        ivec4 s = shadows.light[k];
+        PunctualLight l = lights[s.x];
+        vec3 fromLight = p - l.positionRange.xyz;
+        int view = s.z == 6 ? s.y + cubeFace(fromLight) : s.y;
+        irradiance += punctualIrradiance(l, p, n) * shadowInView(view, shadows.params[k].x, p, n, length(fromLight));
     }
+#else
+    for (int i = 0; i < frame.counts.x; ++i)
+        irradiance += punctualIrradiance(lights[i], p, n);
+#endif
     vec3 direct = albedo / PI * irradiance;
     vec3 indirect = albedo / PI * light.irradiance * ao;
     vec3 emissive = textureLod(emissiveTexture, vUv, 0.0).rgb;
