@@ -268,10 +268,16 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
     engine::FrameProfiler profiler(*device, pc);
     gi::LightPropagationVolume lpv(*device, pc);
     const engine::Camera start = *scene.camera;
+    // The atrium flies a quarter of its path; the Cornell box, open only toward +z, orbits 10
+    // degrees to either side of its front, looking in (a quarter orbit from the front, as before,
+    // ended outside the green wall, so most frames showed its outer face).
+    const auto cameraAt = [&](float t) {
+        return sceneName == "atrium" ? engine::cameraOnPath("flythrough", scene.bounds, start, t * 0.25f)
+                                     : engine::cameraOnPath("orbit", scene.bounds, start, (t - 0.5f) / 18.0f);
+    };
     for (int f = 0; f < frames; ++f) {
         const float t = frames > 1 ? float(f) / float(frames - 1) : 0.0f;
-        const engine::Camera cam = engine::cameraOnPath(sceneName == "atrium" ? "flythrough" : "orbit",
-                                                        scene.bounds, start, t * 0.25f);
+        const engine::Camera cam = cameraAt(t);
         // The sun moves during the run, so every frame redoes the RSM and the volume.
         renderer.sun().direction =
             glm::normalize(scene.lights[0].direction + glm::vec3(0.1f * std::sin(t * 6.28f), 0, 0));
@@ -319,8 +325,7 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
         engine::writeProfileOutputs(profiler, stem + "-profile");
         engine::writeScreenshot(*device, renderer, stem + "-gi-on.png");
         // The same last frame without GI (the renderer's ambient constant instead).
-        const engine::Camera cam =
-            engine::cameraOnPath(sceneName == "atrium" ? "flythrough" : "orbit", scene.bounds, start, 0.25f);
+        const engine::Camera cam = cameraAt(1.0f);
         const engine::CameraMatrices m = engine::cameraMatrices(cam, float(w) / float(h));
         rhi::CommandList& cmd = device->beginFrame();
         renderer.render(cmd, m, config, nullptr, nullptr); // no indirect provider: GI off
