@@ -379,39 +379,45 @@ void benchProfilerOverhead(const BenchBackend& b, int frames) {
     std::fflush(stdout);
 }
 
-// The triangles the finest cascade's sun RSM draws in the atrium at about 100k triangles (scene
-// detail 0.4, as the console figures assume), with the levels of detail `rsmSize` allows at the
-// default gi.rsm_lod_texels: recorded on the null device, which draws nothing but counts.
-uint64_t atriumRsmTriangles(uint32_t rsmSize) {
+// The atrium at about 100k triangles (scene detail 0.4, as the console figures assume) uploaded
+// to the null device, which draws nothing but counts: built once for every RSM count below.
+struct NullAtrium {
+    std::unique_ptr<rhi::Device> device;
+    engine::Scene scene;
+    std::unique_ptr<engine::GpuScene> gpu;
+};
+NullAtrium nullAtrium() {
     rhi::DeviceConfig config;
     config.backend = rhi::BackendKind::Null;
-    const std::unique_ptr<rhi::Device> device = rhi::createDevice(config);
-    const engine::Scene scene = engine::buildAtrium(0.4f);
-    const engine::GpuScene gpu(*device, scene);
-    gi::ReflectiveShadowMap rsm(*device, rsmSize);
-    const glm::vec3 sun = scene.lights.at(0).direction;
-    rsm.fit({scene.camera->position - glm::vec3(16.0f), 1.0f, 32}, sun);
-    rhi::CommandList& cmd = device->beginFrame();
+    NullAtrium a;
+    a.device = rhi::createDevice(config);
+    a.scene = engine::buildAtrium(0.4f);
+    a.gpu = std::make_unique<engine::GpuScene>(*a.device, a.scene);
+    return a;
+}
+
+// The triangles the finest cascade's sun RSM draws in `atrium` with the levels of detail
+// `rsmSize` allows at the default gi.rsm_lod_texels.
+uint64_t atriumRsmTriangles(const NullAtrium& atrium, uint32_t rsmSize) {
+    gi::ReflectiveShadowMap rsm(*atrium.device, rsmSize);
+    const glm::vec3 sun = atrium.scene.lights.at(0).direction;
+    rsm.fit({atrium.scene.camera->position - glm::vec3(16.0f), 1.0f, 32}, sun);
+    rhi::CommandList& cmd = atrium.device->beginFrame();
     const uint64_t triangles =
-        rsm.render(cmd, gpu, sun, glm::vec3(1.0f), 0.0f, gi::LpvSettings{}.rsmLodTexels);
-    device->endFrame();
+        rsm.render(cmd, *atrium.gpu, sun, glm::vec3(1.0f), 0.0f, gi::LpvSettings{}.rsmLodTexels);
+    atrium.device->endFrame();
     return triangles;
 }
 
-// The triangles a spot light's RSM (one map) and a point light's cube RSM (six faces) draw in the
-// same atrium at `rsmSize` with the default levels of detail: a light 8 m over the court, the
-// spot looking down at the columns (as the RSM level-of-detail test places it), reaching the far
-// corner of a 32 m volume around it. Recorded on the null device.
+// The triangles a spot light's RSM (one map) and a point light's cube RSM (six faces) draw in
+// `atrium` at `rsmSize` with the default levels of detail: a light 8 m over the court, the spot
+// looking down at the columns (as the RSM level-of-detail test places it), reaching the far corner
+// of a 32 m volume around it.
 struct LightRsmTriangles {
     uint64_t spot = 0, cube = 0;
 };
-LightRsmTriangles atriumLightRsmTriangles(uint32_t rsmSize) {
-    rhi::DeviceConfig config;
-    config.backend = rhi::BackendKind::Null;
-    const std::unique_ptr<rhi::Device> device = rhi::createDevice(config);
-    const engine::Scene scene = engine::buildAtrium(0.4f);
-    const engine::GpuScene gpu(*device, scene);
-    gi::ReflectiveShadowMap rsm(*device, rsmSize, gi::RsmLight::Spot);
+LightRsmTriangles atriumLightRsmTriangles(const NullAtrium& atrium, uint32_t rsmSize) {
+    gi::ReflectiveShadowMap rsm(*atrium.device, rsmSize, gi::RsmLight::Spot);
     engine::Light light;
     light.type = engine::LightType::Spot;
     light.position = {0.0f, 8.0f, 0.0f};
@@ -422,12 +428,12 @@ LightRsmTriangles atriumLightRsmTriangles(uint32_t rsmSize) {
     const float reach = std::sqrt(3.0f) * 16.0f + 8.0f;
     const float lodTexels = gi::LpvSettings{}.rsmLodTexels;
     LightRsmTriangles out;
-    rhi::CommandList& cmd = device->beginFrame();
-    out.spot = rsm.renderSpot(cmd, gpu, light, reach, lodTexels);
+    rhi::CommandList& cmd = atrium.device->beginFrame();
+    out.spot = rsm.renderSpot(cmd, *atrium.gpu, light, reach, lodTexels);
     light.type = engine::LightType::Point;
     for (uint32_t f = 0; f < gi::kCubeFaces; ++f)
-        out.cube += rsm.renderCubeFace(cmd, gpu, light, f, reach, lodTexels);
-    device->endFrame();
+        out.cube += rsm.renderCubeFace(cmd, *atrium.gpu, light, f, reach, lodTexels);
+    atrium.device->endFrame();
     return out;
 }
 
@@ -457,7 +463,8 @@ void consolePrediction() {
     // the injection of that one cascade. A point light with a cube RSM (gi.point_light_rsms=1): six
     // such RSMs and six VPL sets. Their triangles are counted as this engine draws them (levels of
     // detail, only what each map's frustum holds) in the 100k-triangle atrium.
-    const LightRsmTriangles lightTriangles = atriumLightRsmTriangles(s.rsmSize);
+    const NullAtrium atrium = nullAtrium();
+    const LightRsmTriangles lightTriangles = atriumLightRsmTriangles(atrium, s.rsmSize);
     const auto lightMs = [&](const platforms::PlatformProfile& p, uint32_t rsms, uint64_t triangles) {
         return engine::predictCost(gi::lightRsmWork(s, rsms, triangles), p.throughput).ms +
                engine::predictCost(gi::injectWork(s, rsms * gi::spotLightVplSlots(s)), p.throughput).ms -
@@ -498,8 +505,8 @@ void consolePrediction() {
     const uint64_t lowPixels = (1280 / 2) * (720 / 2);
     // The CryEngine 3 setup above drew its scenes' meshes in full; this engine's RSMs draw levels of
     // detail, fewer the coarser the map (counted for the finest cascade, the coarse ones draw fewer).
-    const uint64_t rsmTriangles = atriumRsmTriangles(c.rsmSize),
-                   floorRsmTriangles = atriumRsmTriangles(f.rsmSize);
+    const uint64_t rsmTriangles = atriumRsmTriangles(atrium, c.rsmSize),
+                   floorRsmTriangles = atriumRsmTriangles(atrium, f.rsmSize);
     std::printf(
         "\nThe finest cascade's RSM in a 100k-triangle atrium draws %llu triangles at %u^2 and %llu at "
         "%u^2 (levels of detail within gi.rsm_lod_texels=%.2f of a texel)\n",

@@ -51,13 +51,6 @@ glm::dvec3 totalFlux(const Image& flux) {
     return sum;
 }
 
-double meanLuminance(const Image& image) {
-    double sum = 0.0;
-    for (const glm::vec4& t : image.texels)
-        sum += luminance(t);
-    return sum / double(image.texels.size());
-}
-
 } // namespace
 
 TEST_CASE("gi: RSM levels of detail cut the atrium's triangles and keep its reflected flux") {

@@ -19,6 +19,20 @@ float luminance(glm::vec4 c) {
     return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
 }
 
+double meanLuminance(const Image& image) {
+    double sum = 0.0;
+    for (const glm::vec4& t : image.texels)
+        sum += luminance(t);
+    return sum / double(image.texels.size());
+}
+
+double meanLuminanceDifference(const Image& a, const Image& b) {
+    double sum = 0.0;
+    for (size_t i = 0; i < a.texels.size(); ++i)
+        sum += std::fabs(double(luminance(a.texels[i])) - double(luminance(b.texels[i])));
+    return sum / double(a.texels.size());
+}
+
 bool CornellFrame::pixelOf(glm::vec3 world, uint32_t& x, uint32_t& y) const {
     const glm::vec4 clip = camera.viewProjection * glm::vec4(world, 1.0f);
     if (clip.w <= 0.0f) return false;

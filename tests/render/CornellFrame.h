@@ -66,5 +66,9 @@ FramesOnBothApis renderOnGlAndVulkan(const engine::Scene& scene, const std::vect
                                      const std::function<void(engine::Renderer&)>& prepare = {});
 
 float luminance(glm::vec4 c);
+// The mean luminance of an image's texels.
+double meanLuminance(const Image& image);
+// The mean of |luminance(a) - luminance(b)| over two images of the same size.
+double meanLuminanceDifference(const Image& a, const Image& b);
 
 } // namespace lpv::test
