@@ -4,6 +4,7 @@
 #ifndef LPV_CASCADES_GLSL
 #define LPV_CASCADES_GLSL
 
+#include "cascade_region.glsl"
 #include "lpv_common.glsl"
 
 layout(binding = 3) uniform sampler3D lpv0r;
@@ -34,8 +35,5 @@ vec3 projectCascade(int c, vec3 uvw, vec4 lobe, float range) {
     if (c == 2) return projectVolumes(lpv2r, lpv2g, lpv2b, uvw, lobe, range);
     return projectVolumes(lpv3r, lpv3g, lpv3b, uvw, lobe, range);
 }
-
-// Where p lies in the volume whose cell 0's corner and cell size are `origin` (xyz, w), in uvw.
-vec3 uvwInVolume(vec4 origin, int cells, vec3 p) { return (p - origin.xyz) / (origin.w * float(cells)); }
 
 #endif

@@ -14,7 +14,9 @@
 // - Compiled once per cascade count (CASCADES, gi/CMakeLists.txt), and every march names its
 //   cascade at compile time: with the cascade chosen per pixel at run time, a CPU rasterizer ran
 //   every cascade's fetches at every step for every pixel (the atrium's march: 115 ms, 33 ms with
-//   one cascade's fetches, on llvmpipe).
+//   one cascade's fetches, on llvmpipe). It still runs every march the shader holds (it runs both
+//   sides of a branch), so there the CASCADE c variant marches one cascade in a draw of that
+//   cascade's glossy classes (gi/CascadeClasses.h).
 #include "lpv_cascades.glsl"
 
 layout(binding = 0, std140) uniform Glossy {
@@ -38,22 +40,13 @@ vec3 project(int c, vec3 uvw, vec4 lobe) {
 
 vec3 uvwIn(int c, vec3 p) { return uvwInVolume(glossy.gridOrigin[c], glossy.grid.x, p); }
 
-// The march starts half a cell out along the normal (like the lookup, so the first step is not
-// inside the surface); cascade c holds it when that start is half a cell inside its border, so
-// trilinear filtering stays inside. Testing the start rather than the surface point keeps a floor
-// that lies on a cascade's border in that (finer) cascade.
-vec3 marchStart(int c, vec3 p, vec3 n) { return p + 0.5 * glossy.gridOrigin[c].w * n; }
+bool holds(int c, vec3 p, vec3 n) { return glossyMarchHeld(glossy.gridOrigin[c], glossy.grid.x, p, n); }
 
-bool holds(int c, vec3 start) {
-    vec3 uvw = uvwIn(c, start);
-    float margin = 0.5 / float(glossy.grid.x);
-    return all(greaterThanEqual(uvw, vec3(margin))) && all(lessThanEqual(uvw, vec3(1.0 - margin)));
-}
-
-// The march through cascade c (constant in every call), nearer steps weighing more.
+// The march through cascade c (constant in every call), nearer steps weighing more. It starts half
+// a cell out along the normal (like the lookup, so the first step is not inside the surface).
 vec3 march(int c, vec3 p, vec3 n, vec3 r, vec4 lobe) {
     float cell = glossy.gridOrigin[c].w;
-    vec3 start = marchStart(c, p, n);
+    vec3 start = p + 0.5 * cell * n;
     vec3 sum = vec3(0.0);
     float weights = 0.0;
     for (int step = 1; step <= glossy.grid.w; ++step) {
@@ -96,26 +89,30 @@ void main() {
     // The finest cascade that holds the march answers for all of it (no blend band: the glossy
     // term is faint next to the diffuse one, and a seam in it is hard to see); the coarsest when
     // none does.
+#ifdef CASCADE
+    vec3 radiance = march(CASCADE, p, n, r, lobe); // this draw's texels all belong to CASCADE
+#else
     vec3 radiance;
     bool marched = false;
 #if CASCADES > 1
-    if (holds(0, marchStart(0, p, n))) {
+    if (holds(0, p, n)) {
         radiance = march(0, p, n, r, lobe);
         marched = true;
     }
 #endif
 #if CASCADES > 2
-    if (!marched && holds(1, marchStart(1, p, n))) {
+    if (!marched && holds(1, p, n)) {
         radiance = march(1, p, n, r, lobe);
         marched = true;
     }
 #endif
 #if CASCADES > 3
-    if (!marched && holds(2, marchStart(2, p, n))) {
+    if (!marched && holds(2, p, n)) {
         radiance = march(2, p, n, r, lobe);
         marched = true;
     }
 #endif
     if (!marched) radiance = march(CASCADES - 1, p, n, r, lobe);
+#endif
     outRadiance = vec4(radiance, 0.0);
 }

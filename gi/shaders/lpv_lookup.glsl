@@ -7,6 +7,10 @@
 // Cascades: the finest cascade that holds the point answers; in a band inside its border (a
 // quarter of its half-extent, CryEngine's e_GIBlendRatio) it fades into the next coarser one, so
 // the irradiance is continuous across cascade borders.
+//
+// Variants (gi/CMakeLists.txt): CASCADES n chooses per texel among n cascades with branches;
+// CASCADE c with BLEND 0 or 1 is one cascade class's draw (gi/CascadeClasses.h): every texel it
+// shades belongs to cascade c, inside its band (BLEND 0) or in it (BLEND 1, faded into c + 1).
 #include "lpv_cascades.glsl"
 
 layout(binding = 0, std140) uniform Lookup {
@@ -54,16 +58,12 @@ vec3 surfaceIrradiance(int c, vec3 p, vec3 n) {
     return e;
 }
 
-// How far inside cascade c's usable region p is, 0 at its border and 1 at the band's inner edge
-// (negative outside). The usable region stops a cell short of the volume, so the half-cell offsets
-// and trilinear filtering stay inside.
 float insideness(int c, vec3 p) {
-    vec3 uvw = uvwIn(c, p);
-    float margin = 1.0 / float(lookup.grid.x);
-    vec3 d = min(uvw - margin, (1.0 - margin) - uvw); // distance to the nearer border, per axis
-    float nearest = min(d.x, min(d.y, d.z));
-    return nearest / max(lookup.encode.y * (0.5 - margin), 1e-6);
+    return cascadeInsideness(lookup.gridOrigin[c], lookup.grid.x, lookup.encode.y, p);
 }
+
+// Cascade c's share where p lies in its blend band: 1 inside the band, 0 at its border.
+float blendWeight(int c, vec3 p) { return smoothstep(0.0, 1.0, clamp(insideness(c, p), 0.0, 1.0)); }
 
 void main() {
     // This texel answers for G-buffer pixel texel x divisor (gi.resolution; the lighting pass
@@ -83,6 +83,16 @@ void main() {
     vec4 world = MUL_COLUMNS_AT(lookup.invViewProjection, col, clip);
     vec3 p = world.xyz / world.w;
     vec3 n = normalize(texelFetch(normalTexture, source, 0).xyz);
+#ifdef CASCADE
+    // One class's draw: the classification chose the cascade and whether the texel is in its band
+    // (the next coarser cascade holds the whole band, so it answers the rest unblended).
+    vec3 e = surfaceIrradiance(CASCADE, p, n);
+#if BLEND
+    float w = blendWeight(CASCADE, p);
+    e = w * e;
+    e += (1.0 - w) * surfaceIrradiance(CASCADE + 1, p, n);
+#endif
+#else
     // Finest first, each cascade gets the share of the answer its blend weight gives it of what
     // the finer ones left; a point past a cascade's blend band (weight 1) leaves nothing for the
     // coarser ones, so a pixel looks up one cascade, or two in a band. (Equal to folding from the
@@ -92,26 +102,27 @@ void main() {
     float left = 1.0;
 #if CASCADES > 1
     {
-        float w = smoothstep(0.0, 1.0, clamp(insideness(0, p), 0.0, 1.0));
+        float w = blendWeight(0, p);
         if (w > 0.0) e += w * surfaceIrradiance(0, p, n);
         left = 1.0 - w;
     }
 #endif
 #if CASCADES > 2
     if (left > 0.0) {
-        float w = smoothstep(0.0, 1.0, clamp(insideness(1, p), 0.0, 1.0));
+        float w = blendWeight(1, p);
         if (w > 0.0) e += left * w * surfaceIrradiance(1, p, n);
         left *= 1.0 - w;
     }
 #endif
 #if CASCADES > 3
     if (left > 0.0) {
-        float w = smoothstep(0.0, 1.0, clamp(insideness(2, p), 0.0, 1.0));
+        float w = blendWeight(2, p);
         if (w > 0.0) e += left * w * surfaceIrradiance(2, p, n);
         left *= 1.0 - w;
     }
 #endif
     if (left > 0.0) e += left * surfaceIrradiance(CASCADES - 1, p, n);
+#endif
     // The view depth (1 / world.w: clip w is the view depth), for the lighting pass's rebuild.
     outIrradiance = vec4(e, 1.0 / world.w);
 }

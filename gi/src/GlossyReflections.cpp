@@ -35,6 +35,17 @@ GlossyReflections::GlossyReflections(rhi::Device& device) : device_(device) {
         d.fragment = marches[c];
         pipelines_[c] = device.createPipeline(d);
     }
+    if (device.caps().maskedBranches) {
+        CascadeClasses::configureClassDraw(d);
+        d.debugName = "lpv glossy, one cascade";
+        const rhi::ShaderBinary* perCascade[4] = {
+            &shaders::lpv_glossy_class0_frag, &shaders::lpv_glossy_class1_frag,
+            &shaders::lpv_glossy_class2_frag, &shaders::lpv_glossy_class3_frag};
+        for (size_t c = 0; c < 4; ++c) {
+            d.fragment = perCascade[c];
+            classPipelines_[c] = device.createPipeline(d);
+        }
+    }
     pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
     SamplerDesc linear;
     linear.mipFilter = Filter::Nearest;
@@ -44,13 +55,16 @@ GlossyReflections::GlossyReflections(rhi::Device& device) : device_(device) {
 GlossyReflections::~GlossyReflections() {
     for (rhi::GraphicsPipelineHandle p : pipelines_)
         device_.destroy(p);
+    for (rhi::GraphicsPipelineHandle p : classPipelines_)
+        if (p) device_.destroy(p);
     device_.destroy(pointSampler_);
     device_.destroy(linearSampler_);
 }
 
 void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                                const engine::GBufferView& gbuffer, std::span<const GlossyCascade> cascades,
-                               float encodeRange, rhi::TextureHandle target, uint32_t divisor) {
+                               float encodeRange, rhi::TextureHandle target, uint32_t divisor,
+                               const CascadeClasses* classes) {
     using namespace rhi;
     const auto cascade = [&](size_t c) -> const GlossyCascade& {
         return cascades[std::min(c, cascades.size() - 1)];
@@ -66,18 +80,40 @@ void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatric
     // w = 0: the first column of the camera matrix, read at an index lavapipe cannot fold (shader).
     u.pixels = glm::ivec4(int(divisor), int(gbuffer.width), int(gbuffer.height), 0);
     RenderPassDesc pass;
-    pass.colors[0] = {target, 0, 0, LoadOp::DontCare};
+    // Classified, texels of no glossy class (sky, fully rough) are cleared to what the march
+    // writes there.
+    pass.colors[0] = {target, 0, 0, classes ? LoadOp::Clear : LoadOp::DontCare};
     pass.colorCount = 1;
+    if (classes) pass.depth = {classes->depth(), 0, LoadOp::Load};
     pass.debugName = "lpv glossy";
     cmd.beginRenderPass(pass);
-    cmd.bindPipeline(pipelines_[std::min<size_t>(cascades.size(), 4) - 1]);
-    cmd.pushUniforms(0, &u, sizeof(u));
-    cmd.bindTexture(1, gbuffer.depth, pointSampler_);
-    cmd.bindTexture(2, gbuffer.normal, pointSampler_);
-    for (uint32_t c = 0; c < 4; ++c)
-        for (uint32_t ch = 0; ch < 3; ++ch)
-            cmd.bindTexture(3 + 3 * c + ch, cascade(c).sh[ch], linearSampler_);
-    cmd.draw(3);
+    std::array<std::array<rhi::TextureHandle, 3>, 4> volumes;
+    for (size_t c = 0; c < cascades.size(); ++c)
+        volumes[c] = cascades[c].sh;
+    const auto bindInputs = [&] {
+        cmd.pushUniforms(0, &u, sizeof(u));
+        cmd.bindTexture(1, gbuffer.depth, pointSampler_);
+        cmd.bindTexture(2, gbuffer.normal, pointSampler_);
+        bindCascadeVolumes(cmd, std::span(volumes.data(), cascades.size()), linearSampler_);
+    };
+    if (!classes) {
+        cmd.bindPipeline(pipelines_[std::min<size_t>(cascades.size(), 4) - 1]);
+        bindInputs();
+        cmd.draw(3);
+    } else {
+        // Cascade c marches the texels whose lookup is in c and those whose lookup is in c + 1
+        // but whose march start c holds, inside a blend band or not (the march does not blend).
+        const auto last = uint32_t(cascades.size() - 1);
+        for (uint32_t c = 0; c <= last; ++c) {
+            cmd.bindPipeline(classPipelines_[c]);
+            bindInputs();
+            for (const bool blend : {false, true}) {
+                if (!blend || c < last) CascadeClasses::drawClass(cmd, {c, blend, GlossyMarch::Same});
+                if (c < last && (!blend || c + 1 < last))
+                    CascadeClasses::drawClass(cmd, {c + 1, blend, GlossyMarch::Finer});
+            }
+        }
+    }
     cmd.endRenderPass();
 }
 

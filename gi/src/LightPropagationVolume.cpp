@@ -77,6 +77,26 @@ LightPropagationVolume::LightPropagationVolume(rhi::Device& device, platforms::P
         lookupPipelines_[c] = device.createPipeline(lookup);
     }
     GraphicsPipelineDesc slice = lookup;
+    if (device.caps().maskedBranches) {
+        // Where a shader runs both sides of its branches: one draw per cascade class.
+        classes_ = std::make_unique<CascadeClasses>(device);
+        GraphicsPipelineDesc d = lookup;
+        CascadeClasses::configureClassDraw(d);
+        d.debugName = "lpv lookup, one cascade class";
+        const rhi::ShaderBinary* interior[4] = {
+            &shaders::lpv_lookup_class0_frag, &shaders::lpv_lookup_class1_frag,
+            &shaders::lpv_lookup_class2_frag, &shaders::lpv_lookup_class3_frag};
+        const rhi::ShaderBinary* band[3] = {&shaders::lpv_lookup_class0_blend_frag,
+                                            &shaders::lpv_lookup_class1_blend_frag,
+                                            &shaders::lpv_lookup_class2_blend_frag};
+        for (size_t c = 0; c < 4; ++c) {
+            d.fragment = interior[c];
+            lookupClassPipelines_[c][0] = device.createPipeline(d);
+            if (c == 3) continue;
+            d.fragment = band[c];
+            lookupClassPipelines_[c][1] = device.createPipeline(d);
+        }
+    }
     slice.fragment = &shaders::lpv_slice_frag;
     slice.colorFormats = {Format::RGBA8Srgb};
     slice.debugName = "lpv slice view";
@@ -98,6 +118,9 @@ LightPropagationVolume::~LightPropagationVolume() {
     release();
     for (auto p : lookupPipelines_)
         device_.destroy(p);
+    for (const auto& byBand : lookupClassPipelines_)
+        for (auto p : byBand)
+            if (p) device_.destroy(p);
     for (auto p : {slicePipeline_, pointsPipeline_})
         device_.destroy(p);
     device_.destroy(clusterPipeline_);
@@ -341,38 +364,74 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     const uint32_t divisor = settings_.resolutionDivisor;
     const rhi::TextureDesc& targetDesc = device_.desc(target);
     const uint64_t lookupPixels = uint64_t(targetDesc.width) * targetDesc.height;
+    // With several cascades on a device that runs both sides of every branch, each texel's cascade
+    // class is found first and each class drawn on its own (CascadeClasses.h).
+    const bool classified = classes_ && cascades_.size() > 1;
+    std::array<VolumeGrid, 4> grids;
+    for (uint32_t c = 0; c < 4; ++c)
+        grids[c] = cascades_[std::min<size_t>(c, cascades_.size() - 1)].grid;
+    // Blend band: a quarter of a cascade's half-extent (CryEngine's e_GIBlendRatio 0.25).
+    const float blendBand = 0.25f;
     {
         auto s = scope("lookup");
+        engine::WorkCounts w = lookupWork(settings_, lookupPixels);
+        if (classified) {
+            classes_->classify(cmd, camera, gbuffer, std::span(grids.data(), cascades_.size()), blendBand,
+                               settings_.glossy, targetDesc.width, targetDesc.height, divisor);
+            w += cascadeClassifyWork(lookupPixels, uint32_t(cascades_.size()));
+        }
         LookupUniforms u;
         u.invViewProjection = camera.invViewProjection;
-        for (uint32_t c = 0; c < 4; ++c) {
-            const VolumeGrid& g = cascades_[std::min<size_t>(c, cascades_.size() - 1)].grid;
-            u.gridOrigin[c] = glm::vec4(g.origin, g.cellSize);
-        }
+        for (uint32_t c = 0; c < 4; ++c)
+            u.gridOrigin[c] = glm::vec4(grids[c].origin, grids[c].cellSize);
         u.grid = glm::ivec4(int(grid_.size), volumes_->encoded() ? 1 : 0, settings_.damping ? 1 : 0,
                             int(cascades_.size()));
-        // Blend band: a quarter of a cascade's half-extent (CryEngine's e_GIBlendRatio 0.25).
-        u.encode = glm::vec4(volumes_->encodeRange(), 0.25f, 0, 0);
+        u.encode = glm::vec4(volumes_->encodeRange(), blendBand, 0, 0);
         u.intensity = glm::vec4(settings_.intensity, 1.0f, 0, 0);
         // w = 0: the first column of the camera matrix, read at an index lavapipe cannot fold.
         u.pixels = glm::ivec4(int(divisor), int(gbuffer.width), int(gbuffer.height), 0);
         RenderPassDesc pass;
-        pass.colors[0] = {target, 0, 0, LoadOp::DontCare};
+        // Classified, the sky's texels are drawn by no class: cleared to what the lookup writes there.
+        pass.colors[0] = {target, 0, 0, classified ? LoadOp::Clear : LoadOp::DontCare};
         pass.colorCount = 1;
+        if (classified) pass.depth = {classes_->depth(), 0, LoadOp::Load};
         pass.debugName = "lpv lookup";
         cmd.beginRenderPass(pass);
-        cmd.bindPipeline(lookupPipelines_[cascades_.size() - 1]);
-        cmd.pushUniforms(0, &u, sizeof(u));
-        cmd.bindTexture(1, gbuffer.depth, pointSampler_);
-        cmd.bindTexture(2, gbuffer.normal, pointSampler_);
-        for (uint32_t c = 0; c < 4; ++c)
-            for (uint32_t ch = 0; ch < 3; ++ch)
-                cmd.bindTexture(3 + 3 * c + ch,
-                                cascades_[std::min<size_t>(c, cascades_.size() - 1)].result[ch],
-                                linearSampler_);
-        cmd.draw(3);
+        std::array<std::array<rhi::TextureHandle, 3>, 4> volumes;
+        for (size_t c = 0; c < cascades_.size(); ++c)
+            volumes[c] = cascades_[c].result;
+        const auto bindInputs = [&] {
+            cmd.pushUniforms(0, &u, sizeof(u));
+            cmd.bindTexture(1, gbuffer.depth, pointSampler_);
+            cmd.bindTexture(2, gbuffer.normal, pointSampler_);
+            bindCascadeVolumes(cmd, std::span(volumes.data(), cascades_.size()), linearSampler_);
+        };
+        if (!classified) {
+            cmd.bindPipeline(lookupPipelines_[cascades_.size() - 1]);
+            bindInputs();
+            cmd.draw(3);
+        } else {
+            uint32_t draws = 0;
+            for (uint32_t c = 0; c < cascades_.size(); ++c) {
+                for (const bool blend : {false, true}) {
+                    if (blend && c + 1 == cascades_.size()) continue; // the coarsest has no band
+                    cmd.bindPipeline(lookupClassPipelines_[c][blend ? 1 : 0]);
+                    bindInputs();
+                    for (const GlossyMarch glossy :
+                         {GlossyMarch::None, GlossyMarch::Same, GlossyMarch::Finer}) {
+                        // Classes no texel has: glossy ones with gi.glossy off, a finer march in
+                        // the finest cascade.
+                        if (glossy != GlossyMarch::None && !settings_.glossy) continue;
+                        if (glossy == GlossyMarch::Finer && c == 0) continue;
+                        CascadeClasses::drawClass(cmd, {c, blend, glossy});
+                        ++draws;
+                    }
+                }
+            }
+            w.bytesMoved += lookupPixels * 4 * draws; // every draw tests every texel's class
+        }
         cmd.endRenderPass();
-        work(lookupWork(settings_, lookupPixels));
+        work(w);
     }
     if (settings_.glossy) {
         auto s = scope("glossy");
@@ -380,7 +439,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         for (size_t c = 0; c < cascades_.size(); ++c)
             glossyCascades[c] = {cascades_[c].grid, cascades_[c].result};
         glossy_.render(cmd, camera, gbuffer, std::span(glossyCascades.data(), cascades_.size()),
-                       volumes_->encoded() ? volumes_->encodeRange() : 0.0f, glossyTarget, divisor);
+                       volumes_->encoded() ? volumes_->encodeRange() : 0.0f, glossyTarget, divisor,
+                       classified ? classes_.get() : nullptr);
         work(glossyWork(lookupPixels));
     } else {
         cmd.clearTexture(glossyTarget, {0, 0, 0, 0});

@@ -86,6 +86,7 @@ public:
         caps_.max2DTextureSize = 16384;
         caps_.maxColorTargets = RenderPassDesc::kMaxColorTargets;
         caps_.vertexShaderLayer = config.vertexShaderLayer;
+        caps_.maskedBranches = config.maskedBranches.value_or(false);
     }
 
     BackendKind backend() const override { return BackendKind::Null; }

@@ -54,6 +54,8 @@ VulkanDevice::VulkanDevice(const DeviceConfig& config) : config_(config) {
         caps_.vertexShaderLayer = ctx_->shaderOutputLayer && config.vertexShaderLayer;
         if (ctx_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
             caps_.concurrentWorkgroups = cpuRasterizerThreads();
+        caps_.maskedBranches =
+            config.maskedBranches.value_or(ctx_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
 
         timestamps_.create(*ctx_, timestamps, config.framesInFlight + 1, config.maxTimestampsPerFrame);
         createFrames();

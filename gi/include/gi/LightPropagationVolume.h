@@ -10,6 +10,7 @@
 
 #include "engine/render/IndirectLighting.h"
 #include "engine/render/Renderer.h"
+#include "gi/CascadeClasses.h"
 #include "gi/GeometryVolume.h"
 #include "gi/GiScheduler.h"
 #include "gi/GiWork.h"
@@ -130,6 +131,10 @@ private:
     rhi::BufferHandle vpls_;
     rhi::ComputePipelineHandle clusterPipeline_;
     std::array<rhi::GraphicsPipelineHandle, 4> lookupPipelines_{}; // for 1..4 cascades
+    // rhi::Caps::maskedBranches: the classification, and the lookup per cascade and band (the
+    // coarsest has none).
+    std::unique_ptr<CascadeClasses> classes_;
+    std::array<std::array<rhi::GraphicsPipelineHandle, 2>, 4> lookupClassPipelines_{};
     rhi::GraphicsPipelineHandle slicePipeline_, pointsPipeline_;
     rhi::SamplerHandle pointSampler_, linearSampler_;
 };

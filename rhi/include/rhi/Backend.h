@@ -53,6 +53,9 @@ struct DeviceConfig {
     // false: report Caps::vertexShaderLayer off even where the device has it, so the callers'
     // one-pass-per-slice paths can be run and compared against the layered ones.
     bool vertexShaderLayer = true;
+    // Set: report Caps::maskedBranches as given instead of as the device is, so both of the
+    // callers' paths can be run and compared on any device.
+    std::optional<bool> maskedBranches;
 };
 
 // Throws BackendUnavailable when no allowed backend starts.

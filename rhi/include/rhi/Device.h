@@ -43,6 +43,12 @@ struct Caps {
     // A vertex shader may pick the layer (gl_Layer) of a layered render pass: one draw fills
     // every slice of a volume (Vulkan shaderOutputLayer, GL_ARB_shader_viewport_layer_array).
     bool vertexShaderLayer = false;
+    // A shader pays for both sides of every branch, whatever its lanes take, inactive ones masked:
+    // Mesa 22.3's llvmpipe and lavapipe compile shaders that way (an early return or discard saved
+    // nothing in a measured fullscreen pass), while a fragment block that fails the depth test is
+    // skipped. Work chosen per pixel is then better split into passes a depth test selects. False
+    // on GPUs, where a branch no lane of a wave takes costs next to nothing.
+    bool maskedBranches = false;
 };
 
 class Device {

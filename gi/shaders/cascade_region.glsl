@@ -1,0 +1,44 @@
+// Where a point lies in a cascade, and which cascade answers for it: shared by the lookup, the
+// glossy march (lpv_cascades.glsl) and the cascade classification (cascade_classify.frag). No
+// resources, so a stage may include it without declaring the volumes.
+#ifndef CASCADE_REGION_GLSL
+#define CASCADE_REGION_GLSL
+
+// Where p lies in the volume whose cell 0's corner and cell size are `origin` (xyz, w), in uvw.
+vec3 uvwInVolume(vec4 origin, int cells, vec3 p) { return (p - origin.xyz) / (origin.w * float(cells)); }
+
+// How far inside a cascade's usable region p lies: 0 at its border, 1 at the inner edge of its
+// blend band (`band`: the band's width as a fraction of the half-extent, CryEngine's
+// e_GIBlendRatio), negative outside. The usable region stops a cell short of the volume, so the
+// lookup's half-cell offsets and trilinear filtering stay inside. The finest cascade in which it is
+// positive answers for p (lookup and glossy march alike), blended into the next coarser one where
+// it is below 1.
+float cascadeInsideness(vec4 origin, int cells, float band, vec3 p) {
+    vec3 uvw = uvwInVolume(origin, cells, p);
+    float margin = 1.0 / float(cells);
+    vec3 d = min(uvw - margin, (1.0 - margin) - uvw); // distance to the nearer border, per axis
+    float nearest = min(d.x, min(d.y, d.z));
+    return nearest / max(band * (0.5 - margin), 1e-6);
+}
+
+// Whether a cascade holds the glossy march from surface point p with normal n: the march starts
+// half a cell out along n, and the cascade holds it when that start is half a cell inside its
+// border, so trilinear filtering stays inside. Testing the start rather than p keeps a floor that
+// lies on a cascade's border (where a volume pushed inside the scene puts it) in that finer
+// cascade; the lookup, which also looks half a cell behind the surface, needs a cell more, so the
+// march's cascade is the lookup's or the next finer one.
+bool glossyMarchHeld(vec4 origin, int cells, vec3 p, vec3 n) {
+    vec3 uvw = uvwInVolume(origin, cells, p + 0.5 * origin.w * n);
+    float margin = 0.5 / float(cells);
+    return all(greaterThanEqual(uvw, vec3(margin))) && all(lessThanEqual(uvw, vec3(1.0 - margin)));
+}
+
+// Cascade classes (gi/CascadeClasses.h): on devices that run both sides of every branch, a
+// classification pass stores each lookup texel's class as a depth, and the lookup and the glossy
+// march draw once per class at that depth with an equal test, so each texel runs only its own
+// cascade's code. Class k = 6 x (the lookup's cascade) + 3 x (in its blend band) + the glossy
+// march's cascade: 0 none (sky, fully rough), 1 the lookup's, 2 the next finer one. The depths
+// (k + 0.5) / 32 are exact in binary.
+float cascadeClassDepth(int k) { return (float(k) + 0.5) / 32.0; }
+
+#endif
