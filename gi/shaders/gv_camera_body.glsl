@@ -44,7 +44,7 @@ void main() {
     ivec2 size = textureSize(gbufferDepth, 0);
     int cols = gv.grid.w;
     int rows = max(1, (cols * size.y + size.x / 2) / size.x);
-    // Vertex 7 s + k (GeometryVolume::kCameraPointsPerSample) of sample s: the sample itself
+    // Sample s draws GeometryVolume::kCameraPointsPerSample points k: the sample itself
     // (k = 0); the point half way to its right (k = 1) or lower (k = 2) neighbour when that lies on
     // its surface more than half a cell away; and toward each of its four neighbours that does not
     // lie on its surface, the edge of its footprint (k = 3..6). Where the samples lie more than a
@@ -53,12 +53,23 @@ void main() {
     // coverage flickered as the camera moved (965 of the Cornell box's some 5,000 camera-covered
     // GV cells changed for a third of a cell of camera motion; 216 with these points). Most points
     // are parked: a near surface's samples lie closer than that, and most neighbours share one.
-    int sampleNumber = gl_VertexIndex / 7, k = gl_VertexIndex % 7;
+    //
+    // Each kind of point is its own draw and variant (CAMERA_POINTS 0: the samples, 1: the half-way
+    // points, 2: the footprint edges), so a vertex runs only its kind's code: a wave of consecutive
+    // vertices holding every kind ran all three, and a CPU rasterizer runs every branch anyway.
+#if CAMERA_POINTS == 0
+    int sampleNumber = gl_VertexIndex, k = 0;
+#elif CAMERA_POINTS == 1
+    int sampleNumber = gl_VertexIndex / 2, k = 1 + gl_VertexIndex % 2;
+#else
+    int sampleNumber = gl_VertexIndex / 4, k = 3 + gl_VertexIndex % 4;
+#endif
     ivec2 index = ivec2(sampleNumber % cols, sampleNumber / cols);
     CameraSample s = cameraSample(index, cols, rows, size);
     vec3 p = s.p;
     bool valid = s.valid;
-    if (k >= 3 && valid) {
+#if CAMERA_POINTS == 2
+    if (valid) {
         // Toward a neighbour on another surface (or none), where the points between samples stop:
         // the edge of the sample's footprint, where the ray through the screen half a sample to
         // that side meets its tangent plane, at most a cell away (a grazing plane would put it far
@@ -75,12 +86,15 @@ void main() {
             vec3 d = gv.camera.xyz + dir * (dot(s.p - gv.camera.xyz, s.n) / along) - s.p;
             p = s.p + d * min(1.0, gv.gridOrigin.w / max(length(d), 1e-6));
         }
-    } else if (k > 0 && valid) {
+    }
+#elif CAMERA_POINTS == 1
+    if (valid) {
         CameraSample q = cameraSample(index + (k == 1 ? ivec2(1, 0) : ivec2(0, 1)), cols, rows, size);
         vec3 d = q.p - s.p;
         valid = sameSurface(s, q) && length(d) > 0.5 * gv.gridOrigin.w;
         p = s.p + 0.5 * d;
     }
+#endif
     vCoverage = abs(s.n);
     vFromCamera = 1;
     vAlbedo = texelFetch(gbufferAlbedo, s.pixel, 0).rgb;

@@ -59,9 +59,16 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepA
     d.vertex = layered_ ? &shaders::gv_vpl_point_layered_vert : &shaders::gv_vpl_point_slice_vert;
     d.debugName = "gv inject point light surfels";
     pointLightPipeline_ = device.createPipeline(d);
-    d.vertex = layered_ ? &shaders::gv_camera_layered_vert : &shaders::gv_camera_slice_vert;
+    const rhi::ShaderBinary* cameraLayered[3] = {&shaders::gv_camera0_layered_vert,
+                                                 &shaders::gv_camera1_layered_vert,
+                                                 &shaders::gv_camera2_layered_vert};
+    const rhi::ShaderBinary* cameraSlice[3] = {
+        &shaders::gv_camera0_slice_vert, &shaders::gv_camera1_slice_vert, &shaders::gv_camera2_slice_vert};
     d.debugName = "gv inject camera surfels";
-    cameraPipeline_ = device.createPipeline(d);
+    for (size_t kind = 0; kind < 3; ++kind) {
+        d.vertex = layered_ ? cameraLayered[kind] : cameraSlice[kind];
+        cameraPipelines_[kind] = device.createPipeline(d);
+    }
     facesPipeline_ = device.createPipeline(ComputePipelineDesc{
         keepAlbedo ? &shaders::gv_faces_albedo_comp : &shaders::gv_faces_coverage_comp, "gv faces"});
     pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
@@ -76,7 +83,8 @@ GeometryVolume::~GeometryVolume() {
     if (albedo_) device_.destroy(albedo_);
     device_.destroy(vplPipeline_);
     device_.destroy(pointLightPipeline_);
-    device_.destroy(cameraPipeline_);
+    for (rhi::GraphicsPipelineHandle p : cameraPipelines_)
+        device_.destroy(p);
     device_.destroy(facesPipeline_);
     device_.destroy(pointSampler_);
 }
@@ -134,13 +142,16 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
             cmd.bindStorageBuffer(1, light.vpls);
             cmd.draw(light.count);
         }
-        if (cameraSamples > 0) {
-            cmd.bindPipeline(cameraPipeline_);
+        // The samples, then their 2 half-way points, then their 4 footprint edges (gv_camera_body.glsl).
+        constexpr uint32_t kPointsOfKind[3] = {1, 2, 4};
+        static_assert(kPointsOfKind[0] + kPointsOfKind[1] + kPointsOfKind[2] == kCameraPointsPerSample);
+        for (size_t kind = 0; kind < 3 && cameraSamples > 0; ++kind) {
+            cmd.bindPipeline(cameraPipelines_[kind]);
             cmd.pushUniforms(0, &u, sizeof(u));
             cmd.bindTexture(1, src.depth, pointSampler_);
             cmd.bindTexture(2, src.normal, pointSampler_);
             cmd.bindTexture(3, src.albedo ? src.albedo : src.normal, pointSampler_);
-            cmd.draw(cameraSamples * kCameraPointsPerSample); // gv_camera_body.glsl
+            cmd.draw(cameraSamples * kPointsOfKind[kind]);
         }
         cmd.endRenderPass();
     }

@@ -11,6 +11,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <array>
 #include <span>
 
 namespace lpv::gi {
@@ -80,7 +81,9 @@ private:
     rhi::TextureHandle coverage_, cameraCoverage_, faces_;
     // Per GV cell: rgb sum of surfel albedos, a: surfel count (RGBA16F, additive).
     rhi::TextureHandle albedoSum_, albedo_;
-    rhi::GraphicsPipelineHandle vplPipeline_, pointLightPipeline_, cameraPipeline_;
+    rhi::GraphicsPipelineHandle vplPipeline_, pointLightPipeline_;
+    // By kind of camera point: the samples, the half-way points, the footprint edges.
+    std::array<rhi::GraphicsPipelineHandle, 3> cameraPipelines_{};
     rhi::ComputePipelineHandle facesPipeline_;
     rhi::SamplerHandle pointSampler_;
 };
