@@ -114,3 +114,32 @@ TEST_CASE(
     CHECK(shadows.activeCount() == 0);
     CHECK(shadows.atlas(rhi::TextureHandle{}) == rhi::TextureHandle{});
 }
+
+// Two spots of near-equal importance at the one place: the one with the map keeps it until the
+// other matters kKeepFactor (1.5) times more, so small changes (a camera moving between them)
+// do not make their shadows pop on and off from frame to frame; a clear change still moves it.
+TEST_CASE("render: a light keeps its shadow map until another matters clearly more") {
+    NullScene s = nullScene();
+    LightShadows shadows(*s.device);
+    shadows.resize(1, 0, 256);
+    // Equally far from the camera, both in view: importance follows the intensities.
+    std::vector<GpuPunctualLight> lights = {spotRecord({-2.0f, 3.0f, -6.0f}, 12.0f, 6.0f),
+                                            spotRecord({2.0f, 3.0f, -6.0f}, 10.0f, 6.0f)};
+    const auto chosen = [&](float first, float second) {
+        lights[0].colorIntensity.w = first;
+        lights[1].colorIntensity.w = second;
+        shadows.render(s.device->beginFrame(), *s.gpu, lights, s.camera, s.scene.bounds);
+        s.device->endFrame();
+        REQUIRE(shadows.activeCount() == 1);
+        return shadows.uniforms().light[0].x;
+    };
+    CHECK(chosen(12.0f, 10.0f) == 0); // the brighter
+    CHECK(chosen(10.0f, 12.0f) == 0); // 1.2x: kept
+    CHECK(chosen(10.0f, 14.5f) == 0); // 1.45x: kept
+    CHECK(chosen(10.0f, 16.0f) == 1); // 1.6x: moves
+    CHECK(chosen(12.0f, 10.0f) == 1); // and stays, the other way round
+    CHECK(chosen(16.0f, 10.0f) == 0);
+    // A new atlas (a settings or scene change) forgets: the brighter again.
+    shadows.resize(1, 0, 256);
+    CHECK(chosen(10.0f, 12.0f) == 1);
+}

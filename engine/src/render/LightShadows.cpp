@@ -48,10 +48,12 @@ glm::mat4 perspectiveView(glm::vec3 position, glm::vec3 axis, float tanHalf, flo
 }
 
 // The `capacity` most important lights of `lights` for which `wanted` holds, best first, into
-// `out` (a fixed array: no allocation); returns how many.
+// `out` (a fixed array: no allocation); returns how many. A light in `kept` (it had a map last
+// frame) counts LightShadows::kKeepFactor times its importance.
 template <typename Wanted>
 uint32_t mostImportant(std::span<const GpuPunctualLight> lights, const CameraMatrices& camera,
-                       uint32_t capacity, Wanted&& wanted, std::span<uint32_t> out) {
+                       uint32_t capacity, Wanted&& wanted, std::span<const uint32_t> kept,
+                       std::span<uint32_t> out) {
     std::array<float, LightShadowUniforms::kMaxLights> importance{};
     capacity = std::min<uint32_t>({capacity, uint32_t(out.size()), uint32_t(importance.size())});
     uint32_t count = 0;
@@ -69,7 +71,9 @@ uint32_t mostImportant(std::span<const GpuPunctualLight> lights, const CameraMat
             if (reach.outsideClipVolume(camera.viewProjection)) continue;
         }
         const glm::vec3 d = position - camera.position;
-        const float score = power / std::max(glm::dot(d, d), 1.0f);
+        const bool hadMap = std::find(kept.begin(), kept.end(), i) != kept.end();
+        const float score =
+            power / std::max(glm::dot(d, d), 1.0f) * (hadMap ? LightShadows::kKeepFactor : 1.0f);
         uint32_t at = count;
         while (at > 0 && importance[at - 1] < score)
             --at;
@@ -136,6 +140,7 @@ void LightShadows::resize(uint32_t spots, uint32_t pointLights, uint32_t tileSiz
     spots_ = std::min(spots, kMaxSpots);
     pointLights_ = std::min(pointLights, kMaxPointLights);
     tileSize_ = tileSize;
+    keptCount_ = 0; // a scene change renumbers the lights
     const uint32_t tiles = spots_ + 6 * pointLights_;
     if (tiles == 0) return;
     atlasWidth_ = std::min(tiles, kTilesPerRow) * tileSize;
@@ -171,9 +176,15 @@ uint64_t LightShadows::render(rhi::CommandList& cmd, const GpuScene& scene,
     using namespace rhi;
     std::array<uint32_t, kMaxSpots> spots{};
     std::array<uint32_t, kMaxPointLights> points{};
-    const uint32_t spotCount = mostImportant(lights, camera, spots_, isSpot, spots);
+    const std::span<const uint32_t> kept(kept_.data(), keptCount_);
+    const uint32_t spotCount = mostImportant(lights, camera, spots_, isSpot, kept, spots);
     const uint32_t pointCount = mostImportant(
-        lights, camera, pointLights_, [](const GpuPunctualLight& l) { return !isSpot(l); }, points);
+        lights, camera, pointLights_, [](const GpuPunctualLight& l) { return !isSpot(l); }, kept, points);
+    keptCount_ = 0;
+    for (uint32_t k = 0; k < spotCount; ++k)
+        kept_[keptCount_++] = spots[k];
+    for (uint32_t k = 0; k < pointCount; ++k)
+        kept_[keptCount_++] = points[k];
 
     uniforms_.count = glm::ivec4(int(spotCount + pointCount), 0, 0, 0);
     views_ = 0;

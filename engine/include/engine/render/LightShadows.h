@@ -49,6 +49,10 @@ public:
     static constexpr uint32_t kMaxSpots = LightShadowUniforms::kMaxSpots;
     static constexpr uint32_t kMaxPointLights = LightShadowUniforms::kMaxPointLights;
     static constexpr uint32_t kTilesPerRow = 4;
+    // A light that had a map last frame keeps it until another matters this much more: two lights
+    // of near-equal importance at the last place would otherwise trade the map back and forth as
+    // the camera moves, and their shadows pop on and off from frame to frame.
+    static constexpr float kKeepFactor = 1.5f;
 
     explicit LightShadows(rhi::Device& device);
     ~LightShadows();
@@ -66,8 +70,9 @@ public:
     // Chooses this frame's lights among `lights` (the records the lighting pass lights, in its
     // order): the spots and, apart, the point lights that matter most to the camera, up to the
     // capacities. A light counts when its range reaches the camera's view; importance is its
-    // intensity's luminance over the squared distance from the camera (at least 1 m^2), ties kept
-    // in the lights' order. Then draws their views (every object in each view, full meshes);
+    // intensity's luminance over the squared distance from the camera (at least 1 m^2), times
+    // kKeepFactor for a light that had a map the frame before (by its index in `lights`), ties
+    // kept in the lights' order. Then draws their views (every object in each view, full meshes);
     // returns the triangles drawn.
     uint64_t render(rhi::CommandList& cmd, const GpuScene& scene, std::span<const GpuPunctualLight> lights,
                     const CameraMatrices& camera, const Bounds& sceneBounds);
@@ -93,6 +98,9 @@ private:
     rhi::GraphicsPipelineHandle pipeline_;
     LightShadowUniforms uniforms_;
     WorkCounts work_;
+    // The lights (indices into render()'s list) that got a map in the last render().
+    std::array<uint32_t, LightShadowUniforms::kMaxLights> kept_{};
+    uint32_t keptCount_ = 0;
 };
 
 } // namespace lpv::engine
