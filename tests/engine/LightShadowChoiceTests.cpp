@@ -85,6 +85,7 @@ TEST_CASE(
     // against 20 / 10 = 2.
     CHECK(shadows.activeCount() == 3);
     CHECK(shadows.activeViews() == 8);
+    CHECK(shadows.drawnViews() == 8); // every light sits in the view: all its views overlap it
     const LightShadowUniforms& u = shadows.uniforms();
     CHECK(u.count.x == 3);
     CHECK(u.light[0] == glm::ivec4(2, 0, 1, 0));
@@ -142,4 +143,29 @@ TEST_CASE("render: a light keeps its shadow map until another matters clearly mo
     // A new atlas (a settings or scene change) forgets: the brighter again.
     shadows.resize(1, 0, 256);
     CHECK(chosen(10.0f, 12.0f) == 1);
+}
+
+// A view that does not overlap the camera's lights no pixel the frame shows, so it is not drawn:
+// of a point light 3 m behind the camera whose range reaches into the view only the face toward
+// the view (-z) is drawn: a side face holds the points at least as far to its side as they are
+// from the light along z, all outside the camera's 40 degrees to either side.
+TEST_CASE("render: a light's shadow views that miss the camera's view are not drawn") {
+    NullScene s = nullScene();
+    LightShadows shadows(*s.device);
+    shadows.resize(0, 1, 256);
+    GpuPunctualLight point = spotRecord({0.0f, 1.0f, 3.0f}, 50.0f, 6.0f);
+    point.directionType.w = 1.0f;
+    const std::vector<GpuPunctualLight> lights = {point};
+    shadows.render(s.device->beginFrame(), *s.gpu, lights, s.camera, s.scene.bounds);
+    s.device->endFrame();
+    REQUIRE(shadows.activeCount() == 1);
+    CHECK(shadows.activeViews() == 6);
+    CHECK(shadows.drawnViews() == 1);
+    // In front of the camera, all six.
+    GpuPunctualLight ahead = point;
+    ahead.positionRange.z = -6.0f;
+    const std::vector<GpuPunctualLight> inView = {ahead};
+    shadows.render(s.device->beginFrame(), *s.gpu, inView, s.camera, s.scene.bounds);
+    s.device->endFrame();
+    CHECK(shadows.drawnViews() == 6);
 }

@@ -6,6 +6,7 @@
 #define GLM_FORCE_DEPTH_ZERO_TO_ONE
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -45,6 +46,23 @@ glm::mat4 perspectiveView(glm::vec3 position, glm::vec3 axis, float tanHalf, flo
     const float nearPlane = std::max(0.02f, farPlane / 500.0f);
     const glm::mat4 view = glm::lookAt(position, position + axis, up);
     return glm::perspectiveRH_ZO(2.0f * std::atan(tanHalf), 1.0f, nearPlane, farPlane) * view;
+}
+
+// Whether what view `a` holds can lie in view `b`: false when the corners of one's clip volume all
+// lie beyond one plane of the other's. Conservative: two frusta that pass each other by an edge
+// count as overlapping.
+bool viewsMayOverlap(const glm::mat4& a, const glm::mat4& b) {
+    const auto corners = [](const glm::mat4& viewProjection) {
+        const glm::mat4 toWorld = glm::inverse(viewProjection);
+        std::array<glm::vec3, 8> c;
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec4 p = toWorld * glm::vec4((i & 1) ? 1.0f : -1.0f, (i & 2) ? 1.0f : -1.0f,
+                                                    (i & 4) ? 1.0f : 0.0f, 1.0f);
+            c[size_t(i)] = glm::vec3(p) / p.w;
+        }
+        return c;
+    };
+    return !outsideClipVolume(corners(a), b) && !outsideClipVolume(corners(b), a);
 }
 
 // The `capacity` most important lights of `lights` for which `wanted` holds, best first, into
@@ -150,13 +168,14 @@ void LightShadows::resize(uint32_t spots, uint32_t pointLights, uint32_t tileSiz
                                kTextureDepthTarget | kTextureSampled, "light shadow atlas", "render.shadow"});
 }
 
-uint64_t LightShadows::drawView(rhi::CommandList& cmd, const GpuScene& scene, uint32_t view) {
+uint64_t LightShadows::drawView(rhi::CommandList& cmd, const GpuScene& scene, uint32_t view, bool draw) {
     using namespace rhi;
     const glm::mat4& viewProjection = uniforms_.viewProjection[view];
     const uint32_t x = (view % kTilesPerRow) * tileSize_, y = (view / kTilesPerRow) * tileSize_;
     uniforms_.tile[view] =
         glm::vec4(float(x) / float(atlasWidth_), float(y) / float(atlasHeight_),
                   float(tileSize_) / float(atlasWidth_), float(tileSize_) / float(atlasHeight_));
+    if (!draw) return 0;
     cmd.setViewport({float(x), float(y), float(tileSize_), float(tileSize_), 0.0f, 1.0f});
     cmd.setScissor(int32_t(x), int32_t(y), tileSize_, tileSize_);
     cmd.pushUniforms(2, &viewProjection, sizeof(viewProjection));
@@ -187,7 +206,7 @@ uint64_t LightShadows::render(rhi::CommandList& cmd, const GpuScene& scene,
         kept_[keptCount_++] = points[k];
 
     uniforms_.count = glm::ivec4(int(spotCount + pointCount), 0, 0, 0);
-    views_ = 0;
+    views_ = drawnViews_ = 0;
     work_ = {};
     if (spotCount + pointCount == 0) return 0;
     // A point light's faces: a texel and a half wider than 90 degrees per side, so the 3x3 PCF of
@@ -218,8 +237,14 @@ uint64_t LightShadows::render(rhi::CommandList& cmd, const GpuScene& scene,
     cmd.bindVertexBuffer(0, scene.vertices());
     cmd.bindIndexBuffer(scene.indices(), IndexType::Uint32);
     uint64_t triangles = 0;
-    for (uint32_t v = 0; v < views_; ++v)
-        triangles += drawView(cmd, scene, v);
+    for (uint32_t v = 0; v < views_; ++v) {
+        // A view the camera's does not overlap (a point light's face turned away from it, a spot
+        // beside it whose range still reaches the view) lights no pixel the lighting pass shades:
+        // a visible pixel in a face's directions lies in that face's view. Its tile stays cleared.
+        const bool seen = viewsMayOverlap(uniforms_.viewProjection[v], camera.viewProjection);
+        triangles += drawView(cmd, scene, v, seen);
+        drawnViews_ += seen ? 1 : 0;
+    }
     cmd.endRenderPass();
     work_.primitives = triangles;
     work_.texelsWritten = uint64_t(tileSize_) * tileSize_ * views_;

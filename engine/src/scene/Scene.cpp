@@ -3,6 +3,8 @@
 
 #include <glm/common.hpp>
 
+#include <array>
+
 namespace lpv::engine {
 
 void Bounds::add(glm::vec3 p) {
@@ -28,16 +30,21 @@ Bounds Bounds::transformed(const glm::mat4& m) const {
 
 bool Bounds::outsideClipVolume(const glm::mat4& viewProjection) const {
     if (empty()) return true;
-    // Outside when all 8 corners lie beyond the same one of the six planes.
-    uint32_t beyondAll = 0x3f;
-    for (int i = 0; i < 8 && beyondAll; ++i) {
-        const glm::vec3 corner{(i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z};
-        const glm::vec4 c = viewProjection * glm::vec4(corner, 1.0f);
+    std::array<glm::vec3, 8> corners;
+    for (int i = 0; i < 8; ++i)
+        corners[size_t(i)] = {(i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z};
+    return lpv::engine::outsideClipVolume(corners, viewProjection);
+}
+
+bool outsideClipVolume(std::span<const glm::vec3> points, const glm::mat4& viewProjection) {
+    uint32_t beyondAll = 0x3f; // a bit per plane that every point so far lies beyond
+    for (size_t i = 0; i < points.size() && beyondAll; ++i) {
+        const glm::vec4 c = viewProjection * glm::vec4(points[i], 1.0f);
         const uint32_t beyond = (c.x < -c.w ? 1u : 0u) | (c.x > c.w ? 2u : 0u) | (c.y < -c.w ? 4u : 0u) |
                                 (c.y > c.w ? 8u : 0u) | (c.z < 0.0f ? 16u : 0u) | (c.z > c.w ? 32u : 0u);
         beyondAll &= beyond;
     }
-    return beyondAll != 0;
+    return !points.empty() && beyondAll != 0;
 }
 
 uint64_t Scene::triangleCount() const {

@@ -76,9 +76,11 @@ public:
     // returns the triangles drawn.
     uint64_t render(rhi::CommandList& cmd, const GpuScene& scene, std::span<const GpuPunctualLight> lights,
                     const CameraMatrices& camera, const Bounds& sceneBounds);
-    // The lights with a map after the last render(), and the views drawn for them.
+    // The lights with a map after the last render(), their views, and those of the views drawn:
+    // a view that does not overlap the camera's is left cleared.
     uint32_t activeCount() const { return uint32_t(uniforms_.count.x); }
     uint32_t activeViews() const { return views_; }
+    uint32_t drawnViews() const { return drawnViews_; }
     const LightShadowUniforms& uniforms() const { return uniforms_; }
     // The atlas, or `fallback` (any sampled depth texture) when there is none: the lighting pass's
     // binding must hold a texture, and it samples none while no light has a map.
@@ -88,11 +90,11 @@ public:
 
 private:
     void release();
-    // Draws `scene` into view `view`'s tile.
-    uint64_t drawView(rhi::CommandList& cmd, const GpuScene& scene, uint32_t view);
+    // Places view `view`'s tile and, with `draw`, draws `scene` into it.
+    uint64_t drawView(rhi::CommandList& cmd, const GpuScene& scene, uint32_t view, bool draw);
 
     rhi::Device& device_;
-    uint32_t spots_ = 0, pointLights_ = 0, tileSize_ = 0, views_ = 0;
+    uint32_t spots_ = 0, pointLights_ = 0, tileSize_ = 0, views_ = 0, drawnViews_ = 0;
     rhi::TextureHandle atlas_;
     uint32_t atlasWidth_ = 0, atlasHeight_ = 0;
     rhi::GraphicsPipelineHandle pipeline_;

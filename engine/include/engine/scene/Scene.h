@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,10 @@ struct Bounds {
     // corner of the volume counts as inside.
     bool outsideClipVolume(const glm::mat4& viewProjection) const;
 };
+
+// True when all of `points` lie beyond the same one of the six planes of `viewProjection`'s clip
+// volume (Bounds::outsideClipVolume for a box's corners).
+bool outsideClipVolume(std::span<const glm::vec3> points, const glm::mat4& viewProjection);
 
 // RGBA8 pixels made in code or decoded from a file.
 struct TextureImage {
