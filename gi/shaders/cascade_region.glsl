@@ -5,7 +5,7 @@
 #define CASCADE_REGION_GLSL
 
 // Where p lies in the volume whose cell 0's corner and cell size are `origin` (xyz, w), in uvw.
-vec3 uvwInVolume(vec4 origin, int cells, vec3 p) { return (p - origin.xyz) / (origin.w * float(cells)); }
+vec3 uvwInVolume(vec4 origin, int cells, vec3 p) { return (p - origin.xyz) * (1.0 / (origin.w * float(cells))); }
 
 // How far inside a cascade's usable region p lies: 0 at its border, 1 at the inner edge of its
 // blend band (`band`: the band's width as a fraction of the half-extent, CryEngine's
@@ -18,7 +18,7 @@ float cascadeInsideness(vec4 origin, int cells, float band, vec3 p) {
     float margin = 1.0 / float(cells);
     vec3 d = min(uvw - margin, (1.0 - margin) - uvw); // distance to the nearer border, per axis
     float nearest = min(d.x, min(d.y, d.z));
-    return nearest / max(band * (0.5 - margin), 1e-6);
+    return nearest * (1.0 / max(band * (0.5 - margin), 1e-6));
 }
 
 // Whether a cascade holds the glossy march from surface point p with normal n: the march starts
