@@ -372,14 +372,15 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         grids[c] = cascades_[std::min<size_t>(c, cascades_.size() - 1)].grid;
     // Blend band: a quarter of a cascade's half-extent (CryEngine's e_GIBlendRatio 0.25).
     const float blendBand = 0.25f;
+    if (classified) {
+        auto s = scope("classify");
+        classes_->classify(cmd, camera, gbuffer, std::span(grids.data(), cascades_.size()), blendBand,
+                           settings_.glossy, targetDesc.width, targetDesc.height, divisor);
+        work(cascadeClassifyWork(lookupPixels, uint32_t(cascades_.size())));
+    }
     {
         auto s = scope("lookup");
         engine::WorkCounts w = lookupWork(settings_, lookupPixels);
-        if (classified) {
-            classes_->classify(cmd, camera, gbuffer, std::span(grids.data(), cascades_.size()), blendBand,
-                               settings_.glossy, targetDesc.width, targetDesc.height, divisor);
-            w += cascadeClassifyWork(lookupPixels, uint32_t(cascades_.size()));
-        }
         LookupUniforms u;
         u.invViewProjection = camera.invViewProjection;
         for (uint32_t c = 0; c < 4; ++c)

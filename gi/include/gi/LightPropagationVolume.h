@@ -1,6 +1,6 @@
 // Dynamic diffuse GI with a light propagation volume (Kaplanyan 2009; Kaplanyan & Dachsbacher
 // 2010), plugged into the renderer as its IndirectLighting:
-//   rsm -> vpl (intensity-aware clustering) -> inject -> propagate -> lookup -> glossy
+//   rsm -> vpl (intensity-aware clustering) -> inject -> propagate -> (classify) -> lookup -> glossy
 //   (+ debug views)
 // each a profiler scope under "gi" with its work counts. The volume follows the camera, snapped to
 // whole cells and kept inside the scene. Settings are read every frame; a change of size or format
