@@ -94,15 +94,4 @@ void bindCascadeVolumes(rhi::CommandList& cmd, std::span<const std::array<rhi::T
                             sampler);
 }
 
-engine::WorkCounts cascadeClassifyWork(uint64_t texels, uint32_t cascades) {
-    engine::WorkCounts w;
-    w.pixelsShaded = texels;
-    w.texelsRead = texels * 2;
-    w.texelsWritten = texels;
-    w.aluOps = texels * (30 + 15 * uint64_t(cascades));
-    w.bytesMoved = texels * (4 + 8 + 4);
-    w.primitives = 1;
-    return w;
-}
-
 } // namespace lpv::gi

@@ -372,15 +372,16 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         grids[c] = cascades_[std::min<size_t>(c, cascades_.size() - 1)].grid;
     // Blend band: a quarter of a cascade's half-extent (CryEngine's e_GIBlendRatio 0.25).
     const float blendBand = 0.25f;
+    // The work counts feed the console prediction (and adapt's budget): a console's GPU branches
+    // per texel, so they count that path, here as on a GPU; the classification and the class
+    // draws' depth tests add nothing to them.
     if (classified) {
         auto s = scope("classify");
         classes_->classify(cmd, camera, gbuffer, std::span(grids.data(), cascades_.size()), blendBand,
                            settings_.glossy, targetDesc.width, targetDesc.height, divisor);
-        work(cascadeClassifyWork(lookupPixels, uint32_t(cascades_.size())));
     }
     {
         auto s = scope("lookup");
-        engine::WorkCounts w = lookupWork(settings_, lookupPixels);
         LookupUniforms u;
         u.invViewProjection = camera.invViewProjection;
         for (uint32_t c = 0; c < 4; ++c)
@@ -412,7 +413,6 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             bindInputs();
             cmd.draw(3);
         } else {
-            uint32_t draws = 0;
             for (uint32_t c = 0; c < cascades_.size(); ++c) {
                 for (const bool blend : {false, true}) {
                     if (blend && c + 1 == cascades_.size()) continue; // the coarsest has no band
@@ -425,14 +425,12 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                         if (glossy != GlossyMarch::None && !settings_.glossy) continue;
                         if (glossy == GlossyMarch::Finer && c == 0) continue;
                         CascadeClasses::drawClass(cmd, {c, blend, glossy});
-                        ++draws;
                     }
                 }
             }
-            w.bytesMoved += lookupPixels * 4 * draws; // every draw tests every texel's class
         }
         cmd.endRenderPass();
-        work(w);
+        work(lookupWork(settings_, lookupPixels));
     }
     if (settings_.glossy) {
         auto s = scope("glossy");

@@ -12,7 +12,6 @@
 // cascade_classify.frag the classification.
 #pragma once
 
-#include "engine/profiler/WorkCounts.h"
 #include "engine/render/CameraMatrices.h"
 #include "engine/render/IndirectLighting.h"
 #include "gi/LpvReference.h"
@@ -73,8 +72,5 @@ private:
 // coarsest (`finestFirst`, 1 to 4) to the coarsest.
 void bindCascadeVolumes(rhi::CommandList& cmd, std::span<const std::array<rhi::TextureHandle, 3>> finestFirst,
                         rhi::SamplerHandle sampler);
-
-// The classification pass: the G-buffer's depth and normal per texel, the cascade test per cascade.
-engine::WorkCounts cascadeClassifyWork(uint64_t texels, uint32_t cascades);
 
 } // namespace lpv::gi
