@@ -418,13 +418,7 @@ struct LightRsmTriangles {
 };
 LightRsmTriangles atriumLightRsmTriangles(const NullAtrium& atrium, uint32_t rsmSize) {
     gi::ReflectiveShadowMap rsm(*atrium.device, rsmSize, gi::RsmLight::Spot);
-    engine::Light light;
-    light.type = engine::LightType::Spot;
-    light.position = {0.0f, 8.0f, 0.0f};
-    light.direction = glm::normalize(glm::vec3(0.0f, -1.0f, -0.6f));
-    light.outerConeAngle = 0.7f;
-    light.innerConeAngle = 0.5f;
-    light.intensity = 100.0f;
+    engine::Light light = engine::atriumCourtSpot();
     const float reach = std::sqrt(3.0f) * 16.0f + 8.0f;
     const float lodTexels = gi::LpvSettings{}.rsmLodTexels;
     LightRsmTriangles out;

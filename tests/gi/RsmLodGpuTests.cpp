@@ -85,13 +85,7 @@ TEST_CASE("gi: a spot light's RSM draws levels of detail by distance and keeps i
     // A spot over the court, looking down at the columns: its texel grows with distance, so each
     // object gets the level its nearest point to the light allows.
     const engine::Scene scene = engine::buildAtrium(0.25f);
-    engine::Light spot;
-    spot.type = engine::LightType::Spot;
-    spot.position = {0.0f, 8.0f, 0.0f};
-    spot.direction = glm::normalize(glm::vec3(0.0f, -1.0f, -0.6f));
-    spot.outerConeAngle = 0.7f;
-    spot.innerConeAngle = 0.5f;
-    spot.intensity = 100.0f;
+    const engine::Light spot = engine::atriumCourtSpot();
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
             TestDevice device(backend);
@@ -123,17 +117,12 @@ TEST_CASE("gi: a spot light's RSM draws levels of detail by distance and keeps i
 
 TEST_CASE("gi: RSM levels of detail change the atrium's indirect light by a few percent") {
     // The bench's cell size; the indirect light alone, as the lighting pass adds it.
-    const std::vector<std::string> common = {"gi.enabled=true", "render.debug_view=indirect",
-                                             "gi.cell_size=1.0", "render.ssao=false"};
     const engine::Scene scene = engine::buildAtrium(0.25f);
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
             TestDevice device(backend);
-            std::vector<std::string> full = common, lod = common;
-            full.push_back("gi.rsm_lod_texels=0");
-            lod.push_back("gi.rsm_lod_texels=0.5");
-            const CornellFrame a = renderSceneFrame(*device, scene, full);
-            const CornellFrame b = renderSceneFrame(*device, scene, lod);
+            const CornellFrame a = renderAtriumIndirect(*device, scene, "gi.rsm_lod_texels=0");
+            const CornellFrame b = renderAtriumIndirect(*device, scene, "gi.rsm_lod_texels=0.5");
             const double la = meanLuminance(a.hdr), lb = meanLuminance(b.hdr);
             float peak = 0.0f;
             for (const glm::vec4& t : a.hdr.texels)

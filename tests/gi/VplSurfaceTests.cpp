@@ -169,17 +169,12 @@ TEST_CASE(
 TEST_CASE("gi: the atrium's indirect light at the default VPL count is close to one VPL per RSM texel") {
     // As the RSM level-of-detail test: the bench's cell size, the indirect light alone. The
     // reference clusters nothing (65536 VPLs for the 256^2 RSM).
-    const std::vector<std::string> common = {"gi.enabled=true", "render.debug_view=indirect",
-                                             "gi.cell_size=1.0", "render.ssao=false"};
     const engine::Scene scene = engine::buildAtrium(0.25f);
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
             TestDevice device(backend);
-            std::vector<std::string> perTexel = common, clustered = common;
-            perTexel.push_back("gi.vpl_count=65536");
-            clustered.push_back("gi.vpl_count=4096");
-            const CornellFrame ref = renderSceneFrame(*device, scene, perTexel);
-            const CornellFrame f = renderSceneFrame(*device, scene, clustered);
+            const CornellFrame ref = renderAtriumIndirect(*device, scene, "gi.vpl_count=65536");
+            const CornellFrame f = renderAtriumIndirect(*device, scene, "gi.vpl_count=4096");
             REQUIRE(f.hdr.texels.size() == ref.hdr.texels.size());
             const double meanRef = meanLuminance(ref.hdr), mean = meanLuminance(f.hdr);
             const double diff = meanLuminanceDifference(ref.hdr, f.hdr);

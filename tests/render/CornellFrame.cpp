@@ -90,6 +90,13 @@ CornellFrame renderSceneFrame(rhi::Device& device, engine::Scene scene,
     return f;
 }
 
+CornellFrame renderAtriumIndirect(rhi::Device& device, const engine::Scene& scene,
+                                  const std::string& setting) {
+    return renderSceneFrame(
+        device, scene,
+        {"gi.enabled=true", "render.debug_view=indirect", "gi.cell_size=1.0", "render.ssao=false", setting});
+}
+
 CornellFrame renderCornell(rhi::Device& device, const std::vector<std::string>& settings,
                            std::optional<glm::vec3> sunDirection, uint32_t width, uint32_t height, int frames,
                            glm::vec3 cameraOffset) {

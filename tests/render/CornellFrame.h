@@ -57,6 +57,11 @@ CornellFrame renderSceneFrame(rhi::Device& device, engine::Scene scene,
                               uint32_t width = 320, uint32_t height = 240, int frames = 1,
                               glm::vec3 cameraOffset = glm::vec3(0.0f));
 
+// The indirect light alone (render.debug_view=indirect, SSAO off) of `scene` (the atrium) with GI
+// on at lpv_bench's cell size (1 m) and `setting` on top, for the atrium's GI accuracy tests.
+CornellFrame renderAtriumIndirect(rhi::Device& device, const engine::Scene& scene,
+                                  const std::string& setting);
+
 // The same frame of `scene` on gl-egl and on Vulkan (each device's messages checked silent), for
 // the tests that compare the two APIs.
 struct FramesOnBothApis {

@@ -637,6 +637,17 @@ void addLightAndCamera(Scene& scene) {
 
 } // namespace
 
+Light atriumCourtSpot() {
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = {0.0f, 8.0f, 0.0f};
+    spot.direction = glm::normalize(glm::vec3(0.0f, -1.0f, -0.6f));
+    spot.outerConeAngle = 0.7f;
+    spot.innerConeAngle = 0.5f;
+    spot.intensity = 100.0f;
+    return spot;
+}
+
 Scene buildAtrium(float detail) {
     // Below 0.05 nothing recognisable is left; NaN lands here too.
     if (!(detail >= 0.05f)) detail = 0.05f;

@@ -19,6 +19,9 @@ Scene buildCornellBox();
 // around a court, a roof opening for the sun, coloured cloth banners and clutter, materials with
 // textures made in code. About 250k triangles at detail 1.0; `detail` scales the tessellation.
 Scene buildAtrium(float detail = 1.0f);
+// A spot light 8 m over the atrium's court, looking down at one side's columns (not part of the
+// scene: the RSM level-of-detail tests and lpv_bench's spot light figures add it).
+Light atriumCourtSpot();
 
 // A 7 m hall at night ("lights"): a floor and three walls, a dim moon, `pointLights` small coloured
 // point lights (range 1.2 m, 0.3 m over the floor on a square grid, no light next to one of its own
