@@ -68,10 +68,11 @@ void GlCommandList::useProgram(GLuint program) {
     activeProgram_ = program;
 }
 
-void GlCommandList::restoreDepthMask() {
-    const bool write = graphics_ && device_.graphicsPipelines.contains(graphics_) &&
-                       device_.graphicsPipelines.get(graphics_).desc.depthWrite;
-    device_.gl().glDepthMask(write ? GL_TRUE : GL_FALSE);
+void GlCommandList::restoreWriteMasks() {
+    const bool bound = graphics_ && device_.graphicsPipelines.contains(graphics_);
+    const GraphicsPipelineDesc* d = bound ? &device_.graphicsPipelines.get(graphics_).desc : nullptr;
+    device_.gl().glDepthMask(d && d->depthWrite ? GL_TRUE : GL_FALSE);
+    device_.gl().glStencilMask(d && d->stencil.enabled ? d->stencil.writeMask : 0u);
 }
 
 void GlCommandList::beginRenderPass(const RenderPassDesc& desc) {
@@ -117,7 +118,7 @@ void GlCommandList::beginRenderPass(const RenderPassDesc& desc) {
             throw Error("beginRenderPass: depth texture '" + t.desc.debugName + "' has no layer " +
                         std::to_string(desc.depth.layer));
         checkExtent(t, 0);
-        depth = {t.id, t.desc.kind != TextureKind::Tex2D, 0, desc.depth.layer};
+        depth = {t.id, t.desc.kind != TextureKind::Tex2D, 0, desc.depth.layer, hasStencil(t.desc.format)};
     }
 
     const Functions& gl = device_.gl();
@@ -143,9 +144,15 @@ void GlCommandList::beginRenderPass(const RenderPassDesc& desc) {
         }
     }
     if (desc.depth.texture && desc.depth.load == LoadOp::Clear) {
-        gl.glDepthMask(GL_TRUE); // depth clears obey the write mask
-        gl.glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &desc.depth.clearDepth);
-        restoreDepthMask();
+        gl.glDepthMask(GL_TRUE); // clears obey the write masks
+        if (depth.stencil) {
+            gl.glStencilMask(0xff);
+            gl.glClearNamedFramebufferfi(fbo, GL_DEPTH_STENCIL, 0, desc.depth.clearDepth,
+                                         GLint(desc.depth.clearStencil));
+        } else {
+            gl.glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &desc.depth.clearDepth);
+        }
+        restoreWriteMasks();
     }
     inPass_ = true;
 }
@@ -191,6 +198,16 @@ void GlCommandList::bindPipeline(GraphicsPipelineHandle h) {
         gl.glDisable(GL_DEPTH_TEST);
     }
     gl.glDepthMask(d.depthWrite ? GL_TRUE : GL_FALSE);
+    // Like depth, GL writes the stencil only while its test is on, as Vulkan does.
+    if (d.stencil.enabled) {
+        gl.glEnable(GL_STENCIL_TEST);
+        gl.glStencilFunc(compareFunc(d.stencil.compare), GLint(d.stencil.reference), d.stencil.readMask);
+        gl.glStencilOp(GL_KEEP, GL_KEEP, d.stencil.pass == StencilOp::Replace ? GL_REPLACE : GL_KEEP);
+        gl.glStencilMask(d.stencil.writeMask);
+    } else {
+        gl.glDisable(GL_STENCIL_TEST);
+        gl.glStencilMask(0);
+    }
     if (d.cull == CullMode::None) {
         gl.glDisable(GL_CULL_FACE);
     } else {

@@ -58,7 +58,8 @@ private:
     void bindBuffer(GLenum target, uint32_t binding, BufferHandle buffer, uint64_t offset, uint64_t size);
     GlGraphicsPipeline& prepareDraw(const char* what);
     void useProgram(GLuint program);
-    void restoreDepthMask();
+    // The bound pipeline's depth and stencil write masks, after a clear that needed them open.
+    void restoreWriteMasks();
 
     GlDevice& device_;
     bool inPass_ = false;

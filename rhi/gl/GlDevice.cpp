@@ -75,6 +75,8 @@ GlDevice::GlDevice(const DeviceConfig& config, std::unique_ptr<platforms::GlCont
         config.vertexShaderLayer && hasExtension(gl_, "GL_ARB_shader_viewport_layer_array");
     if (isCpuRasterizer(caps_.deviceName)) caps_.concurrentWorkgroups = cpuRasterizerThreads();
     caps_.maskedBranches = config.maskedBranches.value_or(isCpuRasterizer(caps_.deviceName));
+    // SPIRV-Cross writes gl_FragStencilRefARB under this extension.
+    caps_.shaderStencilExport = hasExtension(gl_, "GL_ARB_shader_stencil_export");
 
     const uint64_t region = std::max(config.uniformRingBytes, 256u);
     uniformRing_.create(gl_, region, config.framesInFlight);

@@ -27,6 +27,8 @@ GlFormat glFormat(Format f) {
         return {GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT};
     case Format::D32F:
         return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT};
+    case Format::D32FS8:
+        return {GL_DEPTH32F_STENCIL8, GL_DEPTH_STENCIL, GL_FLOAT_32_UNSIGNED_INT_24_8_REV};
     case Format::Undefined:
         break;
     }

@@ -45,7 +45,7 @@ GLuint GlFramebufferCache::get(const GlAttachment* colors, uint32_t colorCount, 
         attach(GL_COLOR_ATTACHMENT0 + i, colors[i]);
         drawBuffers[i] = GL_COLOR_ATTACHMENT0 + i;
     }
-    if (depth) attach(GL_DEPTH_ATTACHMENT, *depth);
+    if (depth) attach(depth->stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT, *depth);
     if (colorCount > 0)
         gl_->glNamedFramebufferDrawBuffers(fbo, GLsizei(colorCount), drawBuffers);
     else

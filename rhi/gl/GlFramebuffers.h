@@ -18,6 +18,7 @@ struct GlAttachment {
     bool oneLayer = false; // 3D or array texture: attach one layer / slice, not every one (layered)
     uint32_t mipLevel = 0;
     uint32_t layer = 0;
+    bool stencil = false; // a depth format with a stencil: attached as depth and stencil
 };
 
 class GlFramebufferCache {

@@ -23,6 +23,9 @@ namespace lpv::rhi::gl {
     X(PFNGLSCISSORPROC, glScissor)                                                                           \
     X(PFNGLDEPTHFUNCPROC, glDepthFunc)                                                                       \
     X(PFNGLDEPTHMASKPROC, glDepthMask)                                                                       \
+    X(PFNGLSTENCILFUNCPROC, glStencilFunc)                                                                   \
+    X(PFNGLSTENCILOPPROC, glStencilOp)                                                                       \
+    X(PFNGLSTENCILMASKPROC, glStencilMask)                                                                   \
     X(PFNGLCOLORMASKIPROC, glColorMaski)                                                                     \
     X(PFNGLBLENDFUNCSEPARATEIPROC, glBlendFuncSeparatei)                                                     \
     X(PFNGLBLENDEQUATIONSEPARATEIPROC, glBlendEquationSeparatei)                                             \
@@ -73,6 +76,7 @@ namespace lpv::rhi::gl {
     X(PFNGLBINDFRAMEBUFFERPROC, glBindFramebuffer)                                                           \
     X(PFNGLDELETEFRAMEBUFFERSPROC, glDeleteFramebuffers)                                                     \
     X(PFNGLCLEARNAMEDFRAMEBUFFERFVPROC, glClearNamedFramebufferfv)                                           \
+    X(PFNGLCLEARNAMEDFRAMEBUFFERFIPROC, glClearNamedFramebufferfi)                                           \
     X(PFNGLCLEARNAMEDFRAMEBUFFERUIVPROC, glClearNamedFramebufferuiv)                                         \
     X(PFNGLBLITNAMEDFRAMEBUFFERPROC, glBlitNamedFramebuffer)                                                 \
     X(PFNGLCREATESHADERPROC, glCreateShader)                                                                 \

@@ -4,6 +4,8 @@
 #include "GlDevice.h"
 #include "GlFormats.h"
 
+#include "../src/DescValidation.h"
+
 #include "rhi/Error.h"
 
 #include <string>
@@ -85,6 +87,7 @@ GraphicsPipelineHandle GlDevice::createPipeline(const GraphicsPipelineDesc& desc
     if (desc.vertexBuffers.size() > GlCommandList::kMaxVertexBuffers)
         throw Error("graphics pipeline '" + name + "': more than " +
                     std::to_string(GlCommandList::kMaxVertexBuffers) + " vertex buffers");
+    validateStencilState(desc);
     for (const VertexAttribute& a : desc.attributes)
         if (a.bufferSlot >= desc.vertexBuffers.size())
             throw Error("graphics pipeline '" + name + "': attribute " + std::to_string(a.location) +

@@ -87,6 +87,7 @@ public:
         caps_.maxColorTargets = RenderPassDesc::kMaxColorTargets;
         caps_.vertexShaderLayer = config.vertexShaderLayer;
         caps_.maskedBranches = config.maskedBranches.value_or(false);
+        caps_.shaderStencilExport = true; // it runs no shader, so any may export
     }
 
     BackendKind backend() const override { return BackendKind::Null; }
@@ -111,6 +112,7 @@ public:
     SamplerHandle createSampler(const SamplerDesc& desc) override { return samplers.insert({desc}); }
     GraphicsPipelineHandle createPipeline(const GraphicsPipelineDesc& desc) override {
         if (!desc.vertex) throw Error("graphics pipeline '" + desc.debugName + "': no vertex shader");
+        validateStencilState(desc);
         return graphicsPipelines.insert({desc.debugName});
     }
     ComputePipelineHandle createPipeline(const ComputePipelineDesc& desc) override {

@@ -28,6 +28,18 @@ void validateTextureDesc(const TextureDesc& desc, const Caps& caps) {
                       (desc.kind == TextureKind::Tex3D && desc.depthOrLayers > maxExtent)))
         throw Error(where + ": " + std::to_string(desc.width) + "x" + std::to_string(desc.height) + "x" +
                     std::to_string(desc.depthOrLayers) + " exceeds the device's limits");
+    // A depth-stencil texture is only ever a target: sampling, storing or copying it would need
+    // one of its two aspects named, which the RHI has no way to say.
+    if (hasStencil(desc.format) && (desc.kind != TextureKind::Tex2D || desc.usage != kTextureDepthTarget))
+        throw Error(where + ": " + std::string(formatName(desc.format)) +
+                    " is a 2D depth target only (no sampling, storage or transfer)");
+}
+
+void validateStencilState(const GraphicsPipelineDesc& desc) {
+    if (desc.stencil.enabled && !hasStencil(desc.depthFormat))
+        throw Error("pipeline '" + desc.debugName +
+                    "': a stencil test needs a depth format with a stencil, not " +
+                    std::string(formatName(desc.depthFormat)));
 }
 
 bool isLayeredPass(const RenderPassDesc& desc, const Caps& caps) {

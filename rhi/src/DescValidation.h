@@ -3,6 +3,7 @@
 
 #include "rhi/CommandList.h"
 #include "rhi/Device.h"
+#include "rhi/Pipeline.h"
 
 #include <cstdint>
 
@@ -15,6 +16,10 @@ void validateTextureDesc(const TextureDesc& desc, const Caps& caps);
 // Whether a pass is layered (ColorAttachment::layered). Throws rhi::Error naming the pass when it
 // mixes layered and single-layer targets, has a depth target, or the device lacks
 // Caps::vertexShaderLayer. The backends check that the layer counts agree.
+// Throws rhi::Error naming the pipeline when it tests the stencil without a depth format that
+// has one.
+void validateStencilState(const GraphicsPipelineDesc& desc);
+
 bool isLayeredPass(const RenderPassDesc& desc, const Caps& caps);
 
 // Colour target `index` of a layered pass, `layers` layers (or slices) at its mip: throws unless it

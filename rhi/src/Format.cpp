@@ -18,6 +18,7 @@ uint32_t bytesPerPixel(Format f) {
     case Format::RGBA16F:
         return 8;
     case Format::RG32UI:
+    case Format::D32FS8: // as Vulkan and GL lay it out: 32 bits of depth, 8 of stencil, 24 unused
         return 8;
     case Format::RGBA32F:
     case Format::RGBA32UI:
@@ -29,7 +30,11 @@ uint32_t bytesPerPixel(Format f) {
 }
 
 bool isDepthFormat(Format f) {
-    return f == Format::D32F;
+    return f == Format::D32F || f == Format::D32FS8;
+}
+
+bool hasStencil(Format f) {
+    return f == Format::D32FS8;
 }
 
 bool isIntegerFormat(Format f) {
@@ -60,6 +65,8 @@ std::string_view formatName(Format f) {
         return "rgba32ui";
     case Format::D32F:
         return "d32f";
+    case Format::D32FS8:
+        return "d32f_s8";
     }
     return "?";
 }

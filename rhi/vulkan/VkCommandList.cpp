@@ -142,7 +142,7 @@ void VulkanCommandList::beginRenderPass(const RenderPassDesc& desc) {
         depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
         depth.loadOp = toVkLoadOp(a.load);
         depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        depth.clearValue.depthStencil = {a.clearDepth, 0};
+        depth.clearValue.depthStencil = {a.clearDepth, a.clearStencil};
         passTargets_[passTargetCount_++] = {a.texture, 0};
     }
 
@@ -153,6 +153,10 @@ void VulkanCommandList::beginRenderPass(const RenderPassDesc& desc) {
     info.colorAttachmentCount = desc.colorCount;
     info.pColorAttachments = colors.data();
     info.pDepthAttachment = desc.depth.texture ? &depth : nullptr;
+    // A depth format with a stencil: one attachment, both aspects.
+    const bool stencil =
+        desc.depth.texture && hasStencil(device_.textures.get(desc.depth.texture).desc.format);
+    info.pStencilAttachment = stencil ? &depth : nullptr;
     vkCmdBeginRendering(cmd_, &info);
     inPass_ = true;
 

@@ -350,6 +350,9 @@ void VulkanContext::createDevice(bool needPresent) {
 
     std::vector<const char*> extensions{VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
     if (needPresent) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    shaderStencilExport =
+        hasInstanceExtension(deviceExtensions(physical), VK_EXT_SHADER_STENCIL_EXPORT_EXTENSION_NAME);
+    if (shaderStencilExport) extensions.push_back(VK_EXT_SHADER_STENCIL_EXPORT_EXTENSION_NAME);
 
     VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
     info.queueCreateInfoCount = 1;

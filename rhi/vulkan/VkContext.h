@@ -42,7 +42,8 @@ public:
     uint32_t maxPushDescriptors = 0;
     std::string driverName;
     bool samplerAnisotropy = false;
-    bool shaderOutputLayer = false; // gl_Layer from the vertex shader
+    bool shaderOutputLayer = false;   // gl_Layer from the vertex shader
+    bool shaderStencilExport = false; // VK_EXT_shader_stencil_export enabled
     bool debugUtils = false;
 
     PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;

@@ -29,6 +29,8 @@ VkFormat toVkFormat(Format f) {
         return VK_FORMAT_R32G32B32A32_UINT;
     case Format::D32F:
         return VK_FORMAT_D32_SFLOAT;
+    case Format::D32FS8:
+        return VK_FORMAT_D32_SFLOAT_S8_UINT;
     case Format::Undefined:
         return VK_FORMAT_UNDEFINED;
     }
@@ -52,6 +54,7 @@ VkFormat toVkFormat(VertexFormat f) {
 }
 
 VkImageAspectFlags aspectOf(Format f) {
+    if (hasStencil(f)) return VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT;
     return isDepthFormat(f) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
 }
 

@@ -6,6 +6,8 @@
 #include "VkFormats.h"
 #include "VkReflection.h"
 
+#include "../src/DescValidation.h"
+
 #include <algorithm>
 #include <array>
 #include <span>
@@ -119,6 +121,7 @@ VulkanPipeline buildGraphicsPipeline(const VulkanContext& ctx, const GraphicsPip
                     "' is not a fragment shader");
     if (desc.colorFormats.size() > RenderPassDesc::kMaxColorTargets)
         throw Error("graphics pipeline '" + desc.debugName + "': more than 8 color targets");
+    validateStencilState(desc);
     if (!desc.blend.empty() && desc.blend.size() != 1 && desc.blend.size() != desc.colorFormats.size())
         throw Error("graphics pipeline '" + desc.debugName +
                     "': blend needs one entry or one per color target");
@@ -195,6 +198,18 @@ VulkanPipeline buildGraphicsPipeline(const VulkanContext& ctx, const GraphicsPip
         depth.depthTestEnable = desc.depthTest ? VK_TRUE : VK_FALSE;
         depth.depthWriteEnable = desc.depthWrite ? VK_TRUE : VK_FALSE;
         depth.depthCompareOp = toVkCompare(desc.depthCompare);
+        if (desc.stencil.enabled) {
+            const StencilState& s = desc.stencil;
+            depth.stencilTestEnable = VK_TRUE;
+            depth.front.failOp = VK_STENCIL_OP_KEEP;
+            depth.front.depthFailOp = VK_STENCIL_OP_KEEP;
+            depth.front.passOp = s.pass == StencilOp::Replace ? VK_STENCIL_OP_REPLACE : VK_STENCIL_OP_KEEP;
+            depth.front.compareOp = toVkCompare(s.compare);
+            depth.front.compareMask = s.readMask;
+            depth.front.writeMask = s.writeMask;
+            depth.front.reference = s.reference;
+            depth.back = depth.front;
+        }
 
         std::array<VkPipelineColorBlendAttachmentState, RenderPassDesc::kMaxColorTargets> blends{};
         std::array<VkFormat, RenderPassDesc::kMaxColorTargets> colorFormats{};
@@ -217,6 +232,7 @@ VulkanPipeline buildGraphicsPipeline(const VulkanContext& ctx, const GraphicsPip
         rendering.colorAttachmentCount = uint32_t(desc.colorFormats.size());
         rendering.pColorAttachmentFormats = colorFormats.data();
         rendering.depthAttachmentFormat = toVkFormat(desc.depthFormat);
+        if (hasStencil(desc.depthFormat)) rendering.stencilAttachmentFormat = rendering.depthAttachmentFormat;
 
         VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
         info.stageCount = desc.fragment ? 2 : 1;

@@ -56,6 +56,7 @@ VulkanDevice::VulkanDevice(const DeviceConfig& config) : config_(config) {
             caps_.concurrentWorkgroups = cpuRasterizerThreads();
         caps_.maskedBranches =
             config.maskedBranches.value_or(ctx_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
+        caps_.shaderStencilExport = ctx_->shaderStencilExport;
 
         timestamps_.create(*ctx_, timestamps, config.framesInFlight + 1, config.maxTimestampsPerFrame);
         createFrames();

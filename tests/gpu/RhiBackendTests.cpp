@@ -126,6 +126,35 @@ TEST_CASE("rhi: a long point list, some points outside the clip volume") {
     }
 }
 
+TEST_CASE("rhi: a fragment shader exports the stencil, and masked stencil tests select its fields") {
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            if (!device->caps().shaderStencilExport) {
+                MESSAGE(backend.name << ": no shader stencil export, skipped");
+                continue;
+            }
+            const Image img = drawStencilFields(*device);
+            uint32_t covered[3] = {0, 0, 0};
+            for (uint32_t y = 0; y < 16; ++y)
+                for (uint32_t x = 0; x < 16; ++x) {
+                    const glm::vec4 want = expectedStencilTexel(x, y);
+                    for (int i = 0; i < 3; ++i)
+                        covered[i] += want[i] > 0.0f ? 1 : 0;
+                    REQUIRE_MESSAGE(near(img.at(x, y), want, 1e-3f),
+                                    "at " << x << "," << y << " " << describe(img.at(x, y)));
+                }
+            // Each draw matched some pixels and missed others: the first x & 3 == 2 (3 exported
+            // columns), the second y & 3 == 1 in the exported columns and all of the cleared ones,
+            // the third the cleared columns and the exported pixels whose stencil equals the clear.
+            CHECK(covered[0] == 3 * 16);
+            CHECK(covered[1] == 12 * 4 + 4 * 16);
+            CHECK(covered[2] == 4 * 16 + 3 * 4);
+            device.expectSilent();
+        }
+    }
+}
+
 TEST_CASE("rhi: one layered draw fills every slice of a 3D texture, each point picking its own") {
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {

@@ -181,6 +181,65 @@ glm::vec4 expectedPointTexel(uint32_t x, uint32_t y) {
     return hits * kBlendColor;
 }
 
+Image drawStencilFields(rhi::Device& device) {
+    using namespace rhi;
+    const TextureHandle target =
+        device.createTexture({TextureKind::Tex2D, Format::RGBA16F, 16, 16, 1, 1,
+                              kTextureColorTarget | kTextureTransfer, "stencil color", "test"});
+    const TextureHandle stencil = device.createTexture(
+        {TextureKind::Tex2D, Format::D32FS8, 16, 16, 1, 1, kTextureDepthTarget, "stencil fields", "test"});
+    GraphicsPipelineDesc pd;
+    pd.vertex = &shaders::fullscreen_vert;
+    pd.fragment = &shaders::stencil_export_frag;
+    pd.colorFormats = {Format::RGBA16F};
+    pd.blend = {BlendState::additive()};
+    pd.depthFormat = Format::D32FS8;
+    pd.stencil = {true, CompareOp::Always, 0, 0xff, 0xff, StencilOp::Replace};
+    pd.debugName = "stencil export";
+    const GraphicsPipelineHandle exportPipeline = device.createPipeline(pd);
+    pd.fragment = &shaders::constant_frag;
+    GraphicsPipelineHandle tests[3];
+    for (int i = 0; i < 3; ++i) {
+        pd.stencil = {true, CompareOp::Equal, kStencilRefs[i], kStencilMasks[i], 0, StencilOp::Keep};
+        pd.debugName = "stencil test";
+        tests[i] = device.createPipeline(pd);
+    }
+
+    CommandList& cmd = device.beginFrame();
+    RenderPassDesc pass;
+    pass.colors[0] = {target, 0, 0, LoadOp::Clear, {0, 0, 0, 0}};
+    pass.colorCount = 1;
+    pass.depth = {stencil, 0, LoadOp::Clear, 1.0f, kStencilClear};
+    pass.debugName = "stencil fields";
+    cmd.beginRenderPass(pass);
+    cmd.bindPipeline(exportPipeline);
+    cmd.draw(3);
+    for (int i = 0; i < 3; ++i) {
+        cmd.bindPipeline(tests[i]);
+        cmd.pushUniforms(0, &kStencilColors[i], sizeof(glm::vec4));
+        cmd.draw(3);
+    }
+    cmd.endRenderPass();
+    device.endFrame();
+    device.waitIdle();
+
+    Image out = readImage(device, target);
+    for (const GraphicsPipelineHandle p : tests)
+        device.destroy(p);
+    device.destroy(exportPipeline);
+    device.destroy(stencil);
+    device.destroy(target);
+    return out;
+}
+
+glm::vec4 expectedStencilTexel(uint32_t x, uint32_t y) {
+    const uint32_t s = x >= 12 ? kStencilClear : (x & 3) | ((y & 3) << 4);
+    glm::vec4 sum(0.0f);
+    for (int i = 0; i < 3; ++i)
+        if ((s & kStencilMasks[i]) == kStencilRefs[i]) sum += kStencilColors[i];
+    return sum;
+}
+
 Image drawLayeredPoints(rhi::Device& device) {
     using namespace rhi;
     const TextureHandle volume = device.createTexture(

@@ -46,6 +46,18 @@ inline constexpr uint32_t kLayeredPointCount = 200;
 Image drawLayeredPoints(rhi::Device& device);
 glm::vec4 expectedLayeredTexel(uint32_t x, uint32_t y, uint32_t z);
 
+// 16x16 RGBA16F cleared to 0 with a D32FS8 target whose stencil is cleared to kStencilClear. A
+// fragment shader exports each pixel's stencil (tests/shaders/stencil_export.frag: x & 3 in bits
+// 0-1, y & 3 in bits 4-5; columns 12-15 keep the clear); then three fullscreen draws add
+// kStencilColors[i] where the stencil, masked by kStencilMasks[i], equals kStencilRefs[i].
+inline constexpr uint8_t kStencilClear = 0x13;
+inline constexpr uint8_t kStencilMasks[3] = {0x03, 0x30, 0xff};
+inline constexpr uint8_t kStencilRefs[3] = {0x02, 0x10, 0x13};
+inline constexpr glm::vec4 kStencilColors[3] = {
+    {0.25f, 0.0f, 0.0f, 0.0f}, {0.0f, 0.5f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.125f, 1.0f}};
+Image drawStencilFields(rhi::Device& device);
+glm::vec4 expectedStencilTexel(uint32_t x, uint32_t y);
+
 // 8^3 RGBA16F volume: slice kInjectSlice receives kBlendColor twice (additive) through a render
 // pass, then a compute shader reads the whole volume through a sampler into a storage buffer.
 inline constexpr uint32_t kInjectSize = 8;

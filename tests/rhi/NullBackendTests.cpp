@@ -90,6 +90,28 @@ TEST_CASE("null backend: mips and formats are counted") {
     CHECK(textureBytes(d) == (512 + 64) * 16u);
 }
 
+TEST_CASE("null backend: a depth-stencil texture is a 2D target only, and a stencil test needs one") {
+    const auto device = nullDevice();
+    TextureDesc d{TextureKind::Tex2D, Format::D32FS8, 8, 8, 1, 1, kTextureDepthTarget, "classes"};
+    const TextureHandle t = device->createTexture(d);
+    CHECK(textureBytes(d) == 64 * 8u);
+    device->destroy(t);
+    d.usage = kTextureDepthTarget | kTextureSampled;
+    CHECK(errorOf([&] { device->createTexture(d); }).find("'classes': d32f_s8 is a 2D depth target only") !=
+          std::string::npos);
+
+    GraphicsPipelineDesc p;
+    static const ShaderBinary vertex{"v.vert", ShaderStage::Vertex, {}, {}};
+    p.vertex = &vertex;
+    p.stencil.enabled = true;
+    p.depthFormat = Format::D32F;
+    p.debugName = "class draw";
+    CHECK(errorOf([&] { device->createPipeline(p); }) ==
+          "pipeline 'class draw': a stencil test needs a depth format with a stencil, not d32f");
+    p.depthFormat = Format::D32FS8;
+    device->destroy(device->createPipeline(p));
+}
+
 TEST_CASE("null backend: frame and pass misuse is reported") {
     auto device = nullDevice();
     CHECK_THROWS_AS(device->endFrame(), Error);

@@ -34,6 +34,7 @@ struct DepthAttachment {
     uint32_t layer = 0;
     LoadOp load = LoadOp::Clear;
     float clearDepth = 1.0f;
+    uint8_t clearStencil = 0; // formats with a stencil (hasStencil)
 };
 
 struct RenderPassDesc {

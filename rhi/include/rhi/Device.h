@@ -49,6 +49,10 @@ struct Caps {
     // skipped. Work chosen per pixel is then better split into passes a depth test selects. False
     // on GPUs, where a branch no lane of a wave takes costs next to nothing.
     bool maskedBranches = false;
+    // A fragment shader may write the stencil value (gl_FragStencilRefARB; Vulkan
+    // VK_EXT_shader_stencil_export, GL_ARB_shader_stencil_export): one pass can store a different
+    // stencil per pixel.
+    bool shaderStencilExport = false;
 };
 
 class Device {

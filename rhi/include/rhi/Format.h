@@ -18,6 +18,8 @@ enum class Format : uint8_t {
     RG32UI,   // packed data (e.g. pairs of halves), no filtering
     RGBA32UI, // packed data, no filtering
     D32F,
+    // Depth and an 8-bit stencil: a depth target only (never sampled, stored or transferred).
+    D32FS8,
 };
 
 enum class TextureKind : uint8_t { Tex2D, Tex2DArray, Tex3D };
@@ -33,6 +35,8 @@ enum TextureUsage : uint32_t {
 
 uint32_t bytesPerPixel(Format f);
 bool isDepthFormat(Format f);
+// Depth formats that also hold a stencil.
+bool hasStencil(Format f);
 // Unsigned-integer formats: read and written as uint, never filtered, cleared with integer values.
 bool isIntegerFormat(Format f);
 std::string_view formatName(Format f);

@@ -17,6 +17,10 @@ enum class CullMode : uint8_t { None, Front, Back };
 enum class FrontFace : uint8_t { CounterClockwise, Clockwise };
 enum class BlendFactor : uint8_t { Zero, One, SrcAlpha, OneMinusSrcAlpha, DstAlpha, OneMinusDstAlpha };
 enum class BlendOp : uint8_t { Add, Max };
+// What a fragment that passes the stencil and depth tests does to the stencil. Replace writes the
+// reference, or the fragment shader's own value where it exports one (Caps::shaderStencilExport:
+// gl_FragStencilRefARB).
+enum class StencilOp : uint8_t { Keep, Replace };
 
 struct VertexAttribute {
     uint32_t location = 0;
@@ -53,6 +57,18 @@ struct BlendState {
     }
 };
 
+// One state for front and back faces. The test passes where (reference & readMask) compare
+// (stencil & readMask) holds, e.g. Equal with a readMask that selects a field of the stencil bits.
+// Needs a depth format with a stencil (hasStencil).
+struct StencilState {
+    bool enabled = false;
+    CompareOp compare = CompareOp::Always;
+    uint8_t reference = 0;
+    uint8_t readMask = 0xff;
+    uint8_t writeMask = 0;
+    StencilOp pass = StencilOp::Keep; // where both tests pass; failing fragments keep the stencil
+};
+
 struct GraphicsPipelineDesc {
     const ShaderBinary* vertex = nullptr;
     const ShaderBinary* fragment = nullptr;
@@ -66,6 +82,7 @@ struct GraphicsPipelineDesc {
     CompareOp depthCompare = CompareOp::LessOrEqual;
     float depthBiasConstant = 0.0f; // both zero: no bias
     float depthBiasSlope = 0.0f;
+    StencilState stencil;
     std::vector<Format> colorFormats;
     // One entry per color target; a single entry applies to all targets.
     std::vector<BlendState> blend;
