@@ -1,8 +1,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// The cascade classification (gi/CascadeClasses.h): each lookup texel's class as its depth, from
-// the rule the lookup and the glossy march share (lpv_cascades.glsl). Sky texels keep the cleared
-// depth, which no class draw matches.
+#extension GL_ARB_shader_stencil_export : require
+// The cascade classification (gi/CascadeClasses.h): each lookup texel's class as its stencil, from
+// the rule the lookup and the glossy march share (lpv_cascades.glsl). Sky texels get 0, which no
+// class draw matches.
 #include "cascade_region.glsl"
 #include "lpv_common.glsl"
 
@@ -24,31 +25,38 @@ void main() {
     vec2 uv = (vec2(source) + 0.5) / vec2(classify.pixels.yz);
     float depth = texelFetch(depthTexture, source, 0).r;
     if (depth >= 1.0) {
-        gl_FragDepth = 1.0;
+        gl_FragStencilRefARB = 0;
         return;
     }
     int col = classify.pixels.w;
     vec4 world = MUL_COLUMNS_AT(classify.invViewProjection, col, vec4(uv * 2.0 - 1.0, depth, 1.0));
     vec3 p = world.xyz / world.w;
-    // The finest cascade p is inside of, else the coarsest; in the band when the blend weight
-    // (smoothstep of the insideness) is below 1 and a coarser cascade takes the rest.
+    vec4 normalRoughness = texelFetch(normalTexture, source, 0);
+    vec3 n = normalize(normalRoughness.xyz);
+    // The lookup's cascade: the finest p is inside of, else the coarsest; in the band when the
+    // blend weight (smoothstep of the insideness) is below 1 and a coarser cascade takes the rest.
+    // The glossy march runs in the lookup's cascade or, where that one holds its start, the next
+    // finer one (lpv_glossy.glsl's rule). Finest first, with selects and the cascade index a loop
+    // counter: a device that runs both sides of every branch pays for no branch here, and the
+    // finer cascade's test needs no array read at a per-texel index.
     int last = classify.grid.y - 1;
     int c = last;
     float inside = 1.0;
-    for (int k = last - 1; k >= 0; --k) {
+    bool found = false;
+    bool finerHolds = false;   // whether cascade c - 1 holds the march
+    bool previousHolds = false; // whether cascade k - 1 does
+    for (int k = 0; k < last; ++k) {
         float i = cascadeInsideness(classify.gridOrigin[k], classify.grid.x, classify.band.x, p);
-        if (i > 0.0) {
-            c = k;
-            inside = i;
-        }
+        bool take = !found && i > 0.0;
+        c = take ? k : c;
+        inside = take ? i : inside;
+        finerHolds = take ? previousHolds : finerHolds;
+        found = found || i > 0.0;
+        previousHolds = glossyMarchHeld(classify.gridOrigin[k], classify.grid.x, p, n);
     }
-    int blend = c < last && inside < 1.0 ? 1 : 0;
-    // The glossy march's cascade (lpv_glossy.glsl's rule): the lookup's or the next finer one. It
-    // skips fully rough surfaces (the lighting pass weighs it by 1 - roughness).
-    vec4 normalRoughness = texelFetch(normalTexture, source, 0);
-    vec3 n = normalize(normalRoughness.xyz);
-    int glossy = 0;
-    if (classify.grid.z != 0 && normalRoughness.w < 1.0)
-        glossy = c > 0 && glossyMarchHeld(classify.gridOrigin[c - 1], classify.grid.x, p, n) ? 2 : 1;
-    gl_FragDepth = cascadeClassDepth(6 * c + 3 * blend + glossy);
+    if (!found) finerHolds = previousHolds; // c is the coarsest; cascade last - 1 was tested last
+    bool blend = c < last && inside < 1.0;
+    // The march skips fully rough surfaces (the lighting pass weighs it by 1 - roughness).
+    bool marched = classify.grid.z != 0 && normalRoughness.w < 1.0;
+    gl_FragStencilRefARB = cascadeClassStencil(c, blend, marched, finerHolds ? c - 1 : c);
 }

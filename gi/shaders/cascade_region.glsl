@@ -34,11 +34,13 @@ bool glossyMarchHeld(vec4 origin, int cells, vec3 p, vec3 n) {
 }
 
 // Cascade classes (gi/CascadeClasses.h): on devices that run both sides of every branch, a
-// classification pass stores each lookup texel's class as a depth, and the lookup and the glossy
-// march draw once per class at that depth with an equal test, so each texel runs only its own
-// cascade's code. Class k = 6 x (the lookup's cascade) + 3 x (in its blend band) + the glossy
-// march's cascade: 0 none (sky, fully rough), 1 the lookup's, 2 the next finer one. The depths
-// (k + 0.5) / 32 are exact in binary.
-float cascadeClassDepth(int k) { return (float(k) + 0.5) / 32.0; }
+// classification pass stores each lookup texel's class as a stencil, and the lookup and the glossy
+// march draw once per cascade with a stencil test on their field, so each texel runs only its own
+// cascade's code. Bits 0-1: the lookup's cascade, bit 2: in its blend band, bit 3: looked up (the
+// sky keeps the cleared 0); bits 4-5: the glossy march's cascade, bit 6: marched (not on the sky
+// or fully rough surfaces). CascadeClasses.cpp tests the same fields.
+int cascadeClassStencil(int lookupCascade, bool blend, bool marched, int marchCascade) {
+    return 8 | lookupCascade | (blend ? 4 : 0) | (marched ? 64 | (marchCascade << 4) : 0);
+}
 
 #endif

@@ -3,6 +3,8 @@
 
 #include "GiShaders.h"
 
+#include "EngineShaders.h"
+
 #include <glm/vec4.hpp>
 
 #include <algorithm>
@@ -19,17 +21,32 @@ struct ClassifyUniforms {
     glm::ivec4 pixels;
 };
 
+// The stencil fields, as cascadeClassStencil in cascade_region.glsl writes them: bits 0-1 the
+// lookup's cascade, bit 2 its blend band, bit 3 set on every looked-up texel (the sky's 0 matches
+// no draw); bits 4-5 the glossy march's cascade, bit 6 set where it marches.
+constexpr uint8_t kLookupField = 0x0f;
+constexpr uint8_t kLookedUp = 0x08;
+constexpr uint8_t kGlossyField = 0x70;
+constexpr uint8_t kMarched = 0x40;
+
+void configureClassDraw(rhi::GraphicsPipelineDesc& desc, uint8_t field, uint8_t value) {
+    desc.vertex = &engine::shaders::fullscreen_vert;
+    desc.depthTest = false;
+    desc.depthWrite = false;
+    desc.depthFormat = rhi::Format::D32FS8;
+    desc.stencil = {true, rhi::CompareOp::Equal, value, field, 0, rhi::StencilOp::Keep};
+}
+
 } // namespace
 
 CascadeClasses::CascadeClasses(rhi::Device& device) : device_(device) {
     using namespace rhi;
     GraphicsPipelineDesc d;
-    d.vertex = &shaders::cascade_classes_vert;
+    d.vertex = &engine::shaders::fullscreen_vert;
     d.fragment = &shaders::cascade_classify_frag;
-    d.depthTest = true;
-    d.depthWrite = true;
-    d.depthCompare = CompareOp::Always;
-    d.depthFormat = Format::D32F;
+    d.depthFormat = Format::D32FS8;
+    // The fragment shader's stencil replaces the reference (gl_FragStencilRefARB).
+    d.stencil = {true, CompareOp::Always, 0, 0xff, 0xff, StencilOp::Replace};
     d.debugName = "cascade classify";
     pipeline_ = device.createPipeline(d);
     pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
@@ -37,17 +54,21 @@ CascadeClasses::CascadeClasses(rhi::Device& device) : device_(device) {
 
 CascadeClasses::~CascadeClasses() {
     device_.waitIdle();
-    if (depth_) device_.destroy(depth_);
+    if (target_) device_.destroy(target_);
     device_.destroy(pipeline_);
     device_.destroy(pointSampler_);
 }
 
-void CascadeClasses::configureClassDraw(rhi::GraphicsPipelineDesc& desc) {
-    desc.vertex = &shaders::cascade_classes_vert;
-    desc.depthTest = true;
-    desc.depthWrite = false;
-    desc.depthCompare = rhi::CompareOp::Equal;
-    desc.depthFormat = rhi::Format::D32F;
+bool CascadeClasses::wanted(const rhi::Device& device) {
+    return device.caps().maskedBranches && device.caps().shaderStencilExport;
+}
+
+void CascadeClasses::configureLookupDraw(rhi::GraphicsPipelineDesc& desc, uint32_t cascade, bool blend) {
+    configureClassDraw(desc, kLookupField, uint8_t(kLookedUp | cascade | (blend ? 4u : 0u)));
+}
+
+void CascadeClasses::configureGlossyDraw(rhi::GraphicsPipelineDesc& desc, uint32_t cascade) {
+    configureClassDraw(desc, kGlossyField, uint8_t(kMarched | cascade << 4));
 }
 
 void CascadeClasses::classify(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
@@ -57,13 +78,13 @@ void CascadeClasses::classify(rhi::CommandList& cmd, const engine::CameraMatrice
     using namespace rhi;
     // Made on the first frame and when the lookup's size changes (a resize or gi.resolution), not
     // in a steady-state frame. Its bytes are GI's, next to the lookup targets' render.lighting.
-    if (!depth_ || device_.desc(depth_).width != width || device_.desc(depth_).height != height) {
-        if (depth_) {
+    if (!target_ || device_.desc(target_).width != width || device_.desc(target_).height != height) {
+        if (target_) {
             device_.waitIdle();
-            device_.destroy(depth_);
+            device_.destroy(target_);
         }
-        depth_ = device_.createTexture({TextureKind::Tex2D, Format::D32F, width, height, 1, 1,
-                                        kTextureDepthTarget, "cascade classes", "gi.lookup"});
+        target_ = device_.createTexture({TextureKind::Tex2D, Format::D32FS8, width, height, 1, 1,
+                                         kTextureDepthTarget, "cascade classes", "gi.lookup"});
     }
     ClassifyUniforms u;
     u.invViewProjection = camera.invViewProjection;
@@ -75,14 +96,14 @@ void CascadeClasses::classify(rhi::CommandList& cmd, const engine::CameraMatrice
     u.band = glm::vec4(blendBand, 0, 0, 0);
     u.pixels = glm::ivec4(int(divisor), int(gbuffer.width), int(gbuffer.height), 0);
     RenderPassDesc pass;
-    pass.depth = {depth_, 0, LoadOp::Clear, 1.0f};
+    pass.depth = {target_, 0, LoadOp::Clear, 1.0f, 0};
     pass.debugName = "cascade classify";
     cmd.beginRenderPass(pass);
     cmd.bindPipeline(pipeline_);
     cmd.pushUniforms(0, &u, sizeof(u));
     cmd.bindTexture(1, gbuffer.depth, pointSampler_);
     cmd.bindTexture(2, gbuffer.normal, pointSampler_);
-    cmd.draw(3); // class 0's triangle; the shader writes each texel's own depth
+    cmd.draw(3);
     cmd.endRenderPass();
 }
 

@@ -35,14 +35,14 @@ GlossyReflections::GlossyReflections(rhi::Device& device) : device_(device) {
         d.fragment = marches[c];
         pipelines_[c] = device.createPipeline(d);
     }
-    if (device.caps().maskedBranches) {
-        CascadeClasses::configureClassDraw(d);
+    if (CascadeClasses::wanted(device)) {
         d.debugName = "lpv glossy, one cascade";
         const rhi::ShaderBinary* perCascade[4] = {
             &shaders::lpv_glossy_class0_frag, &shaders::lpv_glossy_class1_frag,
             &shaders::lpv_glossy_class2_frag, &shaders::lpv_glossy_class3_frag};
-        for (size_t c = 0; c < 4; ++c) {
+        for (uint32_t c = 0; c < 4; ++c) {
             d.fragment = perCascade[c];
+            CascadeClasses::configureGlossyDraw(d, c);
             classPipelines_[c] = device.createPipeline(d);
         }
     }
@@ -84,7 +84,7 @@ void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatric
     // writes there.
     pass.colors[0] = {target, 0, 0, classes ? LoadOp::Clear : LoadOp::DontCare};
     pass.colorCount = 1;
-    if (classes) pass.depth = {classes->depth(), 0, LoadOp::Load};
+    if (classes) pass.depth = {classes->target(), 0, LoadOp::Load};
     pass.debugName = "lpv glossy";
     cmd.beginRenderPass(pass);
     std::array<std::array<rhi::TextureHandle, 3>, 4> volumes;
@@ -102,16 +102,11 @@ void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatric
         cmd.draw(3);
     } else {
         // Cascade c marches the texels whose lookup is in c and those whose lookup is in c + 1
-        // but whose march start c holds, inside a blend band or not (the march does not blend).
-        const auto last = uint32_t(cascades.size() - 1);
-        for (uint32_t c = 0; c <= last; ++c) {
+        // but whose march start c holds (the classification's glossy field).
+        for (size_t c = 0; c < cascades.size(); ++c) {
             cmd.bindPipeline(classPipelines_[c]);
             bindInputs();
-            for (const bool blend : {false, true}) {
-                if (!blend || c < last) CascadeClasses::drawClass(cmd, {c, blend, GlossyMarch::Same});
-                if (c < last && (!blend || c + 1 < last))
-                    CascadeClasses::drawClass(cmd, {c + 1, blend, GlossyMarch::Finer});
-            }
+            cmd.draw(3);
         }
     }
     cmd.endRenderPass();

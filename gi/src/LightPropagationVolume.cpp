@@ -77,11 +77,10 @@ LightPropagationVolume::LightPropagationVolume(rhi::Device& device, platforms::P
         lookupPipelines_[c] = device.createPipeline(lookup);
     }
     GraphicsPipelineDesc slice = lookup;
-    if (device.caps().maskedBranches) {
+    if (CascadeClasses::wanted(device)) {
         // Where a shader runs both sides of its branches: one draw per cascade class.
         classes_ = std::make_unique<CascadeClasses>(device);
         GraphicsPipelineDesc d = lookup;
-        CascadeClasses::configureClassDraw(d);
         d.debugName = "lpv lookup, one cascade class";
         const rhi::ShaderBinary* interior[4] = {
             &shaders::lpv_lookup_class0_frag, &shaders::lpv_lookup_class1_frag,
@@ -89,11 +88,13 @@ LightPropagationVolume::LightPropagationVolume(rhi::Device& device, platforms::P
         const rhi::ShaderBinary* band[3] = {&shaders::lpv_lookup_class0_blend_frag,
                                             &shaders::lpv_lookup_class1_blend_frag,
                                             &shaders::lpv_lookup_class2_blend_frag};
-        for (size_t c = 0; c < 4; ++c) {
+        for (uint32_t c = 0; c < 4; ++c) {
             d.fragment = interior[c];
+            CascadeClasses::configureLookupDraw(d, c, false);
             lookupClassPipelines_[c][0] = device.createPipeline(d);
             if (c == 3) continue;
             d.fragment = band[c];
+            CascadeClasses::configureLookupDraw(d, c, true);
             lookupClassPipelines_[c][1] = device.createPipeline(d);
         }
     }
@@ -396,7 +397,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         // Classified, the sky's texels are drawn by no class: cleared to what the lookup writes there.
         pass.colors[0] = {target, 0, 0, classified ? LoadOp::Clear : LoadOp::DontCare};
         pass.colorCount = 1;
-        if (classified) pass.depth = {classes_->depth(), 0, LoadOp::Load};
+        if (classified) pass.depth = {classes_->target(), 0, LoadOp::Load};
         pass.debugName = "lpv lookup";
         cmd.beginRenderPass(pass);
         std::array<std::array<rhi::TextureHandle, 3>, 4> volumes;
@@ -418,14 +419,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                     if (blend && c + 1 == cascades_.size()) continue; // the coarsest has no band
                     cmd.bindPipeline(lookupClassPipelines_[c][blend ? 1 : 0]);
                     bindInputs();
-                    for (const GlossyMarch glossy :
-                         {GlossyMarch::None, GlossyMarch::Same, GlossyMarch::Finer}) {
-                        // Classes no texel has: glossy ones with gi.glossy off, a finer march in
-                        // the finest cascade.
-                        if (glossy != GlossyMarch::None && !settings_.glossy) continue;
-                        if (glossy == GlossyMarch::Finer && c == 0) continue;
-                        CascadeClasses::drawClass(cmd, {c, blend, glossy});
-                    }
+                    cmd.draw(3);
                 }
             }
         }

@@ -2,14 +2,21 @@
 // usable region holds the point, blended into the next coarser one in a band at its border). A GPU
 // skips the branches no lane of a wave takes; a device that runs both sides of every branch
 // (rhi::Caps::maskedBranches: Mesa's llvmpipe and lavapipe) pays for every cascade at every texel.
-// There a classification pass first stores each texel's class as a depth, and the lookup and the
-// glossy march draw once per class, at that class's depth with an equal depth test: such a device
-// skips a block of texels that fails the depth test, so each texel runs one class's code.
+// There a classification pass first stores each texel's class in a stencil, and the lookup and
+// the glossy march draw once per cascade (the lookup also once per blend band), each draw's
+// stencil test selecting its field of the class: such a device skips a block of texels that fails
+// the test, so each texel runs one cascade's code.
 //
-// A class is the lookup's cascade, whether the texel lies in its blend band, and the glossy
+// A class holds the lookup's cascade, whether the texel lies in its blend band, and the glossy
 // march's cascade, which may be the next finer one (its rule tests the march's start, half a cell
-// off the surface); gi/shaders/cascade_region.glsl holds the rules and the depths,
-// cascade_classify.frag the classification.
+// off the surface); gi/shaders/cascade_region.glsl holds the rules and the stencil layout,
+// cascade_classify.frag the classification. The stencil is exported by the classification's
+// fragment shader (rhi::Caps::shaderStencilExport), so the classes cost one pass.
+//
+// Measured on llvmpipe (1280x720, the atrium, 3 cascades): a fullscreen draw whose stencil or
+// depth test fails everywhere still costs 0.5-0.8 ms (the rasterizer visits every block). The
+// classes were first depths with an equal depth test, one draw per combination of lookup and
+// glossy class (13 lookup and 8 glossy draws); stencil fields make it 5 and 3.
 #pragma once
 
 #include "engine/render/CameraMatrices.h"
@@ -23,21 +30,6 @@
 
 namespace lpv::gi {
 
-// Which cascade the glossy march of a texel runs in.
-enum class GlossyMarch : uint32_t {
-    None,  // none: gi.glossy off, the sky, or a fully rough surface
-    Same,  // the lookup's cascade
-    Finer, // the next finer one
-};
-
-struct CascadeClass {
-    uint32_t cascade = 0; // the lookup's
-    bool blend = false;   // in the cascade's blend band: the next coarser one takes a share
-    GlossyMarch glossy = GlossyMarch::None;
-    // As cascadeClassDepth's k in cascade_region.glsl.
-    uint32_t index() const { return 6 * cascade + (blend ? 3 : 0) + uint32_t(glossy); }
-};
-
 class CascadeClasses {
 public:
     explicit CascadeClasses(rhi::Device& device);
@@ -45,24 +37,29 @@ public:
     CascadeClasses(const CascadeClasses&) = delete;
     CascadeClasses& operator=(const CascadeClasses&) = delete;
 
-    // Writes every texel's class into depth(), made (or remade) at `width` x `height`, the lookup
+    // Whether `device` draws classes: it runs both sides of its branches and can export a stencil.
+    static bool wanted(const rhi::Device& device);
+
+    // Writes every texel's class into target(), made (or remade) at `width` x `height`, the lookup
     // target's size: texel t classifies G-buffer pixel t x divisor, as the lookup reads it.
     // `cascades`: finest first, 2 to 4; `blendBand`: the band's width as a fraction of a cascade's
     // half-extent.
     void classify(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                   const engine::GBufferView& gbuffer, std::span<const VolumeGrid> cascades, float blendBand,
                   bool glossy, uint32_t width, uint32_t height, uint32_t divisor);
-    // The classes: one D32F texel per lookup texel (sky: 1, which no class draw matches).
-    rhi::TextureHandle depth() const { return depth_; }
+    // The classes: a D32FS8 target whose stencil holds each lookup texel's class (sky: 0, which
+    // no draw matches). Its depth is unused.
+    rhi::TextureHandle target() const { return target_; }
 
-    // A class draw's pipeline: the class vertex shader and an equal depth test against depth().
-    static void configureClassDraw(rhi::GraphicsPipelineDesc& desc);
-    // Class `k`'s fullscreen triangle, in a render pass with depth() as its (loaded) depth target.
-    static void drawClass(rhi::CommandList& cmd, const CascadeClass& k) { cmd.draw(3, 1, 3 * k.index()); }
+    // A class draw's pipeline state, for a fullscreen triangle in a render pass with target() as
+    // its (loaded) depth target: the lookup's texels in `cascade` (inside its blend band or not),
+    // or the glossy march's texels in `cascade`.
+    static void configureLookupDraw(rhi::GraphicsPipelineDesc& desc, uint32_t cascade, bool blend);
+    static void configureGlossyDraw(rhi::GraphicsPipelineDesc& desc, uint32_t cascade);
 
 private:
     rhi::Device& device_;
-    rhi::TextureHandle depth_;
+    rhi::TextureHandle target_;
     rhi::GraphicsPipelineHandle pipeline_;
     rhi::SamplerHandle pointSampler_;
 };

@@ -36,8 +36,8 @@ public:
     // the volumes are rgba8, range-encoded. `target` is 1/divisor of the G-buffer per axis: its
     // texel t marches from G-buffer pixel t x divisor. With `classes` (classified this frame for
     // these cascades and the target's size, glossy on) each cascade marches only its own glossy
-    // classes' texels, and the rest are cleared (CascadeClasses.h); only on a device with
-    // rhi::Caps::maskedBranches.
+    // classes' texels, and the rest are cleared (CascadeClasses.h); only where
+    // CascadeClasses::wanted(device).
     void render(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                 const engine::GBufferView& gbuffer, std::span<const GlossyCascade> cascades,
                 float encodeRange, rhi::TextureHandle target, uint32_t divisor = 1,
@@ -47,7 +47,7 @@ private:
     rhi::Device& device_;
     // By cascade count - 1: each march names its cascade's textures at compile time.
     std::array<rhi::GraphicsPipelineHandle, 4> pipelines_{};
-    // By cascade, for a class draw (rhi::Caps::maskedBranches only).
+    // By cascade, for a class draw (CascadeClasses::wanted only).
     std::array<rhi::GraphicsPipelineHandle, 4> classPipelines_{};
     rhi::SamplerHandle pointSampler_, linearSampler_;
 };

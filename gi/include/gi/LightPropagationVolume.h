@@ -131,7 +131,7 @@ private:
     rhi::BufferHandle vpls_;
     rhi::ComputePipelineHandle clusterPipeline_;
     std::array<rhi::GraphicsPipelineHandle, 4> lookupPipelines_{}; // for 1..4 cascades
-    // rhi::Caps::maskedBranches: the classification, and the lookup per cascade and band (the
+    // CascadeClasses::wanted: the classification, and the lookup per cascade and band (the
     // coarsest has none).
     std::unique_ptr<CascadeClasses> classes_;
     std::array<std::array<rhi::GraphicsPipelineHandle, 2>, 4> lookupClassPipelines_{};
