@@ -107,12 +107,15 @@ void CascadeClasses::classify(rhi::CommandList& cmd, const engine::CameraMatrice
     cmd.endRenderPass();
 }
 
-void bindCascadeVolumes(rhi::CommandList& cmd, std::span<const std::array<rhi::TextureHandle, 3>> finestFirst,
-                        rhi::SamplerHandle sampler) {
+void bindCascadeReads(rhi::CommandList& cmd, const engine::GBufferView& gbuffer,
+                      std::span<const std::array<rhi::TextureHandle, 3>> finestFirst,
+                      rhi::SamplerHandle point, rhi::SamplerHandle linear) {
+    cmd.bindTexture(1, gbuffer.depth, point);
+    cmd.bindTexture(2, gbuffer.normal, point);
     for (uint32_t c = 0; c < 4; ++c)
         for (uint32_t ch = 0; ch < 3; ++ch)
             cmd.bindTexture(3 + 3 * c + ch, finestFirst[std::min<size_t>(c, finestFirst.size() - 1)][ch],
-                            sampler);
+                            linear);
 }
 
 } // namespace lpv::gi

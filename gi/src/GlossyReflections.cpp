@@ -92,9 +92,8 @@ void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatric
         volumes[c] = cascades[c].sh;
     const auto bindInputs = [&] {
         cmd.pushUniforms(0, &u, sizeof(u));
-        cmd.bindTexture(1, gbuffer.depth, pointSampler_);
-        cmd.bindTexture(2, gbuffer.normal, pointSampler_);
-        bindCascadeVolumes(cmd, std::span(volumes.data(), cascades.size()), linearSampler_);
+        bindCascadeReads(cmd, gbuffer, std::span(volumes.data(), cascades.size()), pointSampler_,
+                         linearSampler_);
     };
     if (!classes) {
         cmd.bindPipeline(pipelines_[std::min<size_t>(cascades.size(), 4) - 1]);

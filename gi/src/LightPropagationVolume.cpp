@@ -405,9 +405,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             volumes[c] = cascades_[c].result;
         const auto bindInputs = [&] {
             cmd.pushUniforms(0, &u, sizeof(u));
-            cmd.bindTexture(1, gbuffer.depth, pointSampler_);
-            cmd.bindTexture(2, gbuffer.normal, pointSampler_);
-            bindCascadeVolumes(cmd, std::span(volumes.data(), cascades_.size()), linearSampler_);
+            bindCascadeReads(cmd, gbuffer, std::span(volumes.data(), cascades_.size()), pointSampler_,
+                             linearSampler_);
         };
         if (!classified) {
             cmd.bindPipeline(lookupPipelines_[cascades_.size() - 1]);

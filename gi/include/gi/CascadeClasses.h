@@ -66,10 +66,12 @@ private:
     rhi::SamplerHandle pointSampler_;
 };
 
-// Binds the cascades' volumes as lpv_cascades.glsl declares them for the lookup and the glossy
-// march: cascade c's R, G, B at bindings 3 + 3c .. 5 + 3c, the bindings of cascades past the
+// Binds what the lookup and the glossy march both read: the G-buffer's depth and normal at
+// bindings 1 and 2 (`point`), and the cascades' volumes as lpv_cascades.glsl declares them
+// (`linear`): cascade c's R, G, B at bindings 3 + 3c .. 5 + 3c, the bindings of cascades past the
 // coarsest (`finestFirst`, 1 to 4) to the coarsest.
-void bindCascadeVolumes(rhi::CommandList& cmd, std::span<const std::array<rhi::TextureHandle, 3>> finestFirst,
-                        rhi::SamplerHandle sampler);
+void bindCascadeReads(rhi::CommandList& cmd, const engine::GBufferView& gbuffer,
+                      std::span<const std::array<rhi::TextureHandle, 3>> finestFirst,
+                      rhi::SamplerHandle point, rhi::SamplerHandle linear);
 
 } // namespace lpv::gi
