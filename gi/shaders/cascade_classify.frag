@@ -10,8 +10,8 @@
 layout(binding = 0, std140) uniform Classify {
     mat4 invViewProjection;
     vec4 gridOrigin[4]; // per cascade: xyz corner of cell 0, w: cell size
-    ivec4 grid;         // x: cells per axis, y: cascades, z: glossy march on
-    vec4 band;          // x: blend band (fraction of the half-extent)
+    ivec4 grid;         // x: cells per axis, y: cascades
+    vec4 band;          // x: blend band (fraction of the half-extent), y: glossy max roughness (0: off)
     ivec4 pixels;       // x: resolution divisor, yz: G-buffer size, w: 0 (MUL_COLUMNS_AT)
 } classify;
 layout(binding = 1) uniform sampler2D depthTexture;
@@ -56,7 +56,7 @@ void main() {
     }
     if (!found) finerHolds = previousHolds; // c is the coarsest; cascade last - 1 was tested last
     bool blend = c < last && inside < 1.0;
-    // The march skips fully rough surfaces (the lighting pass weighs it by 1 - roughness).
-    bool marched = classify.grid.z != 0 && normalRoughness.w < 1.0;
+    // The march skips the surfaces it would give nothing (as lpv_glossy.glsl does).
+    bool marched = glossyFade(clamp(normalRoughness.w, 0.0, 1.0), classify.band.y) > 0.0;
     gl_FragStencilRefARB = cascadeClassStencil(c, blend, marched, finerHolds ? c - 1 : c);
 }

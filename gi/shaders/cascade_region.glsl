@@ -33,12 +33,20 @@ bool glossyMarchHeld(vec4 origin, int cells, vec3 p, vec3 n) {
     return all(greaterThanEqual(uvw, vec3(margin))) && all(lessThanEqual(uvw, vec3(1.0 - margin)));
 }
 
+// How much glossy march a surface of this roughness gets (gi.glossy_max_roughness): all of it up to
+// 0.1 below `maxRoughness`, fading to none at it, so no seam shows where materials cross it. A
+// surface it gives nothing is not marched: the march's cost is per pixel, and on a rough surface
+// its term (weighed by 1 - roughness in the lighting pass, from a cone close to the cosine lobe)
+// adds little the diffuse light does not already hold. 0 for every surface when `maxRoughness` is
+// 0 (glossy off).
+float glossyFade(float roughness, float maxRoughness) { return clamp((maxRoughness - roughness) * 10.0, 0.0, 1.0); }
+
 // Cascade classes (gi/CascadeClasses.h): on devices that run both sides of every branch, a
 // classification pass stores each lookup texel's class as a stencil, and the lookup and the glossy
 // march draw once per cascade with a stencil test on their field, so each texel runs only its own
 // cascade's code. Bits 0-1: the lookup's cascade, bit 2: in its blend band, bit 3: looked up (the
 // sky keeps the cleared 0); bits 4-5: the glossy march's cascade, bit 6: marched (not on the sky
-// or fully rough surfaces). CascadeClasses.cpp tests the same fields.
+// or surfaces glossyFade gives nothing). CascadeClasses.cpp tests the same fields.
 int cascadeClassStencil(int lookupCascade, bool blend, bool marched, int marchCascade) {
     return 8 | lookupCascade | (blend ? 4 : 0) | (marched ? 64 | (marchCascade << 4) : 0);
 }

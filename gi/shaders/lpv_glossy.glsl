@@ -24,7 +24,7 @@ layout(binding = 0, std140) uniform Glossy {
     vec4 cameraPosition; // xyz
     vec4 gridOrigin[4];  // per cascade: xyz corner of cell 0, w: cell size
     ivec4 grid;          // x: cells per axis, y: volumes are rgba8-encoded, z: cascades (CASCADES), w: steps
-    vec4 encode;         // x: rgba8 range
+    vec4 encode;         // x: rgba8 range, y: gi.glossy_max_roughness
     ivec4 pixels;        // x: resolution divisor, yz: G-buffer size, w: 0 (see main)
 } glossy;
 layout(binding = 1) uniform sampler2D depthTexture;
@@ -67,9 +67,10 @@ void main() {
     float depth = texelFetch(depthTexture, source, 0).r;
     vec4 normalRoughness = texelFetch(normalTexture, source, 0);
     float roughness = clamp(normalRoughness.w, 0.0, 1.0);
-    // Sky, and fully rough surfaces: the lighting pass weighs the glossy term by 1 - roughness, so
-    // the march would be wasted (most of the Cornell box; the default material is rough).
-    if (depth >= 1.0 || roughness >= 1.0) {
+    // Sky, and surfaces too rough for a march (glossyFade; most of the Cornell box: the default
+    // material is fully rough).
+    float fade = glossyFade(roughness, glossy.encode.y);
+    if (depth >= 1.0 || fade <= 0.0) {
         outRadiance = vec4(0.0);
         return;
     }
@@ -114,5 +115,5 @@ void main() {
 #endif
     if (!marched) radiance = march(CASCADES - 1, p, n, r, lobe);
 #endif
-    outRadiance = vec4(radiance, 0.0);
+    outRadiance = vec4(radiance * fade, 0.0);
 }

@@ -73,7 +73,7 @@ void CascadeClasses::configureGlossyDraw(rhi::GraphicsPipelineDesc& desc, uint32
 
 void CascadeClasses::classify(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                               const engine::GBufferView& gbuffer, std::span<const VolumeGrid> cascades,
-                              float blendBand, bool glossy, uint32_t width, uint32_t height,
+                              float blendBand, float glossyMaxRoughness, uint32_t width, uint32_t height,
                               uint32_t divisor) {
     using namespace rhi;
     // Made on the first frame and when the lookup's size changes (a resize or gi.resolution), not
@@ -92,8 +92,8 @@ void CascadeClasses::classify(rhi::CommandList& cmd, const engine::CameraMatrice
         const VolumeGrid& g = cascades[std::min<size_t>(c, cascades.size() - 1)];
         u.gridOrigin[c] = glm::vec4(g.origin, g.cellSize);
     }
-    u.grid = glm::ivec4(int(cascades[0].size), int(cascades.size()), glossy ? 1 : 0, 0);
-    u.band = glm::vec4(blendBand, 0, 0, 0);
+    u.grid = glm::ivec4(int(cascades[0].size), int(cascades.size()), 0, 0);
+    u.band = glm::vec4(blendBand, glossyMaxRoughness, 0, 0);
     u.pixels = glm::ivec4(int(divisor), int(gbuffer.width), int(gbuffer.height), 0);
     RenderPassDesc pass;
     pass.depth = {target_, 0, LoadOp::Clear, 1.0f, 0};

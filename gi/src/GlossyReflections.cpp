@@ -63,8 +63,8 @@ GlossyReflections::~GlossyReflections() {
 
 void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                                const engine::GBufferView& gbuffer, std::span<const GlossyCascade> cascades,
-                               float encodeRange, rhi::TextureHandle target, uint32_t divisor,
-                               const CascadeClasses* classes) {
+                               float encodeRange, float maxRoughness, rhi::TextureHandle target,
+                               uint32_t divisor, const CascadeClasses* classes) {
     using namespace rhi;
     const auto cascade = [&](size_t c) -> const GlossyCascade& {
         return cascades[std::min(c, cascades.size() - 1)];
@@ -76,12 +76,12 @@ void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatric
         u.gridOrigin[c] = glm::vec4(cascade(c).grid.origin, cascade(c).grid.cellSize);
     u.grid =
         glm::ivec4(int(cascades[0].grid.size), encodeRange > 0.0f ? 1 : 0, int(cascades.size()), int(kSteps));
-    u.encode = glm::vec4(encodeRange, 0, 0, 0);
+    u.encode = glm::vec4(encodeRange, maxRoughness, 0, 0);
     // w = 0: the first column of the camera matrix, read at an index lavapipe cannot fold (shader).
     u.pixels = glm::ivec4(int(divisor), int(gbuffer.width), int(gbuffer.height), 0);
     RenderPassDesc pass;
-    // Classified, texels of no glossy class (sky, fully rough) are cleared to what the march
-    // writes there.
+    // Classified, texels of no glossy class (sky, too rough) are cleared to what the march writes
+    // there.
     pass.colors[0] = {target, 0, 0, classes ? LoadOp::Clear : LoadOp::DontCare};
     pass.colorCount = 1;
     if (classes) pass.depth = {classes->target(), 0, LoadOp::Load};

@@ -379,7 +379,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     if (classified) {
         auto s = scope("classify");
         classes_->classify(cmd, camera, gbuffer, std::span(grids.data(), cascades_.size()), blendBand,
-                           settings_.glossy, targetDesc.width, targetDesc.height, divisor);
+                           settings_.glossy ? settings_.glossyMaxRoughness : 0.0f, targetDesc.width,
+                           targetDesc.height, divisor);
     }
     {
         auto s = scope("lookup");
@@ -431,8 +432,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         for (size_t c = 0; c < cascades_.size(); ++c)
             glossyCascades[c] = {cascades_[c].grid, cascades_[c].result};
         glossy_.render(cmd, camera, gbuffer, std::span(glossyCascades.data(), cascades_.size()),
-                       volumes_->encoded() ? volumes_->encodeRange() : 0.0f, glossyTarget, divisor,
-                       classified ? classes_.get() : nullptr);
+                       volumes_->encoded() ? volumes_->encodeRange() : 0.0f, settings_.glossyMaxRoughness,
+                       glossyTarget, divisor, classified ? classes_.get() : nullptr);
         work(glossyWork(lookupPixels));
     } else {
         cmd.clearTexture(glossyTarget, {0, 0, 0, 0});

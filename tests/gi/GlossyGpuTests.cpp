@@ -178,6 +178,48 @@ TEST_CASE("gi: a glossy floor reflects the wall in its mirror direction") {
     }
 }
 
+// gi.glossy_max_roughness: the test floor (and back wall and ceiling, roughness 0.1) gets half the
+// march 0.05 below the limit and none above it, on each backend, drawn per cascade class or per
+// texel (rhi::Caps::maskedBranches). The volumes do not depend on it, so every texel must be half
+// the default's (to the RGBA16F G-buffer's rounding of 0.1: 0.09998), or 0.
+TEST_CASE("gi: surfaces rougher than gi.glossy_max_roughness get no glossy march, and it fades out below") {
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            for (const bool masked : {false, true}) {
+                rhi::DeviceConfig config;
+                config.maskedBranches = masked;
+                TestDevice device(backend, config);
+                const auto render = [&](const char* maxRoughness) {
+                    std::vector<std::string> settings = kGlossyOn;
+                    if (maxRoughness)
+                        settings.push_back(std::string("gi.glossy_max_roughness=") + maxRoughness);
+                    return renderGlossy(*device, settings, kEyeTowardRed, kFloorByRed, false);
+                };
+                const CornellFrame full = render(nullptr), faded = render("0.15"), none = render("0.09");
+                float peak = 0.0f, offHalf = 0.0f, largestNone = 0.0f;
+                size_t marched = 0;
+                for (size_t i = 0; i < full.glossy.texels.size(); ++i) {
+                    const glm::vec4 f = full.glossy.texels[i];
+                    peak = std::max({peak, f.r, f.g, f.b});
+                    if (std::max({f.r, f.g, f.b}) > 0.0f) ++marched;
+                    const glm::vec4 d = glm::abs(faded.glossy.texels[i] - 0.5f * f);
+                    offHalf = std::max({offHalf, d.r, d.g, d.b});
+                    const glm::vec4 n = none.glossy.texels[i];
+                    largestNone = std::max({largestNone, n.r, n.g, n.b});
+                }
+                const std::string path = masked ? "classes" : "per texel";
+                MESSAGE(backend.name << ", " << path << ": " << marched << " texels marched by default, peak "
+                                     << peak << "; at 0.15 the largest difference from half of it " << offHalf
+                                     << ", at 0.09 the largest value " << largestNone);
+                CHECK(marched > 1000);
+                CHECK(offHalf <= 1e-3f * peak);
+                CHECK(largestNone == 0.0f);
+                device.expectSilent();
+            }
+        }
+    }
+}
+
 TEST_CASE("gi: GL and Vulkan compute the same glossy reflections") {
     CornellFrame gl, vk;
     {

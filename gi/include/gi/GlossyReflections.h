@@ -33,14 +33,15 @@ public:
     GlossyReflections& operator=(const GlossyReflections&) = delete;
 
     // Overwrites `target` (finest cascade first in `cascades`, 1 to 4 of them). `encodeRange` > 0:
-    // the volumes are rgba8, range-encoded. `target` is 1/divisor of the G-buffer per axis: its
-    // texel t marches from G-buffer pixel t x divisor. With `classes` (classified this frame for
-    // these cascades and the target's size, glossy on) each cascade marches only its own glossy
+    // the volumes are rgba8, range-encoded. Surfaces as rough as `maxRoughness` or rougher get no
+    // march and a 0 (gi.glossy_max_roughness: faded out over the 0.1 below it). `target` is 1/divisor of the
+    // G-buffer per axis: its texel t marches from G-buffer pixel t x divisor. With `classes` (classified this
+    // frame for these cascades and the target's size, glossy on) each cascade marches only its own glossy
     // classes' texels, and the rest are cleared (CascadeClasses.h); only where
     // CascadeClasses::wanted(device).
     void render(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                 const engine::GBufferView& gbuffer, std::span<const GlossyCascade> cascades,
-                float encodeRange, rhi::TextureHandle target, uint32_t divisor = 1,
+                float encodeRange, float maxRoughness, rhi::TextureHandle target, uint32_t divisor = 1,
                 const CascadeClasses* classes = nullptr);
 
 private:

@@ -32,7 +32,9 @@ struct LpvSettings {
     bool damping = true;
     bool occlusion = true; // geometry volume attenuates propagation
     bool glossy = true;    // glossy reflections marched through the volume
-    uint32_t bounces = 1;  // light reflected off the geometry volume's surfels (needs occlusion)
+    // Surfaces this rough or rougher get no glossy march (lpv_glossy.glsl's glossyFade).
+    float glossyMaxRoughness = 1.0f;
+    uint32_t bounces = 1; // light reflected off the geometry volume's surfels (needs occlusion)
     // The finest cascades that add the further bounces; coarser ones carry the first bounce only.
     uint32_t bounceCascades = 1;
     // Whether cascade c (0 = finest) adds the further bounces.
