@@ -104,6 +104,7 @@ LpvSettings readLpvSettings(const engine::Config& config) {
     s.damping = config.get(kDamping);
     s.occlusion = config.get(kOcclusion);
     s.glossy = config.get(kGlossy);
+    s.glossyMaxRoughness = float(config.get(kGlossyMaxRoughness));
     s.bounces = uint32_t(config.get(kBounces));
     s.bounceCascades = uint32_t(config.get(kBounceCascades));
     s.lightRsms = uint32_t(config.get(kLightRsms));
