@@ -15,7 +15,8 @@
 //
 //   lpv_bench [--backends=vulkan,gl-egl,gl-osmesa] [--runs=N] [--kernel-runs=N] [--frames=N]
 //             [--scenes=cornell,atrium] [--parts=propagation,lights,frames,profiler,console] [--out=DIR]
-//   (--kernel-runs: propagation runs, default 101; --runs: everything else, default 5)
+//             [--set key=value ...]   (lpv_bench --help says what each does)
+#include "BenchBackends.h"
 #include "BenchShaders.h"
 
 #include "engine/Screenshot.h"
@@ -50,14 +51,9 @@
 #include <vector>
 
 using namespace lpv;
+using namespace lpv::bench;
 
 namespace {
-
-struct BenchBackend {
-    std::string name;
-    rhi::BackendKind kind;
-    rhi::GlHeadless gl = rhi::GlHeadless::EglSurfaceless;
-};
 
 double median(std::vector<double> v) {
     if (v.empty()) return -1.0;
@@ -70,14 +66,6 @@ double quantile(std::vector<double> v, double q) {
     if (v.empty()) return -1.0;
     std::sort(v.begin(), v.end());
     return v[std::min(v.size() - 1, size_t(q * double(v.size() - 1) + 0.5))];
-}
-
-std::unique_ptr<rhi::Device> makeDevice(const BenchBackend& b) {
-    rhi::DeviceConfig c;
-    c.backend = b.kind;
-    c.glHeadless = b.gl;
-    c.allowFallback = false;
-    return rhi::createDevice(c);
 }
 
 struct GpuVpl {
@@ -251,8 +239,10 @@ void benchAnalyticLights(const BenchBackend& b, int runs) {
 }
 
 // `outDir` (may be empty): where the run's profiler outputs (trace.json, frames.svg, summaries) and
-// its last frame with GI on and with GI off go, as <scene>-<backend>-*.
-void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames, const std::string& outDir) {
+// its last frame with GI on and with GI off go, as <scene>-<backend>-*. `overrides` (--set) come
+// after the benchmark's own settings.
+void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames, const std::string& outDir,
+                 const std::vector<std::string>& overrides) {
     auto device = makeDevice(b);
     engine::Config config;
     config.applyOverride("gi.enabled=true");
@@ -260,6 +250,8 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
     config.applyOverride("gi.iterations=8");
     config.applyOverride("gi.bounces=2");
     config.applyOverride(sceneName == "atrium" ? "gi.cell_size=1.0" : "gi.cell_size=0.2");
+    for (const std::string& o : overrides)
+        config.applyOverride(o);
     const engine::Scene scene = engine::buildBuiltinScene(sceneName);
     const uint32_t w = 1280, h = 720;
     engine::Renderer renderer(*device, w, h);
@@ -567,53 +559,50 @@ void consolePrediction() {
 } // namespace
 
 int main(int argc, char** argv) {
-    std::vector<BenchBackend> backends = {
-        {"vulkan", rhi::BackendKind::Vulkan},
-        {"gl-egl", rhi::BackendKind::OpenGL, rhi::GlHeadless::EglSurfaceless},
-        {"gl-osmesa", rhi::BackendKind::OpenGL, rhi::GlHeadless::OSMesa}};
+    CLI::App app{"GI benchmark: propagation kernels, analytic lights, frames with every GI feature on, the "
+                 "profiler's overhead and the console prediction, per backend"};
+    std::vector<BenchBackend> backends;
+    addBackendsOption(app, backends);
     std::vector<std::string> scenes = {"cornell", "atrium"};
+    app.add_option("--scenes", scenes, "Scenes of the frames part, comma-separated")
+        ->delimiter(',')
+        ->check(CLI::IsMember({"cornell", "atrium"}))
+        ->capture_default_str();
+    std::vector<std::string> partList = {"propagation", "lights", "frames", "profiler", "console"};
+    app.add_option("--parts", partList, "Parts to run, comma-separated")
+        ->delimiter(',')
+        ->check(CLI::IsMember(partList))
+        ->capture_default_str();
     int runs = 5, frames = 12;
     int kernelRuns = 101; // propagation: a run takes ~50 ms, and this machine's noise needs many
-    std::string parts = "propagation,lights,frames,profiler,console";
+    app.add_option("--kernel-runs", kernelRuns, "Propagation runs (medians of)")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    app.add_option("--runs", runs, "Runs of the lights part")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    app.add_option("--frames", frames, "Frames per scene and backend (frames and profiler parts)")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
     std::string outDir;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        const auto list = [&](const std::string& value) {
-            std::vector<std::string> out;
-            std::stringstream in(value);
-            std::string item;
-            while (std::getline(in, item, ','))
-                out.push_back(item);
-            return out;
-        };
-        if (a.rfind("--kernel-runs=", 0) == 0)
-            kernelRuns = std::max(1, std::atoi(a.c_str() + 14));
-        else if (a.rfind("--runs=", 0) == 0)
-            runs = std::max(1, std::atoi(a.c_str() + 7));
-        else if (a.rfind("--frames=", 0) == 0)
-            frames = std::max(1, std::atoi(a.c_str() + 9));
-        else if (a.rfind("--out=", 0) == 0)
-            outDir = a.substr(6);
-        else if (a.rfind("--parts=", 0) == 0)
-            parts = a.substr(8);
-        else if (a.rfind("--scenes=", 0) == 0)
-            scenes = list(a.substr(9));
-        else if (a.rfind("--backends=", 0) == 0) {
-            std::vector<BenchBackend> chosen;
-            for (const std::string& n : list(a.substr(11)))
-                for (const auto& b : backends)
-                    if (b.name == n) chosen.push_back(b);
-            backends = chosen;
-        } else {
-            std::fprintf(stderr,
-                         "usage: %s [--backends=...] [--runs=N] [--kernel-runs=N] [--frames=N] "
-                         "[--scenes=cornell,atrium]\n"
-                         "          [--parts=propagation,lights,frames,profiler,console] [--out=DIR]\n",
-                         argv[0]);
-            return 2;
-        }
+    app.add_option("--out", outDir, "Folder for the frames' traces, charts and screenshots");
+    std::vector<std::string> overrides;
+    app.add_option("--set", overrides,
+                   "Override a setting in the frames part, after the benchmark's own: --set "
+                   "gi.glossy_max_roughness=0.6 (repeatable)");
+    CLI11_PARSE(app, argc, argv);
+    // A wrong key or value fails before any device starts, naming the setting.
+    try {
+        engine::Config check;
+        for (const std::string& o : overrides)
+            check.applyOverride(o);
+    } catch (const engine::ConfigError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
     }
-    const auto want = [&](const char* part) { return parts.find(part) != std::string::npos; };
+    const auto want = [&](const char* part) {
+        return std::find(partList.begin(), partList.end(), part) != partList.end();
+    };
     int failures = 0;
     if (want("propagation")) {
         std::printf(
@@ -649,10 +638,12 @@ int main(int argc, char** argv) {
     }
     if (want("frames")) {
         std::printf("\n## Frames (GI on, %d frames, median)\n", frames);
+        for (const std::string& o : overrides)
+            std::printf("--set %s\n", o.c_str());
         for (const std::string& scene : scenes)
             for (const auto& b : backends) {
                 try {
-                    benchFrames(b, scene, frames, outDir);
+                    benchFrames(b, scene, frames, outDir, overrides);
                 } catch (const std::exception& e) {
                     std::printf("%s on %s failed: %s\n", scene.c_str(), b.name.c_str(), e.what());
                     ++failures;

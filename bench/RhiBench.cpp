@@ -4,6 +4,7 @@
 // was; the wall figure (submit to idle, CPU clock) is printed beside them.
 //
 //   lpv_rhi_bench [--backends=vulkan,gl-egl,gl-osmesa] [--runs=N]
+#include "BenchBackends.h"
 #include "BenchShaders.h"
 
 #include "platforms/Clock.h"
@@ -21,14 +22,9 @@
 
 using namespace lpv;
 using namespace lpv::rhi;
+using namespace lpv::bench;
 
 namespace {
-
-struct BenchBackend {
-    std::string name;
-    BackendKind kind;
-    GlHeadless gl = GlHeadless::EglSurfaceless;
-};
 
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
@@ -37,14 +33,6 @@ double median(std::vector<double> v) {
 
 double msSince(uint64_t t0) {
     return double(platforms::nowNanoseconds() - t0) / 1e6;
-}
-
-std::unique_ptr<Device> makeDevice(const BenchBackend& b) {
-    DeviceConfig config;
-    config.backend = b.kind;
-    config.glHeadless = b.gl;
-    config.allowFallback = false;
-    return createDevice(config);
 }
 
 struct Vertex {
@@ -188,26 +176,15 @@ void benchBackend(const BenchBackend& b, int runs) {
 } // namespace
 
 int main(int argc, char** argv) {
-    std::vector<BenchBackend> backends = {{"vulkan", BackendKind::Vulkan},
-                                          {"gl-egl", BackendKind::OpenGL, GlHeadless::EglSurfaceless},
-                                          {"gl-osmesa", BackendKind::OpenGL, GlHeadless::OSMesa}};
+    CLI::App app{
+        "RHI benchmark: device and pipeline creation, a compute dispatch and an MRT draw per backend"};
+    std::vector<BenchBackend> backends;
+    addBackendsOption(app, backends);
     int runs = 5;
-    for (int i = 1; i < argc; ++i) {
-        if (std::strncmp(argv[i], "--runs=", 7) == 0) {
-            runs = std::max(1, std::atoi(argv[i] + 7));
-        } else if (std::strncmp(argv[i], "--backends=", 11) == 0) {
-            std::vector<BenchBackend> chosen;
-            std::stringstream list(argv[i] + 11);
-            std::string name;
-            while (std::getline(list, name, ','))
-                for (const auto& b : backends)
-                    if (b.name == name) chosen.push_back(b);
-            backends = chosen;
-        } else {
-            std::fprintf(stderr, "usage: %s [--backends=vulkan,gl-egl,gl-osmesa] [--runs=N]\n", argv[0]);
-            return 2;
-        }
-    }
+    app.add_option("--runs", runs, "Runs per figure (the median is printed)")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    CLI11_PARSE(app, argc, argv);
     std::printf(
         "RHI benchmark, median of %d runs (ms). GPU columns: device timestamps; wall: submit to idle.\n",
         runs);
