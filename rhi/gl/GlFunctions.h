@@ -47,6 +47,7 @@ namespace lpv::rhi::gl {
     X(PFNGLGETNAMEDBUFFERSUBDATAPROC, glGetNamedBufferSubData)                                               \
     X(PFNGLMAPNAMEDBUFFERRANGEPROC, glMapNamedBufferRange)                                                   \
     X(PFNGLDELETEBUFFERSPROC, glDeleteBuffers)                                                               \
+    X(PFNGLBINDBUFFERPROC, glBindBuffer)                                                                     \
     X(PFNGLBINDBUFFERRANGEPROC, glBindBufferRange)                                                           \
     X(PFNGLCREATETEXTURESPROC, glCreateTextures)                                                             \
     X(PFNGLTEXTURESTORAGE2DPROC, glTextureStorage2D)                                                         \
@@ -104,6 +105,7 @@ namespace lpv::rhi::gl {
     X(PFNGLBINDVERTEXARRAYPROC, glBindVertexArray)                                                           \
     X(PFNGLDELETEVERTEXARRAYSPROC, glDeleteVertexArrays)                                                     \
     X(PFNGLDRAWARRAYSINSTANCEDBASEINSTANCEPROC, glDrawArraysInstancedBaseInstance)                           \
+    X(PFNGLDRAWARRAYSINDIRECTPROC, glDrawArraysIndirect)                                                     \
     X(PFNGLDRAWELEMENTSINSTANCEDBASEVERTEXBASEINSTANCEPROC, glDrawElementsInstancedBaseVertexBaseInstance)   \
     X(PFNGLDISPATCHCOMPUTEPROC, glDispatchCompute)                                                           \
     X(PFNGLMEMORYBARRIERPROC, glMemoryBarrier)                                                               \
