@@ -361,18 +361,6 @@ void GlCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uin
                                                      GLsizei(instanceCount), vertexOffset, firstInstance);
 }
 
-void GlCommandList::drawIndirect(BufferHandle args, uint64_t offset) {
-    const GlGraphicsPipeline& p = prepareDraw("drawIndirect");
-    const GlBuffer& b = device_.buffers.get(args);
-    validateDrawIndirect(b.desc, offset);
-    const Functions& gl = device_.gl();
-    // Instance ids start at 0 (DrawIndirectArgs::firstInstance is 0).
-    if (p.baseInstanceLocation >= 0) gl.glUniform1i(p.baseInstanceLocation, 0);
-    gl.glBindBuffer(GL_DRAW_INDIRECT_BUFFER, b.id);
-    gl.glDrawArraysIndirect(primitiveMode(p.desc.topology), reinterpret_cast<const void*>(uintptr_t(offset)));
-    gl.glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-}
-
 void GlCommandList::dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) {
     requirePass(false, "dispatch");
     if (!compute_) throw Error("dispatch without a compute pipeline");

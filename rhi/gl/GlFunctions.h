@@ -47,7 +47,6 @@ namespace lpv::rhi::gl {
     X(PFNGLGETNAMEDBUFFERSUBDATAPROC, glGetNamedBufferSubData)                                               \
     X(PFNGLMAPNAMEDBUFFERRANGEPROC, glMapNamedBufferRange)                                                   \
     X(PFNGLDELETEBUFFERSPROC, glDeleteBuffers)                                                               \
-    X(PFNGLBINDBUFFERPROC, glBindBuffer)                                                                     \
     X(PFNGLBINDBUFFERRANGEPROC, glBindBufferRange)                                                           \
     X(PFNGLCREATETEXTURESPROC, glCreateTextures)                                                             \
     X(PFNGLTEXTURESTORAGE2DPROC, glTextureStorage2D)                                                         \
@@ -105,7 +104,6 @@ namespace lpv::rhi::gl {
     X(PFNGLBINDVERTEXARRAYPROC, glBindVertexArray)                                                           \
     X(PFNGLDELETEVERTEXARRAYSPROC, glDeleteVertexArrays)                                                     \
     X(PFNGLDRAWARRAYSINSTANCEDBASEINSTANCEPROC, glDrawArraysInstancedBaseInstance)                           \
-    X(PFNGLDRAWARRAYSINDIRECTPROC, glDrawArraysIndirect)                                                     \
     X(PFNGLDRAWELEMENTSINSTANCEDBASEVERTEXBASEINSTANCEPROC, glDrawElementsInstancedBaseVertexBaseInstance)   \
     X(PFNGLDISPATCHCOMPUTEPROC, glDispatchCompute)                                                           \
     X(PFNGLMEMORYBARRIERPROC, glMemoryBarrier)                                                               \

@@ -56,7 +56,6 @@ public:
     void drawIndexed(uint32_t, uint32_t, uint32_t, int32_t, uint32_t) override {
         requirePass(true, "drawIndexed");
     }
-    void drawIndirect(BufferHandle args, uint64_t offset) override;
     void dispatch(uint32_t, uint32_t, uint32_t) override { requirePass(false, "dispatch"); }
     void clearTexture(TextureHandle t, const std::array<float, 4>&) override;
     void updateBuffer(BufferHandle b, uint64_t offset, const void* data, uint32_t size) override;
@@ -254,10 +253,6 @@ void NullCommandList::bindVertexBuffer(uint32_t, BufferHandle b, uint64_t) {
 }
 void NullCommandList::bindIndexBuffer(BufferHandle b, IndexType, uint64_t) {
     device_.buffers.get(b);
-}
-void NullCommandList::drawIndirect(BufferHandle args, uint64_t offset) {
-    requirePass(true, "drawIndirect");
-    validateDrawIndirect(device_.buffers.get(args).desc, offset);
 }
 void NullCommandList::bindUniformBuffer(uint32_t, BufferHandle b, uint64_t, uint64_t) {
     device_.buffers.get(b);

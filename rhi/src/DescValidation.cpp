@@ -42,15 +42,6 @@ void validateStencilState(const GraphicsPipelineDesc& desc) {
                     std::string(formatName(desc.depthFormat)));
 }
 
-void validateDrawIndirect(const BufferDesc& desc, uint64_t offset) {
-    if (!(desc.usage & kBufferIndirect))
-        throw Error("drawIndirect: buffer '" + desc.debugName + "' lacks kBufferIndirect");
-    if (offset % 4 != 0 || offset > desc.size || desc.size - offset < sizeof(DrawIndirectArgs))
-        throw Error("drawIndirect: offset " + std::to_string(offset) + " of buffer '" + desc.debugName +
-                    "' (" + std::to_string(desc.size) + " bytes) is not a multiple of 4 with " +
-                    std::to_string(sizeof(DrawIndirectArgs)) + " bytes of arguments after it");
-}
-
 bool isLayeredPass(const RenderPassDesc& desc, const Caps& caps) {
     uint32_t layered = 0;
     for (uint32_t i = 0; i < desc.colorCount && i < RenderPassDesc::kMaxColorTargets; ++i)

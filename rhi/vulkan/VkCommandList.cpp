@@ -350,18 +350,6 @@ void VulkanCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount,
     vkCmdDrawIndexed(cmd_, indexCount, instanceCount, firstIndex, vertexOffset, firstInstance);
 }
 
-void VulkanCommandList::drawIndirect(BufferHandle args, uint64_t offset) {
-    requirePass(true, "drawIndirect");
-    if (!graphics_) throw Error("drawIndirect without a graphics pipeline");
-    const VulkanBuffer& b = device_.buffers.get(args);
-    validateDrawIndirect(b.desc, offset);
-    pushBindings(device_.graphicsPipelines.get(graphics_));
-    // One draw, even for a point list that draw() splits on a CPU device (pointChunk): the count
-    // is on the GPU. Its cost there is per point drawn, small for the few points an indirect
-    // draw is for.
-    vkCmdDrawIndirect(cmd_, b.buffer, offset, 1, sizeof(DrawIndirectArgs));
-}
-
 void VulkanCommandList::dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) {
     requirePass(false, "dispatch");
     if (!compute_) throw Error("dispatch without a compute pipeline");

@@ -126,25 +126,6 @@ TEST_CASE("rhi: a long point list, some points outside the clip volume") {
     }
 }
 
-TEST_CASE("rhi: an indirect draw draws the points a dispatch listed and counted") {
-    for (const auto& backend : selectedBackends()) {
-        SUBCASE(backend.name.c_str()) {
-            TestDevice device(backend);
-            const Image img = drawIndirectPoints(*device);
-            uint32_t kept = 0;
-            for (uint32_t y = 0; y < 16; ++y)
-                for (uint32_t x = 0; x < 16; ++x) {
-                    const bool want = indirectPointKept(y * 16 + x);
-                    kept += want ? 1 : 0;
-                    REQUIRE_MESSAGE(near(img.at(x, y), want ? kBlendColor : glm::vec4(0.0f), 1e-3f),
-                                    "at " << x << "," << y << " " << describe(img.at(x, y)));
-                }
-            CHECK(kept == 51 + 37 - 7); // i % 5 == 1, i % 7 == 3, both (i % 35 == 31)
-            device.expectSilent();
-        }
-    }
-}
-
 TEST_CASE("rhi: a fragment shader exports the stencil, and masked stencil tests select its fields") {
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {

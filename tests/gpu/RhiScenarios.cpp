@@ -181,57 +181,6 @@ glm::vec4 expectedPointTexel(uint32_t x, uint32_t y) {
     return hits * kBlendColor;
 }
 
-Image drawIndirectPoints(rhi::Device& device) {
-    using namespace rhi;
-    // Arguments 16 bytes in, after values a draw must not read: {count, instances, first, first}.
-    const uint32_t initial[8] = {7, 7, 7, 7, 0, 1, 0, 0};
-    const BufferHandle args =
-        device.createBuffer({sizeof(initial), kBufferStorage | kBufferIndirect | kBufferTransfer,
-                             MemoryAccess::GpuOnly, "point args"},
-                            initial);
-    const BufferHandle list =
-        device.createBuffer({256 * 4, kBufferStorage, MemoryAccess::GpuOnly, "point list"});
-    const ComputePipelineHandle lister =
-        device.createPipeline(ComputePipelineDesc{&shaders::point_list_comp, "list points"});
-    const TextureHandle target =
-        device.createTexture({TextureKind::Tex2D, Format::RGBA16F, 16, 16, 1, 1,
-                              kTextureColorTarget | kTextureTransfer, "indirect points", "test"});
-    GraphicsPipelineDesc pd;
-    pd.vertex = &shaders::listed_points_vert;
-    pd.fragment = &shaders::constant_frag;
-    pd.topology = PrimitiveTopology::PointList;
-    pd.colorFormats = {Format::RGBA16F};
-    pd.blend = {BlendState::additive()};
-    pd.debugName = "listed points";
-    const GraphicsPipelineHandle points = device.createPipeline(pd);
-
-    CommandList& cmd = device.beginFrame();
-    cmd.bindPipeline(lister);
-    cmd.bindStorageBuffer(0, args);
-    cmd.bindStorageBuffer(1, list);
-    cmd.dispatch(256 / 64);
-    RenderPassDesc pass;
-    pass.colors[0] = {target, 0, 0, LoadOp::Clear, {0, 0, 0, 0}};
-    pass.colorCount = 1;
-    pass.debugName = "indirect points";
-    cmd.beginRenderPass(pass);
-    cmd.bindPipeline(points);
-    cmd.pushUniforms(0, &kBlendColor, sizeof(kBlendColor));
-    cmd.bindStorageBuffer(1, list);
-    cmd.drawIndirect(args, 16);
-    cmd.endRenderPass();
-    device.endFrame();
-    device.waitIdle();
-
-    Image out = readImage(device, target);
-    device.destroy(points);
-    device.destroy(lister);
-    device.destroy(target);
-    device.destroy(list);
-    device.destroy(args);
-    return out;
-}
-
 Image drawStencilFields(rhi::Device& device) {
     using namespace rhi;
     const TextureHandle target =

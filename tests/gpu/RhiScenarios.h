@@ -46,12 +46,6 @@ inline constexpr uint32_t kLayeredPointCount = 200;
 Image drawLayeredPoints(rhi::Device& device);
 glm::vec4 expectedLayeredTexel(uint32_t x, uint32_t y, uint32_t z);
 
-// 16x16 RGBA16F cleared to 0; a compute shader (tests/shaders/point_list.comp) lists the pixels
-// indirectPointKept keeps and counts them into draw arguments 16 bytes into a buffer, and one
-// drawIndirect of points from that list (tests/shaders/listed_points.vert) adds kBlendColor to each.
-Image drawIndirectPoints(rhi::Device& device);
-inline bool indirectPointKept(uint32_t pixel) { return pixel % 5 == 1 || pixel % 7 == 3; }
-
 // 16x16 RGBA16F cleared to 0 with a D32FS8 target whose stencil is cleared to kStencilClear. A
 // fragment shader exports each pixel's stencil (tests/shaders/stencil_export.frag: x & 3 in bits
 // 0-1, y & 3 in bits 4-5; columns 12-15 keep the clear); then three fullscreen draws add

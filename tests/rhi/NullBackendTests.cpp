@@ -130,27 +130,6 @@ TEST_CASE("null backend: frame and pass misuse is reported") {
           std::string::npos);
 }
 
-TEST_CASE("null backend: an indirect draw needs an indirect buffer with room for its arguments") {
-    auto device = nullDevice();
-    const BufferHandle storage = device->createBuffer({32, kBufferStorage, MemoryAccess::GpuOnly, "list"});
-    const BufferHandle args =
-        device->createBuffer({32, kBufferStorage | kBufferIndirect, MemoryAccess::GpuOnly, "args"});
-    CommandList& cmd = device->beginFrame();
-    CHECK_THROWS_AS(cmd.drawIndirect(args), Error); // outside a render pass
-    RenderPassDesc pass;
-    cmd.beginRenderPass(pass);
-    cmd.drawIndirect(args, 16);
-    CHECK(errorOf([&] { cmd.drawIndirect(storage); }) == "drawIndirect: buffer 'list' lacks kBufferIndirect");
-    CHECK(errorOf([&] { cmd.drawIndirect(args, 6); }) == "drawIndirect: offset 6 of buffer 'args' (32 bytes) "
-                                                         "is not a multiple of 4 with 16 bytes of arguments "
-                                                         "after it");
-    CHECK(errorOf([&] { cmd.drawIndirect(args, 20); }).find("offset 20") != std::string::npos);
-    cmd.endRenderPass();
-    device->endFrame();
-    device->destroy(args);
-    device->destroy(storage);
-}
-
 TEST_CASE("null backend: a layered pass is refused without the capability, with mixed targets or depth") {
     for (const bool capable : {false, true}) {
         auto device = nullDevice(capable);

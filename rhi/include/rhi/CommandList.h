@@ -52,15 +52,6 @@ struct Viewport {
 
 inline constexpr uint64_t kWholeSize = std::numeric_limits<uint64_t>::max();
 
-// What drawIndirect reads from its buffer (the layout of VkDrawIndirectCommand and of GL's
-// DrawArraysIndirectCommand). firstInstance must be 0: not every device draws with another.
-struct DrawIndirectArgs {
-    uint32_t vertexCount = 0;
-    uint32_t instanceCount = 1;
-    uint32_t firstVertex = 0;
-    uint32_t firstInstance = 0;
-};
-
 class CommandList {
 public:
     virtual ~CommandList() = default;
@@ -93,10 +84,6 @@ public:
                       uint32_t firstInstance = 0) = 0;
     virtual void drawIndexed(uint32_t indexCount, uint32_t instanceCount = 1, uint32_t firstIndex = 0,
                              int32_t vertexOffset = 0, uint32_t firstInstance = 0) = 0;
-    // A draw whose arguments (DrawIndirectArgs) are read from `args` at `offset` when it runs, so
-    // a dispatch recorded before it can decide how many vertices it draws (its writes are visible,
-    // as every dispatch's are). `args` needs kBufferIndirect; `offset` is a multiple of 4.
-    virtual void drawIndirect(BufferHandle args, uint64_t offset = 0) = 0;
     virtual void dispatch(uint32_t groupsX, uint32_t groupsY = 1, uint32_t groupsZ = 1) = 0;
 
     // Transfers; only outside a render pass.
