@@ -13,13 +13,13 @@ namespace lpv::rhi {
 // beyond the device's limits.
 void validateTextureDesc(const TextureDesc& desc, const Caps& caps);
 
-// Whether a pass is layered (ColorAttachment::layered). Throws rhi::Error naming the pass when it
-// mixes layered and single-layer targets, has a depth target, or the device lacks
-// Caps::vertexShaderLayer. The backends check that the layer counts agree.
 // Throws rhi::Error naming the pipeline when it tests the stencil without a depth format that
 // has one.
 void validateStencilState(const GraphicsPipelineDesc& desc);
 
+// Whether a pass is layered (ColorAttachment::layered). Throws rhi::Error naming the pass when it
+// mixes layered and single-layer targets, has a depth target, or the device lacks
+// Caps::vertexShaderLayer. The backends check that the layer counts agree.
 bool isLayeredPass(const RenderPassDesc& desc, const Caps& caps);
 
 // Colour target `index` of a layered pass, `layers` layers (or slices) at its mip: throws unless it
