@@ -1,5 +1,5 @@
 // Where a point lies in a cascade, and which cascade answers for it: shared by the lookup, the
-// glossy march (lpv_cascades.glsl) and the cascade classification (cascade_classify.frag). No
+// glossy march (lpv_cascades.glsl) and the cascade classification (cascade_classify_body.glsl). No
 // resources, so a stage may include it without declaring the volumes.
 #ifndef CASCADE_REGION_GLSL
 #define CASCADE_REGION_GLSL

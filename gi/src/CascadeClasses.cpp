@@ -12,7 +12,7 @@
 namespace lpv::gi {
 namespace {
 
-// std140 block `Classify` of cascade_classify.frag.
+// std140 block `Classify` of cascade_classify_body.glsl.
 struct ClassifyUniforms {
     glm::mat4 invViewProjection;
     glm::vec4 gridOrigin[4];
@@ -43,19 +43,25 @@ CascadeClasses::CascadeClasses(rhi::Device& device) : device_(device) {
     using namespace rhi;
     GraphicsPipelineDesc d;
     d.vertex = &engine::shaders::fullscreen_vert;
-    d.fragment = &shaders::cascade_classify_frag;
     d.depthFormat = Format::D32FS8;
     // The fragment shader's stencil replaces the reference (gl_FragStencilRefARB).
     d.stencil = {true, CompareOp::Always, 0, 0xff, 0xff, StencilOp::Replace};
     d.debugName = "cascade classify";
-    pipeline_ = device.createPipeline(d);
+    const rhi::ShaderBinary* byCount[3] = {&shaders::cascade_classify_2_frag,
+                                           &shaders::cascade_classify_3_frag,
+                                           &shaders::cascade_classify_4_frag};
+    for (size_t i = 0; i < pipelines_.size(); ++i) {
+        d.fragment = byCount[i];
+        pipelines_[i] = device.createPipeline(d);
+    }
     pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
 }
 
 CascadeClasses::~CascadeClasses() {
     device_.waitIdle();
     if (target_) device_.destroy(target_);
-    device_.destroy(pipeline_);
+    for (rhi::GraphicsPipelineHandle p : pipelines_)
+        device_.destroy(p);
     device_.destroy(pointSampler_);
 }
 
@@ -92,14 +98,14 @@ void CascadeClasses::classify(rhi::CommandList& cmd, const engine::CameraMatrice
         const VolumeGrid& g = cascades[std::min<size_t>(c, cascades.size() - 1)];
         u.gridOrigin[c] = glm::vec4(g.origin, g.cellSize);
     }
-    u.grid = glm::ivec4(int(cascades[0].size), int(cascades.size()), 0, 0);
+    u.grid = glm::ivec4(int(cascades[0].size), 0, 0, 0);
     u.band = glm::vec4(blendBand, glossyMaxRoughness, 0, 0);
     u.pixels = glm::ivec4(int(divisor), int(gbuffer.width), int(gbuffer.height), 0);
     RenderPassDesc pass;
     pass.depth = {target_, 0, LoadOp::Clear, 1.0f, 0};
     pass.debugName = "cascade classify";
     cmd.beginRenderPass(pass);
-    cmd.bindPipeline(pipeline_);
+    cmd.bindPipeline(pipelines_[cascades.size() - 2]);
     cmd.pushUniforms(0, &u, sizeof(u));
     cmd.bindTexture(1, gbuffer.depth, pointSampler_);
     cmd.bindTexture(2, gbuffer.normal, pointSampler_);

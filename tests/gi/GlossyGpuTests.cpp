@@ -238,7 +238,7 @@ TEST_CASE("gi: GL and Vulkan compute the same glossy reflections") {
 
 namespace {
 
-// Each lookup texel's cascade class as cascade_classify.frag finds it, from the read-back depth
+// Each lookup texel's cascade class as cascade_classify_body.glsl finds it, from the read-back depth
 // (the lookup's cascade and whether it lies in the blend band; the glossy march's cascade needs the
 // normal, which the frame does not keep): counts by 2 x cascade + band.
 std::vector<uint32_t> lookupClassCounts(const CornellFrame& f) {

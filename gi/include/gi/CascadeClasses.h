@@ -10,7 +10,7 @@
 // A class holds the lookup's cascade, whether the texel lies in its blend band, and the glossy
 // march's cascade, which may be the next finer one (its rule tests the march's start, half a cell
 // off the surface); gi/shaders/cascade_region.glsl holds the rules and the stencil layout,
-// cascade_classify.frag the classification. The stencil is exported by the classification's
+// cascade_classify_body.glsl the classification. The stencil is exported by the classification's
 // fragment shader (rhi::Caps::shaderStencilExport), so the classes cost one pass.
 //
 // Why stencil fields: the classes were first depths with an equal depth test, so each draw matched
@@ -63,7 +63,8 @@ public:
 private:
     rhi::Device& device_;
     rhi::TextureHandle target_;
-    rhi::GraphicsPipelineHandle pipeline_;
+    // By cascade count - 2: the classification for 2 to 4 cascades.
+    std::array<rhi::GraphicsPipelineHandle, 3> pipelines_{};
     rhi::SamplerHandle pointSampler_;
 };
 
