@@ -19,11 +19,16 @@
 //   cascade's glossy classes (gi/CascadeClasses.h).
 #include "lpv_cascades.glsl"
 
+// GlossyReflections::kSteps. A constant, and a step outside the volume weighs 0 instead of ending
+// the loop: the march unrolls into straight code, which llvmpipe ran 15-25% faster than the loop
+// with a uniform count and a break (interleaved runs, the benchmark's atrium).
+const int GLOSSY_STEPS = 4;
+
 layout(binding = 0, std140) uniform Glossy {
     mat4 invViewProjection;
     vec4 cameraPosition; // xyz
     vec4 gridOrigin[4];  // per cascade: xyz corner of cell 0, w: cell size
-    ivec4 grid;          // x: cells per axis, y: volumes are rgba8-encoded, z: cascades (CASCADES), w: steps
+    ivec4 grid;          // x: cells per axis, y: volumes are rgba8-encoded, z: cascades (CASCADES), w: 0
     vec4 encode;         // x: rgba8 range, y: gi.glossy_max_roughness
     ivec4 pixels;        // x: resolution divisor, yz: G-buffer size, w: 0 (see main)
 } glossy;
@@ -49,11 +54,12 @@ vec3 march(int c, vec3 p, vec3 n, vec3 r, vec4 lobe) {
     vec3 start = p + 0.5 * cell * n;
     vec3 sum = vec3(0.0);
     float weights = 0.0;
-    for (int step = 1; step <= glossy.grid.w; ++step) {
+    for (int step = 1; step <= GLOSSY_STEPS; ++step) {
         vec3 q = start + r * (cell * float(step));
         vec3 uvw = uvwIn(c, q);
-        if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) break; // left the volume
-        float w = 1.0 / float(step);
+        // A step that left the volume weighs nothing (the ray does not come back into a box).
+        bool inside = all(greaterThanEqual(uvw, vec3(0.0))) && all(lessThanEqual(uvw, vec3(1.0)));
+        float w = inside ? 1.0 / float(step) : 0.0;
         sum += w * max(project(c, uvw, lobe), vec3(0.0));
         weights += w;
     }

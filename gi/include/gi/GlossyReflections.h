@@ -25,6 +25,7 @@ struct GlossyCascade {
 class GlossyReflections {
 public:
     // Cells marched per pixel: the talk's "4 cells is sufficient for moderately glossy objects".
+    // lpv_glossy.glsl has it as GLOSSY_STEPS.
     static constexpr uint32_t kSteps = 4;
 
     explicit GlossyReflections(rhi::Device& device);
