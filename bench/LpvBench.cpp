@@ -44,8 +44,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>

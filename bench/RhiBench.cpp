@@ -14,9 +14,7 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <cstring>
 #include <functional>
-#include <sstream>
 #include <string>
 #include <vector>
 
