@@ -20,9 +20,12 @@ layout(binding = 12) uniform sampler3D lpv3r;
 layout(binding = 13) uniform sampler3D lpv3g;
 layout(binding = 14) uniform sampler3D lpv3b;
 
-// `range` > 0: the volumes are rgba8, range-encoded.
+// `range` > 0: the volumes are rgba8, range-encoded. The volumes have one mip, and an explicit
+// LOD spares llvmpipe the per-quad derivatives an implicit one computes (undefined anyway inside
+// the march's and the lookup's per-texel branches): interleaved runs, the atrium's lookup 9% and
+// glossy march 3-8% faster, the same texels.
 vec3 projectVolumes(sampler3D r, sampler3D g, sampler3D b, vec3 uvw, vec4 lobe, float range) {
-    vec4 sr = texture(r, uvw), sg = texture(g, uvw), sb = texture(b, uvw);
+    vec4 sr = textureLod(r, uvw, 0.0), sg = textureLod(g, uvw, 0.0), sb = textureLod(b, uvw, 0.0);
     if (range > 0.0) sr = decodeShRange(sr, range), sg = decodeShRange(sg, range), sb = decodeShRange(sb, range);
     return vec3(dot(sr, lobe), dot(sg, lobe), dot(sb, lobe));
 }
