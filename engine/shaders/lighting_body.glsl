@@ -1,6 +1,6 @@
 // Deferred lighting into the HDR target: the shadowed sun, punctual lights, emissive, and the
 // indirect irradiance (filled by the GI, or the ambient constant) times SSAO. Lambertian diffuse,
-// plus the GI's glossy radiance under a Schlick Fresnel weight (0 without GI). Two variants
+// plus the GI's glossy radiance weighted by the GGX lobe's directional albedo (0 without GI). Two variants
 // (engine/CMakeLists.txt): `lighting` for frames where no punctual light has a shadow map, and
 // `lighting_shadowed` (LIGHT_SHADOWS) with the lights' shadow atlas; the renderer picks one per
 // frame. With the shadow lookups compiled in, even unexecuted, llvmpipe's lighting pass took 30%
@@ -25,6 +25,8 @@ layout(binding = 8, std430) readonly buffer Lights {
     PunctualLight lights[];
 };
 layout(binding = 9) uniform sampler2D glossyTexture;
+// engine/render/SpecularAlbedo.h: x cos(view angle), y roughness; r scale and g bias of F0.
+layout(binding = 12) uniform sampler2D specularAlbedoTexture;
 #ifdef LIGHT_SHADOWS
 // Spot and point lights with a shadow map this frame (LightShadows): views in tiles of one atlas.
 layout(binding = 10, std140) uniform LightShadows {
@@ -193,15 +195,18 @@ void main() {
     vec3 direct = albedo / PI * irradiance;
     vec3 indirect = albedo / PI * light.irradiance * ao;
     vec3 emissive = textureLod(emissiveTexture, vUv, 0.0).rgb;
-    // Glossy: Schlick Fresnel (F0 4% for dielectrics, the albedo for metals), faded out with
-    // roughness since the glossy pass already widens its cone toward the diffuse lobe. Added on top
-    // of the diffuse without taking its share away, so frames without GI (glossy 0) are unchanged;
-    // the small energy gain at grazing angles is accepted.
+    // Glossy: the march gathered the radiance around the mirror direction over a cone widened by
+    // roughness; the fraction of it the lobe sends to the eye is F0 x scale + bias (F0 4% for
+    // dielectrics, the albedo for metals; the split sum, SpecularAlbedo.h). Table texel i holds
+    // cos = i / (size - 1), hence the half-texel inset. Added on top of the diffuse without taking
+    // its share away, so frames without GI (glossy 0) are unchanged.
     float roughness = clamp(textureLod(normalTexture, vUv, 0.0).a, 0.0, 1.0);
     vec3 f0 = mix(vec3(0.04), albedo, albedoMetal.a);
     float cosView = max(dot(n, normalize(frame.cameraPosition.xyz - p)), 0.0);
-    vec3 fresnel = f0 + (1.0 - f0) * pow(1.0 - cosView, 5.0);
-    vec3 glossy = fresnel * (1.0 - roughness) * light.glossy * ao;
+    float tableSize = float(textureSize(specularAlbedoTexture, 0).x);
+    vec2 tableUv = (vec2(cosView, roughness) * (tableSize - 1.0) + 0.5) / tableSize;
+    vec2 scaleBias = textureLod(specularAlbedoTexture, tableUv, 0.0).rg;
+    vec3 glossy = (f0 * scaleBias.x + scaleBias.y) * light.glossy * ao;
 
     vec3 color = direct + indirect + glossy + emissive;
     if (debugView == 1) color = albedo;

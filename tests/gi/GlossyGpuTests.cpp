@@ -5,6 +5,7 @@
 #include "../render/CornellFrame.h"
 #include "../support/TestDevice.h"
 
+#include "engine/render/SpecularAlbedo.h"
 #include "engine/scene/BuiltinScenes.h"
 #include "gi/GlossyReflections.h"
 
@@ -160,7 +161,7 @@ TEST_CASE("gi: a glossy floor reflects the wall in its mirror direction") {
             uint32_t x = 0, y = 0;
             REQUIRE(towardRed.pixelOf(kFloorByRed, x, y));
             const glm::vec4 shown = towardRed.hdr.at(x, y);
-            MESSAGE(backend.name << ": glossy term after the Fresnel weight " << describe(shown));
+            MESSAGE(backend.name << ": glossy term after the specular weight " << describe(shown));
             CHECK(shown.r > 1.2f * shown.g);
 
             std::vector<std::string> off = kGlossyOn;
@@ -173,6 +174,71 @@ TEST_CASE("gi: a glossy floor reflects the wall in its mirror direction") {
                 maxShown = std::max({maxShown, t.r, t.g, t.b});
             CHECK(maxGlossy == 0.0f);
             CHECK(maxShown == 0.0f);
+            device.expectSilent();
+        }
+    }
+}
+
+// The lighting pass weighs the glossy radiance by the GGX lobe's directional albedo
+// (engine/render/SpecularAlbedo.h), F0 4% for the white dielectric floor: on floor pixels from
+// near the eye (cos 0.7) to the back wall (cos 0.1), smooth (0.1) and rough (0.6), the shown term
+// over the marched radiance is the table's weight at the pixel's own view angle. (The former
+// weight, Schlick x (1 - roughness), is 2.7x the table's at cos 0.1 and half of it at cos 0.7 for
+// roughness 0.6.)
+TEST_CASE("gi: the glossy term is weighted by the lobe's directional albedo") {
+    const engine::SpecularAlbedoTable& table = engine::specularAlbedoTable();
+    const glm::vec3 eye(0.0f, 0.5f, 2.5f);
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            for (const float roughness : {0.1f, 0.6f}) {
+                engine::Scene scene = glossyCornell(eye, {0.0f, 0.0f, 0.5f});
+                for (engine::Material& m : scene.materials)
+                    if (m.name == "white") m.roughness = roughness;
+                std::vector<std::string> settings = kGlossyOn;
+                settings.push_back("gi.resolution=full"); // the marched texel is the pixel's own
+                const CornellFrame f = renderSceneFrame(*device, scene, settings);
+                size_t compared = 0, dim = 0;
+                float worst = 0.0f, cosMin = 1.0f, cosMax = 0.0f;
+                // Every 8th pixel each way that shows the floor (its surface point at height 0).
+                for (uint32_t py = 4; py < f.height; py += 8)
+                    for (uint32_t px = 4; px < f.width; px += 8) {
+                        const float depth = f.depth.at(px, py).x;
+                        if (depth >= 1.0f) continue;
+                        const glm::vec2 uv((float(px) + 0.5f) / float(f.width),
+                                           (float(py) + 0.5f) / float(f.height));
+                        const glm::vec4 w =
+                            f.camera.invViewProjection * glm::vec4(uv * 2.0f - 1.0f, depth, 1.0f);
+                        const glm::vec3 p = glm::vec3(w) / w.w;
+                        if (std::fabs(p.y) > 2e-3f) continue;
+                        const float cosView = glm::normalize(eye - p).y;
+                        const glm::vec4 marched = f.glossyAt(px, py), shown = f.hdr.at(px, py);
+                        const float in = marched.r + marched.g + marched.b;
+                        // Halves keep their 11 bits from 6.1e-5 up; below it (the dim floor under
+                        // the eye, the weight's 4% on a faint march) they are subnormal.
+                        if (std::min({shown.r, shown.g, shown.b}) < 6.2e-5f) {
+                            ++dim;
+                            continue;
+                        }
+                        const engine::SpecularAlbedo s = table.at(cosView, roughness);
+                        const float expected = 0.04f * s.scale + s.bias;
+                        const float measured = (shown.r + shown.g + shown.b) / in;
+                        worst = std::max(worst, std::fabs(measured - expected) / expected);
+                        cosMin = std::min(cosMin, cosView);
+                        cosMax = std::max(cosMax, cosView);
+                        ++compared;
+                    }
+                MESSAGE(backend.name << ", roughness " << roughness << ": " << compared
+                                     << " floor points (and " << dim << " too dim to tell), cos(view) "
+                                     << cosMin << " to " << cosMax
+                                     << ", largest relative difference from the table's weight " << worst);
+                CHECK(compared >= 16);
+                CHECK(cosMin < 0.15f);
+                CHECK(cosMax > 0.6f);
+                // RGBA16F targets, an RG16F table and the GPU's filtering weights: 1% (measured
+                // 0.1%).
+                CHECK(worst <= 0.01f);
+            }
             device.expectSilent();
         }
     }

@@ -3,11 +3,13 @@
 
 #include "EngineShaders.h"
 #include "engine/profiler/FrameProfiler.h"
+#include "engine/render/SpecularAlbedo.h"
 #include "rhi/Error.h"
 
 #define GLM_FORCE_DEPTH_ZERO_TO_ONE
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/packing.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -117,6 +119,7 @@ Renderer::Renderer(rhi::Device& device, uint32_t width, uint32_t height)
     compare.debugName = "shadow compare";
     shadowCompare_ = device.createSampler(compare);
     createTargets(uint32_t(std::get<int64_t>(kShadowMapSize.decl().defaultValue)));
+    createSpecularAlbedo();
     createPipelines();
     lightShadows_ = std::make_unique<LightShadows>(device);
 }
@@ -127,6 +130,7 @@ Renderer::~Renderer() {
     lightShadows_.reset();
     if (directLights_) device_.destroy(directLights_);
     destroyTargets();
+    device_.destroy(specularAlbedo_);
     for (auto p : {gbufferPipeline_, shadowPipeline_, ssaoPipeline_, ssaoBlurPipeline_, lightingPipeline_,
                    lightingShadowedPipeline_, tonemapPipeline_})
         device_.destroy(p);
@@ -155,6 +159,18 @@ void Renderer::createTargets(uint32_t shadowSize) {
     targets_.shadow =
         device_.createTexture({TextureKind::Tex2D, Format::D32F, shadowSize, shadowSize, 1, 1,
                                kTextureDepthTarget | kTextureSampled, "sun shadow map", "render.shadow"});
+}
+
+void Renderer::createSpecularAlbedo() {
+    const SpecularAlbedoTable& table = specularAlbedoTable();
+    constexpr uint32_t n = SpecularAlbedoTable::kSize;
+    std::vector<uint32_t> halves(table.texels.size()); // RG16F: scale, bias
+    for (size_t i = 0; i < halves.size(); ++i)
+        halves[i] = glm::packHalf2x16({table.texels[i].scale, table.texels[i].bias});
+    specularAlbedo_ = device_.createTexture({rhi::TextureKind::Tex2D, rhi::Format::RG16F, n, n, 1, 1,
+                                             rhi::kTextureSampled | rhi::kTextureTransfer, "specular albedo",
+                                             "render.lighting"});
+    device_.uploadTexture(specularAlbedo_, 0, halves.data(), halves.size() * sizeof(uint32_t));
 }
 
 void Renderer::createIndirectTargets(uint32_t divisor) {
@@ -450,14 +466,16 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
                            cmd.bindTexture(7, targets_.indirect, pointClamp_);
                            cmd.bindStorageBuffer(8, lightBuffer);
                            cmd.bindTexture(9, targets_.glossy, pointClamp_);
+                           cmd.bindTexture(12, specularAlbedo_, linearClamp_);
                            if (!lightShadows) return;
                            cmd.pushUniforms(10, &lightShadows_->uniforms(), sizeof(LightShadowUniforms));
                            cmd.bindTexture(11, lightShadows_->atlas(targets_.shadow), shadowCompare_);
                        });
         cmd.endMarker();
-        // Each shadowed light adds its 3x3 compares where it lights (counted as every pixel).
-        work(fullscreenWork(pixels, 8 + 9 * 4 + 9 * uint64_t(lightShadows_->activeCount()),
-                            120 + 40 * uint64_t(directLights), 4 * 8 + 8));
+        // Each shadowed light adds its 3x3 compares where it lights (counted as every pixel); the
+        // specular albedo is a bilinear fetch of four texels.
+        work(fullscreenWork(pixels, 12 + 9 * 4 + 9 * uint64_t(lightShadows_->activeCount()),
+                            130 + 40 * uint64_t(directLights), 4 * 12 + 8));
     }
     if (indirectDivisor_ > 1) {
         // The bilateral rebuild of the pixels the GI lookup skipped runs inside the lighting pass,

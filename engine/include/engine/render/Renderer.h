@@ -94,6 +94,7 @@ private:
         rhi::TextureHandle albedo, normal, emissive, depth, aoRaw, ao, indirect, glossy, hdr, output, shadow;
     };
     void createTargets(uint32_t shadowSize);
+    void createSpecularAlbedo();
     // The indirect and glossy targets at 1/divisor of the frame per axis (IndirectLighting).
     void createIndirectTargets(uint32_t divisor);
     void destroyTargets();
@@ -110,6 +111,8 @@ private:
     rhi::GraphicsPipelineHandle gbufferPipeline_, shadowPipeline_, ssaoPipeline_, ssaoBlurPipeline_,
         lightingPipeline_, lightingShadowedPipeline_, tonemapPipeline_;
     rhi::SamplerHandle linearClamp_, pointClamp_, shadowCompare_;
+    // The glossy term's weight per view angle and roughness (SpecularAlbedoTable), made once.
+    rhi::TextureHandle specularAlbedo_;
     std::unique_ptr<GpuScene> scene_;
     Bounds bounds_;
     SunLight sun_;

@@ -1,0 +1,40 @@
+// How much of the light a glossy surface gathers from around its mirror direction it reflects
+// toward the viewer: the second factor of the split-sum approximation (Karis 2013, "Real Shading in
+// Unreal Engine 4"). The GI's glossy march gathers radiance over a cone widened by roughness (the
+// first factor); the lighting pass weighs it by F0 x scale + bias from this table instead of a plain
+// Schlick Fresnel, which on rough surfaces at grazing angles reflected up to 4x too much.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace lpv::engine {
+
+// F0 x scale + bias is the directional albedo of the specular lobe seen at that angle.
+struct SpecularAlbedo {
+    float scale = 0.0f;
+    float bias = 0.0f;
+};
+
+// The integral over GGX-distributed microfacet normals (Hammersley points, `samples` of them) of
+// the lobe seen at cos(view angle) `cosView` from a surface of perceptual `roughness` (GGX alpha =
+// roughness^2, as glTF defines it), with Smith-Schlick masking (k = alpha / 2) and Schlick's
+// Fresnel.
+SpecularAlbedo integrateSpecularAlbedo(float cosView, float roughness, uint32_t samples);
+
+// The table the lighting pass samples: size x size texels, cos(view angle) along x and roughness
+// along y, texel (i, j) holding the integral at cosView = i / (size - 1), roughness = j / (size -
+// 1) (so both ends are exact under bilinear filtering, as at()).
+struct SpecularAlbedoTable {
+    static constexpr uint32_t kSize = 32;
+    static constexpr uint32_t kSamples = 1024;
+    std::vector<SpecularAlbedo> texels; // kSize x kSize, row by row (roughness rows)
+
+    // Bilinear between the texels, as the GPU samples the table.
+    SpecularAlbedo at(float cosView, float roughness) const;
+};
+
+// Computed on first use (about 1M samples) and kept for the process.
+const SpecularAlbedoTable& specularAlbedoTable();
+
+} // namespace lpv::engine
