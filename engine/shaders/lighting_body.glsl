@@ -1,6 +1,7 @@
 // Deferred lighting into the HDR target: the shadowed sun, punctual lights, emissive, and the
-// indirect irradiance (filled by the GI, or the ambient constant) times SSAO. Lambertian diffuse,
-// plus the GI's glossy radiance weighted by the GGX lobe's directional albedo (0 without GI). Two variants
+// indirect irradiance (filled by the GI, or the ambient constant) times SSAO. Lambertian diffuse
+// (none for metals) and GGX specular from the sun and the lights, plus the GI's glossy radiance
+// weighted by the GGX lobe's directional albedo (0 without GI). Two variants
 // (engine/CMakeLists.txt): `lighting` for frames where no punctual light has a shadow map, and
 // `lighting_shadowed` (LIGHT_SHADOWS) with the lights' shadow atlas; the renderer picks one per
 // frame. With the shadow lookups compiled in, even unexecuted, llvmpipe's lighting pass took 30%
@@ -145,9 +146,40 @@ bool hasShadowMap(int i) {
 }
 #endif
 
+// The surface a pixel shows, as the direct lights see it.
+struct Surface {
+    vec3 n, v;           // normal, direction to the eye
+    vec3 f0;             // specular reflectance at normal incidence
+    float alpha2;        // GGX alpha squared (alpha = roughness^2, as glTF defines it)
+    float k;             // Smith-Schlick masking constant, alpha / 2 (SpecularAlbedo.h's model)
+    float maskView;      // the view's masking term over n.v: G1(v) / (n.v)
+};
+
+// The specular reflection of light from direction l per unit irradiance (irradiance holds n.l):
+// GGX D x Smith-Schlick G x Schlick F / (4 n.l n.v), the lobe the glossy term's weight integrates.
+vec3 specularResponse(Surface s, vec3 l) {
+    float nl = dot(s.n, l);
+    if (nl <= 0.0) return vec3(0.0);
+    vec3 h = normalize(l + s.v);
+    float nh = max(dot(s.n, h), 0.0), vh = max(dot(s.v, h), 0.0);
+    float denom = nh * nh * (s.alpha2 - 1.0) + 1.0;
+    float d = s.alpha2 / (PI * denom * denom);
+    float maskLight = 1.0 / (nl * (1.0 - s.k) + s.k); // G1(l) / (n.l)
+    vec3 fresnel = s.f0 + (1.0 - s.f0) * pow(1.0 - vh, 5.0);
+    return fresnel * (d * maskLight * s.maskView * 0.25);
+}
+
+// What a punctual light gives the surface: its irradiance (for the diffuse term) and the specular
+// radiance that irradiance reflects toward the eye.
+struct LightArrival {
+    vec3 irradiance;
+    vec3 specular;
+};
+
 // The irradiance punctual light l gives a surface at p with normal n, unshadowed: inverse square,
 // the range's window, a spot's cone.
-vec3 punctualIrradiance(PunctualLight l, vec3 p, vec3 n) {
+LightArrival punctualArrival(PunctualLight l, vec3 p, Surface s) {
+    vec3 n = s.n;
     vec3 toLight = l.positionRange.xyz - p;
     float d2 = max(dot(toLight, toLight), 1e-4);
     vec3 dir = toLight * inversesqrt(d2);
@@ -157,7 +189,8 @@ vec3 punctualIrradiance(PunctualLight l, vec3 p, vec3 n) {
         atten *= clamp(1.0 - ratio * ratio * ratio * ratio, 0.0, 1.0);
     }
     if (l.directionType.w > 1.5) atten *= smoothstep(l.cone.x, l.cone.y, dot(-dir, l.directionType.xyz));
-    return l.colorIntensity.rgb * l.colorIntensity.w * atten * max(dot(n, dir), 0.0);
+    vec3 e = l.colorIntensity.rgb * l.colorIntensity.w * atten * max(dot(n, dir), 0.0);
+    return LightArrival(e, e * specularResponse(s, dir));
 }
 
 void main() {
@@ -175,38 +208,60 @@ void main() {
     IndirectLight light = indirectAt(p, n);
     float shadow = sunShadow(p, n);
 
+    // Metals reflect no diffuse light (glTF's metallic-roughness model; the RSMs leave them out of
+    // the GI's VPLs likewise); F0 is 4% for dielectrics, the albedo for metals.
+    vec3 diffuseColor = albedo * (1.0 - albedoMetal.a);
+    float roughness = clamp(textureLod(normalTexture, vUv, 0.0).a, 0.0, 1.0);
+    vec3 v = normalize(frame.cameraPosition.xyz - p);
+    float cosView = max(dot(n, v), 0.0);
+    // The sun and the punctual lights are points: below roughness 0.1 a mirror's highlight of a
+    // point is a spike narrower than a pixel, so the direct lobe keeps at least that width.
+    float alpha = max(roughness, 0.1) * max(roughness, 0.1);
+    float k = 0.5 * alpha;
+    Surface surface = Surface(n, v, mix(vec3(0.04), albedo, albedoMetal.a), alpha * alpha, k,
+                              1.0 / (max(cosView, 1e-4) * (1.0 - k) + k));
+
     vec3 L = -frame.sunDirection.xyz;
-    vec3 irradiance = frame.sunRadiance.rgb * max(dot(n, L), 0.0) * shadow;
+    vec3 sunIrradiance = frame.sunRadiance.rgb * max(dot(n, L), 0.0) * shadow;
+    vec3 irradiance = sunIrradiance;
+    vec3 specular = sunIrradiance * specularResponse(surface, L);
 #ifdef LIGHT_SHADOWS
     // The lights without a shadow map this frame, then those with one.
-    for (int i = 0; i < frame.counts.x; ++i)
-        if (!hasShadowMap(i)) irradiance += punctualIrradiance(lights[i], p, n);
+    for (int i = 0; i < frame.counts.x; ++i) {
+        if (hasShadowMap(i)) continue;
+        LightArrival a = punctualArrival(lights[i], p, surface);
+        irradiance += a.irradiance;
+        specular += a.specular;
+    }
     for (int k = 0; k < shadows.count.x; ++k) {
         ivec4 s = shadows.light[k];
         PunctualLight l = lights[s.x];
         vec3 fromLight = p - l.positionRange.xyz;
         int view = s.z == 6 ? s.y + cubeFace(fromLight) : s.y;
-        irradiance += punctualIrradiance(l, p, n) * shadowInView(view, shadows.params[k].x, p, n, length(fromLight));
+        LightArrival a = punctualArrival(l, p, surface);
+        float lit = shadowInView(view, shadows.params[k].x, p, n, length(fromLight));
+        irradiance += a.irradiance * lit;
+        specular += a.specular * lit;
     }
 #else
-    for (int i = 0; i < frame.counts.x; ++i)
-        irradiance += punctualIrradiance(lights[i], p, n);
+    for (int i = 0; i < frame.counts.x; ++i) {
+        LightArrival a = punctualArrival(lights[i], p, surface);
+        irradiance += a.irradiance;
+        specular += a.specular;
+    }
 #endif
-    vec3 direct = albedo / PI * irradiance;
-    vec3 indirect = albedo / PI * light.irradiance * ao;
+    vec3 direct = diffuseColor / PI * irradiance + specular;
+    vec3 indirect = diffuseColor / PI * light.irradiance * ao;
     vec3 emissive = textureLod(emissiveTexture, vUv, 0.0).rgb;
     // Glossy: the march gathered the radiance around the mirror direction over a cone widened by
-    // roughness; the fraction of it the lobe sends to the eye is F0 x scale + bias (F0 4% for
-    // dielectrics, the albedo for metals; the split sum, SpecularAlbedo.h). Table texel i holds
-    // cos = i / (size - 1), hence the half-texel inset. Added on top of the diffuse without taking
-    // its share away, so frames without GI (glossy 0) are unchanged.
-    float roughness = clamp(textureLod(normalTexture, vUv, 0.0).a, 0.0, 1.0);
-    vec3 f0 = mix(vec3(0.04), albedo, albedoMetal.a);
-    float cosView = max(dot(n, normalize(frame.cameraPosition.xyz - p)), 0.0);
+    // roughness; the fraction of it the lobe sends to the eye is F0 x scale + bias (the split sum,
+    // SpecularAlbedo.h). Table texel i holds cos = i / (size - 1), hence the half-texel inset.
+    // Added on top of the diffuse without taking its share away, so frames without GI (glossy 0)
+    // are unchanged.
     float tableSize = float(textureSize(specularAlbedoTexture, 0).x);
     vec2 tableUv = (vec2(cosView, roughness) * (tableSize - 1.0) + 0.5) / tableSize;
     vec2 scaleBias = textureLod(specularAlbedoTexture, tableUv, 0.0).rg;
-    vec3 glossy = (f0 * scaleBias.x + scaleBias.y) * light.glossy * ao;
+    vec3 glossy = (surface.f0 * scaleBias.x + scaleBias.y) * light.glossy * ao;
 
     vec3 color = direct + indirect + glossy + emissive;
     if (debugView == 1) color = albedo;
@@ -214,7 +269,8 @@ void main() {
     else if (debugView == 3) color = vec3(length(p - frame.cameraPosition.xyz) / 50.0);
     else if (debugView == 4) color = vec3(ao);
     else if (debugView == 5) color = vec3(shadow);
-    else if (debugView == 6) color = indirect;  // linear indirect diffuse alone (irradiance x albedo / pi)
+    else if (debugView == 6) color = indirect;  // linear indirect diffuse alone (irradiance x diffuse colour / pi)
     else if (debugView == 7) color = glossy;    // linear glossy reflection alone, as added above
+    else if (debugView == 8) color = specular;  // linear direct specular alone (sun and lights)
     outColor = vec4(color, 1.0);
 }

@@ -27,6 +27,8 @@ void main() {
     if (dot(n, rsm.lightDirection.xyz) > 0.0) n = -n;
     vec3 albedo = draw.baseColor.rgb;
     if (draw.material.w > 0.5) albedo *= texture(baseColorTexture, vUv).rgb;
+    // Metals (material.x) reflect no diffuse light: no VPL, and no albedo for the bounces.
+    albedo *= 1.0 - draw.material.x;
     outNormal = vec4(n, 1.0);
     outFlux = vec4(albedo * rsm.fluxScale.rgb, 1.0);
 }

@@ -22,7 +22,7 @@ namespace lpv::engine {
 
 class FrameProfiler;
 
-enum class DebugView { Final, Albedo, Normals, Depth, Ssao, Shadow, Indirect, Glossy };
+enum class DebugView { Final, Albedo, Normals, Depth, Ssao, Shadow, Indirect, Glossy, Specular };
 
 struct SunLight {
     glm::vec3 direction{0.25f, -1.0f, -0.15f}; // where the light travels

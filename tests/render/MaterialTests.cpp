@@ -1,0 +1,137 @@
+// Materials in the lighting pass on each backend: the direct specular of the sun is the GGX lobe
+// the glossy term's weight integrates (engine/render/SpecularAlbedo.h), and metals reflect no
+// diffuse light, neither in the frame nor into the GI.
+#include "CornellFrame.h"
+
+#include "../support/TestDevice.h"
+
+#include "engine/scene/BuiltinScenes.h"
+
+#include <doctest/doctest.h>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+using namespace lpv;
+using namespace lpv::test;
+
+namespace {
+
+// The sun of the shadow test: a beam from the ceiling opening onto the floor.
+const glm::vec3 kSun = glm::normalize(glm::vec3(0.3f, -1.0f, 0.35f));
+// The sun's specular radiance off the floor (normal +y, F0 4%) toward `eye` from `p`, written out
+// per unit of the sun's irradiance on a surface facing it, written out from the formulas: GGX D,
+// Smith-Schlick G (k = alpha / 2), Schlick F, over 4 n.l n.v, times n.l.
+float sunSpecular(glm::vec3 p, glm::vec3 eye, float roughness) {
+    const glm::vec3 n(0.0f, 1.0f, 0.0f), l = -kSun, v = glm::normalize(eye - p), h = glm::normalize(l + v);
+    const float alpha = std::max(roughness, 0.1f) * std::max(roughness, 0.1f), a2 = alpha * alpha,
+                k = alpha / 2;
+    const float nl = glm::dot(n, l), nv = glm::dot(n, v), nh = glm::dot(n, h), vh = glm::dot(v, h);
+    const float denom = nh * nh * (a2 - 1.0f) + 1.0f;
+    const float d = a2 / (std::numbers::pi_v<float> * denom * denom);
+    const float g = nl / (nl * (1.0f - k) + k) * nv / (nv * (1.0f - k) + k);
+    const float f = 0.04f + 0.96f * std::pow(1.0f - vh, 5.0f);
+    return d * g * f / (4.0f * nl * nv) * nl;
+}
+
+engine::Scene cornellWith(const char* material, float roughness, float metallic) {
+    engine::Scene scene = engine::buildCornellBox();
+    for (engine::Material& m : scene.materials)
+        if (m.name == material) {
+            m.roughness = roughness;
+            m.metallic = metallic;
+        }
+    return scene;
+}
+
+glm::vec3 worldAt(const CornellFrame& f, uint32_t x, uint32_t y) {
+    const glm::vec2 uv((float(x) + 0.5f) / float(f.width), (float(y) + 0.5f) / float(f.height));
+    const glm::vec4 w = f.camera.invViewProjection * glm::vec4(uv * 2.0f - 1.0f, f.depth.at(x, y).x, 1.0f);
+    return glm::vec3(w) / w.w;
+}
+
+} // namespace
+
+TEST_CASE("render: the sun's specular highlight on the floor is the GGX lobe") {
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            for (const float roughness : {0.3f, 0.6f}) {
+                glm::vec3 sunRadiance(0.0f); // the scene's sun colour
+                const auto render = [&](const char* view) {
+                    return renderSceneFrame(*device, cornellWith("white", roughness, 0.0f),
+                                            {"render.ssao=false", std::string("render.debug_view=") + view},
+                                            [&](engine::Renderer& r) {
+                                                r.sun().direction = kSun;
+                                                sunRadiance = r.sun().radiance;
+                                            });
+                };
+                const CornellFrame specular = render("specular"), shadow = render("shadow");
+                size_t compared = 0;
+                float worst = 0.0f, lowest = 1e9f, highest = 0.0f;
+                for (uint32_t y = 0; y < specular.height; y += 2)
+                    for (uint32_t x = 0; x < specular.width; x += 2) {
+                        if (specular.depth.at(x, y).x >= 1.0f || shadow.hdr.at(x, y).x < 1.0f) continue;
+                        const glm::vec3 p = worldAt(specular, x, y);
+                        if (std::fabs(p.y) > 2e-3f) continue; // the sunlit floor only
+                        const float lobe = sunSpecular(p, specular.camera.position, roughness);
+                        for (int ch = 0; ch < 3; ++ch) {
+                            const float expected = lobe * sunRadiance[ch], shown = specular.hdr.at(x, y)[ch];
+                            worst = std::max(worst, std::fabs(shown - expected) / expected);
+                        }
+                        lowest = std::min(lowest, lobe);
+                        highest = std::max(highest, lobe);
+                        ++compared;
+                    }
+                MESSAGE(backend.name << ", roughness " << roughness << ": " << compared
+                                     << " sunlit floor pixels, specular per unit of sun irradiance " << lowest
+                                     << " to " << highest << ", largest relative difference from the formula "
+                                     << worst);
+                CHECK(compared >= 50);
+                CHECK(highest > 1.1f * lowest); // the lobe's shape, not a constant, is compared
+                CHECK(worst <= 0.01f);          // RGBA16F and float rounding; measured 0.3%
+            }
+            device.expectSilent();
+        }
+    }
+}
+
+// A metal red wall (the Cornell box's red paint with metallic 1) shows no diffuse light, and its
+// RSM texels carry no flux: the GI the floor beside it gets is what a black wall leaves (the same
+// volumes), where the painted wall makes the floor redder than green. (The metal's specular is the
+// direct lobe's and the glossy term's.)
+TEST_CASE("render: metals reflect no diffuse light, and bleed no colour through the GI") {
+    const glm::vec3 wallPoint(-2.75f, 1.5f, 1.0f), floorPoint(-2.2f, 0.0f, 1.5f);
+    const std::vector<std::string> settings = {"gi.enabled=true", "gi.cell_size=0.17", "gi.iterations=16",
+                                               "render.ssao=false", "render.debug_view=indirect"};
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            engine::Scene black = cornellWith("red", 1.0f, 0.0f);
+            for (engine::Material& m : black.materials)
+                if (m.name == "red") m.baseColor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+            const CornellFrame paint = renderSceneFrame(*device, cornellWith("red", 1.0f, 0.0f), settings);
+            const CornellFrame metal = renderSceneFrame(*device, cornellWith("red", 1.0f, 1.0f), settings);
+            const CornellFrame dark = renderSceneFrame(*device, black, settings);
+            uint32_t fx = 0, fy = 0, wx = 0, wy = 0;
+            REQUIRE(paint.pixelOf(floorPoint, fx, fy));
+            REQUIRE(paint.pixelOf(wallPoint, wx, wy));
+            const glm::vec4 floorPaint = paint.hdr.at(fx, fy), floorMetal = metal.hdr.at(fx, fy),
+                            floorBlack = dark.hdr.at(fx, fy);
+            MESSAGE(backend.name << ": indirect on the floor by the red wall, paint " << describe(floorPaint)
+                                 << ", metal " << describe(floorMetal) << ", black " << describe(floorBlack)
+                                 << "; on the wall, paint " << describe(paint.hdr.at(wx, wy)) << ", metal "
+                                 << describe(metal.hdr.at(wx, wy)));
+            CHECK(paint.hdr.at(wx, wy).r > 0.0f);
+            CHECK(glm::vec3(metal.hdr.at(wx, wy)) == glm::vec3(0.0f));
+            CHECK(floorPaint.r > 1.2f * floorPaint.g);
+            for (int ch = 0; ch < 3; ++ch)
+                CHECK(floorMetal[ch] == doctest::Approx(floorBlack[ch]).epsilon(1e-3));
+            CHECK(floorMetal.r < 1.1f * floorMetal.g);
+            device.expectSilent();
+        }
+    }
+}
