@@ -176,8 +176,8 @@ struct LightArrival {
     vec3 specular;
 };
 
-// The irradiance punctual light l gives a surface at p with normal n, unshadowed: inverse square,
-// the range's window, a spot's cone.
+// What punctual light l gives surface s at p, unshadowed: inverse square, the range's window, a
+// spot's cone.
 LightArrival punctualArrival(PunctualLight l, vec3 p, Surface s) {
     vec3 n = s.n;
     vec3 toLight = l.positionRange.xyz - p;
@@ -217,9 +217,9 @@ void main() {
     // The sun and the punctual lights are points: below roughness 0.1 a mirror's highlight of a
     // point is a spike narrower than a pixel, so the direct lobe keeps at least that width.
     float alpha = max(roughness, 0.1) * max(roughness, 0.1);
-    float k = 0.5 * alpha;
-    Surface surface = Surface(n, v, mix(vec3(0.04), albedo, albedoMetal.a), alpha * alpha, k,
-                              1.0 / (max(cosView, 1e-4) * (1.0 - k) + k));
+    float maskK = 0.5 * alpha;
+    Surface surface = Surface(n, v, mix(vec3(0.04), albedo, albedoMetal.a), alpha * alpha, maskK,
+                              1.0 / (max(cosView, 1e-4) * (1.0 - maskK) + maskK));
 
     vec3 L = -frame.sunDirection.xyz;
     vec3 sunIrradiance = frame.sunRadiance.rgb * max(dot(n, L), 0.0) * shadow;
@@ -257,7 +257,7 @@ void main() {
     // roughness; the fraction of it the lobe sends to the eye is F0 x scale + bias (the split sum,
     // SpecularAlbedo.h). Table texel i holds cos = i / (size - 1), hence the half-texel inset.
     // Added on top of the diffuse without taking its share away, so frames without GI (glossy 0)
-    // are unchanged.
+    // get nothing from it.
     float tableSize = float(textureSize(specularAlbedoTexture, 0).x);
     vec2 tableUv = (vec2(cosView, roughness) * (tableSize - 1.0) + 0.5) / tableSize;
     vec2 scaleBias = textureLod(specularAlbedoTexture, tableUv, 0.0).rg;

@@ -6,6 +6,7 @@
 // cube RSM (gi.point_light_rsms): the six faces' VPLs carry all the flux the light sends, times the
 // albedo; by the red wall one bleeds red and the lighting pass lights it per pixel; GL and Vulkan agree.
 #include "../render/CornellFrame.h"
+#include "../render/SpecularLobe.h"
 #include "../support/TestDevice.h"
 #include "GpuVpls.h"
 
@@ -276,7 +277,11 @@ TEST_CASE("gi: a spot light with its own RSM bleeds the colour it hits; an analy
             const std::vector<std::string> lit = {"gi.enabled=true", "gi.cell_size=0.17",
                                                   "render.ssao=false"};
             const glm::vec3 direct = directLight(*device, scene, lit, x, y);
-            const glm::vec3 want = 0.73f / 3.14159265f * spotIrradiance(spot, kFloorByRedWall, {0, 1, 0});
+            // Lambert plus the GGX lobe of the fully rough white paint (SpecularLobe.h).
+            const float reflectance =
+                0.73f / 3.14159265f + specularLobe({0, 1, 0}, rsm.camera.position - kFloorByRedWall,
+                                                   spot.position - kFloorByRedWall, 1.0f);
+            const glm::vec3 want = reflectance * spotIrradiance(spot, kFloorByRedWall, {0, 1, 0});
             MESSAGE(backend.name << ": direct light of the RSM spot " << describe(glm::vec4(direct, 1))
                                  << ", lighting.frag's formula " << describe(glm::vec4(want, 1)));
             REQUIRE(want.g > 0.1f);
@@ -378,7 +383,10 @@ TEST_CASE("gi: a point light with its own cube RSM bleeds the colour it hits; an
             const glm::vec3 direct = directLight(
                 *device, scene,
                 {"gi.enabled=true", "gi.cell_size=0.17", "render.ssao=false", "gi.point_light_rsms=1"}, x, y);
-            const glm::vec3 want = 0.73f / 3.14159265f * pointIrradiance(point, kFloorByRedWall, {0, 1, 0});
+            const float reflectance =
+                0.73f / 3.14159265f + specularLobe({0, 1, 0}, rsm.camera.position - kFloorByRedWall,
+                                                   point.position - kFloorByRedWall, 1.0f);
+            const glm::vec3 want = reflectance * pointIrradiance(point, kFloorByRedWall, {0, 1, 0});
             MESSAGE(backend.name << ": direct light of the RSM point light " << describe(glm::vec4(direct, 1))
                                  << ", lighting.frag's formula " << describe(glm::vec4(want, 1)));
             REQUIRE(want.g > 0.1f);

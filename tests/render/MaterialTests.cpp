@@ -2,6 +2,7 @@
 // the glossy term's weight integrates (engine/render/SpecularAlbedo.h), and metals reflect no
 // diffuse light, neither in the frame nor into the GI.
 #include "CornellFrame.h"
+#include "SpecularLobe.h"
 
 #include "../support/TestDevice.h"
 
@@ -13,7 +14,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 using namespace lpv;
 using namespace lpv::test;
@@ -22,21 +22,6 @@ namespace {
 
 // The sun of the shadow test: a beam from the ceiling opening onto the floor.
 const glm::vec3 kSun = glm::normalize(glm::vec3(0.3f, -1.0f, 0.35f));
-// The sun's specular radiance off the floor (normal +y, F0 4%) toward `eye` from `p`, written out
-// per unit of the sun's irradiance on a surface facing it, written out from the formulas: GGX D,
-// Smith-Schlick G (k = alpha / 2), Schlick F, over 4 n.l n.v, times n.l.
-float sunSpecular(glm::vec3 p, glm::vec3 eye, float roughness) {
-    const glm::vec3 n(0.0f, 1.0f, 0.0f), l = -kSun, v = glm::normalize(eye - p), h = glm::normalize(l + v);
-    const float alpha = std::max(roughness, 0.1f) * std::max(roughness, 0.1f), a2 = alpha * alpha,
-                k = alpha / 2;
-    const float nl = glm::dot(n, l), nv = glm::dot(n, v), nh = glm::dot(n, h), vh = glm::dot(v, h);
-    const float denom = nh * nh * (a2 - 1.0f) + 1.0f;
-    const float d = a2 / (std::numbers::pi_v<float> * denom * denom);
-    const float g = nl / (nl * (1.0f - k) + k) * nv / (nv * (1.0f - k) + k);
-    const float f = 0.04f + 0.96f * std::pow(1.0f - vh, 5.0f);
-    return d * g * f / (4.0f * nl * nv) * nl;
-}
-
 engine::Scene cornellWith(const char* material, float roughness, float metallic) {
     engine::Scene scene = engine::buildCornellBox();
     for (engine::Material& m : scene.materials)
@@ -77,7 +62,10 @@ TEST_CASE("render: the sun's specular highlight on the floor is the GGX lobe") {
                         if (specular.depth.at(x, y).x >= 1.0f || shadow.hdr.at(x, y).x < 1.0f) continue;
                         const glm::vec3 p = worldAt(specular, x, y);
                         if (std::fabs(p.y) > 2e-3f) continue; // the sunlit floor only
-                        const float lobe = sunSpecular(p, specular.camera.position, roughness);
+                        // Per unit of the sun's irradiance on a surface facing it.
+                        const float lobe =
+                            specularLobe({0.0f, 1.0f, 0.0f}, specular.camera.position - p, -kSun, roughness) *
+                            -kSun.y;
                         for (int ch = 0; ch < 3; ++ch) {
                             const float expected = lobe * sunRadiance[ch], shown = specular.hdr.at(x, y)[ch];
                             worst = std::max(worst, std::fabs(shown - expected) / expected);
