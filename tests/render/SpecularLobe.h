@@ -1,5 +1,5 @@
 // The lighting pass's direct specular written out on the CPU, for the tests that check it: GGX D,
-// Smith-Schlick G (k = alpha / 2), Schlick F (dielectric F0 4%), over 4 n.l n.v, with the lobe
+// Smith-Schlick G (k = alpha / 2), Schlick F (F0 4% for dielectrics), over 4 n.l n.v, with the lobe
 // kept at roughness 0.1 or more as lighting_body.glsl keeps it. Times the irradiance (which holds
 // n.l) it gives the reflected radiance.
 #pragma once
@@ -12,7 +12,8 @@
 
 namespace lpv::test {
 
-inline float specularLobe(glm::vec3 n, glm::vec3 toEye, glm::vec3 toLight, float roughness) {
+inline float specularLobe(glm::vec3 n, glm::vec3 toEye, glm::vec3 toLight, float roughness,
+                          float f0 = 0.04f) {
     const glm::vec3 v = glm::normalize(toEye), l = glm::normalize(toLight), h = glm::normalize(l + v);
     const float r = std::max(roughness, 0.1f), alpha = r * r, a2 = alpha * alpha, k = alpha / 2.0f;
     const float nl = glm::dot(n, l), nv = glm::dot(n, v), nh = glm::dot(n, h), vh = glm::dot(v, h);
@@ -20,7 +21,7 @@ inline float specularLobe(glm::vec3 n, glm::vec3 toEye, glm::vec3 toLight, float
     const float denom = nh * nh * (a2 - 1.0f) + 1.0f;
     const float d = a2 / (std::numbers::pi_v<float> * denom * denom);
     const float g = nl / (nl * (1.0f - k) + k) * nv / (nv * (1.0f - k) + k);
-    const float f = 0.04f + 0.96f * std::pow(1.0f - vh, 5.0f);
+    const float f = f0 + (1.0f - f0) * std::pow(1.0f - vh, 5.0f);
     return d * g * f / (4.0f * nl * nv);
 }
 
