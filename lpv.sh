@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The project's entry point for people and CI.
-#   ./lpv.sh run    install missing packages, build, render the default scene to out/ (a PNG)
+#   ./lpv.sh run    install missing packages, build, render the default scene with GI (game/lpv_game.toml)
+#                   to out/screenshot.png and its profile report to out/profile/
 #   ./lpv.sh test   install missing packages, build with warnings as errors, run every test (ctest)
 #   ./lpv.sh bench  install missing packages, build, print the benchmark figures per backend
 # Extra arguments after `run` go to the game, e.g. ./lpv.sh run --backend gl
@@ -16,8 +17,10 @@ cmake --build "$build" --parallel "$(nproc)"
 
 case "$cmd" in
 run)
+  # The sample game's config (GI on) first: the caller's --config and --set apply after it.
   mkdir -p "$root/out"
-  "$build/game/lpv_game" --screenshot "$root/out/screenshot.png" "$@"
+  "$build/game/lpv_game" --config "$root/game/lpv_game.toml" --screenshot "$root/out/screenshot.png" \
+    --profile-out "$root/out/profile" "$@"
   ;;
 test)
   cd "$build"

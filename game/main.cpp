@@ -51,11 +51,14 @@ int main(int argc, char** argv) {
     app.add_flag("--headless", opt.headless, "Never open a window");
     app.add_option("--frames", opt.frames,
                    "Frames to render (default: 1 headless, until closed in a window)");
+    // Given twice (./lpv.sh run passes its own, then the caller's), the last one wins.
     app.add_option("--screenshot", opt.screenshot,
-                   "Write the last frame: .png (sRGB) or .exr/.pfm (linear HDR)");
+                   "Write the last frame: .png (sRGB) or .exr/.pfm (linear HDR); the last one given wins")
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     app.add_option("--camera-path", opt.cameraPath, "Scripted camera over the frames: orbit or flythrough");
     app.add_option("--profile-out", opt.profileOut,
-                   "Write the profiler's trace, summary and chart into this folder");
+                   "Write the profiler's trace, summary and chart into this folder; the last one given wins")
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     app.add_option("--help-config", helpConfig, "List every setting (text or markdown) and exit")
         ->expected(0, 1);
     CLI11_PARSE(app, argc, argv);

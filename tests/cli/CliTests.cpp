@@ -103,3 +103,40 @@ TEST_CASE("cli: gi.debug_view=indirect given at startup shows the indirect view"
     CHECK(a == b);
     CHECK(a != c);
 }
+
+// What `./lpv.sh run` loads: the shipped sample config is valid and turns the GI on (its passes are
+// in the profile report), here on the null device.
+TEST_CASE("cli: the sample game's config is valid and turns GI on") {
+    const Result r = runGame("--headless --backend null --frames 1 --config " LPV_SAMPLE_CONFIG
+                             " --profile-out /tmp/lpv_cli_sample_profile");
+    INFO(r.output);
+    REQUIRE(r.exitCode == 0);
+    FILE* f = std::fopen("/tmp/lpv_cli_sample_profile/summary.md", "r");
+    REQUIRE(f != nullptr);
+    std::string summary;
+    std::array<char, 512> buffer{};
+    while (std::fgets(buffer.data(), int(buffer.size()), f))
+        summary += buffer.data();
+    std::fclose(f);
+    CHECK(summary.find("gi/cascade0/propagate") != std::string::npos);
+}
+
+// ./lpv.sh run passes its own --screenshot and --profile-out before the caller's: the last wins.
+TEST_CASE("cli: --screenshot and --profile-out given twice take the last") {
+    std::remove("/tmp/lpv_cli_first.png");
+    std::remove("/tmp/lpv_cli_last.png");
+    const Result r = runGame("--headless --backend null --frames 1 --screenshot /tmp/lpv_cli_first.png "
+                             "--screenshot /tmp/lpv_cli_last.png --profile-out /tmp/lpv_cli_first_profile "
+                             "--profile-out /tmp/lpv_cli_last_profile");
+    INFO(r.output);
+    REQUIRE(r.exitCode == 0);
+    const auto exists = [](const char* path) {
+        FILE* f = std::fopen(path, "r");
+        if (f) std::fclose(f);
+        return f != nullptr;
+    };
+    CHECK(exists("/tmp/lpv_cli_last.png"));
+    CHECK(!exists("/tmp/lpv_cli_first.png"));
+    CHECK(exists("/tmp/lpv_cli_last_profile/summary.md"));
+    CHECK(!exists("/tmp/lpv_cli_first_profile/summary.md"));
+}
