@@ -213,13 +213,8 @@ TEST_CASE("gi: the glossy term is weighted by the lobe's directional albedo") {
                 // Every 8th pixel each way that shows the floor (its surface point at height 0).
                 for (uint32_t py = 4; py < f.height; py += 8)
                     for (uint32_t px = 4; px < f.width; px += 8) {
-                        const float depth = f.depth.at(px, py).x;
-                        if (depth >= 1.0f) continue;
-                        const glm::vec2 uv((float(px) + 0.5f) / float(f.width),
-                                           (float(py) + 0.5f) / float(f.height));
-                        const glm::vec4 w =
-                            f.camera.invViewProjection * glm::vec4(uv * 2.0f - 1.0f, depth, 1.0f);
-                        const glm::vec3 p = glm::vec3(w) / w.w;
+                        if (f.depth.at(px, py).x >= 1.0f) continue;
+                        const glm::vec3 p = f.worldAt(px, py);
                         if (std::fabs(p.y) > 2e-3f) continue;
                         const float cosView = glm::normalize(eye - p).y;
                         const glm::vec4 marched = f.glossyAt(px, py), shown = f.hdr.at(px, py);
@@ -325,11 +320,8 @@ std::vector<uint32_t> lookupClassCounts(const CornellFrame& f) {
     for (uint32_t ty = 0; ty < f.indirect.height; ++ty)
         for (uint32_t tx = 0; tx < f.indirect.width; ++tx) {
             const uint32_t x = std::min(tx * d, f.width - 1), y = std::min(ty * d, f.height - 1);
-            const float depth = f.depth.at(x, y).x;
-            if (depth >= 1.0f) continue;
-            const glm::vec2 uv((float(x) + 0.5f) / float(f.width), (float(y) + 0.5f) / float(f.height));
-            const glm::vec4 w = f.camera.invViewProjection * glm::vec4(uv * 2.0f - 1.0f, depth, 1.0f);
-            const glm::vec3 p = glm::vec3(w) / w.w;
+            if (f.depth.at(x, y).x >= 1.0f) continue;
+            const glm::vec3 p = f.worldAt(x, y);
             size_t c = f.cascadeGrids.size() - 1;
             bool band = false;
             for (size_t k = 0; k + 1 < f.cascadeGrids.size(); ++k) {

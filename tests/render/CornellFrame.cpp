@@ -44,6 +44,12 @@ bool CornellFrame::pixelOf(glm::vec3 world, uint32_t& x, uint32_t& y) const {
     return std::fabs(depth.at(x, y).x - ndc.z) < 2e-3f;
 }
 
+glm::vec3 CornellFrame::worldAt(uint32_t x, uint32_t y) const {
+    const glm::vec2 uv((float(x) + 0.5f) / float(width), (float(y) + 0.5f) / float(height));
+    const glm::vec4 w = camera.invViewProjection * glm::vec4(uv * 2.0f - 1.0f, depth.at(x, y).x, 1.0f);
+    return glm::vec3(w) / w.w;
+}
+
 CornellFrame renderSceneFrame(rhi::Device& device, engine::Scene scene,
                               const std::vector<std::string>& settings,
                               const std::function<void(engine::Renderer&)>& prepare, uint32_t width,

@@ -39,6 +39,8 @@ struct CornellFrame {
 
     // The pixel a world point lands on; false when off screen or hidden behind other geometry.
     bool pixelOf(glm::vec3 world, uint32_t& x, uint32_t& y) const;
+    // The surface point pixel (x, y)'s centre shows, from the read-back depth (not on the sky).
+    glm::vec3 worldAt(uint32_t x, uint32_t y) const;
     // The glossy target's texel that holds pixel (x, y)'s answer, or its nearest.
     glm::vec4 glossyAt(uint32_t x, uint32_t y) const {
         return glossy.at(x / indirectDivisor, y / indirectDivisor);

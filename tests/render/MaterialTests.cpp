@@ -23,6 +23,7 @@ namespace {
 
 // The sun of the shadow test: a beam from the ceiling opening onto the floor.
 const glm::vec3 kSun = glm::normalize(glm::vec3(0.3f, -1.0f, 0.35f));
+
 engine::Scene cornellWith(const char* material, float roughness, float metallic) {
     engine::Scene scene = engine::buildCornellBox();
     for (engine::Material& m : scene.materials)
@@ -31,12 +32,6 @@ engine::Scene cornellWith(const char* material, float roughness, float metallic)
             m.metallic = metallic;
         }
     return scene;
-}
-
-glm::vec3 worldAt(const CornellFrame& f, uint32_t x, uint32_t y) {
-    const glm::vec2 uv((float(x) + 0.5f) / float(f.width), (float(y) + 0.5f) / float(f.height));
-    const glm::vec4 w = f.camera.invViewProjection * glm::vec4(uv * 2.0f - 1.0f, f.depth.at(x, y).x, 1.0f);
-    return glm::vec3(w) / w.w;
 }
 
 } // namespace
@@ -63,7 +58,7 @@ TEST_CASE("render: the sun's specular highlight on the floor is the GGX lobe") {
                 for (uint32_t y = 0; y < specular.height; y += 2)
                     for (uint32_t x = 0; x < specular.width; x += 2) {
                         if (specular.depth.at(x, y).x >= 1.0f || shadow.hdr.at(x, y).x < 1.0f) continue;
-                        const glm::vec3 p = worldAt(specular, x, y);
+                        const glm::vec3 p = specular.worldAt(x, y);
                         if (std::fabs(p.y) > 2e-3f) continue; // the sunlit floor only
                         // Per unit of the sun's irradiance on a surface facing it.
                         const float lobe = specularLobe({0.0f, 1.0f, 0.0f}, specular.camera.position - p,

@@ -475,8 +475,8 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
                        });
         cmd.endMarker();
         // Each shadowed light adds its 3x3 compares where it lights (counted as every pixel); the
-        // specular albedo is a bilinear fetch of four texels.
-        // GGX specular: about 40 operations for the sun and each light.
+        // specular albedo is a bilinear fetch of four texels; GGX specular takes about 40
+        // operations for the sun and for each light.
         work(fullscreenWork(pixels, 12 + 9 * 4 + 9 * uint64_t(lightShadows_->activeCount()),
                             180 + 80 * uint64_t(directLights), 4 * 12 + 8));
     }
