@@ -1,7 +1,7 @@
 // Deferred lighting into the HDR target: the shadowed sun, punctual lights, emissive, and the
 // indirect irradiance (filled by the GI, or the ambient constant) times SSAO. Lambertian diffuse
-// (none for metals) and GGX specular from the sun and the lights, plus the GI's glossy radiance
-// weighted by the GGX lobe's directional albedo (0 without GI). Two variants
+// (none for metals) and GGX specular from the sun and the lights, plus the indirect light's glossy
+// radiance weighted by the GGX lobe's directional albedo. Two variants
 // (engine/CMakeLists.txt): `lighting` for frames where no punctual light has a shadow map, and
 // `lighting_shadowed` (LIGHT_SHADOWS) with the lights' shadow atlas; the renderer picks one per
 // frame. With the shadow lookups compiled in, even unexecuted, llvmpipe's lighting pass took 30%
@@ -43,7 +43,8 @@ layout(binding = 11) uniform sampler2DShadow shadowAtlas;
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outColor;
 
-// The indirect irradiance (rgb) and glossy radiance of this pixel. With smaller indirect targets
+// The indirect irradiance (rgb) and glossy radiance (rgb, and in alpha the share of the glossy term
+// it answers for; IndirectLighting.h) of this pixel. With smaller indirect targets
 // (frame.counts.w = divisor > 1; texel t holds the answer for pixel t * divisor) a joint bilateral
 // filter rebuilds it from the four nearest texels: bilinear weights times how well each texel's
 // own pixel matches this one's surface (its distance from this pixel's tangent plane, relative to
@@ -51,20 +52,21 @@ layout(location = 0) out vec4 outColor;
 // silhouettes and creases, where plain bilinear filtering would mix a wall's light into the floor.
 struct IndirectLight {
     vec3 irradiance;
-    vec3 glossy;
+    vec4 glossy;
 };
 
 IndirectLight indirectAt(vec3 p, vec3 n) {
     int divisor = frame.counts.w;
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    if (divisor <= 1) return IndirectLight(texelFetch(indirectTexture, pixel, 0).rgb, texelFetch(glossyTexture, pixel, 0).rgb);
+    if (divisor <= 1) return IndirectLight(texelFetch(indirectTexture, pixel, 0).rgb, texelFetch(glossyTexture, pixel, 0));
     ivec2 lowSize = textureSize(indirectTexture, 0);
     ivec2 fullSize = ivec2(frame.viewport.xy);
     ivec2 base = pixel / divisor;
     vec2 f = vec2(pixel - base * divisor) / float(divisor);
     // 1% of the viewing distance: the tangent-plane tolerance grows with the pixel footprint.
     float tolerance = 0.01 * max(length(p - frame.cameraPosition.xyz), 1e-3);
-    vec3 sumIrradiance = vec3(0.0), sumGlossy = vec3(0.0), plainIrradiance = vec3(0.0), plainGlossy = vec3(0.0);
+    vec3 sumIrradiance = vec3(0.0), plainIrradiance = vec3(0.0);
+    vec4 sumGlossy = vec4(0.0), plainGlossy = vec4(0.0);
     float sum = 0.0;
     for (int i = 0; i < 4; ++i) {
         ivec2 o = ivec2(i & 1, i >> 1);
@@ -73,7 +75,7 @@ IndirectLight indirectAt(vec3 p, vec3 n) {
         float bilinear = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
         vec4 et = texelFetch(indirectTexture, t, 0);
         vec3 e = et.rgb;
-        vec3 g = texelFetch(glossyTexture, t, 0).rgb;
+        vec4 g = texelFetch(glossyTexture, t, 0);
         plainIrradiance += bilinear * e;
         plainGlossy += bilinear * g;
         if (et.a <= 0.0) continue; // sky: no surface, no light
@@ -253,15 +255,19 @@ void main() {
     vec3 direct = diffuseColor / PI * irradiance + specular;
     vec3 indirect = diffuseColor / PI * light.irradiance * ao;
     vec3 emissive = textureLod(emissiveTexture, vUv, 0.0).rgb;
-    // Glossy: the march gathered the radiance around the mirror direction over a cone widened by
-    // roughness; the fraction of it the lobe sends to the eye is F0 x scale + bias (the split sum,
-    // SpecularAlbedo.h). Table texel i holds cos = i / (size - 1), hence the half-texel inset.
-    // Added on top of the diffuse without taking its share away, so frames without GI (glossy 0)
-    // get nothing from it.
+    // Glossy: the GI's march gathered the radiance around the mirror direction over a cone widened
+    // by roughness, for the share of the term in glossy alpha (gi.glossy_max_roughness fades it out
+    // on rough surfaces). The rest comes from the irradiance: E / pi is the mean radiance over the
+    // cosine lobe around n, which is where a wide lobe gathers (and, for the ambient constant, the
+    // radiance of the uniform sky it stands for). Without it a rough metal, which has no diffuse,
+    // went black in indirect light. The fraction the lobe sends to the eye is F0 x scale + bias
+    // (the split sum, SpecularAlbedo.h); table texel i holds cos = i / (size - 1), hence the
+    // half-texel inset. Added on top of the diffuse without taking its share away.
+    vec3 glossyRadiance = light.glossy.rgb + (1.0 - clamp(light.glossy.a, 0.0, 1.0)) * light.irradiance / PI;
     float tableSize = float(textureSize(specularAlbedoTexture, 0).x);
     vec2 tableUv = (vec2(cosView, roughness) * (tableSize - 1.0) + 0.5) / tableSize;
     vec2 scaleBias = textureLod(specularAlbedoTexture, tableUv, 0.0).rg;
-    vec3 glossy = (surface.f0 * scaleBias.x + scaleBias.y) * light.glossy * ao;
+    vec3 glossy = (surface.f0 * scaleBias.x + scaleBias.y) * glossyRadiance * ao;
 
     vec3 color = direct + indirect + glossy + emissive;
     if (debugView == 1) color = albedo;

@@ -7,8 +7,10 @@
 //   march ignores occlusion, as the talk's does).
 // - Roughness widens the cone. Convolving an L1 signal with a normalized lobe scales band 1 only:
 //   1 for a mirror, 2/3 for the clamped cosine / pi. Blending that factor with roughness blends the
-//   mirror radiance toward the cosine-lobe irradiance / pi; at roughness 1 the lighting pass adds
-//   no glossy term at all.
+//   mirror radiance toward the cosine-lobe irradiance / pi.
+// - Alpha holds the share of the glossy term the march answers for (glossyFade): the lighting pass
+//   takes the rest from the irradiance (E / pi, IndirectLighting.h), so a surface too rough for
+//   the march still reflects its surroundings, from around n instead of around r.
 // - The talk also steps back in propagation time to reduce smearing; with only the accumulated
 //   volume kept that is not possible here, so reflections are as blurred as the volume.
 // - Compiled once per cascade count (CASCADES, gi/CMakeLists.txt), and every march names its
@@ -121,5 +123,5 @@ void main() {
 #endif
     if (!marched) radiance = march(CASCADES - 1, p, n, r, lobe);
 #endif
-    outRadiance = vec4(radiance * fade, 0.0);
+    outRadiance = vec4(radiance * fade, fade);
 }

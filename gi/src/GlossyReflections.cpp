@@ -80,7 +80,8 @@ void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatric
     u.pixels = glm::ivec4(int(divisor), int(gbuffer.width), int(gbuffer.height), 0);
     RenderPassDesc pass;
     // Classified, texels of no glossy class (sky, too rough) are cleared to what the march writes
-    // there.
+    // there: no radiance, and alpha 0 (the lighting pass takes all of their glossy term from the
+    // irradiance).
     pass.colors[0] = {target, 0, 0, classes ? LoadOp::Clear : LoadOp::DontCare};
     pass.colorCount = 1;
     if (classes) pass.depth = {classes->target(), 0, LoadOp::Load};

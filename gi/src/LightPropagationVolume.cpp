@@ -436,6 +436,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                        glossyTarget, divisor, classified ? classes_.get() : nullptr);
         work(glossyWork(lookupPixels));
     } else {
+        // No march: the lighting pass reflects the looked-up irradiance / pi on every surface.
         cmd.clearTexture(glossyTarget, {0, 0, 0, 0});
     }
     cmd.endMarker();

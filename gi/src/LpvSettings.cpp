@@ -51,8 +51,8 @@ const engine::BoolSetting kGlossy{
     "Glossy reflections: a few cells marched along the reflected view ray through the LPV (by roughness)"};
 const engine::FloatSetting kGlossyMaxRoughness{
     "gi.glossy_max_roughness", 1.0, 0.0, 1.0,
-    "Surfaces this rough or rougher get no glossy march (it fades out over the 0.1 below), saving its cost "
-    "per pixel; 1: all but the fully rough ones"};
+    "Surfaces this rough or rougher get no glossy march (it fades out over the 0.1 below) and reflect the "
+    "irradiance / pi instead, saving the march's cost per pixel; 1: all but the fully rough ones"};
 const engine::IntSetting kBounces{
     "gi.bounces", 1, 1, 3,
     "Light bounces: 2-3 reflect the light the geometry volume blocks off its surfels (needs gi.occlusion)"};

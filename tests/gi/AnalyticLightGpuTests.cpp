@@ -216,22 +216,28 @@ TEST_CASE("gi: lights the volume carries are not lit a second time per pixel") {
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
             TestDevice device(backend);
-            // Without a sun, a frame lit by the volume is its indirect term alone (the lighting
-            // pass adds no point light of its own): final and indirect views agree on every pixel.
+            // Without a sun, a frame lit by the volume is its indirect terms alone (the lighting
+            // pass adds no point light of its own): on every pixel the final view is the indirect
+            // diffuse view plus the glossy one, to their RGBA16F rounding (each view rounds on its
+            // own: within 1e-3 of the pixel's value, or of the smallest normal half).
             const CornellFrame final = renderSceneFrame(*device, hall, base, kNoSun);
             const CornellFrame indirect =
                 renderSceneFrame(*device, hall, with({"render.debug_view=indirect"}), kNoSun);
+            const CornellFrame glossy =
+                renderSceneFrame(*device, hall, with({"render.debug_view=glossy"}), kNoSun);
             float peak = 0.0f, worst = 0.0f;
             for (size_t i = 0; i < final.hdr.texels.size(); ++i) {
                 if (final.depth.texels[i].x >= 1.0f) continue; // background
-                const glm::vec4 a = final.hdr.texels[i], b = indirect.hdr.texels[i];
+                const glm::vec4 a = final.hdr.texels[i], b = indirect.hdr.texels[i] + glossy.hdr.texels[i];
                 peak = std::max({peak, b.r, b.g, b.b});
-                worst = std::max({worst, std::fabs(a.r - b.r), std::fabs(a.g - b.g), std::fabs(a.b - b.b)});
+                for (int ch = 0; ch < 3; ++ch)
+                    // Below 6.1e-5 halves are subnormal, with a fixed step of 6e-8.
+                    worst = std::max(worst, std::fabs(a[ch] - b[ch]) / std::max(a[ch], 6.2e-5f));
             }
             REQUIRE(peak > 0.0f);
-            MESSAGE(backend.name << ": final vs indirect, largest difference " << worst << " (peak " << peak
-                                 << ")");
-            CHECK(worst == 0.0f);
+            MESSAGE(backend.name << ": final vs indirect diffuse + glossy, largest relative difference "
+                                 << worst << " (peak " << peak << ")");
+            CHECK(worst <= 1e-3f);
 
             // With gi.analytic_lights=false the lighting pass lights them per pixel again.
             const CornellFrame perPixel =

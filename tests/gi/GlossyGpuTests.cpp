@@ -1,7 +1,8 @@
 // Glossy reflections through the LPV on each backend: a point of a glossy Cornell floor shows the
 // red (green) wall's colour when seen from where its mirror direction meets that wall, and less red
-// seen from the mirrored side; gi.glossy=false leaves nothing; GL and Vulkan agree; the lookup and
-// the march drawn per cascade class equal the per-texel choice.
+// seen from the mirrored side; gi.glossy=false marches nothing; the term is weighted by the lobe's
+// directional albedo; surfaces not marched reflect the irradiance / pi; GL and Vulkan agree; the
+// lookup and the march drawn per cascade class equal the per-texel choice.
 #include "../render/CornellFrame.h"
 #include "../support/TestDevice.h"
 
@@ -115,6 +116,12 @@ glm::vec3 referenceGlossy(const CornellFrame& f, glm::vec3 p, glm::vec3 n, glm::
     return weights > 0.0f ? sum / (weights * cell * cell) : glm::vec3(0.0f);
 }
 
+// Whether a surface point lies on the floor (height 0) and not on the bottom row of a wall, which
+// lies at height 0 too (the walls' inner faces are at x = +-2.75 and z = -2.75).
+bool onFloor(glm::vec3 p) {
+    return std::fabs(p.y) <= 2e-3f && std::fabs(p.x) < 2.74f && p.z > -2.74f;
+}
+
 glm::vec4 glossyAt(const CornellFrame& f, glm::vec3 world) {
     uint32_t x = 0, y = 0;
     REQUIRE(f.pixelOf(world, x, y));
@@ -168,13 +175,12 @@ TEST_CASE("gi: a glossy floor reflects the wall in its mirror direction") {
             std::vector<std::string> off = kGlossyOn;
             off.push_back("gi.glossy=false");
             const CornellFrame none = renderGlossy(*device, off, kEyeTowardRed, kFloorByRed, false);
-            float maxGlossy = 0.0f, maxShown = 0.0f;
+            // No march: an empty target, share 0 included (the lighting pass then reflects the
+            // irradiance, tested below).
+            float maxGlossy = 0.0f;
             for (const glm::vec4& t : none.glossy.texels)
-                maxGlossy = std::max({maxGlossy, t.r, t.g, t.b});
-            for (const glm::vec4& t : none.hdr.texels)
-                maxShown = std::max({maxShown, t.r, t.g, t.b});
+                maxGlossy = std::max({maxGlossy, t.r, t.g, t.b, t.a});
             CHECK(maxGlossy == 0.0f);
-            CHECK(maxShown == 0.0f);
             device.expectSilent();
         }
     }
@@ -215,7 +221,7 @@ TEST_CASE("gi: the glossy term is weighted by the lobe's directional albedo") {
                     for (uint32_t px = 4; px < f.width; px += 8) {
                         if (f.depth.at(px, py).x >= 1.0f) continue;
                         const glm::vec3 p = f.worldAt(px, py);
-                        if (std::fabs(p.y) > 2e-3f) continue;
+                        if (!onFloor(p)) continue;
                         const float cosView = glm::normalize(eye - p).y;
                         const glm::vec4 marched = f.glossyAt(px, py), shown = f.hdr.at(px, py);
                         const float in = marched.r + marched.g + marched.b;
@@ -251,10 +257,85 @@ TEST_CASE("gi: the glossy term is weighted by the lobe's directional albedo") {
     }
 }
 
+// Where the march does not run (a surface too rough for it, or gi.glossy=false) the glossy term
+// comes from the irradiance: the lighting pass adds the table's weight times E / pi, the mean
+// radiance over the cosine lobe. Each floor pixel's shown term over the looked-up irradiance / pi is
+// that weight, for a fully rough metal floor (which has no diffuse, and so went black in indirect
+// light), a dielectric rougher than gi.glossy_max_roughness and a smooth metal with the march off;
+// the glossy target holds (0, 0, 0, 0) there.
+TEST_CASE("gi: surfaces the glossy march skips reflect the irradiance / pi") {
+    const engine::SpecularAlbedoTable& table = engine::specularAlbedoTable();
+    const glm::vec3 eye(0.0f, 0.5f, 2.5f);
+    struct Case {
+        float roughness, metallic;
+        const char* setting;
+    };
+    const Case cases[] = {{1.0f, 1.0f, "gi.glossy_max_roughness=1"},
+                          {0.5f, 0.0f, "gi.glossy_max_roughness=0.4"},
+                          {0.3f, 1.0f, "gi.glossy=false"}};
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            for (const Case& c : cases) {
+                engine::Scene scene = glossyCornell(eye, {0.0f, 0.0f, 0.5f});
+                engine::Material floor = scene.materials[scene.meshes.front().material];
+                floor.name = "test floor";
+                floor.roughness = c.roughness;
+                floor.metallic = c.metallic;
+                scene.materials.push_back(floor);
+                for (engine::Mesh& mesh : scene.meshes)
+                    if (mesh.name == "floor") mesh.material = uint32_t(scene.materials.size() - 1);
+                const float f0 = c.metallic > 0.0f ? 0.73f : 0.04f;
+                std::vector<std::string> settings = kGlossyOn;
+                settings.push_back("gi.resolution=full"); // the looked-up texel is the pixel's own
+                settings.push_back(c.setting);
+                const CornellFrame f = renderSceneFrame(*device, scene, settings);
+                size_t compared = 0, dim = 0;
+                float worst = 0.0f, largestTarget = 0.0f, cosMin = 1.0f, cosMax = 0.0f;
+                for (uint32_t py = 4; py < f.height; py += 8)
+                    for (uint32_t px = 4; px < f.width; px += 8) {
+                        if (f.depth.at(px, py).x >= 1.0f) continue;
+                        const glm::vec3 p = f.worldAt(px, py);
+                        if (!onFloor(p)) continue;
+                        const glm::vec4 target = f.glossyAt(px, py), shown = f.hdr.at(px, py);
+                        largestTarget = std::max({largestTarget, target.r, target.g, target.b, target.a});
+                        if (std::min({shown.r, shown.g, shown.b}) < 6.2e-5f) { // subnormal halves
+                            ++dim;
+                            continue;
+                        }
+                        const glm::vec4 e = f.indirect.at(px, py);
+                        const float cosView = glm::normalize(eye - p).y;
+                        const engine::SpecularAlbedo s = table.at(cosView, c.roughness);
+                        const float expected = f0 * s.scale + s.bias;
+                        const float measured =
+                            (shown.r + shown.g + shown.b) / ((e.r + e.g + e.b) / 3.14159265f);
+                        worst = std::max(worst, std::fabs(measured - expected) / expected);
+                        cosMin = std::min(cosMin, cosView);
+                        cosMax = std::max(cosMax, cosView);
+                        ++compared;
+                    }
+                MESSAGE(backend.name << ", roughness " << c.roughness << ", F0 " << f0 << ", "
+                                     << std::string(c.setting) << ": " << compared << " floor points (and "
+                                     << dim << " too dim to tell), cos(view) " << cosMin << " to " << cosMax
+                                     << ", largest relative difference from the "
+                                     << "table's weight x E / pi " << worst
+                                     << ", largest glossy target value " << largestTarget);
+                CHECK(compared >= 16);
+                CHECK(cosMin < 0.15f);
+                CHECK(cosMax > 0.6f);
+                CHECK(largestTarget == 0.0f);
+                CHECK(worst <= 0.01f); // as the march's weight above (RGBA16F, RG16F table)
+            }
+            device.expectSilent();
+        }
+    }
+}
+
 // gi.glossy_max_roughness: the test floor (and back wall and ceiling, roughness 0.1) gets half the
 // march 0.05 below the limit and none above it, on each backend, drawn per cascade class or per
 // texel (rhi::Caps::maskedBranches). The volumes do not depend on it, so every texel must be half
-// the default's (to the RGBA16F G-buffer's rounding of 0.1: 0.09998), or 0.
+// the default's (to the RGBA16F G-buffer's rounding of 0.1: 0.09998), or 0; so must its alpha, the
+// share of the glossy term the march answers for.
 TEST_CASE("gi: surfaces rougher than gi.glossy_max_roughness get no glossy march, and it fades out below") {
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
@@ -269,23 +350,29 @@ TEST_CASE("gi: surfaces rougher than gi.glossy_max_roughness get no glossy march
                     return renderGlossy(*device, settings, kEyeTowardRed, kFloorByRed, false);
                 };
                 const CornellFrame full = render(nullptr), faded = render("0.15"), none = render("0.09");
-                float peak = 0.0f, offHalf = 0.0f, largestNone = 0.0f;
-                size_t marched = 0;
+                float peak = 0.0f, offHalf = 0.0f, largestNone = 0.0f, shareOffHalf = 0.0f;
+                size_t marched = 0, partShare = 0;
                 for (size_t i = 0; i < full.glossy.texels.size(); ++i) {
                     const glm::vec4 f = full.glossy.texels[i];
                     peak = std::max({peak, f.r, f.g, f.b});
                     if (std::max({f.r, f.g, f.b}) > 0.0f) ++marched;
+                    // Alpha, the share of the term the march answers for: all of it on the test floor.
+                    if (std::max({f.r, f.g, f.b}) > 0.0f && f.a != 1.0f) ++partShare;
                     const glm::vec4 d = glm::abs(faded.glossy.texels[i] - 0.5f * f);
                     offHalf = std::max({offHalf, d.r, d.g, d.b});
+                    shareOffHalf = std::max(shareOffHalf, d.a);
                     const glm::vec4 n = none.glossy.texels[i];
-                    largestNone = std::max({largestNone, n.r, n.g, n.b});
+                    largestNone = std::max({largestNone, n.r, n.g, n.b, n.a});
                 }
                 const std::string path = masked ? "classes" : "per texel";
                 MESSAGE(backend.name << ", " << path << ": " << marched << " texels marched by default, peak "
-                                     << peak << "; at 0.15 the largest difference from half of it " << offHalf
-                                     << ", at 0.09 the largest value " << largestNone);
+                                     << peak << " (" << partShare << " without the whole share); at 0.15 the "
+                                     << "largest difference from half of it " << offHalf << " (share "
+                                     << shareOffHalf << "), at 0.09 the largest value " << largestNone);
                 CHECK(marched > 1000);
+                CHECK(partShare == 0);
                 CHECK(offHalf <= 1e-3f * peak);
+                CHECK(shareOffHalf <= 1e-3f);
                 CHECK(largestNone == 0.0f);
                 device.expectSilent();
             }

@@ -450,7 +450,9 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         indirect->renderIndirect(cmd, camera, gbuffer(), targets_.indirect, targets_.glossy, profiler);
     } else {
         cmd.clearTexture(targets_.indirect, {ambient.x, ambient.y, ambient.z, 0.0f});
-        cmd.clearTexture(targets_.glossy, {0, 0, 0, 0}); // the ambient constant has no direction
+        // The ambient constant has no direction: the lighting pass reflects it as a uniform sky
+        // (glossy alpha 0: all of the glossy term from the irradiance).
+        cmd.clearTexture(targets_.glossy, {0, 0, 0, 0});
     }
     {
         auto s = scope("render.lighting");

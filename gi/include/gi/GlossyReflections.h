@@ -34,8 +34,9 @@ public:
     GlossyReflections& operator=(const GlossyReflections&) = delete;
 
     // Overwrites `target` (finest cascade first in `cascades`, 1 to 4 of them). `encodeRange` > 0:
-    // the volumes are rgba8, range-encoded. Surfaces as rough as `maxRoughness` or rougher get no
-    // march and a 0 (gi.glossy_max_roughness: faded out over the 0.1 below it). `target` is 1/divisor of the
+    // the volumes are rgba8, range-encoded. Alpha: the share of the glossy term the march answers
+    // for (IndirectLighting.h). Surfaces as rough as `maxRoughness` or rougher get no march and
+    // (0, 0, 0, 0) (gi.glossy_max_roughness: faded out over the 0.1 below it). `target` is 1/divisor of the
     // G-buffer per axis: its texel t marches from G-buffer pixel t x divisor. With `classes` (classified this
     // frame for these cascades and the target's size, glossy on) each cascade marches only its own glossy
     // classes' texels, and the rest are cleared (CascadeClasses.h); only where
