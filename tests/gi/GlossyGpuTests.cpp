@@ -116,6 +116,20 @@ glm::vec3 referenceGlossy(const CornellFrame& f, glm::vec3 p, glm::vec3 n, glm::
     return weights > 0.0f ? sum / (weights * cell * cell) : glm::vec3(0.0f);
 }
 
+// The glossy Cornell box seen from `eye` toward the floor's middle, its floor given a material of
+// its own (so a metal floor leaves the walls' light as it is).
+engine::Scene cornellWithFloor(glm::vec3 eye, float roughness, float metallic) {
+    engine::Scene scene = glossyCornell(eye, {0.0f, 0.0f, 0.5f});
+    engine::Material floor = scene.materials[scene.meshes.front().material];
+    floor.name = "test floor";
+    floor.roughness = roughness;
+    floor.metallic = metallic;
+    scene.materials.push_back(floor);
+    for (engine::Mesh& mesh : scene.meshes)
+        if (mesh.name == "floor") mesh.material = uint32_t(scene.materials.size() - 1);
+    return scene;
+}
+
 // Whether a surface point lies on the floor (height 0) and not on the bottom row of a wall, which
 // lies at height 0 too (the walls' inner faces are at x = +-2.75 and z = -2.75).
 bool onFloor(glm::vec3 p) {
@@ -199,17 +213,9 @@ TEST_CASE("gi: the glossy term is weighted by the lobe's directional albedo") {
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
             TestDevice device(backend);
-            // Dielectric (F0 4%), smooth and rough, and a metal (F0 = its albedo, 0.73). The floor
-            // gets a material of its own, so a metal floor leaves the walls' light as it is.
+            // Dielectric (F0 4%), smooth and rough, and a metal (F0 = its albedo, 0.73).
             for (const auto& [roughness, metallic] : {std::pair{0.1f, 0.0f}, {0.6f, 0.0f}, {0.3f, 1.0f}}) {
-                engine::Scene scene = glossyCornell(eye, {0.0f, 0.0f, 0.5f});
-                engine::Material floor = scene.materials[scene.meshes.front().material];
-                floor.name = "test floor";
-                floor.roughness = roughness;
-                floor.metallic = metallic;
-                scene.materials.push_back(floor);
-                for (engine::Mesh& mesh : scene.meshes)
-                    if (mesh.name == "floor") mesh.material = uint32_t(scene.materials.size() - 1);
+                const engine::Scene scene = cornellWithFloor(eye, roughness, metallic);
                 const float f0 = metallic > 0.0f ? 0.73f : 0.04f;
                 std::vector<std::string> settings = kGlossyOn;
                 settings.push_back("gi.resolution=full"); // the marched texel is the pixel's own
@@ -277,14 +283,7 @@ TEST_CASE("gi: surfaces the glossy march skips reflect the irradiance / pi") {
         SUBCASE(backend.name.c_str()) {
             TestDevice device(backend);
             for (const Case& c : cases) {
-                engine::Scene scene = glossyCornell(eye, {0.0f, 0.0f, 0.5f});
-                engine::Material floor = scene.materials[scene.meshes.front().material];
-                floor.name = "test floor";
-                floor.roughness = c.roughness;
-                floor.metallic = c.metallic;
-                scene.materials.push_back(floor);
-                for (engine::Mesh& mesh : scene.meshes)
-                    if (mesh.name == "floor") mesh.material = uint32_t(scene.materials.size() - 1);
+                const engine::Scene scene = cornellWithFloor(eye, c.roughness, c.metallic);
                 const float f0 = c.metallic > 0.0f ? 0.73f : 0.04f;
                 std::vector<std::string> settings = kGlossyOn;
                 settings.push_back("gi.resolution=full"); // the looked-up texel is the pixel's own
