@@ -7,6 +7,7 @@
 // frame. With the shadow lookups compiled in, even unexecuted, llvmpipe's lighting pass took 30%
 // longer in the atrium, which has no punctual light at all.
 #include "common.glsl"
+#include "specular_albedo.glsl"
 
 struct PunctualLight {
     vec4 positionRange;      // xyz position, w range (0: infinite)
@@ -26,7 +27,7 @@ layout(binding = 8, std430) readonly buffer Lights {
     PunctualLight lights[];
 };
 layout(binding = 9) uniform sampler2D glossyTexture;
-// engine/render/SpecularAlbedo.h: x cos(view angle), y roughness; r scale and g bias of F0.
+// engine/render/SpecularAlbedo.h's table (specular_albedo.glsl): the weight's scale and bias.
 layout(binding = 12) uniform sampler2D specularAlbedoTexture;
 #ifdef LIGHT_SHADOWS
 // Spot and point lights with a shadow map this frame (LightShadows): views in tiles of one atlas.
@@ -43,8 +44,7 @@ layout(binding = 11) uniform sampler2DShadow shadowAtlas;
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outColor;
 
-// The indirect irradiance (rgb) and glossy radiance (rgb, and in alpha the share of the glossy term
-// it answers for; IndirectLighting.h) of this pixel. With smaller indirect targets
+// The indirect irradiance and glossy radiance (IndirectLighting.h) of this pixel. With smaller indirect targets
 // (frame.counts.w = divisor > 1; texel t holds the answer for pixel t * divisor) a joint bilateral
 // filter rebuilds it from the four nearest texels: bilinear weights times how well each texel's
 // own pixel matches this one's surface (its distance from this pixel's tangent plane, relative to
@@ -52,13 +52,13 @@ layout(location = 0) out vec4 outColor;
 // silhouettes and creases, where plain bilinear filtering would mix a wall's light into the floor.
 struct IndirectLight {
     vec3 irradiance;
-    vec4 glossy;
+    vec3 glossy;
 };
 
 IndirectLight indirectAt(vec3 p, vec3 n) {
     int divisor = frame.counts.w;
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    if (divisor <= 1) return IndirectLight(texelFetch(indirectTexture, pixel, 0).rgb, texelFetch(glossyTexture, pixel, 0));
+    if (divisor <= 1) return IndirectLight(texelFetch(indirectTexture, pixel, 0).rgb, texelFetch(glossyTexture, pixel, 0).rgb);
     ivec2 lowSize = textureSize(indirectTexture, 0);
     ivec2 fullSize = ivec2(frame.viewport.xy);
     ivec2 base = pixel / divisor;
@@ -66,7 +66,7 @@ IndirectLight indirectAt(vec3 p, vec3 n) {
     // 1% of the viewing distance: the tangent-plane tolerance grows with the pixel footprint.
     float tolerance = 0.01 * max(length(p - frame.cameraPosition.xyz), 1e-3);
     vec3 sumIrradiance = vec3(0.0), plainIrradiance = vec3(0.0);
-    vec4 sumGlossy = vec4(0.0), plainGlossy = vec4(0.0);
+    vec3 sumGlossy = vec3(0.0), plainGlossy = vec3(0.0);
     float sum = 0.0;
     for (int i = 0; i < 4; ++i) {
         ivec2 o = ivec2(i & 1, i >> 1);
@@ -75,7 +75,7 @@ IndirectLight indirectAt(vec3 p, vec3 n) {
         float bilinear = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
         vec4 et = texelFetch(indirectTexture, t, 0);
         vec3 e = et.rgb;
-        vec4 g = texelFetch(glossyTexture, t, 0);
+        vec3 g = texelFetch(glossyTexture, t, 0).rgb;
         plainIrradiance += bilinear * e;
         plainGlossy += bilinear * g;
         if (et.a <= 0.0) continue; // sky: no surface, no light
@@ -255,19 +255,12 @@ void main() {
     vec3 direct = diffuseColor / PI * irradiance + specular;
     vec3 indirect = diffuseColor / PI * light.irradiance * ao;
     vec3 emissive = textureLod(emissiveTexture, vUv, 0.0).rgb;
-    // Glossy: the GI's march gathered the radiance around the mirror direction over a cone widened
-    // by roughness, for the share of the term in glossy alpha (gi.glossy_max_roughness fades it out
-    // on rough surfaces). The rest comes from the irradiance: E / pi is the mean radiance over the
-    // cosine lobe around n, which is where a wide lobe gathers (and, for the ambient constant, the
-    // radiance of the uniform sky it stands for). Without it a rough metal, which has no diffuse,
-    // went black in indirect light. The fraction the lobe sends to the eye is F0 x scale + bias
-    // (the split sum, SpecularAlbedo.h); table texel i holds cos = i / (size - 1), hence the
-    // half-texel inset. Added on top of the diffuse without taking its share away.
-    vec3 glossyRadiance = light.glossy.rgb + (1.0 - clamp(light.glossy.a, 0.0, 1.0)) * light.irradiance / PI;
-    float tableSize = float(textureSize(specularAlbedoTexture, 0).x);
-    vec2 tableUv = (vec2(cosView, roughness) * (tableSize - 1.0) + 0.5) / tableSize;
-    vec2 scaleBias = textureLod(specularAlbedoTexture, tableUv, 0.0).rg;
-    vec3 glossy = (surface.f0 * scaleBias.x + scaleBias.y) * glossyRadiance * ao;
+    // Glossy: the radiance the lobe gathers (the GI's march around the mirror direction, or its
+    // lookup's lobe-mean reflection; the ambient constant / pi without GI), times the fraction the
+    // lobe sends to the eye, F0 x scale + bias (the split sum, SpecularAlbedo.h). Added on top of
+    // the diffuse without taking its share away.
+    vec2 scaleBias = specularAlbedoAt(specularAlbedoTexture, cosView, roughness, 0).rg;
+    vec3 glossy = (surface.f0 * scaleBias.x + scaleBias.y) * light.glossy * ao;
 
     vec3 color = direct + indirect + glossy + emissive;
     if (debugView == 1) color = albedo;

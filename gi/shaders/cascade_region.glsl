@@ -35,10 +35,9 @@ bool glossyMarchHeld(vec4 origin, int cells, vec3 p, vec3 n) {
 
 // How much glossy march a surface of this roughness gets (gi.glossy_max_roughness): all of it up to
 // 0.1 below `maxRoughness`, fading to none at it, so no seam shows where materials cross it. A
-// surface it gives nothing is not marched (the march's cost is per pixel): the lighting pass gives
-// it the irradiance / pi instead, the radiance the march's widest cone (roughness 1, the cosine
-// lobe) gathers around n rather than around the mirror direction. 0 for every surface when
-// `maxRoughness` is 0 (glossy off).
+// surface it gives nothing is not marched (the march's cost is per pixel): it keeps the lookup's
+// reflection, the volume evaluated at its lobe's mean light direction (lpv_lookup.glsl). 0 for
+// every surface when `maxRoughness` is 0 (glossy off).
 float glossyFade(float roughness, float maxRoughness) { return clamp((maxRoughness - roughness) * 10.0, 0.0, 1.0); }
 
 // Cascade classes (gi/CascadeClasses.h): on devices that run both sides of every branch, a

@@ -39,4 +39,32 @@ vec3 projectCascade(int c, vec3 uvw, vec4 lobe, float range) {
     return projectVolumes(lpv3r, lpv3g, lpv3b, uvw, lobe, range);
 }
 
+// The lookup's two answers from one fetch of each volume: the irradiance (one lobe for every
+// channel) and the glossy radiance (each channel its own lobe: the lobe's mean direction depends
+// on the channel's F0).
+struct CascadeSample {
+    vec3 irradiance;
+    vec3 glossy;
+};
+
+struct LookupLobes {
+    vec4 irradiance;
+    vec4 glossyR, glossyG, glossyB;
+};
+
+CascadeSample sampleVolumes(sampler3D r, sampler3D g, sampler3D b, vec3 uvw, LookupLobes lobes, float range) {
+    vec4 sr = textureLod(r, uvw, 0.0), sg = textureLod(g, uvw, 0.0), sb = textureLod(b, uvw, 0.0);
+    if (range > 0.0) sr = decodeShRange(sr, range), sg = decodeShRange(sg, range), sb = decodeShRange(sb, range);
+    return CascadeSample(vec3(dot(sr, lobes.irradiance), dot(sg, lobes.irradiance), dot(sb, lobes.irradiance)),
+                         vec3(dot(sr, lobes.glossyR), dot(sg, lobes.glossyG), dot(sb, lobes.glossyB)));
+}
+
+// As projectCascade, both answers.
+CascadeSample sampleCascade(int c, vec3 uvw, LookupLobes lobes, float range) {
+    if (c == 0) return sampleVolumes(lpv0r, lpv0g, lpv0b, uvw, lobes, range);
+    if (c == 1) return sampleVolumes(lpv1r, lpv1g, lpv1b, uvw, lobes, range);
+    if (c == 2) return sampleVolumes(lpv2r, lpv2g, lpv2b, uvw, lobes, range);
+    return sampleVolumes(lpv3r, lpv3g, lpv3b, uvw, lobes, range);
+}
+
 #endif

@@ -8,9 +8,9 @@
 // - Roughness widens the cone. Convolving an L1 signal with a normalized lobe scales band 1 only:
 //   1 for a mirror, 2/3 for the clamped cosine / pi. Blending that factor with roughness blends the
 //   mirror radiance toward the cosine-lobe irradiance / pi.
-// - Alpha holds the share of the glossy term the march answers for (glossyFade): the lighting pass
-//   takes the rest from the irradiance (E / pi, IndirectLighting.h), so a surface too rough for
-//   the march still reflects its surroundings, from around n instead of around r.
+// - Drawn premultiplied over the lookup's glossy radiance (the volume at the lobe's mean light
+//   direction, lpv_lookup.glsl): radiance x fade with alpha fade (glossyFade), so the march answers
+//   for that share and a surface too rough for it keeps the lookup's reflection.
 // - The talk also steps back in propagation time to reduce smearing; with only the accumulated
 //   volume kept that is not possible here, so reflections are as blurred as the volume.
 // - Compiled once per cascade count (CASCADES, gi/CMakeLists.txt), and every march names its
@@ -76,7 +76,7 @@ void main() {
     vec4 normalRoughness = texelFetch(normalTexture, source, 0);
     float roughness = clamp(normalRoughness.w, 0.0, 1.0);
     // Sky, and surfaces too rough for a march (glossyFade; most of the Cornell box: the default
-    // material is fully rough).
+    // material is fully rough): the lookup's value stays.
     float fade = glossyFade(roughness, glossy.encode.y);
     if (depth >= 1.0 || fade <= 0.0) {
         outRadiance = vec4(0.0);

@@ -4,6 +4,13 @@
 // grows into the surface (light that arrives from behind it, through the wall), the lookup is
 // scaled down by the relative directional derivative along the normal.
 //
+// The same fetches give the glossy radiance where the march (lpv_glossy.glsl) does not run or
+// fades out: the volume's radiance averaged over the GGX lobe seen from the camera. Radiance in an
+// L1 volume is linear in the direction, so that average is the field evaluated at the lobe's mean
+// light direction (engine/render/SpecularAlbedo.h's table, per channel of F0), exactly, at the
+// surface point; the march, where it runs, gathers from a few cells along the mirror direction
+// instead and is drawn over it.
+//
 // Cascades: the finest cascade that holds the point answers; in a band inside its border (a
 // quarter of its half-extent, CryEngine's e_GIBlendRatio) it fades into the next coarser one, so
 // the irradiance is continuous across cascade borders.
@@ -12,6 +19,7 @@
 // CASCADE c with BLEND 0 or 1 is one cascade class's draw (gi/CascadeClasses.h): every texel it
 // shades belongs to cascade c, inside its band (BLEND 0) or in it (BLEND 1, faded into c + 1).
 #include "lpv_cascades.glsl"
+#include "specular_albedo.glsl"
 
 layout(binding = 0, std140) uniform Lookup {
     mat4 invViewProjection;
@@ -20,42 +28,43 @@ layout(binding = 0, std140) uniform Lookup {
     vec4 encode;        // x: rgba8 range, y: blend band (fraction of the half-extent)
     vec4 intensity;     // x: gi.intensity (already applied at injection), y: damping strength
     ivec4 pixels;       // x: resolution divisor, yz: G-buffer size, w: 0 (see main)
+    vec4 cameraPosition; // xyz
 } lookup;
 layout(binding = 1) uniform sampler2D depthTexture;
 layout(binding = 2) uniform sampler2D normalTexture;
+layout(binding = 15) uniform sampler2D albedoTexture;        // albedo, metallic in alpha
+layout(binding = 16) uniform sampler2D specularAlbedoTable; // specular_albedo.glsl
 
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outIrradiance;
-
-// Cascade c's intensity at uvw weighted by `lobe`, per channel (c constant in every call).
-vec3 project(int c, vec3 uvw, vec4 lobe) {
-    return projectCascade(c, uvw, lobe, lookup.grid.y != 0 ? lookup.encode.x : 0.0);
-}
+layout(location = 1) out vec4 outGlossy;
 
 vec3 uvwIn(int c, vec3 p) { return uvwInVolume(lookup.gridOrigin[c], lookup.grid.x, p); }
 
-vec3 irradianceAt(int c, vec3 p, vec3 n) {
+// Cascade c's irradiance and glossy radiance at point p (c constant in every call); 0 outside it.
+CascadeSample lightAt(int c, vec3 p, LookupLobes lobes) {
     vec3 uvw = uvwIn(c, p);
-    if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) return vec3(0.0);
-    // Incoming light travels against n: integrate against the lobe around -n.
-    vec3 e = project(c, uvw, shCosineLobe(-n));
+    if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) return CascadeSample(vec3(0.0), vec3(0.0));
+    CascadeSample s = sampleCascade(c, uvw, lobes, lookup.grid.y != 0 ? lookup.encode.x : 0.0);
+    // Intensity over the cell's cross-section is radiance.
     float area = lookup.gridOrigin[c].w * lookup.gridOrigin[c].w;
-    return max(e, vec3(0.0)) / area;
+    return CascadeSample(max(s.irradiance, vec3(0.0)) / area, max(s.glossy, vec3(0.0)) / area);
 }
 
-// Cascade c's irradiance at surface point p: half a cell out along n, damped.
-vec3 surfaceIrradiance(int c, vec3 p, vec3 n) {
+// Cascade c's light at surface point p: half a cell out along n, damped.
+CascadeSample surfaceLight(int c, vec3 p, vec3 n, LookupLobes lobes) {
     float cell = lookup.gridOrigin[c].w;
-    vec3 front = irradianceAt(c, p + 0.5 * cell * n, n);
-    vec3 e = front;
+    CascadeSample front = lightAt(c, p + 0.5 * cell * n, lobes);
     if (lookup.grid.z != 0) {
-        vec3 behind = irradianceAt(c, p - 0.5 * cell * n, n);
-        float f = dot(front, vec3(0.2126, 0.7152, 0.0722));
+        vec3 behind = lightAt(c, p - 0.5 * cell * n, lobes).irradiance;
+        float f = dot(front.irradiance, vec3(0.2126, 0.7152, 0.0722));
         float bk = dot(behind, vec3(0.2126, 0.7152, 0.0722));
         float growth = max(bk - f, 0.0) / max(bk, 1e-6);
-        e *= clamp(1.0 - lookup.intensity.y * growth, 0.0, 1.0);
+        float damping = clamp(1.0 - lookup.intensity.y * growth, 0.0, 1.0);
+        front.irradiance *= damping;
+        front.glossy *= damping;
     }
-    return e;
+    return front;
 }
 
 float insideness(int c, vec3 p) {
@@ -65,6 +74,18 @@ float insideness(int c, vec3 p) {
 // Cascade c's share where p lies in its blend band: 1 inside the band, 0 at its border.
 float blendWeight(int c, vec3 p) { return smoothstep(0.0, 1.0, clamp(insideness(c, p), 0.0, 1.0)); }
 
+// The glossy lobe's mean light direction for a channel of reflectance f0 at normal incidence,
+// from the table's directions (x along n, y along t, the mirror direction's part across n), as
+// the basis that evaluates the radiance arriving from it (it travels along the negated direction).
+vec4 glossyLobe(float f0, vec4 scaleBias, vec2 biasDirection, vec3 n, vec3 t) {
+    vec2 m = (f0 * scaleBias.zw + biasDirection) / max(f0 * scaleBias.x + scaleBias.y, 1e-6);
+    return shBasis(-(m.x * n + m.y * t));
+}
+
+CascadeSample mixSamples(CascadeSample a, CascadeSample b, float w) {
+    return CascadeSample(a.irradiance + w * b.irradiance, a.glossy + w * b.glossy);
+}
+
 void main() {
     // This texel answers for G-buffer pixel texel x divisor (gi.resolution; the lighting pass
     // rebuilds the pixels between).
@@ -73,6 +94,7 @@ void main() {
     float depth = texelFetch(depthTexture, source, 0).r;
     if (depth >= 1.0) {
         outIrradiance = vec4(0.0);
+        outGlossy = vec4(0.0);
         return;
     }
     vec4 clip = vec4(uv * 2.0 - 1.0, depth, 1.0);
@@ -82,15 +104,32 @@ void main() {
     int col = lookup.pixels.w;
     vec4 world = MUL_COLUMNS_AT(lookup.invViewProjection, col, clip);
     vec3 p = world.xyz / world.w;
-    vec3 n = normalize(texelFetch(normalTexture, source, 0).xyz);
+    vec4 normalRoughness = texelFetch(normalTexture, source, 0);
+    vec3 n = normalize(normalRoughness.xyz);
+
+    // The lobes: incoming light travels against n, so the irradiance integrates the cosine lobe
+    // around -n; the glossy term evaluates each channel at its lobe's mean direction.
+    vec3 v = normalize(lookup.cameraPosition.xyz - p);
+    vec3 across = reflect(-v, n) - n * dot(n, v); // the mirror direction's part across n
+    float acrossLength = length(across);
+    vec3 t = acrossLength > 1e-5 ? across / acrossLength : vec3(0.0); // seen head-on the lobe is symmetric
+    float roughness = clamp(normalRoughness.w, 0.0, 1.0);
+    float cosView = max(dot(n, v), 0.0);
+    vec4 scaleBias = specularAlbedoAt(specularAlbedoTable, cosView, roughness, 0);
+    vec2 biasDirection = specularAlbedoAt(specularAlbedoTable, cosView, roughness, 1).xy;
+    vec4 albedoMetal = texelFetch(albedoTexture, source, 0);
+    vec3 f0 = mix(vec3(0.04), albedoMetal.rgb, albedoMetal.a); // as the lighting pass
+    LookupLobes lobes = LookupLobes(shCosineLobe(-n), glossyLobe(f0.r, scaleBias, biasDirection, n, t),
+                                    glossyLobe(f0.g, scaleBias, biasDirection, n, t),
+                                    glossyLobe(f0.b, scaleBias, biasDirection, n, t));
 #ifdef CASCADE
     // One class's draw: the classification chose the cascade and whether the texel is in its band
     // (the next coarser cascade holds the whole band, so it answers the rest unblended).
-    vec3 e = surfaceIrradiance(CASCADE, p, n);
+    CascadeSample light = surfaceLight(CASCADE, p, n, lobes);
 #if BLEND
     float w = blendWeight(CASCADE, p);
-    e = w * e;
-    e += (1.0 - w) * surfaceIrradiance(CASCADE + 1, p, n);
+    light = mixSamples(CascadeSample(vec3(0.0), vec3(0.0)), light, w);
+    light = mixSamples(light, surfaceLight(CASCADE + 1, p, n, lobes), 1.0 - w);
 #endif
 #else
     // Finest first, each cascade gets the share of the answer its blend weight gives it of what
@@ -98,31 +137,32 @@ void main() {
     // coarser ones, so a pixel looks up one cascade, or two in a band. (Equal to folding from the
     // coarsest in, mix by mix.) CASCADES is compile-time, so each lookup names its own textures:
     // a dynamic cascade index would make a CPU rasterizer run every branch for every pixel.
-    vec3 e = vec3(0.0);
+    CascadeSample light = CascadeSample(vec3(0.0), vec3(0.0));
     float left = 1.0;
 #if CASCADES > 1
     {
         float w = blendWeight(0, p);
-        if (w > 0.0) e += w * surfaceIrradiance(0, p, n);
+        if (w > 0.0) light = mixSamples(light, surfaceLight(0, p, n, lobes), w);
         left = 1.0 - w;
     }
 #endif
 #if CASCADES > 2
     if (left > 0.0) {
         float w = blendWeight(1, p);
-        if (w > 0.0) e += left * w * surfaceIrradiance(1, p, n);
+        if (w > 0.0) light = mixSamples(light, surfaceLight(1, p, n, lobes), left * w);
         left *= 1.0 - w;
     }
 #endif
 #if CASCADES > 3
     if (left > 0.0) {
         float w = blendWeight(2, p);
-        if (w > 0.0) e += left * w * surfaceIrradiance(2, p, n);
+        if (w > 0.0) light = mixSamples(light, surfaceLight(2, p, n, lobes), left * w);
         left *= 1.0 - w;
     }
 #endif
-    if (left > 0.0) e += left * surfaceIrradiance(CASCADES - 1, p, n);
+    if (left > 0.0) light = mixSamples(light, surfaceLight(CASCADES - 1, p, n, lobes), left);
 #endif
     // The view depth (1 / world.w: clip w is the view depth), for the lighting pass's rebuild.
-    outIrradiance = vec4(e, 1.0 / world.w);
+    outIrradiance = vec4(light.irradiance, 1.0 / world.w);
+    outGlossy = vec4(light.glossy, 1.0);
 }

@@ -174,16 +174,19 @@ WorkCounts lookupWork(const LpvSettings& s, uint64_t pixels) {
     WorkCounts w;
     w.pixelsShaded = pixels;
     const uint64_t lookups = s.damping ? 2 : 1;
-    // Depth, normal, and 3 filtered volume fetches per lookup; a 3D (trilinear) fetch costs two
-    // bilinear ones on the texture units the cost model describes.
+    // Depth, normal, albedo, the specular table's two blocks, and 3 filtered volume fetches per
+    // lookup; a 3D (trilinear) fetch costs two bilinear ones on the texture units the cost model
+    // describes.
     // lpv_lookup.glsl looks up the finest cascade holding the point, and the next coarser one in
     // its blend band: at most two per pixel, counted for every pixel (a wave that straddles a band
     // runs both).
     const uint64_t cascades = s.cascades < 2 ? s.cascades : 2;
-    w.texelsRead = pixels * (2 + 3 * 2 * lookups * cascades);
-    w.texelsWritten = pixels;
-    w.aluOps = pixels * (30 + 25 * lookups * cascades);
-    w.bytesMoved = pixels * (4 + 8 + 8);
+    w.texelsRead = pixels * (5 + 3 * 2 * lookups * cascades);
+    // Two targets: the irradiance and the glossy radiance of the lobe's mean direction.
+    w.texelsWritten = 2 * pixels;
+    // The glossy lobes (3 channels' mean directions) and their 3 more dot products per fetch.
+    w.aluOps = pixels * (60 + 37 * lookups * cascades);
+    w.bytesMoved = pixels * (4 + 8 + 4 + 8 + 8);
     w.primitives = 1;
     return w;
 }

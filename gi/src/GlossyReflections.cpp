@@ -28,6 +28,10 @@ GlossyReflections::GlossyReflections(rhi::Device& device) : device_(device) {
     GraphicsPipelineDesc d;
     d.vertex = &engine::shaders::fullscreen_vert;
     d.colorFormats = {Format::RGBA16F};
+    // Premultiplied over the lookup's lobe-mean reflection: the march answers for its fade's share
+    // (it writes radiance x fade, fade), the lookup's value keeps the rest.
+    d.blend = {BlendState{true, BlendFactor::One, BlendFactor::OneMinusSrcAlpha, BlendOp::Add,
+                          BlendFactor::One, BlendFactor::OneMinusSrcAlpha, BlendOp::Add}};
     d.debugName = "lpv glossy";
     const rhi::ShaderBinary* marches[4] = {&shaders::lpv_glossy_1_frag, &shaders::lpv_glossy_2_frag,
                                            &shaders::lpv_glossy_3_frag, &shaders::lpv_glossy_4_frag};
@@ -79,10 +83,8 @@ void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatric
     // w = 0: the first column of the camera matrix, read at an index lavapipe cannot fold (shader).
     u.pixels = glm::ivec4(int(divisor), int(gbuffer.width), int(gbuffer.height), 0);
     RenderPassDesc pass;
-    // Classified, texels of no glossy class (sky, too rough) are cleared to what the march writes
-    // there: no radiance, and alpha 0 (the lighting pass takes all of their glossy term from the
-    // irradiance).
-    pass.colors[0] = {target, 0, 0, classes ? LoadOp::Clear : LoadOp::DontCare};
+    // Over the lookup's answer: texels of no glossy class (sky, too rough) keep it.
+    pass.colors[0] = {target, 0, 0, LoadOp::Load};
     pass.colorCount = 1;
     if (classes) pass.depth = {classes->target(), 0, LoadOp::Load};
     pass.debugName = "lpv glossy";
@@ -118,7 +120,8 @@ engine::WorkCounts glossyWork(uint64_t pixels) {
     w.texelsRead = pixels * (2 + GlossyReflections::kSteps * 3 * 2);
     w.texelsWritten = pixels;
     w.aluOps = pixels * (40 + 20 * GlossyReflections::kSteps);
-    w.bytesMoved = pixels * (4 + 8 + 8);
+    // Depth and normal in, the blend's read and write of the RGBA16F target.
+    w.bytesMoved = pixels * (4 + 8 + 8 + 8);
     w.primitives = 1;
     return w;
 }

@@ -31,6 +31,7 @@ struct LookupUniforms {
     glm::vec4 encode;
     glm::vec4 intensity;
     glm::ivec4 pixels; // x: resolution divisor, yz: G-buffer size
+    glm::vec4 cameraPosition;
 };
 
 struct SliceUniforms {
@@ -68,7 +69,7 @@ LightPropagationVolume::LightPropagationVolume(rhi::Device& device, platforms::P
     clusterPipeline_ = device.createPipeline(ComputePipelineDesc{&shaders::vpl_cluster_comp, "vpl cluster"});
     GraphicsPipelineDesc lookup;
     lookup.vertex = &engine::shaders::fullscreen_vert;
-    lookup.colorFormats = {Format::RGBA16F};
+    lookup.colorFormats = {Format::RGBA16F, Format::RGBA16F}; // irradiance, glossy radiance
     lookup.debugName = "lpv lookup";
     const rhi::ShaderBinary* lookups[4] = {&shaders::lpv_lookup_1_frag, &shaders::lpv_lookup_2_frag,
                                            &shaders::lpv_lookup_3_frag, &shaders::lpv_lookup_4_frag};
@@ -394,10 +395,15 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         u.intensity = glm::vec4(settings_.intensity, 1.0f, 0, 0);
         // w = 0: the first column of the camera matrix, read at an index lavapipe cannot fold.
         u.pixels = glm::ivec4(int(divisor), int(gbuffer.width), int(gbuffer.height), 0);
+        u.cameraPosition = glm::vec4(camera.position, 1.0f);
         RenderPassDesc pass;
         // Classified, the sky's texels are drawn by no class: cleared to what the lookup writes there.
-        pass.colors[0] = {target, 0, 0, classified ? LoadOp::Clear : LoadOp::DontCare};
-        pass.colorCount = 1;
+        const LoadOp load = classified ? LoadOp::Clear : LoadOp::DontCare;
+        pass.colors[0] = {target, 0, 0, load};
+        // The glossy radiance of the lobe's mean direction, which the march then draws over where
+        // it runs.
+        pass.colors[1] = {glossyTarget, 0, 0, load};
+        pass.colorCount = 2;
         if (classified) pass.depth = {classes_->target(), 0, LoadOp::Load};
         pass.debugName = "lpv lookup";
         cmd.beginRenderPass(pass);
@@ -408,6 +414,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             cmd.pushUniforms(0, &u, sizeof(u));
             bindCascadeReads(cmd, gbuffer, std::span(volumes.data(), cascades_.size()), pointSampler_,
                              linearSampler_);
+            cmd.bindTexture(15, gbuffer.albedo, pointSampler_);
+            cmd.bindTexture(16, renderer_->specularAlbedoTexture(), linearSampler_);
         };
         if (!classified) {
             cmd.bindPipeline(lookupPipelines_[cascades_.size() - 1]);
@@ -435,9 +443,6 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                        volumes_->encoded() ? volumes_->encodeRange() : 0.0f, settings_.glossyMaxRoughness,
                        glossyTarget, divisor, classified ? classes_.get() : nullptr);
         work(glossyWork(lookupPixels));
-    } else {
-        // No march: the lighting pass reflects the looked-up irradiance / pi on every surface.
-        cmd.clearTexture(glossyTarget, {0, 0, 0, 0});
     }
     cmd.endMarker();
 }

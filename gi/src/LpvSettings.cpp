@@ -52,7 +52,8 @@ const engine::BoolSetting kGlossy{
 const engine::FloatSetting kGlossyMaxRoughness{
     "gi.glossy_max_roughness", 1.0, 0.0, 1.0,
     "Surfaces this rough or rougher get no glossy march (it fades out over the 0.1 below) and reflect the "
-    "irradiance / pi instead, saving the march's cost per pixel; 1: all but the fully rough ones"};
+    "volume at their lobe's mean direction instead, saving the march's cost per pixel; 1: all but the fully "
+    "rough ones"};
 const engine::IntSetting kBounces{
     "gi.bounces", 1, 1, 3,
     "Light bounces: 2-3 reflect the light the geometry volume blocks off its surfels (needs gi.occlusion)"};

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <optional>
 
 namespace lpv::engine {
@@ -166,10 +167,17 @@ void Renderer::createTargets(uint32_t shadowSize) {
 void Renderer::createSpecularAlbedo() {
     const SpecularAlbedoTable& table = specularAlbedoTable();
     constexpr uint32_t n = SpecularAlbedoTable::kSize;
-    std::vector<uint32_t> halves(table.texels.size()); // RG16F: scale, bias
-    for (size_t i = 0; i < halves.size(); ++i)
-        halves[i] = glm::packHalf2x16({table.texels[i].scale, table.texels[i].bias});
-    specularAlbedo_ = device_.createTexture({rhi::TextureKind::Tex2D, rhi::Format::RG16F, n, n, 1, 1,
+    // RGBA16F, two blocks of n rows (shaders/specular_albedo.glsl): scale, bias, scaleDirection;
+    // then biasDirection.
+    std::vector<uint32_t> halves(size_t(n) * n * 2 * 2);
+    for (size_t i = 0; i < table.texels.size(); ++i) {
+        const SpecularAlbedo& t = table.texels[i];
+        halves[2 * i] = glm::packHalf2x16({t.scale, t.bias});
+        halves[2 * i + 1] = glm::packHalf2x16(t.scaleDirection);
+        halves[2 * (table.texels.size() + i)] = glm::packHalf2x16(t.biasDirection);
+        halves[2 * (table.texels.size() + i) + 1] = 0;
+    }
+    specularAlbedo_ = device_.createTexture({rhi::TextureKind::Tex2D, rhi::Format::RGBA16F, n, 2 * n, 1, 1,
                                              rhi::kTextureSampled | rhi::kTextureTransfer, "specular albedo",
                                              "render.lighting"});
     device_.uploadTexture(specularAlbedo_, 0, halves.data(), halves.size() * sizeof(uint32_t));
@@ -450,9 +458,10 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         indirect->renderIndirect(cmd, camera, gbuffer(), targets_.indirect, targets_.glossy, profiler);
     } else {
         cmd.clearTexture(targets_.indirect, {ambient.x, ambient.y, ambient.z, 0.0f});
-        // The ambient constant has no direction: the lighting pass reflects it as a uniform sky
-        // (glossy alpha 0: all of the glossy term from the irradiance).
-        cmd.clearTexture(targets_.glossy, {0, 0, 0, 0});
+        // The ambient constant has no direction: a uniform sky of radiance E / pi, which every lobe
+        // gathers alike.
+        const glm::vec3 sky = ambient / std::numbers::pi_v<float>;
+        cmd.clearTexture(targets_.glossy, {sky.x, sky.y, sky.z, 0.0f});
     }
     {
         auto s = scope("render.lighting");

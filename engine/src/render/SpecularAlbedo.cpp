@@ -1,5 +1,7 @@
 #include "engine/render/SpecularAlbedo.h"
 
+#include <glm/vec2.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -29,6 +31,7 @@ SpecularAlbedo integrateSpecularAlbedo(float cosView, float roughness, uint32_t 
     // The view in the tangent frame (normal along z, view in the xz plane).
     const float vx = std::sqrt(1.0f - nv * nv), vz = nv;
     double scale = 0.0, bias = 0.0;
+    glm::dvec2 scaleDirection(0.0), biasDirection(0.0);
     for (uint32_t i = 0; i < samples; ++i) {
         // A half vector distributed as D(h) (h . n): the inverse of GGX's cumulative distribution.
         const float u = (float(i) + 0.5f) / float(samples),
@@ -46,8 +49,14 @@ SpecularAlbedo integrateSpecularAlbedo(float cosView, float roughness, uint32_t 
         const float fresnel = std::pow(1.0f - vh, 5.0f);
         scale += double((1.0f - fresnel) * weight);
         bias += double(fresnel * weight);
+        // The light along n and toward the mirror direction (-x here); its part along y (the
+        // half vector's azimuth) cancels between the mirrored samples of the lobe.
+        const glm::dvec2 l(nl, -(2.0f * vh * hx - vx));
+        scaleDirection += double((1.0f - fresnel) * weight) * l;
+        biasDirection += double(fresnel * weight) * l;
     }
-    return {float(scale / double(samples)), float(bias / double(samples))};
+    const double n = double(samples);
+    return {float(scale / n), float(bias / n), glm::vec2(scaleDirection / n), glm::vec2(biasDirection / n)};
 }
 
 SpecularAlbedo SpecularAlbedoTable::at(float cosView, float roughness) const {
@@ -57,7 +66,9 @@ SpecularAlbedo SpecularAlbedoTable::at(float cosView, float roughness) const {
     const float fx = x - float(x0), fy = y - float(y0);
     const auto texel = [&](uint32_t i, uint32_t j) { return texels[j * kSize + i]; };
     const auto lerp = [](SpecularAlbedo a, SpecularAlbedo b, float t) {
-        return SpecularAlbedo{a.scale + (b.scale - a.scale) * t, a.bias + (b.bias - a.bias) * t};
+        return SpecularAlbedo{a.scale + (b.scale - a.scale) * t, a.bias + (b.bias - a.bias) * t,
+                              a.scaleDirection + (b.scaleDirection - a.scaleDirection) * t,
+                              a.biasDirection + (b.biasDirection - a.biasDirection) * t};
     };
     return lerp(lerp(texel(x0, y0), texel(x0 + 1, y0), fx),
                 lerp(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);

@@ -1,6 +1,7 @@
 // Glossy reflections from the LPV (gi.glossy): a fullscreen pass that marches a few cells along
-// each pixel's reflected view ray through the cascades and writes the radiance arriving along it
-// (linear RGBA16F) for the lighting pass to add under a Fresnel weight. The march and the roughness
+// each pixel's reflected view ray through the cascades and draws the radiance arriving along it
+// (linear RGBA16F) over the lookup's reflection, for the lighting pass to add under the lobe's
+// weight. The march and the roughness
 // cone are in gi/shaders/lpv_glossy.glsl.
 #pragma once
 
@@ -33,14 +34,14 @@ public:
     GlossyReflections(const GlossyReflections&) = delete;
     GlossyReflections& operator=(const GlossyReflections&) = delete;
 
-    // Overwrites `target` (finest cascade first in `cascades`, 1 to 4 of them). `encodeRange` > 0:
-    // the volumes are rgba8, range-encoded. Alpha: the share of the glossy term the march answers
-    // for (IndirectLighting.h). Surfaces as rough as `maxRoughness` or rougher get no march and
-    // (0, 0, 0, 0) (gi.glossy_max_roughness: faded out over the 0.1 below it). `target` is 1/divisor of the
-    // G-buffer per axis: its texel t marches from G-buffer pixel t x divisor. With `classes` (classified this
-    // frame for these cascades and the target's size, glossy on) each cascade marches only its own glossy
-    // classes' texels, and the rest are cleared (CascadeClasses.h); only where
-    // CascadeClasses::wanted(device).
+    // Draws the march over `target` (finest cascade first in `cascades`, 1 to 4 of them), which
+    // holds the lookup's glossy radiance of the lobe's mean direction: premultiplied by the march's
+    // share, its fade (gi.glossy_max_roughness: all of it up to 0.1 below `maxRoughness`, none from
+    // it on, where the march does not run and the texel keeps the lookup's value). `encodeRange` > 0:
+    // the volumes are rgba8, range-encoded. `target` is 1/divisor of the G-buffer per axis: its texel
+    // t marches from G-buffer pixel t x divisor. With `classes` (classified this frame for these
+    // cascades and the target's size, glossy on) each cascade marches only its own glossy classes'
+    // texels (CascadeClasses.h); only where CascadeClasses::wanted(device).
     void render(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                 const engine::GBufferView& gbuffer, std::span<const GlossyCascade> cascades,
                 float encodeRange, float maxRoughness, rhi::TextureHandle target, uint32_t divisor = 1,

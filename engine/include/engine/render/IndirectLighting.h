@@ -1,6 +1,6 @@
 // The renderer's hook for global illumination. Between the G-buffer and the lighting pass, the
 // renderer asks the provider (the LPV in gi/) to fill the indirect-irradiance target and the glossy
-// radiance target; without a provider the first holds the constant render.ambient, the second 0.
+// radiance target; without a provider they hold the constant render.ambient as a uniform sky.
 #pragma once
 
 #include "engine/render/CameraMatrices.h"
@@ -27,16 +27,14 @@ class IndirectLighting {
 public:
     virtual ~IndirectLighting() = default;
     // Writes indirect irradiance (RGBA16F, linear, W/m^2-like units of the sun's) for every pixel
-    // into `target`, and the radiance a glossy surface reflects toward the camera before its
-    // specular weight (RGBA16F, linear) into `glossyTarget`: rgb the radiance the provider
-    // gathered, alpha the share of the glossy term it answers for (0-1). The lighting pass adds the
-    // rest, (1 - alpha) x irradiance / pi: the mean radiance over the cosine lobe around the
-    // normal, where a rough lobe gathers. So (0, 0, 0, 0) leaves all of it to the irradiance, and
-    // (0, 0, 0, 1) means no glossy light at all. The call must fully overwrite both. Both are
-    // 1/resolutionDivisor() of the G-buffer per axis (rounded up): texel (x, y) holds the answer for G-buffer
-    // pixel (x, y) * divisor. The irradiance's alpha holds that pixel's view depth (its clip-space w; 0 where
-    // there is no surface): the lighting pass's rebuild places the texel in space with it instead of fetching
-    // the G-buffer's depth.
+    // into `target`, and into `glossyTarget` (RGBA16F, linear; alpha unused) the radiance a glossy
+    // surface gathers over its specular lobe, before the lobe's weight F0 x scale + bias
+    // (SpecularAlbedo.h), which the lighting pass applies. The call must fully overwrite both. Both
+    // are 1/resolutionDivisor() of the G-buffer per axis (rounded up): texel (x, y) holds the
+    // answer for G-buffer pixel (x, y) * divisor. The irradiance's alpha holds that pixel's view
+    // depth (its clip-space w; 0 where there is no surface): the lighting pass's rebuild places the
+    // texel in space with it instead of fetching the G-buffer's depth. Without a provider the first
+    // holds render.ambient, the second render.ambient / pi (a uniform sky).
     virtual void renderIndirect(rhi::CommandList& cmd, const CameraMatrices& camera,
                                 const GBufferView& gbuffer, rhi::TextureHandle target,
                                 rhi::TextureHandle glossyTarget, FrameProfiler* profiler) = 0;

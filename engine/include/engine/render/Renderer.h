@@ -74,9 +74,13 @@ public:
 
     rhi::TextureHandle output() const { return targets_.output; } // RGBA8 sRGB, tone mapped
     rhi::TextureHandle hdr() const { return targets_.hdr; }       // RGBA16F linear, before tone mapping
-    // RGBA16F linear: the radiance glossy surfaces reflect (before the specular weight), 0 without GI;
-    // at 1/indirectDivisor() of the frame per axis, as the indirect provider asked.
+    // RGBA16F linear: the radiance glossy surfaces reflect (before the specular weight; the ambient
+    // constant / pi without GI), at 1/indirectDivisor() of the frame per axis, as the indirect
+    // provider asked.
     rhi::TextureHandle glossy() const { return targets_.glossy; }
+    // engine/render/SpecularAlbedo.h's table (RGBA16F, laid out as shaders/specular_albedo.glsl
+    // reads it), for an indirect provider that weighs its lobes as the lighting pass does.
+    rhi::TextureHandle specularAlbedoTexture() const { return specularAlbedo_; }
     // RGBA16F linear: the indirect irradiance the provider wrote (or the ambient constant), at
     // 1/indirectDivisor() of the frame per axis.
     rhi::TextureHandle indirect() const { return targets_.indirect; }

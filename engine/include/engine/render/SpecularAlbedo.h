@@ -5,15 +5,28 @@
 // Schlick Fresnel, which on rough surfaces at grazing angles reflected up to 4x too much.
 #pragma once
 
+#include <glm/vec2.hpp>
+
 #include <cstdint>
 #include <vector>
 
 namespace lpv::engine {
 
 // F0 x scale + bias is the directional albedo of the specular lobe seen at that angle.
+//
+// The two directions are the light directions the lobe gathers from, summed with the weights of
+// scale and of bias, in the plane of the normal and the view: x along the normal, y along the
+// mirror direction's part across it. (F0 x scaleDirection + biasDirection) / (F0 x scale + bias) is
+// then the mean direction of the lobe's light, per channel of F0, its length shorter the wider the
+// lobe: 1 for a mirror, about 0.63 at roughness 1 (the cosine lobe's is 2/3). For radiance linear in
+// the direction, as an L1 spherical-harmonics field (the LPV) is, the lobe's mean radiance is that
+// field evaluated at this vector, exactly: the GI's lookup reflects the volume this way where the
+// glossy march does not run (gi/shaders/lpv_lookup.glsl).
 struct SpecularAlbedo {
     float scale = 0.0f;
     float bias = 0.0f;
+    glm::vec2 scaleDirection{0.0f};
+    glm::vec2 biasDirection{0.0f};
 };
 
 // The integral over GGX-distributed microfacet normals (Hammersley points, `samples` of them) of
@@ -22,9 +35,9 @@ struct SpecularAlbedo {
 // Fresnel.
 SpecularAlbedo integrateSpecularAlbedo(float cosView, float roughness, uint32_t samples);
 
-// The table the lighting pass samples: size x size texels, cos(view angle) along x and roughness
-// along y, texel (i, j) holding the integral at cosView = i / (size - 1), roughness = j / (size -
-// 1) (so both ends are exact under bilinear filtering, as at()).
+// The table the lighting pass (scale and bias) and the GI's lookup (all of it) sample: size x size texels,
+// cos(view angle) along x and roughness along y, texel (i, j) holding the integral at cosView = i / (size -
+// 1), roughness = j / (size - 1) (so both ends are exact under bilinear filtering, as at()).
 struct SpecularAlbedoTable {
     static constexpr uint32_t kSize = 32;
     static constexpr uint32_t kSamples = 1024;
