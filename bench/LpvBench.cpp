@@ -429,6 +429,8 @@ void consolePrediction() {
     s.vplCount = 1024;
     s.iterations = 6;
     s.shFormat = gi::ShFormat::Rgba8;
+    // The calibration counts the diffuse lookup the published times measured: no glossy lobes.
+    s.glossy = false;
     const uint64_t pixels = 1280 * 720;
     const auto x360 = platforms::loadPlatformProfile("x360"), ps3 = platforms::loadPlatformProfile("ps3");
     double sx = 0, sp = 0;
@@ -473,6 +475,7 @@ void consolePrediction() {
     c.iterations = 8;
     c.occlusion = true;
     c.bounces = 2;
+    c.glossy = true;
     // Where gi.budget_policy=adapt stops: every knob at its floor (gi/GiScheduler.h's limits).
     const gi::GiSchedulerLimits limits;
     gi::LpvSettings f = c;

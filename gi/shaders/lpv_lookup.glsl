@@ -9,7 +9,7 @@
 // L1 volume is linear in the direction, so that average is the field evaluated at the lobe's mean
 // light direction (engine/render/SpecularAlbedo.h's table, per channel of F0), exactly, at the
 // surface point; the march, where it runs, gathers from a few cells along the mirror direction
-// instead and is drawn over it.
+// instead and is drawn over it. With gi.glossy off, the cosine lobe's E / pi, which costs nothing.
 //
 // Cascades: the finest cascade that holds the point answers; in a band inside its border (a
 // quarter of its half-extent, CryEngine's e_GIBlendRatio) it fades into the next coarser one, so
@@ -26,7 +26,8 @@ layout(binding = 0, std140) uniform Lookup {
     vec4 gridOrigin[4]; // per cascade: xyz corner of cell 0, w: cell size
     ivec4 grid;         // x: cells per axis, y: volumes are rgba8-encoded, z: damping on
     vec4 encode;        // x: rgba8 range, y: blend band (fraction of the half-extent)
-    vec4 intensity;     // x: gi.intensity (already applied at injection), y: damping strength
+    vec4 intensity;     // x: gi.intensity (already applied at injection), y: damping strength,
+                        // z: 1 the glossy lobe's mean direction, 0 the cosine lobe (gi.glossy off)
     ivec4 pixels;       // x: resolution divisor, yz: G-buffer size, w: 0 (see main)
     vec4 cameraPosition; // xyz
 } lookup;
@@ -108,20 +109,27 @@ void main() {
     vec3 n = normalize(normalRoughness.xyz);
 
     // The lobes: incoming light travels against n, so the irradiance integrates the cosine lobe
-    // around -n; the glossy term evaluates each channel at its lobe's mean direction.
-    vec3 v = normalize(lookup.cameraPosition.xyz - p);
-    vec3 across = reflect(-v, n) - n * dot(n, v); // the mirror direction's part across n
-    float acrossLength = length(across);
-    vec3 t = acrossLength > 1e-5 ? across / acrossLength : vec3(0.0); // seen head-on the lobe is symmetric
-    float roughness = clamp(normalRoughness.w, 0.0, 1.0);
-    float cosView = max(dot(n, v), 0.0);
-    vec4 scaleBias = specularAlbedoAt(specularAlbedoTable, cosView, roughness, 0);
-    vec2 biasDirection = specularAlbedoAt(specularAlbedoTable, cosView, roughness, 1).xy;
-    vec4 albedoMetal = texelFetch(albedoTexture, source, 0);
-    vec3 f0 = mix(vec3(0.04), albedoMetal.rgb, albedoMetal.a); // as the lighting pass
-    LookupLobes lobes = LookupLobes(shCosineLobe(-n), glossyLobe(f0.r, scaleBias, biasDirection, n, t),
-                                    glossyLobe(f0.g, scaleBias, biasDirection, n, t),
-                                    glossyLobe(f0.b, scaleBias, biasDirection, n, t));
+    // around -n; the glossy term evaluates each channel at its lobe's mean direction. With
+    // gi.glossy off it is the cosine lobe's mean radiance, E / pi, as a rough lobe would gather:
+    // no fetches beyond the irradiance's (the lobes' albedo and table fetches would raise
+    // lpv_bench's CryEngine 3 setup from 2.47 to 2.81 ms predicted on Xbox 360).
+    vec4 cosine = shCosineLobe(-n);
+    LookupLobes lobes = LookupLobes(cosine, cosine / PI, cosine / PI, cosine / PI);
+    if (lookup.intensity.z != 0.0) {
+        vec3 v = normalize(lookup.cameraPosition.xyz - p);
+        vec3 across = reflect(-v, n) - n * dot(n, v); // the mirror direction's part across n
+        float acrossLength = length(across);
+        vec3 t = acrossLength > 1e-5 ? across / acrossLength : vec3(0.0); // head-on the lobe is symmetric
+        float roughness = clamp(normalRoughness.w, 0.0, 1.0);
+        float cosView = max(dot(n, v), 0.0);
+        vec4 scaleBias = specularAlbedoAt(specularAlbedoTable, cosView, roughness, 0);
+        vec2 biasDirection = specularAlbedoAt(specularAlbedoTable, cosView, roughness, 1).xy;
+        vec4 albedoMetal = texelFetch(albedoTexture, source, 0);
+        vec3 f0 = mix(vec3(0.04), albedoMetal.rgb, albedoMetal.a); // as the lighting pass
+        lobes.glossyR = glossyLobe(f0.r, scaleBias, biasDirection, n, t);
+        lobes.glossyG = glossyLobe(f0.g, scaleBias, biasDirection, n, t);
+        lobes.glossyB = glossyLobe(f0.b, scaleBias, biasDirection, n, t);
+    }
 #ifdef CASCADE
     // One class's draw: the classification chose the cascade and whether the texel is in its band
     // (the next coarser cascade holds the whole band, so it answers the rest unblended).

@@ -174,19 +174,20 @@ WorkCounts lookupWork(const LpvSettings& s, uint64_t pixels) {
     WorkCounts w;
     w.pixelsShaded = pixels;
     const uint64_t lookups = s.damping ? 2 : 1;
-    // Depth, normal, albedo, the specular table's two blocks, and 3 filtered volume fetches per
-    // lookup; a 3D (trilinear) fetch costs two bilinear ones on the texture units the cost model
-    // describes.
+    // Depth, normal, and 3 filtered volume fetches per lookup; a 3D (trilinear) fetch costs two
+    // bilinear ones on the texture units the cost model describes. With gi.glossy, the albedo and
+    // the specular table's two blocks for the glossy lobes.
     // lpv_lookup.glsl looks up the finest cascade holding the point, and the next coarser one in
     // its blend band: at most two per pixel, counted for every pixel (a wave that straddles a band
     // runs both).
     const uint64_t cascades = s.cascades < 2 ? s.cascades : 2;
-    w.texelsRead = pixels * (5 + 3 * 2 * lookups * cascades);
-    // Two targets: the irradiance and the glossy radiance of the lobe's mean direction.
+    const uint64_t lobes = s.glossy ? 1 : 0;
+    w.texelsRead = pixels * (2 + 3 * lobes + 3 * 2 * lookups * cascades);
+    // Two targets: the irradiance and the glossy radiance.
     w.texelsWritten = 2 * pixels;
     // The glossy lobes (3 channels' mean directions) and their 3 more dot products per fetch.
-    w.aluOps = pixels * (60 + 37 * lookups * cascades);
-    w.bytesMoved = pixels * (4 + 8 + 4 + 8 + 8);
+    w.aluOps = pixels * (30 + 30 * lobes + 37 * lookups * cascades);
+    w.bytesMoved = pixels * (4 + 8 + 4 * lobes + 8 + 8);
     w.primitives = 1;
     return w;
 }

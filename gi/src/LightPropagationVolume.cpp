@@ -392,7 +392,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         u.grid = glm::ivec4(int(grid_.size), volumes_->encoded() ? 1 : 0, settings_.damping ? 1 : 0,
                             int(cascades_.size()));
         u.encode = glm::vec4(volumes_->encodeRange(), blendBand, 0, 0);
-        u.intensity = glm::vec4(settings_.intensity, 1.0f, 0, 0);
+        // z: the glossy lobe's mean direction (gi.glossy), or the cosine lobe around n.
+        u.intensity = glm::vec4(settings_.intensity, 1.0f, settings_.glossy ? 1.0f : 0.0f, 0);
         // w = 0: the first column of the camera matrix, read at an index lavapipe cannot fold.
         u.pixels = glm::ivec4(int(divisor), int(gbuffer.width), int(gbuffer.height), 0);
         u.cameraPosition = glm::vec4(camera.position, 1.0f);

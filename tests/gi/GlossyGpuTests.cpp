@@ -316,16 +316,16 @@ TEST_CASE("gi: the glossy term is weighted by the lobe's directional albedo") {
     }
 }
 
-// Where the march does not run (a surface too rough for it, or gi.glossy=false) the lookup writes
-// the glossy radiance: the volume at the surface point (half a cell out, as the irradiance)
-// evaluated at the GGX lobe's mean light direction per channel (SpecularAlbedo.h's directions for
-// the channel's F0), blended across cascades as the irradiance is. Each floor pixel's glossy target
-// equals that, computed here on the CPU from the read-back volumes and the table, for a fully rough
-// metal floor (which has no diffuse, and so would go black in indirect light without it), a
-// dielectric rougher than gi.glossy_max_roughness and a smooth metal with the march off; the
-// lighting pass weighs it by the table's F0 x scale + bias. The reference is checked against the
-// GPU's irradiance too, and the mean direction must make a difference: at some pixels the cosine
-// lobe around the normal (what these surfaces reflected before) is off by more than 10%.
+// Where the march does not run (a surface too rough for it) the lookup writes the glossy radiance:
+// the volume at the surface point (half a cell out, as the irradiance) evaluated at the GGX lobe's
+// mean light direction per channel (SpecularAlbedo.h's directions for the channel's F0), blended
+// across cascades as the irradiance is; with gi.glossy=false, the cosine lobe's E / pi. Each floor
+// pixel's glossy target equals that, computed here on the CPU from the read-back volumes and the
+// table, for a fully rough metal floor (which has no diffuse, and so would go black in indirect
+// light without it), a dielectric rougher than gi.glossy_max_roughness and a smooth metal with the
+// march off; the lighting pass weighs it by the table's F0 x scale + bias. The reference is checked
+// against the GPU's irradiance too, and the mean direction must make a difference: at some pixels
+// of the dielectric the cosine lobe around the normal is off by more than 10%.
 TEST_CASE("gi: surfaces the glossy march skips reflect the volume at their lobe's mean direction") {
     const engine::SpecularAlbedoTable& table = engine::specularAlbedoTable();
     const glm::vec3 eye(0.0f, 0.5f, 2.5f);
@@ -347,6 +347,7 @@ TEST_CASE("gi: surfaces the glossy march skips reflect the volume at their lobe'
                 settings.push_back("gi.damping=false");   // the reference below leaves it out
                 settings.push_back(c.setting);
                 const CornellFrame f = renderSceneFrame(*device, scene, settings);
+                const bool glossyOn = std::string(c.setting) != "gi.glossy=false";
                 size_t compared = 0, dim = 0, directional = 0;
                 float worst = 0.0f, worstIrradiance = 0.0f, worstWeight = 0.0f, largestCosineOff = 0.0f;
                 for (uint32_t py = 4; py < f.height; py += 8)
@@ -363,7 +364,9 @@ TEST_CASE("gi: surfaces the glossy march skips reflect the volume at their lobe'
                         }
                         const glm::vec3 up(0.0f, 1.0f, 0.0f), v = glm::normalize(eye - p);
                         const engine::SpecularAlbedo s = table.at(v.y, c.roughness);
-                        const LookedUp expected = referenceLookup(f, p, up, v, s, glm::vec3(f0));
+                        LookedUp expected = referenceLookup(f, p, up, v, s, glm::vec3(f0));
+                        const glm::vec3 lobeMean = expected.glossy;
+                        if (!glossyOn) expected.glossy = expected.irradiance / 3.14159265f;
                         const glm::vec3 irradiance = glm::vec3(f.indirect.at(px, py));
                         for (int ch = 0; ch < 3; ++ch) {
                             worst = std::max(worst, std::fabs(target[ch] - expected.glossy[ch]) /
@@ -373,11 +376,9 @@ TEST_CASE("gi: surfaces the glossy march skips reflect the volume at their lobe'
                                                            expected.irradiance[ch]);
                             const float cosine = expected.irradiance[ch] / 3.14159265f;
                             largestCosineOff =
-                                std::max(largestCosineOff,
-                                         std::fabs(cosine - expected.glossy[ch]) / expected.glossy[ch]);
+                                std::max(largestCosineOff, std::fabs(cosine - lobeMean[ch]) / lobeMean[ch]);
                         }
-                        if (std::fabs(expected.irradiance.r / 3.14159265f - expected.glossy.r) >
-                            0.1f * expected.glossy.r)
+                        if (std::fabs(expected.irradiance.r / 3.14159265f - lobeMean.r) > 0.1f * lobeMean.r)
                             ++directional;
                         const float weight = f0 * s.scale + s.bias;
                         worstWeight = std::max(worstWeight, std::fabs((shown.r + shown.g + shown.b) /
@@ -391,15 +392,17 @@ TEST_CASE("gi: surfaces the glossy march skips reflect the volume at their lobe'
                                      << dim << " too dim to tell); largest relative difference from the "
                                      << "reference: glossy " << worst << ", irradiance " << worstIrradiance
                                      << "; shown term from the table's weight x target " << worstWeight
-                                     << "; the cosine lobe around n off by up to " << largestCosineOff << " ("
-                                     << directional << " points by more than 10%)");
+                                     << "; the cosine lobe around n off from the mean direction's by up to "
+                                     << largestCosineOff << " (" << directional
+                                     << " points by more than 10%)");
                 CHECK(compared >= 100);
                 // RGBA16F volumes and targets, an RGBA16F table and the GPU's filtering weights: 1%.
                 CHECK(worst <= 0.01f);
                 CHECK(worstIrradiance <= 0.01f);
                 CHECK(worstWeight <= 0.01f);
-                // Seen from the side (not the fully rough floor) the mean direction matters.
-                if (c.roughness < 1.0f) CHECK(directional >= 10);
+                // Seen from the side the dielectric's mean direction matters (the fully rough metal's
+                // lobe is nearly the cosine lobe: measured 0.4% off).
+                if (c.metallic == 0.0f) CHECK(directional >= 10);
             }
             device.expectSilent();
         }
@@ -409,9 +412,8 @@ TEST_CASE("gi: surfaces the glossy march skips reflect the volume at their lobe'
 // gi.glossy_max_roughness: the test floor (and back wall and ceiling, roughness 0.1) is marched in
 // full by default, half 0.05 below the limit and not at all above it, on each backend, drawn per
 // cascade class or per texel (rhi::Caps::maskedBranches). The volumes do not depend on it, so every
-// texel must be the march (the default), the lookup's reflection (above the limit: exactly what
-// gi.glossy=false gives), or their mean 0.05 below the limit (to the RGBA16F G-buffer's rounding of
-// 0.1: 0.09998).
+// texel must be the march (the default), the lookup's reflection (above the limit), or their mean
+// 0.05 below the limit (to the RGBA16F G-buffer's rounding of 0.1: 0.09998).
 TEST_CASE("gi: surfaces rougher than gi.glossy_max_roughness get no glossy march, and it fades out below") {
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
@@ -425,9 +427,8 @@ TEST_CASE("gi: surfaces rougher than gi.glossy_max_roughness get no glossy march
                     return renderGlossy(*device, settings, kEyeTowardRed, kFloorByRed, false);
                 };
                 const CornellFrame full = render(nullptr), faded = render("gi.glossy_max_roughness=0.15"),
-                                   none = render("gi.glossy_max_roughness=0.09"),
-                                   off = render("gi.glossy=false");
-                float peak = 0.0f, offMean = 0.0f, noneOff = 0.0f;
+                                   none = render("gi.glossy_max_roughness=0.09");
+                float peak = 0.0f, offMean = 0.0f;
                 for (const glm::vec4& t : full.glossy.texels)
                     peak = std::max({peak, t.r, t.g, t.b});
                 size_t marched = 0;
@@ -437,19 +438,15 @@ TEST_CASE("gi: surfaces rougher than gi.glossy_max_roughness get no glossy march
                     if (std::max({march.r, march.g, march.b}) > 1e-3f * peak) ++marched;
                     const glm::vec3 d = glm::abs(glm::vec3(faded.glossy.texels[i]) - 0.5f * (f + n));
                     offMean = std::max({offMean, d.r, d.g, d.b});
-                    const glm::vec3 o = glm::abs(n - glm::vec3(off.glossy.texels[i]));
-                    noneOff = std::max({noneOff, o.r, o.g, o.b});
                 }
                 const std::string path = masked ? "classes" : "per texel";
                 MESSAGE(backend.name << ", " << path << ": " << marched
                                      << " texels where the march changes the "
                                      << "lookup's value, peak " << peak
                                      << "; at 0.15 the largest difference from "
-                                     << "the mean of march and lookup " << offMean << "; at 0.09 from "
-                                     << "gi.glossy=false " << noneOff);
+                                     << "the mean of march and lookup " << offMean);
                 CHECK(marched > 1000);
                 CHECK(offMean <= 1e-3f * peak);
-                CHECK(noneOff == 0.0f);
                 device.expectSilent();
             }
         }
