@@ -7,6 +7,7 @@
 // frame. With the shadow lookups compiled in, even unexecuted, llvmpipe's lighting pass took 30%
 // longer in the atrium, which has no punctual light at all.
 #include "common.glsl"
+#include "rebuild_normal.glsl"
 #include "specular_albedo.glsl"
 
 struct PunctualLight {
@@ -50,6 +51,8 @@ layout(location = 0) out vec4 outColor;
 // own pixel matches this one's surface (its distance from this pixel's tangent plane, relative to
 // the viewing distance, and the agreement of the normals). Light then stays on its side of
 // silhouettes and creases, where plain bilinear filtering would mix a wall's light into the floor.
+// Each texel carries its own pixel's view depth and normal (the two targets' alphas), so the
+// rebuild reads two texels per neighbour and nothing of the G-buffer.
 struct IndirectLight {
     vec3 irradiance;
     vec3 glossy;
@@ -75,20 +78,20 @@ IndirectLight indirectAt(vec3 p, vec3 n) {
         float bilinear = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
         vec4 et = texelFetch(indirectTexture, t, 0);
         vec3 e = et.rgb;
-        vec3 g = texelFetch(glossyTexture, t, 0).rgb;
+        vec4 g = texelFetch(glossyTexture, t, 0);
         plainIrradiance += bilinear * e;
-        plainGlossy += bilinear * g;
+        plainGlossy += bilinear * g.rgb;
         if (et.a <= 0.0) continue; // sky: no surface, no light
         // The texel's point from its view depth (alpha, IndirectLighting's contract): along the ray
         // through its pixel, a point h at any depth has view depth 1 / h.w, and the point scales
         // linearly with view depth from the camera.
         vec4 h = frame.invViewProjection * vec4((vec2(source) + 0.5) * frame.viewport.zw * 2.0 - 1.0, 0.5, 1.0);
         vec3 q = frame.cameraPosition.xyz + (h.xyz / h.w - frame.cameraPosition.xyz) * (et.a * h.w);
-        vec3 m = normalize(texelFetch(normalTexture, source, 0).xyz);
+        vec3 m = unpackRebuildNormal(g.a); // its pixel's normal (IndirectLighting.h)
         float plane = abs(dot(q - p, n)) / tolerance;
         float w = bilinear * exp(-plane * plane) * pow(max(dot(m, n), 0.0), 16.0) + 1e-6 * bilinear;
         sumIrradiance += w * e;
-        sumGlossy += w * g;
+        sumGlossy += w * g.rgb;
         sum += w;
     }
     // No neighbour on this surface (a sliver thinner than a texel): plain bilinear filtering.

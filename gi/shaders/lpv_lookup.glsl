@@ -19,6 +19,7 @@
 // CASCADE c with BLEND 0 or 1 is one cascade class's draw (gi/CascadeClasses.h): every texel it
 // shades belongs to cascade c, inside its band (BLEND 0) or in it (BLEND 1, faded into c + 1).
 #include "lpv_cascades.glsl"
+#include "rebuild_normal.glsl"
 #include "specular_albedo.glsl"
 
 layout(binding = 0, std140) uniform Lookup {
@@ -172,5 +173,6 @@ void main() {
 #endif
     // The view depth (1 / world.w: clip w is the view depth), for the lighting pass's rebuild.
     outIrradiance = vec4(light.irradiance, 1.0 / world.w);
-    outGlossy = vec4(light.glossy, 1.0);
+    // The pixel's normal, for the lighting pass's rebuild (IndirectLighting.h).
+    outGlossy = vec4(light.glossy, packRebuildNormal(n));
 }

@@ -29,9 +29,10 @@ GlossyReflections::GlossyReflections(rhi::Device& device) : device_(device) {
     d.vertex = &engine::shaders::fullscreen_vert;
     d.colorFormats = {Format::RGBA16F};
     // Premultiplied over the lookup's lobe-mean reflection: the march answers for its fade's share
-    // (it writes radiance x fade, fade), the lookup's value keeps the rest.
+    // (it writes radiance x fade, fade), the lookup's value keeps the rest. The target's alpha
+    // (the lookup's packed normal) stays.
     d.blend = {BlendState{true, BlendFactor::One, BlendFactor::OneMinusSrcAlpha, BlendOp::Add,
-                          BlendFactor::One, BlendFactor::OneMinusSrcAlpha, BlendOp::Add}};
+                          BlendFactor::Zero, BlendFactor::One, BlendOp::Add}};
     d.debugName = "lpv glossy";
     const rhi::ShaderBinary* marches[4] = {&shaders::lpv_glossy_1_frag, &shaders::lpv_glossy_2_frag,
                                            &shaders::lpv_glossy_3_frag, &shaders::lpv_glossy_4_frag};

@@ -98,10 +98,11 @@ WorkCounts indirectRebuildWork(uint64_t pixels) {
     // Neighbouring pixels share those texels, so memory traffic does not grow (the smaller
     // targets even save some); only fetches and arithmetic do.
     WorkCounts w;
-    // Per neighbour: irradiance with its view depth, glossy radiance, normal; less the two texels
-    // the full-resolution path reads.
-    w.texelsRead = pixels * (4 * 3 - 2);
-    w.aluOps = pixels * 4 * 30;
+    // Per neighbour: irradiance with its view depth, glossy radiance with its normal; less the two
+    // texels the full-resolution path reads.
+    w.texelsRead = pixels * (4 * 2 - 2);
+    // About 30 operations per neighbour, and 6 more to unpack its normal.
+    w.aluOps = pixels * 4 * 36;
     return w;
 }
 

@@ -27,14 +27,16 @@ class IndirectLighting {
 public:
     virtual ~IndirectLighting() = default;
     // Writes indirect irradiance (RGBA16F, linear, W/m^2-like units of the sun's) for every pixel
-    // into `target`, and into `glossyTarget` (RGBA16F, linear; alpha unused) the radiance a glossy
+    // into `target`, and into `glossyTarget` (RGBA16F, linear) the radiance a glossy
     // surface gathers over its specular lobe, before the lobe's weight F0 x scale + bias
     // (SpecularAlbedo.h), which the lighting pass applies. The call must fully overwrite both. Both
     // are 1/resolutionDivisor() of the G-buffer per axis (rounded up): texel (x, y) holds the
     // answer for G-buffer pixel (x, y) * divisor. The irradiance's alpha holds that pixel's view
     // depth (its clip-space w; 0 where there is no surface): the lighting pass's rebuild places the
-    // texel in space with it instead of fetching the G-buffer's depth. Without a provider the first
-    // holds render.ambient, the second render.ambient / pi (a uniform sky).
+    // texel in space with it instead of fetching the G-buffer's depth; the glossy radiance's alpha
+    // holds that pixel's normal, packed by shaders/rebuild_normal.glsl, which the rebuild compares
+    // with the normal of the pixel it fills. Without a provider the first holds render.ambient,
+    // the second render.ambient / pi (a uniform sky; no surface, so no rebuild).
     virtual void renderIndirect(rhi::CommandList& cmd, const CameraMatrices& camera,
                                 const GBufferView& gbuffer, rhi::TextureHandle target,
                                 rhi::TextureHandle glossyTarget, FrameProfiler* profiler) = 0;
