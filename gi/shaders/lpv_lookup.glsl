@@ -53,12 +53,20 @@ CascadeSample lightAt(int c, vec3 p, LookupLobes lobes) {
     return CascadeSample(max(s.irradiance, vec3(0.0)) / area, max(s.glossy, vec3(0.0)) / area);
 }
 
+// Cascade c's irradiance alone at point p, for the damping's sample behind the surface.
+vec3 irradianceAt(int c, vec3 p, vec4 cosine) {
+    vec3 uvw = uvwIn(c, p);
+    if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) return vec3(0.0);
+    vec3 e = projectCascade(c, uvw, cosine, lookup.grid.y != 0 ? lookup.encode.x : 0.0);
+    return max(e, vec3(0.0)) / (lookup.gridOrigin[c].w * lookup.gridOrigin[c].w);
+}
+
 // Cascade c's light at surface point p: half a cell out along n, damped.
 CascadeSample surfaceLight(int c, vec3 p, vec3 n, LookupLobes lobes) {
     float cell = lookup.gridOrigin[c].w;
     CascadeSample front = lightAt(c, p + 0.5 * cell * n, lobes);
     if (lookup.grid.z != 0) {
-        vec3 behind = lightAt(c, p - 0.5 * cell * n, lobes).irradiance;
+        vec3 behind = irradianceAt(c, p - 0.5 * cell * n, lobes.irradiance);
         float f = dot(front.irradiance, vec3(0.2126, 0.7152, 0.0722));
         float bk = dot(behind, vec3(0.2126, 0.7152, 0.0722));
         float growth = max(bk - f, 0.0) / max(bk, 1e-6);
