@@ -39,6 +39,21 @@ vec3 projectCascade(int c, vec3 uvw, vec4 lobe, float range) {
     return projectVolumes(lpv3r, lpv3g, lpv3b, uvw, lobe, range);
 }
 
+// Cascade c's intensity at uvw, each channel weighted by its own lobe (the glossy march).
+vec3 projectVolumesPerChannel(sampler3D r, sampler3D g, sampler3D b, vec3 uvw, vec4 lobeR, vec4 lobeG,
+                              vec4 lobeB, float range) {
+    vec4 sr = textureLod(r, uvw, 0.0), sg = textureLod(g, uvw, 0.0), sb = textureLod(b, uvw, 0.0);
+    if (range > 0.0) sr = decodeShRange(sr, range), sg = decodeShRange(sg, range), sb = decodeShRange(sb, range);
+    return vec3(dot(sr, lobeR), dot(sg, lobeG), dot(sb, lobeB));
+}
+
+vec3 projectCascadePerChannel(int c, vec3 uvw, vec4 lobeR, vec4 lobeG, vec4 lobeB, float range) {
+    if (c == 0) return projectVolumesPerChannel(lpv0r, lpv0g, lpv0b, uvw, lobeR, lobeG, lobeB, range);
+    if (c == 1) return projectVolumesPerChannel(lpv1r, lpv1g, lpv1b, uvw, lobeR, lobeG, lobeB, range);
+    if (c == 2) return projectVolumesPerChannel(lpv2r, lpv2g, lpv2b, uvw, lobeR, lobeG, lobeB, range);
+    return projectVolumesPerChannel(lpv3r, lpv3g, lpv3b, uvw, lobeR, lobeG, lobeB, range);
+}
+
 // The lookup's two answers from one fetch of each volume: the irradiance (one lobe for every
 // channel) and the glossy radiance (each channel its own lobe: the lobe's mean direction depends
 // on the channel's F0).

@@ -5,9 +5,11 @@
 //   evaluates the SH in direction -r and divides by the cell's cross-section (as the lookup does).
 // - Nearer steps weigh more: their light is the likelier to reach the surface unoccluded (the
 //   march ignores occlusion, as the talk's does).
-// - Roughness widens the cone. Convolving an L1 signal with a normalized lobe scales band 1 only:
-//   1 for a mirror, 2/3 for the clamped cosine / pi. Blending that factor with roughness blends the
-//   mirror radiance toward the cosine-lobe irradiance / pi.
+// - Each step evaluates the GGX lobe the lookup evaluates at the surface (glossy_lobes.glsl): per
+//   channel of F0 the basis at the lobe's mean light direction, whose length narrows band 1 as
+//   roughness widens the lobe; the march runs along that direction (F0's luminance), which leans
+//   from the mirror direction toward the normal as roughness grows. Where the march fades out
+//   (glossyFade) the two then differ only in where they sample, not in the lobe.
 // - Drawn premultiplied over the lookup's glossy radiance (the volume at the lobe's mean light
 //   direction, lpv_lookup.glsl): radiance x fade with alpha fade (glossyFade), so the march answers
 //   for that share and a surface too rough for it keeps the lookup's reflection.
@@ -20,6 +22,8 @@
 //   sides of a branch), so there the CASCADE c variant marches one cascade in a draw of that
 //   cascade's glossy classes (gi/CascadeClasses.h).
 #include "lpv_cascades.glsl"
+#include "specular_albedo.glsl"
+#include "glossy_lobes.glsl"
 
 // GlossyReflections::kSteps. A constant, and a step outside the volume weighs 0 instead of ending
 // the loop: the march unrolls into straight code, which llvmpipe ran 15-25% faster than the loop
@@ -36,22 +40,25 @@ layout(binding = 0, std140) uniform Glossy {
 } glossy;
 layout(binding = 1) uniform sampler2D depthTexture;
 layout(binding = 2) uniform sampler2D normalTexture;
+layout(binding = 15) uniform sampler2D albedoTexture;        // albedo, metallic in alpha
+layout(binding = 16) uniform sampler2D specularAlbedoTable; // specular_albedo.glsl
 
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outRadiance;
 
-// Cascade c's intensity at uvw weighted by `lobe`, per channel (c constant in every call).
-vec3 project(int c, vec3 uvw, vec4 lobe) {
-    return projectCascade(c, uvw, lobe, glossy.grid.y != 0 ? glossy.encode.x : 0.0);
+// Cascade c's intensity at uvw, each channel through its lobe (c constant in every call).
+vec3 project(int c, vec3 uvw, GlossyLobes lobes) {
+    return projectCascadePerChannel(c, uvw, lobes.r, lobes.g, lobes.b, glossy.grid.y != 0 ? glossy.encode.x : 0.0);
 }
 
 vec3 uvwIn(int c, vec3 p) { return uvwInVolume(glossy.gridOrigin[c], glossy.grid.x, p); }
 
 bool holds(int c, vec3 p, vec3 n) { return glossyMarchHeld(glossy.gridOrigin[c], glossy.grid.x, p, n); }
 
-// The march through cascade c (constant in every call), nearer steps weighing more. It starts half
-// a cell out along the normal (like the lookup, so the first step is not inside the surface).
-vec3 march(int c, vec3 p, vec3 n, vec3 r, vec4 lobe) {
+// The march through cascade c (constant in every call) along direction r, nearer steps weighing
+// more. It starts half a cell out along the normal (like the lookup, so the first step is not
+// inside the surface).
+vec3 march(int c, vec3 p, vec3 n, vec3 r, GlossyLobes lobes) {
     float cell = glossy.gridOrigin[c].w;
     vec3 start = p + 0.5 * cell * n;
     vec3 sum = vec3(0.0);
@@ -62,7 +69,7 @@ vec3 march(int c, vec3 p, vec3 n, vec3 r, vec4 lobe) {
         // A step that left the volume weighs nothing (the ray does not come back into a box).
         bool inside = all(greaterThanEqual(uvw, vec3(0.0))) && all(lessThanEqual(uvw, vec3(1.0)));
         float w = inside ? 1.0 / float(step) : 0.0;
-        sum += w * max(project(c, uvw, lobe), vec3(0.0));
+        sum += w * max(project(c, uvw, lobes), vec3(0.0));
         weights += w;
     }
     return weights > 0.0 ? sum / (weights * cell * cell) : vec3(0.0);
@@ -90,38 +97,37 @@ void main() {
     vec3 p = world.xyz / world.w;
     vec3 n = normalize(normalRoughness.xyz);
     vec3 v = normalize(glossy.cameraPosition.xyz - p);
-    vec3 r = reflect(-v, n);
-
-    float band1 = mix(1.0, 2.0 / 3.0, roughness);
-    // Radiance toward the surface along -r: the basis in direction -r, band 1 narrowed by the cone.
-    vec4 lobe = shBasis(-r) * vec4(1.0, band1, band1, band1);
+    vec4 albedoMetal = texelFetch(albedoTexture, source, 0);
+    vec3 f0 = mix(vec3(0.04), albedoMetal.rgb, albedoMetal.a); // as the lighting pass
+    GlossyLobes lobes = glossyLobesAt(specularAlbedoTable, n, v, roughness, f0);
+    vec3 r = lobes.direction;
     // The finest cascade that holds the march answers for all of it (no blend band: the glossy
     // term is faint next to the diffuse one, and a seam in it is hard to see); the coarsest when
     // none does.
 #ifdef CASCADE
-    vec3 radiance = march(CASCADE, p, n, r, lobe); // this draw's texels all belong to CASCADE
+    vec3 radiance = march(CASCADE, p, n, r, lobes); // this draw's texels all belong to CASCADE
 #else
     vec3 radiance;
     bool marched = false;
 #if CASCADES > 1
     if (holds(0, p, n)) {
-        radiance = march(0, p, n, r, lobe);
+        radiance = march(0, p, n, r, lobes);
         marched = true;
     }
 #endif
 #if CASCADES > 2
     if (!marched && holds(1, p, n)) {
-        radiance = march(1, p, n, r, lobe);
+        radiance = march(1, p, n, r, lobes);
         marched = true;
     }
 #endif
 #if CASCADES > 3
     if (!marched && holds(2, p, n)) {
-        radiance = march(2, p, n, r, lobe);
+        radiance = march(2, p, n, r, lobes);
         marched = true;
     }
 #endif
-    if (!marched) radiance = march(CASCADES - 1, p, n, r, lobe);
+    if (!marched) radiance = march(CASCADES - 1, p, n, r, lobes);
 #endif
     outRadiance = vec4(radiance * fade, fade);
 }

@@ -7,9 +7,9 @@
 // The same fetches give the glossy radiance where the march (lpv_glossy.glsl) does not run or
 // fades out: the volume's radiance averaged over the GGX lobe seen from the camera. Radiance in an
 // L1 volume is linear in the direction, so that average is the field evaluated at the lobe's mean
-// light direction (engine/render/SpecularAlbedo.h's table, per channel of F0), exactly, at the
-// surface point; the march, where it runs, gathers from a few cells along the mirror direction
-// instead and is drawn over it. With gi.glossy off, the cosine lobe's E / pi, which costs nothing.
+// light direction (glossy_lobes.glsl, per channel of F0), exactly, at the surface point; the
+// march, where it runs, evaluates the same lobes a few cells out along the mean direction instead
+// and is drawn over it. With gi.glossy off, the cosine lobe's E / pi, which costs nothing.
 //
 // Cascades: the finest cascade that holds the point answers; in a band inside its border (a
 // quarter of its half-extent, CryEngine's e_GIBlendRatio) it fades into the next coarser one, so
@@ -21,6 +21,7 @@
 #include "lpv_cascades.glsl"
 #include "rebuild_normal.glsl"
 #include "specular_albedo.glsl"
+#include "glossy_lobes.glsl"
 
 layout(binding = 0, std140) uniform Lookup {
     mat4 invViewProjection;
@@ -84,14 +85,6 @@ float insideness(int c, vec3 p) {
 // Cascade c's share where p lies in its blend band: 1 inside the band, 0 at its border.
 float blendWeight(int c, vec3 p) { return smoothstep(0.0, 1.0, clamp(insideness(c, p), 0.0, 1.0)); }
 
-// The glossy lobe's mean light direction for a channel of reflectance f0 at normal incidence,
-// from the table's directions (x along n, y along t, the mirror direction's part across n), as
-// the basis that evaluates the radiance arriving from it (it travels along the negated direction).
-vec4 glossyLobe(float f0, vec4 scaleBias, vec2 biasDirection, vec3 n, vec3 t) {
-    vec2 m = (f0 * scaleBias.zw + biasDirection) / max(f0 * scaleBias.x + scaleBias.y, 1e-6);
-    return shBasis(-(m.x * n + m.y * t));
-}
-
 CascadeSample mixSamples(CascadeSample a, CascadeSample b, float w) {
     return CascadeSample(a.irradiance + w * b.irradiance, a.glossy + w * b.glossy);
 }
@@ -126,18 +119,11 @@ void main() {
     LookupLobes lobes = LookupLobes(cosine, cosine / PI, cosine / PI, cosine / PI);
     if (lookup.intensity.z != 0.0) {
         vec3 v = normalize(lookup.cameraPosition.xyz - p);
-        vec3 across = reflect(-v, n) - n * dot(n, v); // the mirror direction's part across n
-        float acrossLength = length(across);
-        vec3 t = acrossLength > 1e-5 ? across / acrossLength : vec3(0.0); // head-on the lobe is symmetric
         float roughness = clamp(normalRoughness.w, 0.0, 1.0);
-        float cosView = max(dot(n, v), 0.0);
-        vec4 scaleBias = specularAlbedoAt(specularAlbedoTable, cosView, roughness, 0);
-        vec2 biasDirection = specularAlbedoAt(specularAlbedoTable, cosView, roughness, 1).xy;
         vec4 albedoMetal = texelFetch(albedoTexture, source, 0);
         vec3 f0 = mix(vec3(0.04), albedoMetal.rgb, albedoMetal.a); // as the lighting pass
-        lobes.glossyR = glossyLobe(f0.r, scaleBias, biasDirection, n, t);
-        lobes.glossyG = glossyLobe(f0.g, scaleBias, biasDirection, n, t);
-        lobes.glossyB = glossyLobe(f0.b, scaleBias, biasDirection, n, t);
+        GlossyLobes glossy = glossyLobesAt(specularAlbedoTable, n, v, roughness, f0);
+        lobes.glossyR = glossy.r, lobes.glossyG = glossy.g, lobes.glossyB = glossy.b;
     }
 #ifdef CASCADE
     // One class's draw: the classification chose the cascade and whether the texel is in its band

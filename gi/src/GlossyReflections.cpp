@@ -69,7 +69,8 @@ GlossyReflections::~GlossyReflections() {
 void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                                const engine::GBufferView& gbuffer, std::span<const GlossyCascade> cascades,
                                float encodeRange, float maxRoughness, rhi::TextureHandle target,
-                               uint32_t divisor, const CascadeClasses* classes) {
+                               rhi::TextureHandle specularAlbedoTable, uint32_t divisor,
+                               const CascadeClasses* classes) {
     using namespace rhi;
     const auto cascade = [&](size_t c) -> const GlossyCascade& {
         return cascades[std::min(c, cascades.size() - 1)];
@@ -97,6 +98,8 @@ void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatric
         cmd.pushUniforms(0, &u, sizeof(u));
         bindCascadeReads(cmd, gbuffer, std::span(volumes.data(), cascades.size()), pointSampler_,
                          linearSampler_);
+        cmd.bindTexture(15, gbuffer.albedo, pointSampler_);
+        cmd.bindTexture(16, specularAlbedoTable, linearSampler_);
     };
     if (!classes) {
         cmd.bindPipeline(pipelines_[std::min<size_t>(cascades.size(), 4) - 1]);
@@ -118,11 +121,14 @@ engine::WorkCounts glossyWork(uint64_t pixels) {
     engine::WorkCounts w;
     w.pixelsShaded = pixels;
     // A 3D (trilinear) fetch costs two bilinear ones on the cost model's texture units.
-    w.texelsRead = pixels * (2 + GlossyReflections::kSteps * 3 * 2);
+    // Depth, normal, albedo and the lobe table's two blocks (bilinear), then the steps.
+    w.texelsRead = pixels * (5 + GlossyReflections::kSteps * 3 * 2);
     w.texelsWritten = pixels;
-    w.aluOps = pixels * (40 + 20 * GlossyReflections::kSteps);
-    // Depth and normal in, the blend's read and write of the RGBA16F target.
-    w.bytesMoved = pixels * (4 + 8 + 8 + 8);
+    // The lobes (glossy_lobes.glsl: three channels' and the luminance's mean direction), then per
+    // step one product per channel, each with its channel's lobe (as many as with one lobe).
+    w.aluOps = pixels * (40 + 30 + 20 * GlossyReflections::kSteps);
+    // Depth, normal and albedo in, the blend's read and write of the RGBA16F target.
+    w.bytesMoved = pixels * (4 + 8 + 4 + 8 + 8);
     w.primitives = 1;
     return w;
 }

@@ -442,7 +442,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             glossyCascades[c] = {cascades_[c].grid, cascades_[c].result};
         glossy_.render(cmd, camera, gbuffer, std::span(glossyCascades.data(), cascades_.size()),
                        volumes_->encoded() ? volumes_->encodeRange() : 0.0f, settings_.glossyMaxRoughness,
-                       glossyTarget, divisor, classified ? classes_.get() : nullptr);
+                       glossyTarget, renderer_->specularAlbedoTexture(), divisor,
+                       classified ? classes_.get() : nullptr);
         work(glossyWork(lookupPixels));
     }
     cmd.endMarker();

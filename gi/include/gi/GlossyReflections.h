@@ -1,8 +1,7 @@
 // Glossy reflections from the LPV (gi.glossy): a fullscreen pass that marches a few cells along
-// each pixel's reflected view ray through the cascades and draws the radiance arriving along it
-// (linear RGBA16F) over the lookup's reflection, for the lighting pass to add under the lobe's
-// weight. The march and the roughness
-// cone are in gi/shaders/lpv_glossy.glsl.
+// each pixel's reflected view ray (the GGX lobe's mean direction) through the cascades and draws the radiance
+// arriving along it (linear RGBA16F) over the lookup's reflection, for the lighting pass to add under the
+// lobe's weight. The march and the roughness cone are in gi/shaders/lpv_glossy.glsl.
 #pragma once
 
 #include "engine/profiler/WorkCounts.h"
@@ -35,7 +34,8 @@ public:
     GlossyReflections& operator=(const GlossyReflections&) = delete;
 
     // Draws the march over `target` (finest cascade first in `cascades`, 1 to 4 of them), which
-    // holds the lookup's glossy radiance of the lobe's mean direction: premultiplied by the march's
+    // holds the lookup's glossy radiance of the lobe's mean direction (the lobes from
+    // `specularAlbedoTable`, engine::Renderer::specularAlbedoTexture()): premultiplied by the march's
     // share, its fade (gi.glossy_max_roughness: all of it up to 0.1 below `maxRoughness`, none from
     // it on, where the march does not run and the texel keeps the lookup's value). `encodeRange` > 0:
     // the volumes are rgba8, range-encoded. `target` is 1/divisor of the G-buffer per axis: its texel
@@ -44,7 +44,8 @@ public:
     // texels (CascadeClasses.h); only where CascadeClasses::wanted(device).
     void render(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                 const engine::GBufferView& gbuffer, std::span<const GlossyCascade> cascades,
-                float encodeRange, float maxRoughness, rhi::TextureHandle target, uint32_t divisor = 1,
+                float encodeRange, float maxRoughness, rhi::TextureHandle target,
+                rhi::TextureHandle specularAlbedoTable, uint32_t divisor = 1,
                 const CascadeClasses* classes = nullptr);
 
 private:
@@ -56,7 +57,8 @@ private:
     rhi::SamplerHandle pointSampler_, linearSampler_;
 };
 
-// Depth, normal, kSteps trilinear fetches of the three volumes, per pixel marched.
+// Depth, normal, albedo, the lobe table's two blocks, kSteps trilinear fetches of the three
+// volumes, per pixel marched.
 engine::WorkCounts glossyWork(uint64_t pixels);
 
 } // namespace lpv::gi
