@@ -279,12 +279,7 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
         profiler.endFrame(cmd);
         device->endFrame();
     }
-    for (uint32_t i = 0; i <= device->caps().framesInFlight; ++i) { // collect the last frames' timings
-        rhi::CommandList& cmd = device->beginFrame();
-        profiler.beginFrame(cmd);
-        profiler.endFrame(cmd);
-        device->endFrame();
-    }
+    profiler.collectPending(); // the last frames' timings
     const std::string source(rhi::timestampSourceName(profiler.gpuTimingSource()));
     std::printf("\n### %s, %s (%llu triangles, %ux%u, GI 32^3 x 8, timing: %s)\n\n", sceneName.c_str(),
                 b.name.c_str(), (unsigned long long)scene.triangleCount(), w, h, source.c_str());

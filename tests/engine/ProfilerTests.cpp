@@ -101,6 +101,28 @@ TEST_CASE("profiler: GPU results arrive frames later, never by waiting") {
     CHECK(profiler.gpuResultsLost() == 0);
 }
 
+// Before a report the last frames' results are collected without counting the empty device
+// frames that carry them in: every recorded frame is checked, none is lost, and the frame
+// statistics hold those frames alone (the empty ones took about 0 ms and pulled the median down).
+TEST_CASE("profiler: collecting the last frames' results adds no frames") {
+    auto device = nullDevice();
+    FrameProfiler profiler(*device, tinyProfile(100, 100));
+    for (int i = 0; i < 4; ++i)
+        frame(*device, profiler, 3, 2);
+    CHECK(profiler.framesChecked() == 2); // two still in flight
+    profiler.collectPending();
+    CHECK(profiler.framesChecked() == 4);
+    CHECK(profiler.gpuResultsLost() == 0);
+    const SampleStats gpu = profiler.frameGpuMs(), cpu = profiler.frameCpuMs();
+    CHECK(gpu.count == 4);
+    CHECK(cpu.count == 4);
+    CHECK(gpu.median == doctest::Approx(0.005)); // five dispatches, 1 us each
+    size_t recorded = 0;
+    profiler.forEachFrame([&](const FrameProfiler::FrameRecord&) { ++recorded; });
+    CHECK(recorded == 4);
+    CHECK(profiler.scopes()[1].gpuMs.count() == 4);
+}
+
 TEST_CASE("profiler: statistics over the window") {
     SampleWindow w(4);
     for (double v : {5.0, 1.0, 3.0, 2.0, 4.0})

@@ -169,6 +169,15 @@ void FrameProfiler::endFrame(rhi::CommandList& cmd) {
     current_ = nullptr;
 }
 
+void FrameProfiler::collectPending() {
+    if (current_) throw std::logic_error("profiler: collectPending() inside a frame");
+    for (uint32_t i = 0; i <= device_.caps().framesInFlight; ++i) {
+        device_.beginFrame();
+        resolveGpu();
+        device_.endFrame();
+    }
+}
+
 void FrameProfiler::resolveGpu() {
     if (!gpuSlots_) return;
     const uint64_t now = device_.frameIndex();

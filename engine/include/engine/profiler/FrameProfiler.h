@@ -68,6 +68,10 @@ public:
     // Call right after Device::beginFrame() and right before Device::endFrame().
     void beginFrame(rhi::CommandList& cmd);
     void endFrame(rhi::CommandList& cmd);
+    // Before a report: lets the GPU results of every frame recorded so far arrive (they come
+    // framesInFlight frames late) by running that many empty device frames, which are not
+    // recorded: they would add near-zero frames to the statistics and the report.
+    void collectPending();
 
     class Scope {
     public:
