@@ -6,9 +6,9 @@
 #include <GLFW/glfw3.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 namespace lpv::platforms {
@@ -55,12 +55,26 @@ uint64_t Platform::nowNanoseconds() const {
     return platforms::nowNanoseconds();
 }
 
+int Platform::tryReadFile(const std::string& path, std::string& contents) {
+    // stdio rather than iostreams: a stream reading a directory just ends, with no errno to tell.
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return errno ? errno : EIO;
+    contents.clear();
+    char buffer[65536];
+    size_t n = 0;
+    while ((n = std::fread(buffer, 1, sizeof(buffer), f)) > 0)
+        contents.append(buffer, n);
+    const int error = std::ferror(f) ? (errno ? errno : EIO) : 0;
+    std::fclose(f);
+    if (error) contents.clear();
+    return error;
+}
+
 std::string Platform::readFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error("cannot read " + path + ": " + std::strerror(errno));
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
+    std::string contents;
+    if (const int error = tryReadFile(path, contents))
+        throw std::runtime_error("cannot read " + path + ": " + std::strerror(error));
+    return contents;
 }
 
 void Platform::writeFile(const std::string& path, const std::string& contents) {

@@ -1,15 +1,17 @@
 // Loading platform profiles from TOML, strictly: every key known, every key present.
 #include "platforms/PlatformProfile.h"
 
+#include "platforms/Platform.h"
+
 #include "BuiltinProfiles.h"
 
 #include <toml++/toml.h>
 
 #include <algorithm>
-#include <fstream>
+#include <cerrno>
+#include <cstring>
 #include <functional>
 #include <map>
-#include <sstream>
 #include <stdexcept>
 
 namespace lpv::platforms {
@@ -145,17 +147,18 @@ PlatformProfile loadPlatformProfile(std::string_view nameOrPath) {
         if (b.name == nameOrPath)
             return parsePlatformProfile(b.toml, "platforms/profiles/" + std::string(b.name) + ".toml");
     const std::string path(nameOrPath);
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
+    std::string text;
+    if (const int error = Platform::tryReadFile(path, text)) {
+        if (error != ENOENT)
+            throw std::runtime_error(path +
+                                     ": cannot read the platform profile file: " + std::strerror(error));
         std::string names;
         for (const auto& n : builtinProfileNames())
             names += (names.empty() ? "" : ", ") + n;
         throw std::runtime_error("platform profile '" + path + "' is neither a built-in profile (" + names +
-                                 ") nor a readable file");
+                                 ") nor a file: " + std::strerror(error));
     }
-    std::ostringstream s;
-    s << in.rdbuf();
-    return parsePlatformProfile(s.str(), path);
+    return parsePlatformProfile(text, path);
 }
 
 } // namespace lpv::platforms

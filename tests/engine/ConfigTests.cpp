@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -119,7 +120,19 @@ TEST_CASE("config: malformed TOML names the file and line") {
         errorOf([&] { c.loadString("[cfgtest]\nenabled = true\ngrid_size = = 3\n", "broken.toml"); });
     CHECK(e.find("broken.toml:3: malformed TOML") == 0);
     CHECK(errorOf([&] { c.loadFile("/nonexistent/game.toml"); }) ==
-          "/nonexistent/game.toml: cannot open the config file");
+          "/nonexistent/game.toml: cannot read the config file: No such file or directory");
+}
+
+TEST_CASE(
+    "config: a path that opens but cannot be read is an error with the OS's reason, not an empty file") {
+    const std::string dir = "/tmp/lpv_cfgtest_dir.toml";
+    std::filesystem::create_directories(dir);
+    Config c;
+    CHECK_THROWS_WITH_AS(c.loadFile(dir), (dir + ": cannot read the config file: Is a directory").c_str(),
+                         ConfigError);
+    CHECK_THROWS_WITH_AS(c.loadFile("/proc/self/mem"),
+                         "/proc/self/mem: cannot read the config file: Input/output error", ConfigError);
+    std::filesystem::remove(dir);
 }
 
 TEST_CASE("config: changes while running apply at the next frame") {

@@ -5,6 +5,7 @@
 
 #include <doctest/doctest.h>
 
+#include <filesystem>
 #include <stdexcept>
 
 using namespace lpv;
@@ -72,9 +73,25 @@ texture_blocks_alu = false
     missing.erase(missing.find("edram_gbs = 0\n"), 14);
     CHECK(errorOf([&] { platforms::parsePlatformProfile(missing, "t.toml"); }) ==
           "t.toml: missing platform profile key 'throughput.edram_gbs'");
-    CHECK(errorOf([&] {
-              platforms::loadPlatformProfile("wii");
-          }).find("neither a built-in profile (x360, ps3, pc)") != std::string::npos);
+    CHECK(errorOf([&] { platforms::loadPlatformProfile("wii"); }) ==
+          "platform profile 'wii' is neither a built-in profile (x360, ps3, pc) nor a file: No such file or "
+          "directory");
+}
+
+TEST_CASE("platform profiles: a path that cannot be read says so, with the OS's reason") {
+    const std::string dir = "/tmp/lpv_profiletest_dir";
+    std::filesystem::create_directories(dir);
+    CHECK_THROWS_WITH_AS(platforms::loadPlatformProfile(dir),
+                         (dir + ": cannot read the platform profile file: Is a directory").c_str(),
+                         std::runtime_error);
+    engine::Config config;
+    config.applyOverride("platform.profile=" + dir, "--platform");
+    CHECK_THROWS_WITH_AS(
+        engine::activePlatformProfile(config),
+        ("--platform: platform.profile: " + dir + ": cannot read the platform profile file: Is a directory")
+            .c_str(),
+        engine::ConfigError);
+    std::filesystem::remove(dir);
 }
 
 TEST_CASE("platform profiles: platform.profile selects one, and a bad one is a config error") {

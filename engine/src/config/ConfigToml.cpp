@@ -2,10 +2,11 @@
 // gi.grid_size. Every key must be a declared setting; every value must have the declared type.
 #include "engine/config/Config.h"
 
+#include "platforms/Platform.h"
+
 #include <toml++/toml.h>
 
-#include <fstream>
-#include <sstream>
+#include <cstring>
 
 namespace lpv::engine {
 namespace {
@@ -110,11 +111,10 @@ void Config::loadString(std::string_view text, const std::string& sourceName) {
 }
 
 void Config::loadFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw ConfigError(path, 0, "cannot open the config file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    loadString(text.str(), path);
+    std::string text;
+    if (const int error = platforms::Platform::tryReadFile(path, text))
+        throw ConfigError(path, 0, "cannot read the config file: " + std::string(std::strerror(error)));
+    loadString(text, path);
 }
 
 } // namespace lpv::engine

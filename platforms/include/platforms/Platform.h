@@ -33,6 +33,9 @@ public:
     uint64_t nowNanoseconds() const;
     // Whole-file access; throws std::runtime_error naming the path and the reason.
     static std::string readFile(const std::string& path);
+    // The same without throwing: 0, or the errno of what failed. A path that opens but cannot be
+    // read (a directory, /proc/self/mem) fails too, rather than reading as an empty file.
+    static int tryReadFile(const std::string& path, std::string& contents);
     static void writeFile(const std::string& path, const std::string& contents);
 
 private:

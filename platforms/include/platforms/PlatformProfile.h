@@ -39,7 +39,8 @@ struct PlatformProfile {
 // Built-in names: x360, ps3, pc.
 std::vector<std::string> builtinProfileNames();
 // A built-in name, or a path to a TOML file. Throws std::runtime_error naming the file, the line
-// and the problem (unknown or missing key, wrong type, malformed TOML).
+// and the problem (unknown or missing key, wrong type, malformed TOML), or the path and the OS's
+// reason when the file cannot be read.
 PlatformProfile loadPlatformProfile(std::string_view nameOrPath);
 PlatformProfile parsePlatformProfile(std::string_view toml, const std::string& sourceName);
 
