@@ -94,6 +94,13 @@ const std::map<std::string, Field>& fields() {
     return f;
 }
 
+// Whether some key lives under `name`: "throughput" for "throughput.alu_gflops".
+bool isTable(const std::string& name) {
+    for (const auto& [key, field] : fields())
+        if (key.starts_with(name + ".")) return true;
+    return false;
+}
+
 [[noreturn]] void fail(const std::string& source, const toml::node* n, const std::string& message) {
     const std::string where = n ? source + ":" + std::to_string(n->source().begin.line) : source;
     throw std::runtime_error(where + ": " + message);
@@ -104,11 +111,15 @@ void walk(const toml::table& t, const std::string& prefix, const std::string& so
     for (const auto& [key, node] : t) {
         const std::string name =
             prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
-        if (const toml::table* sub = node.as_table()) {
+        const auto it = fields().find(name);
+        const toml::table* sub = node.as_table();
+        if (sub && it == fields().end()) {
+            // An empty table names no keys; it must still be one of the profile's tables.
+            if (sub->empty() && !isTable(name))
+                fail(source, &node, "unknown platform profile table '" + name + "'");
             walk(*sub, name, source, p, seen);
             continue;
         }
-        const auto it = fields().find(name);
         if (it == fields().end()) fail(source, &node, "unknown platform profile key '" + name + "'");
         if (!it->second.read(node, p)) fail(source, &node, "'" + name + "': expected " + it->second.expected);
         seen.push_back(name);

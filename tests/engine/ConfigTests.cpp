@@ -135,6 +135,48 @@ TEST_CASE(
     std::filesystem::remove(dir);
 }
 
+TEST_CASE("config: a table, an empty one included, where a value belongs is a wrong type") {
+    Config c;
+    CHECK_THROWS_WITH_AS(c.loadString("[cfgtest]\ngrid_size = {}\n", "t.toml"),
+                         "t.toml:2: 'cfgtest.grid_size' has a table value: expected an integer in [16, 64]",
+                         ConfigError);
+    CHECK(errorOf([&] { c.loadString("[cfgtest]\ngrid_size = { x = 1 }\n", "t.toml"); }) ==
+          "t.toml:2: 'cfgtest.grid_size' has a table value: expected an integer in [16, 64]");
+    CHECK(errorOf([&] { c.loadString("\n[cfgtest.enabled]\n", "t.toml"); }) ==
+          "t.toml:2: 'cfgtest.enabled' has a table value: expected a bool (true or false)");
+    CHECK(errorOf([&] { c.loadString("[[cfgtest.name]]\n", "t.toml"); }) ==
+          "t.toml:1: 'cfgtest.name' has an array value: expected a string");
+    CHECK(c.get(kGrid) == 32);
+}
+
+TEST_CASE("config: an empty array where a value belongs is a wrong type") {
+    Config c;
+    CHECK_THROWS_WITH_AS(c.loadString("cfgtest.scale = []\n", "t.toml"),
+                         "t.toml:1: 'cfgtest.scale' has an array value: expected a number in [0, 10]",
+                         ConfigError);
+    CHECK(errorOf([&] { c.loadString("cfgtest.sun_direction = []\n", "t.toml"); }) ==
+          "t.toml:1: 'cfgtest.sun_direction' has an empty array value: expected three numbers ([x, y, z] in "
+          "TOML, x,y,z on the command line)");
+    CHECK(errorOf([&] {
+              c.loadString("cfgtest.sun_direction = [1, 2]\n", "t.toml");
+          }).find("t.toml:1: 'cfgtest.sun_direction' has a 2-element array value") == 0);
+}
+
+TEST_CASE("config: an unknown table is an error, even an empty one") {
+    Config c;
+    CHECK_THROWS_WITH_AS(c.loadString("[cfgtest]\nenabled = true\n\n[cfgtest.bogus]\n", "game.toml"),
+                         "game.toml:4: unknown table 'cfgtest.bogus' (--help-config lists the settings)",
+                         ConfigError);
+    CHECK(errorOf([&] { c.loadString("[cfgtst]\n", "game.toml"); }) ==
+          "game.toml:1: unknown table 'cfgtst' (did you mean 'cfgtest'?)");
+    CHECK(errorOf([&] { c.loadString("cfgtest = {}\n", "game.toml"); }) == "(no error)"); // known, empty
+    // A table of settings written as something else: an array of tables, a value.
+    CHECK(errorOf([&] { c.loadString("[[cfgtest]]\ngrid_size = 40\n", "game.toml"); }) ==
+          "game.toml:1: 'cfgtest' is a table of settings, got an array");
+    CHECK(errorOf([&] { c.loadString("cfgtest = 3\n", "game.toml"); }) ==
+          "game.toml:1: 'cfgtest' is a table of settings, got an integer");
+}
+
 TEST_CASE("config: changes while running apply at the next frame") {
     Config c;
     c.stage("cfgtest.grid_size=40", "console");

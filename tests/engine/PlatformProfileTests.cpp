@@ -76,6 +76,13 @@ texture_blocks_alu = false
     CHECK(errorOf([&] { platforms::loadPlatformProfile("wii"); }) ==
           "platform profile 'wii' is neither a built-in profile (x360, ps3, pc) nor a file: No such file or "
           "directory");
+    // Empty tables name no keys, but an unknown one is still refused; so is a table for a key.
+    CHECK_THROWS_WITH_AS(platforms::parsePlatformProfile(good + "\n[extra]\n", "t.toml"),
+                         "t.toml:21: unknown platform profile table 'extra'", std::runtime_error);
+    std::string tableForKey = good;
+    tableForKey.replace(tableForKey.find("description = \"d\""), 17, "description = {}");
+    CHECK(errorOf([&] { platforms::parsePlatformProfile(tableForKey, "t.toml"); }) ==
+          "t.toml:2: 'description': expected a string");
 }
 
 TEST_CASE("platform profiles: a path that cannot be read says so, with the OS's reason") {

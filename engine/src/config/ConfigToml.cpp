@@ -1,5 +1,6 @@
 // Loading settings from TOML (toml++). Tables give the dotted names: [gi] grid_size = 32 is
-// gi.grid_size. Every key must be a declared setting; every value must have the declared type.
+// gi.grid_size. Every key must be a declared setting, every table a prefix of some (even an empty
+// one); every value must have the declared type.
 #include "engine/config/Config.h"
 
 #include "platforms/Platform.h"
@@ -15,53 +16,56 @@ int lineOf(const toml::node& n) {
     return int(n.source().begin.line);
 }
 
+std::string_view typeNameOf(const toml::node& node) {
+    switch (node.type()) {
+    case toml::node_type::string:
+        return "a string";
+    case toml::node_type::integer:
+        return "an integer";
+    case toml::node_type::floating_point:
+        return "a float";
+    case toml::node_type::boolean:
+        return "a bool";
+    case toml::node_type::array:
+        return "an array";
+    case toml::node_type::table:
+        return "a table";
+    default:
+        return "a date/time";
+    }
+}
+
 SettingValue convert(const SettingDecl& decl, const toml::node& node, const std::string& source) {
     const auto wrongType = [&](std::string_view got) {
         return ConfigError(source, lineOf(node),
                            "'" + decl.name + "' has " + std::string(got) + " value: expected " +
                                decl.expected());
     };
-    const auto typeName = [&]() -> std::string_view {
-        switch (node.type()) {
-        case toml::node_type::string:
-            return "a string";
-        case toml::node_type::integer:
-            return "an integer";
-        case toml::node_type::floating_point:
-            return "a float";
-        case toml::node_type::boolean:
-            return "a bool";
-        case toml::node_type::array:
-            return "an array";
-        case toml::node_type::table:
-            return "a table";
-        default:
-            return "a date/time";
-        }
-    };
     SettingValue v;
     switch (decl.type) {
     case SettingType::Bool:
-        if (!node.is_boolean()) throw wrongType(typeName());
+        if (!node.is_boolean()) throw wrongType(typeNameOf(node));
         v = *node.value<bool>();
         break;
     case SettingType::Int:
-        if (!node.is_integer()) throw wrongType(typeName());
+        if (!node.is_integer()) throw wrongType(typeNameOf(node));
         v = *node.value<int64_t>();
         break;
     case SettingType::Float:
-        if (!node.is_number()) throw wrongType(typeName());
+        if (!node.is_number()) throw wrongType(typeNameOf(node));
         v = *node.value<double>();
         break;
     case SettingType::Enum:
     case SettingType::String:
-        if (!node.is_string()) throw wrongType(typeName());
+        if (!node.is_string()) throw wrongType(typeNameOf(node));
         v = *node.value<std::string>();
         break;
     case SettingType::Vec3: {
         const toml::array* a = node.as_array();
         if (!a || a->size() != 3)
-            throw wrongType(a ? "an array of " + std::to_string(a->size()) : std::string(typeName()));
+            throw wrongType(!a           ? std::string(typeNameOf(node))
+                            : a->empty() ? std::string("an empty array")
+                                         : "a " + std::to_string(a->size()) + "-element array");
         glm::vec3 x;
         for (size_t i = 0; i < 3; ++i) {
             if (!(*a)[i].is_number()) throw wrongType("an array with a non-number");
@@ -78,21 +82,36 @@ SettingValue convert(const SettingDecl& decl, const toml::node& node, const std:
 }
 
 void walk(Config& config, const toml::table& table, const std::string& prefix, const std::string& source) {
+    const SettingRegistry& registry = SettingRegistry::global();
     for (const auto& [key, node] : table) {
         const std::string name =
             prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
-        if (const toml::table* sub = node.as_table()) {
+        const SettingDecl* decl = registry.find(name);
+        const toml::table* sub = node.as_table();
+        if (sub && !decl) {
+            // A table with keys names its settings below; an empty one names none, so it must at
+            // least be a table that holds settings, or a typo would pass unnoticed.
+            if (sub->empty() && !registry.isTable(name)) {
+                const std::string suggestion = registry.nearestTable(name);
+                throw ConfigError(source, lineOf(node),
+                                  "unknown table '" + name + "'" +
+                                      (suggestion.empty() ? std::string(" (--help-config lists the settings)")
+                                                          : " (did you mean '" + suggestion + "'?)"));
+            }
             walk(config, *sub, name, source);
             continue;
         }
-        const SettingDecl* decl = SettingRegistry::global().find(name);
+        if (!decl && registry.isTable(name))
+            throw ConfigError(source, lineOf(node),
+                              "'" + name + "' is a table of settings, got " + std::string(typeNameOf(node)));
         if (!decl) {
-            const std::string suggestion = SettingRegistry::global().nearest(name);
+            const std::string suggestion = registry.nearest(name);
             throw ConfigError(source, lineOf(node),
                               "unknown setting '" + name + "'" +
                                   (suggestion.empty() ? std::string(" (--help-config lists them all)")
                                                       : " (did you mean '" + suggestion + "'?)"));
         }
+        // A table where a setting's value belongs, empty or not, is a wrong type (convert says so).
         config.set(*decl, convert(*decl, node, source), source + ":" + std::to_string(lineOf(node)));
     }
 }

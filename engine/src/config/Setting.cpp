@@ -109,19 +109,43 @@ size_t editDistance(std::string_view a, std::string_view b) {
     }
     return row[b.size()];
 }
-} // namespace
 
-std::string SettingRegistry::nearest(std::string_view name) const {
+// The candidate closest to `name`, or empty when none is close enough to be a likely typo.
+std::string closest(std::string_view name, const std::vector<std::string_view>& candidates) {
     std::string best;
     size_t bestDistance = std::max<size_t>(3, name.size() / 3) + 1; // beyond this, no suggestion
-    for (const SettingDecl* d : decls_) {
-        const size_t dist = editDistance(name, d->name);
+    for (const std::string_view c : candidates) {
+        const size_t dist = editDistance(name, c);
         if (dist < bestDistance) {
             bestDistance = dist;
-            best = d->name;
+            best = c;
         }
     }
     return best;
+}
+} // namespace
+
+std::string SettingRegistry::nearest(std::string_view name) const {
+    std::vector<std::string_view> names;
+    for (const SettingDecl* d : decls_)
+        names.emplace_back(d->name);
+    return closest(name, names);
+}
+
+bool SettingRegistry::isTable(std::string_view name) const {
+    for (const SettingDecl* d : decls_)
+        if (d->name.size() > name.size() && d->name.starts_with(name) && d->name[name.size()] == '.')
+            return true;
+    return false;
+}
+
+std::string SettingRegistry::nearestTable(std::string_view name) const {
+    // Every dotted prefix of a setting's name: "gi.debug_slice" gives "gi".
+    std::vector<std::string_view> tables;
+    for (const SettingDecl* d : decls_)
+        for (size_t dot = d->name.find('.'); dot != std::string::npos; dot = d->name.find('.', dot + 1))
+            tables.emplace_back(std::string_view(d->name).substr(0, dot));
+    return closest(name, tables);
 }
 
 std::vector<const SettingDecl*> SettingRegistry::all() const {

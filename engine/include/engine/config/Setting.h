@@ -51,6 +51,10 @@ public:
     const SettingDecl* find(std::string_view name) const;
     // The registered name closest to `name` (edit distance), or empty when nothing is close.
     std::string nearest(std::string_view name) const;
+    // Whether `name` is a table of settings in TOML: some setting's name starts with "name.".
+    bool isTable(std::string_view name) const;
+    // The table name closest to `name`, as nearest() does for settings.
+    std::string nearestTable(std::string_view name) const;
     // Sorted by name.
     std::vector<const SettingDecl*> all() const;
     size_t size() const { return decls_.size(); }
