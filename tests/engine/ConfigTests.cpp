@@ -27,6 +27,7 @@ const EnumSetting<Format> kFormat{"cfgtest.format",
                                   {{Format::Rgba8, "rgba8"}, {Format::Rgba16f, "rgba16f"}},
                                   "Storage format"};
 const IntSetting kRestart{"cfgtest.window_count", 1, 1, 4, "Windows", Apply::Restart};
+const Vec3Setting kTint{"cfgtest.tint", {1.0f, 1.0f, 1.0f}, 0.0, 10.0, "A colour, never negative"};
 
 std::string errorOf(auto&& f) {
     try {
@@ -175,6 +176,22 @@ TEST_CASE("config: an unknown table is an error, even an empty one") {
           "game.toml:1: 'cfgtest' is a table of settings, got an array");
     CHECK(errorOf([&] { c.loadString("cfgtest = 3\n", "game.toml"); }) ==
           "game.toml:1: 'cfgtest' is a table of settings, got an integer");
+}
+
+TEST_CASE("config: a bounded vec3 refuses a component out of range from a file and from --set") {
+    Config c;
+    CHECK_THROWS_WITH_AS(
+        c.loadString("\ncfgtest.tint = [0.5, -0.1, 1]\n", "t.toml"),
+        "t.toml:2: 'cfgtest.tint' = 0.5,-0.1,1: expected three numbers in [0, 10] ([x, y, z] "
+        "in TOML, x,y,z on the command line)",
+        ConfigError);
+    CHECK(errorOf([&] { c.applyOverride("cfgtest.tint=1,1,11"); }) ==
+          "--set: 'cfgtest.tint' = '1,1,11': expected three numbers in [0, 10] ([x, y, z] in TOML, x,y,z on "
+          "the command line)");
+    c.applyOverride("cfgtest.tint=0,0,10");
+    CHECK(c.get(kTint).z == 10.0f);
+    CHECK(settingsHelpText().find("cfgtest.tint (vec3, default 1,1,1, allowed [x, y, z], each 0 .. 10)") !=
+          std::string::npos);
 }
 
 TEST_CASE("config: changes while running apply at the next frame") {

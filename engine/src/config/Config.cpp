@@ -68,7 +68,9 @@ std::string Config::validate(const SettingDecl& decl, const SettingValue& v) {
     case SettingType::Vec3: {
         if (!std::holds_alternative<glm::vec3>(v)) return decl.expected();
         const glm::vec3 x = std::get<glm::vec3>(v);
-        if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z)) return decl.expected();
+        for (int i = 0; i < 3; ++i)
+            if (!std::isfinite(x[i]) || (decl.min <= decl.max && (x[i] < decl.min || x[i] > decl.max)))
+                return decl.expected();
         break;
     }
     }

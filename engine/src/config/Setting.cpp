@@ -51,7 +51,9 @@ std::string SettingDecl::expected() const {
     case SettingType::String:
         return "a string";
     case SettingType::Vec3:
-        return "three numbers ([x, y, z] in TOML, x,y,z on the command line)";
+        return std::string("three numbers") +
+               (min <= max ? " in [" + number(min) + ", " + number(max) + "]" : std::string()) +
+               " ([x, y, z] in TOML, x,y,z on the command line)";
     }
     return "?";
 }
@@ -186,6 +188,10 @@ StringSetting::StringSetting(std::string_view name, std::string_view def, std::s
 
 Vec3Setting::Vec3Setting(std::string_view name, glm::vec3 def, std::string_view help, Apply apply)
     : decl_(&declare(name, SettingType::Vec3, def, 1, 0, help, apply)) {}
+
+Vec3Setting::Vec3Setting(std::string_view name, glm::vec3 def, double min, double max, std::string_view help,
+                         Apply apply)
+    : decl_(&declare(name, SettingType::Vec3, def, min, max, help, apply)) {}
 
 const SettingDecl& registerEnumSetting(std::string_view name, std::string_view def,
                                        std::vector<std::string> choices, std::string_view help, Apply apply) {

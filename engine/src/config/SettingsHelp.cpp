@@ -27,8 +27,12 @@ std::string allowed(const SettingDecl& d) {
         return "true, false";
     case SettingType::String:
         return "text";
-    case SettingType::Vec3:
-        return "[x, y, z]";
+    case SettingType::Vec3: {
+        if (d.min > d.max) return "[x, y, z]";
+        std::ostringstream s;
+        s << "[x, y, z], each " << d.min << " .. " << d.max;
+        return s.str();
+    }
     }
     return "";
 }

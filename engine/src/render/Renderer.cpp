@@ -36,8 +36,11 @@ const FloatSetting kSsaoRadius{"render.ssao_radius", 0.5, 0.01, 10.0, "SSAO samp
 const FloatSetting kSsaoStrength{"render.ssao_strength", 1.0, 0.0, 2.0, "SSAO darkening at full occlusion"};
 const FloatSetting kExposure{"render.exposure", 1.0, 0.001, 1000.0,
                              "Exposure multiplier before tone mapping"};
-const Vec3Setting kAmbient{
-    "render.ambient", {0.3f, 0.32f, 0.36f}, "Constant indirect irradiance used when GI is off (linear RGB)"};
+const Vec3Setting kAmbient{"render.ambient",
+                           {0.3f, 0.32f, 0.36f},
+                           0.0,
+                           1000.0,
+                           "Constant indirect irradiance used when GI is off (linear RGB)"};
 const EnumSetting<DebugView> kDebugView{"render.debug_view",
                                         DebugView::Final,
                                         {{DebugView::Final, "final"},

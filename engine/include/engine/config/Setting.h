@@ -33,7 +33,7 @@ struct SettingDecl {
     std::string name;
     SettingType type = SettingType::Int;
     SettingValue defaultValue;
-    double min = 0.0, max = 0.0;      // Int and Float only; min > max means unbounded
+    double min = 0.0, max = 0.0;      // Int, Float and Vec3 (each component); min > max: unbounded
     std::vector<std::string> choices; // Enum only
     std::string help;
     Apply apply = Apply::NextFrame;
@@ -105,6 +105,9 @@ private:
 class Vec3Setting {
 public:
     Vec3Setting(std::string_view name, glm::vec3 def, std::string_view help, Apply apply = Apply::NextFrame);
+    // Each component in [min, max] (a colour or an intensity cannot be negative).
+    Vec3Setting(std::string_view name, glm::vec3 def, double min, double max, std::string_view help,
+                Apply apply = Apply::NextFrame);
     const SettingDecl& decl() const { return *decl_; }
 
 private:
