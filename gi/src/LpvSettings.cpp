@@ -119,6 +119,14 @@ LpvSettings readLpvSettings(const engine::Config& config) {
                                       ": expected a square number whose side divides gi.rsm_size (" +
                                       std::to_string(s.rsmSize) + "), e.g. " +
                                       std::to_string((s.rsmSize / 4) * (s.rsmSize / 4)));
+    // Only a slice someone chose: the default (16, the middle of the default 32 grid) is clamped
+    // to the last slice of a smaller volume when shown.
+    if (s.debugSlice >= s.gridSize && config.origin(kDebugSlice.decl()) != "default")
+        throw engine::ConfigError(config.origin(kDebugSlice.decl()), 0,
+                                  "'gi.debug_slice' = " + std::to_string(s.debugSlice) +
+                                      ": outside the volume: gi.grid_size is " + std::to_string(s.gridSize) +
+                                      " (" + config.origin(kGridSize.decl()) + "), so expected 0 to " +
+                                      std::to_string(s.gridSize - 1));
     if (s.bounces > 1 && !s.occlusion)
         throw engine::ConfigError(config.origin(kBounces.decl()), 0,
                                   "'gi.bounces' = " + std::to_string(s.bounces) +

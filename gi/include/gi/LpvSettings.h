@@ -60,7 +60,8 @@ struct LpvSettings {
 // budgets count slots.
 inline constexpr uint32_t kVplsPerCluster = 2;
 
-// Reads and cross-checks the settings (vpl count against RSM size). Throws engine::ConfigError.
+// Reads and cross-checks the settings (vpl count against RSM size, bounces against occlusion, a
+// chosen debug slice against the grid size). Throws engine::ConfigError.
 LpvSettings readLpvSettings(const engine::Config& config);
 
 std::string_view shFormatName(ShFormat f);
