@@ -258,5 +258,6 @@ TEST_CASE("scenes: a missing texture warns and falls back to the flat color") {
 }
 
 TEST_CASE("scenes: a file that does not exist") {
-    CHECK(errorOf("/nonexistent/scene.gltf") == "/nonexistent/scene.gltf: cannot open the file");
+    CHECK(errorOf("/nonexistent/scene.gltf") ==
+          "/nonexistent/scene.gltf: cannot open the file: No such file or directory");
 }

@@ -14,9 +14,11 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <map>
 
 namespace lpv::engine {
@@ -397,16 +399,32 @@ Scene GltfReader::read() {
     return std::move(scene_);
 }
 
+enum class GltfContainer { Json, Binary };
+
+// Checked before tinygltf reads the file: it takes a directory for a file of unbounded size
+// (std::bad_alloc) and does not say why an open failed.
+GltfContainer probeGltfFile(const std::string& path) {
+    std::error_code ec; // a path that cannot be examined is left to fopen, which says why
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (!ec && std::filesystem::is_directory(status))
+        throw SceneError(path, "is a directory, not a glTF file");
+    if (!ec && !std::filesystem::is_regular_file(status)) throw SceneError(path, "is not a regular file");
+    std::FILE* file = std::fopen(path.c_str(), "rb");
+    if (!file) throw SceneError(path, std::string("cannot open the file: ") + std::strerror(errno));
+    char magic[4] = {};
+    const size_t read = std::fread(magic, 1, sizeof(magic), file);
+    std::fclose(file);
+    return read == sizeof(magic) && std::string_view(magic, 4) == "glTF" ? GltfContainer::Binary
+                                                                         : GltfContainer::Json;
+}
+
 } // namespace
 
 Scene loadGltf(const std::string& path) {
-    if (!std::ifstream(path)) throw SceneError(path, "cannot open the file");
     tinygltf::TinyGLTF loader;
     tinygltf::Model model;
     std::string err, warn;
-    char magic[4] = {};
-    std::ifstream(path, std::ios::binary).read(magic, 4);
-    const bool binary = std::string_view(magic, 4) == "glTF";
+    const bool binary = probeGltfFile(path) == GltfContainer::Binary;
     const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
                            : loader.LoadASCIIFromFile(&model, &err, &warn, path);
     if (!ok) throw SceneError(path, "not a valid glTF 2.0 file: " + trimmed(err.empty() ? warn : err));
