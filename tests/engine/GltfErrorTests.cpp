@@ -10,7 +10,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
+#include <vector>
 
 using namespace lpv::engine;
 using nlohmann::json;
@@ -87,4 +89,94 @@ TEST_CASE("glTF errors: a directory given as the scene") {
 TEST_CASE("glTF errors: a file that cannot be opened gives the system's reason") {
     const std::string path = pathOf("missing.gltf");
     CHECK(errorOf(path) == path + ": cannot open the file: No such file or directory");
+}
+
+namespace {
+
+// A broken variant of the triangle: the file to write, the change, and the problem the error must name.
+struct BrokenFile {
+    const char* file;
+    std::function<void(json&)> change;
+    std::string problem;
+};
+
+void checkErrors(const std::vector<BrokenFile>& cases) {
+    for (const BrokenFile& c : cases) {
+        json gltf = triangle();
+        c.change(gltf);
+        CHECK(errorOf(c.file, gltf) == pathOf(c.file) + ": " + c.problem);
+    }
+}
+
+} // namespace
+
+TEST_CASE("glTF errors: an index to an element that does not exist names the element") {
+    checkErrors({
+        {"position5.gltf", [](json& g) { g["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 5; },
+         "mesh 0 'tri' primitive 0: attribute POSITION refers to accessor 5, which does not exist"},
+        {"normal7.gltf", [](json& g) { g["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 7; },
+         "mesh 0 'tri' primitive 0: attribute NORMAL refers to accessor 7, which does not exist"},
+        {"indices-2.gltf", [](json& g) { g["meshes"][0]["primitives"][0]["indices"] = -2; },
+         "mesh 0 'tri' primitive 0: \"indices\" refers to accessor -2, which does not exist"},
+        {"material2.gltf", [](json& g) { g["meshes"][0]["primitives"][0]["material"] = 2; },
+         "mesh 0 'tri' primitive 0 refers to material 2, which does not exist"},
+        {"view4.gltf", [](json& g) { g["accessors"][0]["bufferView"] = 4; },
+         "accessor 0 refers to bufferView 4, which does not exist"},
+        {"buffer3.gltf", [](json& g) { g["bufferViews"][0]["buffer"] = 3; },
+         "bufferView 0 refers to buffer 3, which does not exist"},
+        {"basecolor3.gltf",
+         [](json& g) {
+             g["materials"] = json::parse(
+                 R"([{"name": "paint", "pbrMetallicRoughness": {"baseColorTexture": {"index": 3}}}])");
+         },
+         "material 0 'paint': baseColorTexture refers to texture 3, which does not exist"},
+        {"image4.gltf", [](json& g) { g["textures"] = json::parse(R"([{"source": 4}])"); },
+         "texture 0 refers to image 4, which does not exist"},
+        {"sampler2.gltf", [](json& g) { g["textures"] = json::parse(R"([{"sampler": 2}])"); },
+         "texture 0 refers to sampler 2, which does not exist"},
+        {"mesh3.gltf", [](json& g) { g["nodes"][0]["mesh"] = 3; },
+         "node 0 refers to mesh 3, which does not exist"},
+        {"camera1.gltf", [](json& g) { g["nodes"][0]["camera"] = 1; },
+         "node 0 refers to camera 1, which does not exist"},
+        {"child5.gltf", [](json& g) { g["nodes"][0]["children"] = {5}; },
+         "node 0: child refers to node 5, which does not exist"},
+        {"light2.gltf",
+         [](json& g) {
+             g["nodes"][0]["extensions"] = json::parse(R"({"KHR_lights_punctual": {"light": 2}})");
+         },
+         "node 0 refers to light 2, which does not exist"},
+        {"root4.gltf",
+         [](json& g) {
+             g["scenes"][0]["nodes"] = {0, 4};
+         },
+         "scene 0 refers to node 4, which does not exist"},
+        {"scene3.gltf", [](json& g) { g["scene"] = 3; }, "\"scene\" refers to scene 3, which does not exist"},
+    });
+}
+
+TEST_CASE("glTF errors: byte ranges past the end are caught however large the numbers") {
+    checkErrors({
+        {"count.gltf", [](json& g) { g["accessors"][0]["count"] = 4611686018427387904ull; },
+         "accessor 0: 4611686018427387904 elements of 12 bytes, 12 bytes apart from byte 0, do not fit in "
+         "bufferView 0 (36 bytes)"},
+        {"offset.gltf", [](json& g) { g["accessors"][0]["byteOffset"] = 18446744073709551612ull; },
+         "accessor 0: 3 elements of 12 bytes, 12 bytes apart from byte 18446744073709551612, do not fit in "
+         "bufferView 0 (36 bytes)"},
+        {"stride.gltf", [](json& g) { g["bufferViews"][0]["byteStride"] = 252; },
+         "accessor 0: 3 elements of 12 bytes, 252 bytes apart from byte 0, do not fit in bufferView 0 (36 "
+         "bytes)"},
+        {"viewoffset.gltf", [](json& g) { g["bufferViews"][1]["byteOffset"] = 18446744073709551600ull; },
+         "bufferView 1 (6 bytes from byte 18446744073709551600) runs past the end of buffer 0 (44 bytes)"},
+        {"viewlength.gltf", [](json& g) { g["bufferViews"][1]["byteLength"] = 9; },
+         "bufferView 1 (9 bytes from byte 36) runs past the end of buffer 0 (44 bytes)"},
+        // tinygltf decodes images during parsing: the range is checked before it reads a byte.
+        {"imageview.gltf",
+         [](json& g) {
+             g["bufferViews"].push_back(
+                 json::parse(R"({"buffer": 0, "byteOffset": 40, "byteLength": 100000})"));
+             g["images"] = json::parse(R"([{"bufferView": 2, "mimeType": "image/png"}])");
+         },
+         "not a valid glTF 2.0 file: image 0: bufferView 2 (100000 bytes from byte 40) runs past the end of "
+         "buffer 0 (44 bytes)"},
+    });
 }
