@@ -180,3 +180,57 @@ TEST_CASE("glTF errors: byte ranges past the end are caught however large the nu
          "buffer 0 (44 bytes)"},
     });
 }
+
+TEST_CASE("glTF errors: nodes must form disjoint trees") {
+    checkErrors({
+        {"selfchild.gltf", [](json& g) { g["nodes"][0]["children"] = {0}; }, "node 0 is its own ancestor"},
+        {"loop.gltf",
+         [](json& g) { g["nodes"] = json::parse(R"([{"mesh": 0, "children": [1]}, {"children": [0]}])"); },
+         "node 0 is its own ancestor"},
+        {"twoparents.gltf",
+         [](json& g) {
+             g["nodes"] = json::parse(R"([{"mesh": 0}, {"children": [0]}, {"name": "b", "children": [0]}])");
+             g["scenes"][0]["nodes"] = {1, 2};
+         },
+         "node 0 has two parents, nodes 1 and 2"},
+        {"twice.gltf",
+         [](json& g) {
+             g["nodes"] = json::parse(R"([{"mesh": 0}, {"name": "a", "children": [0, 0]}])");
+             g["scenes"][0]["nodes"] = {1};
+         },
+         "node 1 'a' lists node 0 twice among its children"},
+        {"childroot.gltf",
+         [](json& g) {
+             g["nodes"] = json::parse(R"([{"mesh": 0}, {"children": [0]}])");
+             g["scenes"][0]["nodes"] = {1, 0};
+         },
+         "scene 0 lists node 0 as a root, but it is a child of node 1"},
+        {"rootstwice.gltf",
+         [](json& g) {
+             g["scenes"][0]["nodes"] = {0, 0};
+         },
+         "scene 0 lists node 0 twice"},
+    });
+}
+
+TEST_CASE("glTF errors: a legal hierarchy deeper than the call stack loads") {
+    json gltf = triangle();
+    constexpr int kDepth = 100000;
+    gltf["nodes"] = json::array();
+    for (int i = 0; i + 1 < kDepth; ++i)
+        gltf["nodes"].push_back({{"children", {i + 1}}});
+    gltf["nodes"].push_back({{"mesh", 0}});
+    const std::string path = pathOf("deep.gltf");
+    std::ofstream(path, std::ios::binary) << gltf.dump();
+    CHECK(loadGltf(path).instances.size() == 1);
+}
+
+TEST_CASE("glTF errors: without scenes, each tree is drawn once from its root") {
+    json gltf = triangle();
+    gltf.erase("scene");
+    gltf.erase("scenes");
+    gltf["nodes"] = json::parse(R"([{"children": [1]}, {"mesh": 0}])");
+    const std::string path = pathOf("noscenes.gltf");
+    std::ofstream(path, std::ios::binary) << gltf.dump();
+    CHECK(loadGltf(path).instances.size() == 1);
+}

@@ -52,7 +52,8 @@ private:
     int32_t texture(int gltfTexture, bool srgb, const std::string& materialName);
     void readMaterials();
     void readMeshes();
-    void visit(int node, const glm::mat4& parent);
+    void visitTree(int root);
+    glm::mat4 visit(int node, const glm::mat4& parent);
 
     std::string path_;
     const tinygltf::Model& model_;
@@ -307,7 +308,8 @@ glm::mat4 localTransform(const tinygltf::Node& n) {
     return m;
 }
 
-void GltfReader::visit(int nodeIndex, const glm::mat4& parent) {
+// Adds the node's meshes, camera and light; returns its world transform.
+glm::mat4 GltfReader::visit(int nodeIndex, const glm::mat4& parent) {
     const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
     const glm::mat4 world = parent * localTransform(node);
     if (node.mesh >= 0) {
@@ -353,8 +355,21 @@ void GltfReader::visit(int nodeIndex, const glm::mat4& parent) {
         out.outerConeAngle = float(l.spot.outerConeAngle);
         scene_.lights.push_back(out);
     }
-    for (int child : node.children)
-        visit(child, world);
+    return world;
+}
+
+// Depth first in the file's order (the first camera met is the view), on a stack of its own: a legal
+// hierarchy can be deeper than the call stack. validateGltf has ruled out loops.
+void GltfReader::visitTree(int root) {
+    std::vector<std::pair<int, glm::mat4>> pending{{root, glm::mat4(1.0f)}};
+    while (!pending.empty()) {
+        const auto [node, parent] = pending.back();
+        pending.pop_back();
+        const glm::mat4 world = visit(node, parent);
+        const std::vector<int>& children = model_.nodes[size_t(node)].children;
+        for (auto child = children.rbegin(); child != children.rend(); ++child)
+            pending.emplace_back(*child, world);
+    }
 }
 
 Scene GltfReader::read() {
@@ -368,10 +383,15 @@ Scene GltfReader::read() {
     if (!model_.scenes.empty()) {
         const size_t s = model_.defaultScene >= 0 ? size_t(model_.defaultScene) : 0;
         for (int n : model_.scenes[s].nodes)
-            visit(n, glm::mat4(1.0f));
+            visitTree(n);
     } else {
+        // No scenes: every tree, each once from its root.
+        std::vector<bool> isChild(model_.nodes.size(), false);
+        for (const tinygltf::Node& n : model_.nodes)
+            for (int child : n.children)
+                isChild[size_t(child)] = true;
         for (size_t n = 0; n < model_.nodes.size(); ++n)
-            visit(int(n), glm::mat4(1.0f));
+            if (!isChild[n]) visitTree(int(n));
     }
     if (scene_.instances.empty()) fail("has no meshes to draw");
     scene_.updateBounds();

@@ -5,6 +5,9 @@
 
 #include "engine/scene/SceneLoading.h"
 
+#include <set>
+#include <vector>
+
 namespace lpv::engine {
 namespace {
 
@@ -23,7 +26,7 @@ public:
         checkMaterials();
         checkMeshes();
         checkNodes();
-        checkScenes();
+        checkScenes(checkHierarchy());
     }
 
 private:
@@ -49,7 +52,8 @@ private:
     void checkMaterials() const;
     void checkMeshes() const;
     void checkNodes() const;
-    void checkScenes() const;
+    std::vector<int> checkHierarchy() const;
+    void checkScenes(const std::vector<int>& parents) const;
 
     std::string path_;
     const tinygltf::Model& model_;
@@ -146,10 +150,46 @@ void GltfValidator::checkNodes() const {
     }
 }
 
-void GltfValidator::checkScenes() const {
-    for (size_t s = 0; s < model_.scenes.size(); ++s)
-        for (int root : model_.scenes[s].nodes)
-            requireElement("scene " + std::to_string(s), root, model_.nodes.size(), "node");
+// glTF nodes form disjoint strict trees: one parent at most, and no node its own ancestor (the
+// reader would go round a loop for ever). Returns each node's parent, -1 for none.
+std::vector<int> GltfValidator::checkHierarchy() const {
+    std::vector<int> parents(model_.nodes.size(), -1);
+    for (size_t p = 0; p < model_.nodes.size(); ++p)
+        for (int child : model_.nodes[p].children) {
+            int& parent = parents[size_t(child)];
+            if (parent == int(p))
+                fail(nodeName(p) + " lists node " + std::to_string(child) + " twice among its children");
+            if (parent != -1)
+                fail(nodeName(size_t(child)) + " has two parents, nodes " + std::to_string(parent) + " and " +
+                     std::to_string(p));
+            parent = int(p);
+        }
+    // Walk up from each node in turn; meeting a node of the same walk again is a loop.
+    std::vector<int> walk(model_.nodes.size(), -1);
+    for (size_t start = 0; start < model_.nodes.size(); ++start) {
+        int node = int(start);
+        while (node != -1 && walk[size_t(node)] == -1) {
+            walk[size_t(node)] = int(start);
+            node = parents[size_t(node)];
+        }
+        if (node != -1 && walk[size_t(node)] == int(start))
+            fail(nodeName(size_t(node)) + " is its own ancestor");
+    }
+    return parents;
+}
+
+void GltfValidator::checkScenes(const std::vector<int>& parents) const {
+    for (size_t s = 0; s < model_.scenes.size(); ++s) {
+        const std::string who = "scene " + std::to_string(s);
+        std::set<int> roots;
+        for (int root : model_.scenes[s].nodes) {
+            requireElement(who, root, model_.nodes.size(), "node");
+            if (!roots.insert(root).second) fail(who + " lists node " + std::to_string(root) + " twice");
+            if (const int parent = parents[size_t(root)]; parent != -1)
+                fail(who + " lists node " + std::to_string(root) + " as a root, but it is a child of node " +
+                     std::to_string(parent));
+        }
+    }
     allowElement("\"scene\"", model_.defaultScene, model_.scenes.size(), "scene");
 }
 

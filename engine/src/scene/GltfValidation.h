@@ -1,7 +1,7 @@
 // Checks on a parsed glTF model for what tinygltf leaves to its caller: every index that the reader
-// follows names an element that exists, and every accessor lies inside its buffer. The reader can
-// then follow the file's indices without checking each one again, and a broken file is an error
-// naming the file and the element, not a crash or an out-of-range read.
+// follows names an element that exists, every accessor lies inside its buffer, and the nodes form
+// disjoint trees. The reader can then follow the file's indices without checking each one again, and
+// a broken file is an error naming the file and the element, not a crash or an out-of-range read.
 #pragma once
 
 #include <tiny_gltf.h>
