@@ -2,6 +2,7 @@
 // SceneError whose message names the file and the problem: not a crash, not a library's raw message
 // without the file, and not a silent default.
 #include "engine/scene/SceneLoading.h"
+#include "platforms/Log.h"
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
@@ -12,6 +13,7 @@
 #include <fstream>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 using namespace lpv::engine;
@@ -233,4 +235,150 @@ TEST_CASE("glTF errors: without scenes, each tree is drawn once from its root") 
     const std::string path = pathOf("noscenes.gltf");
     std::ofstream(path, std::ios::binary) << gltf.dump();
     CHECK(loadGltf(path).instances.size() == 1);
+}
+
+namespace {
+
+// Adds `camera` and a node for it, after the triangle's node.
+void addCamera(json& g, const std::string& camera, const std::string& node = R"({"camera": 0})") {
+    g["cameras"] = json::array({json::parse(camera)});
+    g["nodes"].push_back(json::parse(node));
+    g["scenes"][0]["nodes"].push_back(g["nodes"].size() - 1);
+}
+
+// Adds a KHR_lights_punctual `light` and a node "lamp" for it, after the triangle's node.
+void addLight(json& g, const std::string& light, const std::string& transform = "") {
+    g["extensionsUsed"] = {"KHR_lights_punctual"};
+    g["extensions"]["KHR_lights_punctual"]["lights"] = json::array({json::parse(light)});
+    g["nodes"].push_back(json::parse(
+        R"({"name": "lamp", "extensions": {"KHR_lights_punctual": {"light": 0}})" + transform + "}"));
+    g["scenes"][0]["nodes"].push_back(g["nodes"].size() - 1);
+}
+
+} // namespace
+
+TEST_CASE("glTF errors: a version other than 2.x") {
+    checkErrors({
+        {"v1.gltf", [](json& g) { g["asset"]["version"] = "1.0"; },
+         "asset version '1.0' is not supported (glTF 2.x only)"},
+        {"vword.gltf", [](json& g) { g["asset"]["version"] = "two"; },
+         "asset version 'two' is not supported (glTF 2.x only)"},
+        {"minversion.gltf", [](json& g) { g["asset"]["minVersion"] = "2.1"; },
+         "asset minVersion '2.1' is not supported (glTF 2.0 only)"},
+    });
+    json later = triangle();
+    later["asset"]["version"] = "2.1"; // a later 2.x that asks for nothing past 2.0 loads
+    CHECK(errorOf("v21.gltf", later) == "(no error)");
+}
+
+TEST_CASE("glTF errors: camera values the spec forbids") {
+    checkErrors({
+        {"yfov0.gltf",
+         [](json& g) {
+             addCamera(g, R"({"type": "perspective", "perspective": {"yfov": 0, "znear": 0.1}})");
+         },
+         "camera 0: yfov 0 must be in (0, pi)"},
+        {"yfovpi.gltf",
+         [](json& g) {
+             addCamera(g, R"({"type": "perspective", "perspective": {"yfov": 3.5, "znear": 0.1}})");
+         },
+         "camera 0: yfov 3.5 must be in (0, pi)"},
+        {"znear0.gltf",
+         [](json& g) { addCamera(g, R"({"type": "perspective", "perspective": {"yfov": 1, "znear": 0}})"); },
+         "camera 0: znear 0 must be greater than 0"},
+        {"zfar.gltf",
+         [](json& g) {
+             addCamera(g,
+                       R"({"type": "perspective", "perspective": {"yfov": 1, "znear": 0.1, "zfar": 0.05}})");
+         },
+         "camera 0: zfar 0.05 must be greater than znear 0.1"},
+        {"ortho.gltf",
+         [](json& g) {
+             addCamera(
+                 g,
+                 R"({"type": "orthographic", "orthographic": {"xmag": 0, "ymag": 1, "znear": 0, "zfar": 9}})");
+         },
+         "camera 0: xmag and ymag must not be 0"},
+        {"camscale.gltf",
+         [](json& g) {
+             addCamera(g, R"({"type": "perspective", "perspective": {"yfov": 1, "znear": 0.1}})",
+                       R"({"name": "eye", "camera": 0, "scale": [1, 0, 1]})");
+         },
+         "node 1 'eye': its world transform is singular (a zero scale), so camera 0 on it has no direction"},
+    });
+}
+
+TEST_CASE("glTF errors: light values the spec forbids") {
+    checkErrors({
+        {"intensity.gltf", [](json& g) { addLight(g, R"({"type": "point", "intensity": -5})"); },
+         "light 0: intensity -5 must be 0 or more"},
+        {"innerouter.gltf",
+         [](json& g) {
+             addLight(g, R"({"type": "spot", "spot": {"innerConeAngle": 1, "outerConeAngle": 0.5}})");
+         },
+         "light 0: innerConeAngle 1 must be in [0, outerConeAngle 0.5]"},
+        {"innerneg.gltf",
+         [](json& g) { addLight(g, R"({"type": "spot", "spot": {"innerConeAngle": -0.1}})"); },
+         "light 0: innerConeAngle -0.1 must be in [0, outerConeAngle 0.785398]"},
+        {"outer.gltf", [](json& g) { addLight(g, R"({"type": "spot", "spot": {"outerConeAngle": 2}})"); },
+         "light 0: outerConeAngle 2 must be in (0, pi/2]"},
+        {"color.gltf", [](json& g) { addLight(g, R"({"type": "point", "color": [1, 2, 1]})"); },
+         "light 0: color (1, 2, 1) must be in [0, 1]"},
+        {"lighttype.gltf", [](json& g) { addLight(g, R"({"type": "area"})"); },
+         "light 0: type 'area' is not directional, point or spot"},
+        {"spotscale.gltf",
+         [](json& g) { addLight(g, R"({"type": "spot", "spot": {}})", R"(, "scale": [0, 0, 0])"); },
+         "node 1 'lamp': its world transform is singular (a zero scale), so light 0 on it has no direction"},
+        {"parentscale.gltf",
+         [](json& g) {
+             addLight(g, R"({"type": "directional"})");
+             g["nodes"].push_back(json::parse(R"({"scale": [2, 0, 2], "children": [1]})"));
+             g["scenes"][0]["nodes"] = {0, 2};
+         },
+         "node 1 'lamp': its world transform is singular (a zero scale), so light 0 on it has no direction"},
+    });
+}
+
+TEST_CASE("glTF errors: node transforms and material factors the spec forbids") {
+    checkErrors({
+        {"rotation.gltf",
+         [](json& g) {
+             g["nodes"][0]["rotation"] = {0, 0, 0, 0};
+         },
+         "node 0: rotation (0, 0, 0, 0) is not a unit quaternion"},
+        {"scale2.gltf",
+         [](json& g) {
+             g["nodes"][0]["scale"] = {1, 1};
+         },
+         "node 0: scale has 2 numbers, expected 3"},
+        {"metallic.gltf",
+         [](json& g) {
+             g["materials"] = json::parse(R"([{"pbrMetallicRoughness": {"metallicFactor": 2}}])");
+             g["meshes"][0]["primitives"][0]["material"] = 0;
+         },
+         "material 0: metallicFactor 2 must be in [0, 1]"},
+        {"strength.gltf",
+         [](json& g) {
+             g["materials"] = json::parse(
+                 R"([{"name": "glow", "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": -1}}}])");
+         },
+         "material 0 'glow': KHR_materials_emissive_strength emissiveStrength must be a number, 0 or more"},
+    });
+}
+
+TEST_CASE("glTF errors: an orthographic camera warns that it is drawn in perspective") {
+    std::vector<std::string> warnings;
+    auto previous = lpv::log::setSink([&](lpv::log::Level level, std::string_view m) {
+        if (level == lpv::log::Level::Warning) warnings.emplace_back(m);
+    });
+    json gltf = triangle();
+    addCamera(gltf,
+              R"({"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0, "zfar": 9}})");
+    const std::string e = errorOf("orthowarn.gltf", gltf);
+    lpv::log::setSink(previous);
+    CHECK(e == "(no error)");
+    REQUIRE(warnings.size() == 1);
+    CHECK(warnings[0] ==
+          pathOf("orthowarn.gltf") +
+              ": camera 0 is orthographic; it is drawn in perspective with the default field of view");
 }

@@ -45,6 +45,10 @@ public:
 private:
     [[noreturn]] void fail(const std::string& problem) const { throw SceneError(path_, problem); }
 
+    // A camera or light points along its node's -z: a world transform that collapses a dimension
+    // (a zero scale) leaves that undefined, and normalize() would make it NaN.
+    glm::vec3 direction(const glm::mat4& world, glm::vec3 axis, int node, const std::string& what) const;
+
     // Returns a pointer to element 0 and the stride; validateGltf has checked the range is in the buffer.
     const uint8_t* accessorData(int accessorIndex, size_t elementSize, size_t& stride, size_t& count) const;
     template <int N> std::vector<glm::vec<N, float>> readFloats(int accessorIndex, const char* what) const;
@@ -308,6 +312,19 @@ glm::mat4 localTransform(const tinygltf::Node& n) {
     return m;
 }
 
+glm::vec3 GltfReader::direction(const glm::mat4& world, glm::vec3 axis, int node,
+                                const std::string& what) const {
+    const glm::vec3 d = glm::normalize(glm::vec3(world * glm::vec4(axis, 0.0f)));
+    const double det = glm::determinant(glm::dmat3(glm::mat3(world)));
+    if (!(std::abs(det) > 0.0) || !std::isfinite(det) || !std::isfinite(d.x) || !std::isfinite(d.y) ||
+        !std::isfinite(d.z)) {
+        const std::string& name = model_.nodes[size_t(node)].name;
+        fail("node " + std::to_string(node) + (name.empty() ? "" : " '" + name + "'") +
+             ": its world transform is singular (a zero scale), so " + what + " on it has no direction");
+    }
+    return d;
+}
+
 // Adds the node's meshes, camera and light; returns its world transform.
 glm::mat4 GltfReader::visit(int nodeIndex, const glm::mat4& parent) {
     const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
@@ -321,19 +338,26 @@ glm::mat4 GltfReader::visit(int nodeIndex, const glm::mat4& parent) {
         }
     }
     const glm::vec3 position(world[3]);
-    const glm::vec3 forward = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
-    if (node.camera >= 0 && !scene_.camera) {
+    if (node.camera >= 0) {
+        const std::string what = "camera " + std::to_string(node.camera);
+        const glm::vec3 forward = direction(world, {0, 0, -1}, nodeIndex, what);
+        const glm::vec3 up = direction(world, {0, 1, 0}, nodeIndex, what);
         const tinygltf::Camera& c = model_.cameras[size_t(node.camera)];
-        Camera cam;
-        cam.position = position;
-        cam.forward = forward;
-        cam.up = glm::normalize(glm::vec3(world * glm::vec4(0, 1, 0, 0)));
-        if (c.type == "perspective") {
-            cam.verticalFov = float(c.perspective.yfov);
-            cam.nearPlane = float(c.perspective.znear);
-            if (c.perspective.zfar > 0) cam.farPlane = float(c.perspective.zfar);
+        if (!scene_.camera) {
+            Camera cam;
+            cam.position = position;
+            cam.forward = forward;
+            cam.up = up;
+            if (c.type == "perspective") {
+                cam.verticalFov = float(c.perspective.yfov);
+                cam.nearPlane = float(c.perspective.znear);
+                if (c.perspective.zfar > 0) cam.farPlane = float(c.perspective.zfar);
+            } else {
+                log::warn(path_ + ": " + what +
+                          " is orthographic; it is drawn in perspective with the default field of view");
+            }
+            scene_.camera = cam;
         }
-        scene_.camera = cam;
     }
     if (auto it = node.extensions.find("KHR_lights_punctual");
         it != node.extensions.end() && it->second.Has("light")) {
@@ -344,13 +368,11 @@ glm::mat4 GltfReader::visit(int nodeIndex, const glm::mat4& parent) {
         out.type = l.type == "directional" ? LightType::Directional
                    : l.type == "spot"      ? LightType::Spot
                                            : LightType::Point;
-        if (l.type != "directional" && l.type != "spot" && l.type != "point")
-            fail("light " + std::to_string(li) + " has unknown type '" + l.type + "'");
         if (l.color.size() == 3) out.color = glm::vec3(l.color[0], l.color[1], l.color[2]);
         out.intensity = float(l.intensity);
         out.range = float(l.range);
         out.position = position;
-        out.direction = forward;
+        out.direction = direction(world, {0, 0, -1}, nodeIndex, "light " + std::to_string(li));
         out.innerConeAngle = float(l.spot.innerConeAngle);
         out.outerConeAngle = float(l.spot.outerConeAngle);
         scene_.lights.push_back(out);

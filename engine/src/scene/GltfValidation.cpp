@@ -5,14 +5,43 @@
 
 #include "engine/scene/SceneLoading.h"
 
+#include <charconv>
+#include <cmath>
 #include <set>
+#include <sstream>
 #include <vector>
 
 namespace lpv::engine {
 namespace {
 
+constexpr double kPi = 3.14159265358979323846;
+// Exporters write angles as 32-bit floats, and pi/2 rounded to one is a little above pi/2.
+constexpr double kAngleSlack = 1e-6;
+
 std::string quoted(const std::string& name) {
     return name.empty() ? "" : " '" + name + "'";
+}
+
+std::string number(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+std::string numbers(const std::vector<double>& values) {
+    std::string s = "(";
+    for (size_t i = 0; i < values.size(); ++i)
+        s += (i ? ", " : "") + number(values[i]);
+    return s + ")";
+}
+
+// "major.minor", as the spec writes versions; false when the text is not of that form.
+bool parseVersion(const std::string& text, int& major, int& minor) {
+    const char* end = text.data() + text.size();
+    const auto [dot, majorError] = std::from_chars(text.data(), end, major);
+    if (majorError != std::errc() || dot == end || *dot != '.') return false;
+    const auto [rest, minorError] = std::from_chars(dot + 1, end, minor);
+    return minorError == std::errc() && rest == end;
 }
 
 class GltfValidator {
@@ -20,11 +49,14 @@ public:
     GltfValidator(const std::string& path, const tinygltf::Model& model) : path_(path), model_(model) {}
 
     void validate() const {
+        checkVersion();
         checkBufferViews();
         checkAccessors();
         checkTextures();
         checkMaterials();
         checkMeshes();
+        checkCameras();
+        checkLights();
         checkNodes();
         checkScenes(checkHierarchy());
     }
@@ -42,22 +74,46 @@ private:
         if (index != -1) requireElement(who, index, count, what);
     }
 
+    // Each of `values`, a `what` of `who`, must lie in [0, 1].
+    void requireUnitRange(const std::string& who, const char* what, const std::vector<double>& values) const {
+        for (double v : values)
+            if (!(v >= 0.0 && v <= 1.0))
+                fail(who + what + " " + (values.size() == 1 ? number(v) : numbers(values)) +
+                     " must be in [0, 1]");
+    }
+
     std::string nodeName(size_t i) const {
         return "node " + std::to_string(i) + quoted(model_.nodes[i].name);
     }
 
+    void checkVersion() const;
     void checkBufferViews() const;
     void checkAccessors() const;
     void checkTextures() const;
     void checkMaterials() const;
     void checkMeshes() const;
+    void checkCameras() const;
+    void checkLights() const;
     void checkNodes() const;
+    void checkTransform(size_t node) const;
     std::vector<int> checkHierarchy() const;
     void checkScenes(const std::vector<int>& parents) const;
 
     std::string path_;
     const tinygltf::Model& model_;
 };
+
+void GltfValidator::checkVersion() const {
+    const tinygltf::Asset& asset = model_.asset;
+    int major = 0, minor = 0;
+    if (!parseVersion(asset.version, major, minor) || major != 2)
+        fail("asset version '" + asset.version + "' is not supported (glTF 2.x only)");
+    // minVersion names features a reader must have: those of 2.0 are all this one knows.
+    int minMajor = 0, minMinor = 0;
+    if (!asset.minVersion.empty() &&
+        (!parseVersion(asset.minVersion, minMajor, minMinor) || minMajor != 2 || minMinor != 0))
+        fail("asset minVersion '" + asset.minVersion + "' is not supported (glTF 2.0 only)");
+}
 
 void GltfValidator::checkBufferViews() const {
     for (size_t i = 0; i < model_.bufferViews.size(); ++i) {
@@ -115,6 +171,20 @@ void GltfValidator::checkMaterials() const {
         allowElement(who + "normalTexture", m.normalTexture.index, textures, "texture");
         allowElement(who + "occlusionTexture", m.occlusionTexture.index, textures, "texture");
         allowElement(who + "emissiveTexture", m.emissiveTexture.index, textures, "texture");
+        requireUnitRange(who, "baseColorFactor", m.pbrMetallicRoughness.baseColorFactor);
+        requireUnitRange(who, "metallicFactor", {m.pbrMetallicRoughness.metallicFactor});
+        requireUnitRange(who, "roughnessFactor", {m.pbrMetallicRoughness.roughnessFactor});
+        if (m.emissiveFactor.size() != 3)
+            fail(who + "emissiveFactor has " + std::to_string(m.emissiveFactor.size()) +
+                 " numbers, expected 3");
+        requireUnitRange(who, "emissiveFactor", m.emissiveFactor);
+        if (auto it = m.extensions.find("KHR_materials_emissive_strength");
+            it != m.extensions.end() && it->second.Has("emissiveStrength")) {
+            const tinygltf::Value& strength = it->second.Get("emissiveStrength");
+            if (!strength.IsNumber() || !(strength.GetNumberAsDouble() >= 0.0) ||
+                !std::isfinite(strength.GetNumberAsDouble()))
+                fail(who + "KHR_materials_emissive_strength emissiveStrength must be a number, 0 or more");
+        }
     }
 }
 
@@ -133,12 +203,87 @@ void GltfValidator::checkMeshes() const {
     }
 }
 
+void GltfValidator::checkCameras() const {
+    for (size_t i = 0; i < model_.cameras.size(); ++i) {
+        const tinygltf::Camera& c = model_.cameras[i];
+        const std::string who = "camera " + std::to_string(i) + quoted(c.name) + ": ";
+        // tinygltf reads a zfar or aspectRatio that is not given as 0.
+        if (c.type == "perspective") {
+            const tinygltf::PerspectiveCamera& p = c.perspective;
+            if (!(p.yfov > 0.0 && p.yfov < kPi)) fail(who + "yfov " + number(p.yfov) + " must be in (0, pi)");
+            if (!(p.znear > 0.0) || !std::isfinite(p.znear))
+                fail(who + "znear " + number(p.znear) + " must be greater than 0");
+            if (p.zfar != 0.0 && !(p.zfar > p.znear))
+                fail(who + "zfar " + number(p.zfar) + " must be greater than znear " + number(p.znear));
+            if (p.aspectRatio != 0.0 && !(p.aspectRatio > 0.0))
+                fail(who + "aspectRatio " + number(p.aspectRatio) + " must be greater than 0");
+        } else {
+            const tinygltf::OrthographicCamera& o = c.orthographic;
+            if (o.xmag == 0.0 || o.ymag == 0.0) fail(who + "xmag and ymag must not be 0");
+            if (!(o.znear >= 0.0)) fail(who + "znear " + number(o.znear) + " must be 0 or more");
+            if (!(o.zfar > o.znear))
+                fail(who + "zfar " + number(o.zfar) + " must be greater than znear " + number(o.znear));
+        }
+    }
+}
+
+void GltfValidator::checkLights() const {
+    for (size_t i = 0; i < model_.lights.size(); ++i) {
+        const tinygltf::Light& l = model_.lights[i];
+        const std::string who = "light " + std::to_string(i) + quoted(l.name) + ": ";
+        if (l.type != "directional" && l.type != "spot" && l.type != "point")
+            fail(who + "type '" + l.type + "' is not directional, point or spot");
+        if (!l.color.empty() && l.color.size() != 3)
+            fail(who + "color has " + std::to_string(l.color.size()) + " numbers, expected 3");
+        requireUnitRange(who, "color", l.color);
+        if (!(l.intensity >= 0.0) || !std::isfinite(l.intensity))
+            fail(who + "intensity " + number(l.intensity) + " must be 0 or more");
+        // tinygltf reads a range that is not given (no limit) as 0.
+        if (l.range != 0.0 && (!(l.range > 0.0) || !std::isfinite(l.range)))
+            fail(who + "range " + number(l.range) + " must be greater than 0");
+        if (l.type != "spot") continue;
+        const double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
+        if (!(outer > 0.0 && outer <= kPi / 2.0 + kAngleSlack))
+            fail(who + "outerConeAngle " + number(outer) + " must be in (0, pi/2]");
+        if (!(inner >= 0.0 && inner <= outer))
+            fail(who + "innerConeAngle " + number(inner) + " must be in [0, outerConeAngle " + number(outer) +
+                 "]");
+    }
+}
+
+void GltfValidator::checkTransform(size_t i) const {
+    const tinygltf::Node& n = model_.nodes[i];
+    const std::string who = nodeName(i) + ": ";
+    const std::pair<const char*, const std::vector<double>*> parts[] = {{"matrix", &n.matrix},
+                                                                        {"translation", &n.translation},
+                                                                        {"rotation", &n.rotation},
+                                                                        {"scale", &n.scale}};
+    const size_t sizes[] = {16, 3, 4, 3};
+    for (size_t p = 0; p < 4; ++p) {
+        const auto& [what, values] = parts[p];
+        if (!values->empty() && values->size() != sizes[p])
+            fail(who + what + " has " + std::to_string(values->size()) + " numbers, expected " +
+                 std::to_string(sizes[p]));
+        for (double v : *values)
+            if (!std::isfinite(v)) fail(who + what + " has a value that is not finite");
+    }
+    if (n.rotation.size() == 4) {
+        double lengthSquared = 0.0;
+        for (double v : n.rotation)
+            lengthSquared += v * v;
+        // Loose enough for quaternions written to a few decimals; a zero one would become no rotation.
+        if (std::abs(std::sqrt(lengthSquared) - 1.0) > 0.01)
+            fail(who + "rotation " + numbers(n.rotation) + " is not a unit quaternion");
+    }
+}
+
 void GltfValidator::checkNodes() const {
     for (size_t i = 0; i < model_.nodes.size(); ++i) {
         const tinygltf::Node& n = model_.nodes[i];
         const std::string who = nodeName(i);
         allowElement(who, n.mesh, model_.meshes.size(), "mesh");
         allowElement(who, n.camera, model_.cameras.size(), "camera");
+        checkTransform(i);
         for (int child : n.children)
             requireElement(who + ": child", child, model_.nodes.size(), "node");
         if (auto it = n.extensions.find("KHR_lights_punctual");

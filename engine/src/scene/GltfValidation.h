@@ -1,7 +1,9 @@
 // Checks on a parsed glTF model for what tinygltf leaves to its caller: every index that the reader
 // follows names an element that exists, every accessor lies inside its buffer, and the nodes form
-// disjoint trees. The reader can then follow the file's indices without checking each one again, and
-// a broken file is an error naming the file and the element, not a crash or an out-of-range read.
+// disjoint trees; and no value is one the glTF 2.0 spec forbids (a version other than 2.x, a zero
+// field of view, a negative light intensity). The reader can then follow the file's indices without
+// checking each one again, and a broken file is an error naming the file and the element, not a
+// crash, an out-of-range read or a NaN in the frame.
 #pragma once
 
 #include <tiny_gltf.h>
