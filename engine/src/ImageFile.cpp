@@ -2,12 +2,12 @@
 // line and raw floats - there is no library for it among the project's packages).
 #include "engine/ImageFile.h"
 
+#include "platforms/Platform.h"
+
 #include <stb_image_write.h>
 #include <tinyexr.h>
 
-#include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <stdexcept>
 #include <vector>
 
@@ -28,10 +28,15 @@ void writePng(const std::string& path, uint32_t width, uint32_t height, std::spa
     if (rgba.size() != size_t(width) * height * 4)
         throw std::runtime_error(path + ": pixel data does not match " + std::to_string(width) + "x" +
                                  std::to_string(height) + " RGBA8");
-    errno = 0;
-    if (!stbi_write_png(path.c_str(), int(width), int(height), 4, rgba.data(), int(width * 4)))
-        throw std::runtime_error("cannot write " + path +
-                                 (errno ? std::string(": ") + std::strerror(errno) : ""));
+    // Encoded in memory and written here: stbi_write_png ignores fwrite and fclose errors, so a
+    // full disk would pass for success.
+    std::string png;
+    const auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+    };
+    if (!stbi_write_png_to_func(append, &png, int(width), int(height), 4, rgba.data(), int(width * 4)))
+        throw std::runtime_error("cannot write " + path + ": PNG encoding failed");
+    platforms::Platform::writeFile(path, png);
 }
 
 void writeHdr(const std::string& path, uint32_t width, uint32_t height, std::span<const float> rgba) {
@@ -54,18 +59,16 @@ void writeHdr(const std::string& path, uint32_t width, uint32_t height, std::spa
     }
     if (!endsWith(path, ".pfm"))
         throw std::runtime_error(path + ": HDR screenshots must end in .exr or .pfm");
-    std::ofstream out(path, std::ios::binary);
-    if (!out) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
     // PFM: "PF", size, negative scale = little endian; rows run bottom to top.
-    out << "PF\n" << width << " " << height << "\n-1.0\n";
+    std::string pfm = "PF\n" + std::to_string(width) + " " + std::to_string(height) + "\n-1.0\n";
     std::vector<float> row(size_t(width) * 3);
     for (uint32_t y = height; y-- > 0;) {
         for (uint32_t x = 0; x < width; ++x)
             for (int c = 0; c < 3; ++c)
                 row[size_t(x) * 3 + size_t(c)] = rgba[(size_t(y) * width + x) * 4 + size_t(c)];
-        out.write(reinterpret_cast<const char*>(row.data()), std::streamsize(row.size() * sizeof(float)));
+        pfm.append(reinterpret_cast<const char*>(row.data()), row.size() * sizeof(float));
     }
-    if (!out) throw std::runtime_error("cannot write " + path);
+    platforms::Platform::writeFile(path, pfm);
 }
 
 } // namespace lpv::engine

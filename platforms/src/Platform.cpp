@@ -77,10 +77,20 @@ std::string Platform::readFile(const std::string& path) {
     return contents;
 }
 
-void Platform::writeFile(const std::string& path, const std::string& contents) {
-    std::ofstream out(path, std::ios::binary);
-    out << contents;
-    if (!out) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+void Platform::writeFile(const std::string& path, std::string_view contents) {
+    FILE* f = std::fopen(path.c_str(), "wb");
+    if (!f) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+    // A full disk often shows only when the buffer is flushed or the file closed, so both count.
+    errno = 0;
+    const bool written =
+        std::fwrite(contents.data(), 1, contents.size(), f) == contents.size() && std::fflush(f) == 0;
+    const int writeError = errno;
+    const bool closed = std::fclose(f) == 0;
+    if (!written || !closed) {
+        const int error = !written ? writeError : errno;
+        throw std::runtime_error("cannot write " + path + ": " +
+                                 (error ? std::strerror(error) : "write failed"));
+    }
 }
 
 } // namespace lpv::platforms

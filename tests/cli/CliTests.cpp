@@ -3,8 +3,10 @@
 
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace {
 
@@ -139,4 +141,32 @@ TEST_CASE("cli: --screenshot and --profile-out given twice take the last") {
     CHECK(!exists("/tmp/lpv_cli_first.png"));
     CHECK(exists("/tmp/lpv_cli_last_profile/summary.md"));
     CHECK(!exists("/tmp/lpv_cli_first_profile/summary.md"));
+}
+
+namespace {
+// The smallest run: no GPU, a tiny frame, one frame.
+const std::string kTinyRun = "--headless --backend null --width 160 --height 90 --frames 1 ";
+
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+// `link` becomes a symbolic link to /dev/full: opening it works, writing fails with ENOSPC.
+void linkToFullDevice(const std::string& link) {
+    std::filesystem::create_directories(std::filesystem::path(link).parent_path());
+    std::filesystem::remove(link);
+    REQUIRE(symlink("/dev/full", link.c_str()) == 0);
+}
+} // namespace
+
+TEST_CASE("cli: a screenshot that cannot be written is an error naming the path and the reason") {
+    // stbi_write_png ignores fwrite and fclose errors: a full disk used to pass for success.
+    for (const std::string path : {"/tmp/lpv_cli_full/a.png", "/tmp/lpv_cli_full/a.pfm"}) {
+        linkToFullDevice(path);
+        const Result r = runGame(kTinyRun + "--screenshot " + path);
+        INFO(r.output);
+        CHECK(r.exitCode == 1);
+        CHECK(contains(r.output, "cannot write " + path + ": No space left on device"));
+        CHECK(!contains(r.output, "game: wrote"));
+    }
 }

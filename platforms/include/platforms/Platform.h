@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 
 namespace lpv::platforms {
 
@@ -36,7 +37,8 @@ public:
     // The same without throwing: 0, or the errno of what failed. A path that opens but cannot be
     // read (a directory, /proc/self/mem) fails too, rather than reading as an empty file.
     static int tryReadFile(const std::string& path, std::string& contents);
-    static void writeFile(const std::string& path, const std::string& contents);
+    // Flush and close errors count as failures (a full disk shows there, not at fwrite).
+    static void writeFile(const std::string& path, std::string_view contents);
 
 private:
     explicit Platform(std::unique_ptr<Window> window, const WindowDesc& desc);
