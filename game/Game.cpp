@@ -5,6 +5,7 @@
 #include "FreeCamera.h"
 
 #include "engine/DeviceSettings.h"
+#include "engine/ImageFile.h"
 #include "engine/PlatformSettings.h"
 #include "engine/Screenshot.h"
 #include "engine/config/Config.h"
@@ -26,6 +27,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
 
 namespace lpv::game {
 namespace {
@@ -91,6 +93,13 @@ int runGame(const GameOptions& opt) {
     if (!opt.cameraPath.empty() && !engine::isCameraPath(opt.cameraPath))
         throw engine::ConfigError("--camera-path", 0,
                                   "unknown camera path '" + opt.cameraPath + "' (orbit, flythrough)");
+    if (!opt.screenshot.empty()) {
+        try {
+            engine::imageFormatOf(opt.screenshot);
+        } catch (const std::invalid_argument& e) {
+            throw engine::ConfigError("--screenshot " + opt.screenshot, 0, e.what());
+        }
+    }
     const platforms::PlatformProfile profile = engine::activePlatformProfile(config);
     const uint32_t width = engine::renderWidth(config), height = engine::renderHeight(config);
 

@@ -7,21 +7,24 @@
 #include <stb_image_write.h>
 #include <tinyexr.h>
 
-#include <cstring>
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
 #include <stdexcept>
 #include <vector>
 
 namespace lpv::engine {
 
-namespace {
-bool endsWith(const std::string& s, const char* suffix) {
-    const size_t n = std::strlen(suffix);
-    return s.size() >= n && s.compare(s.size() - n, n, suffix) == 0;
-}
-} // namespace
-
-bool isHdrPath(const std::string& path) {
-    return endsWith(path, ".exr") || endsWith(path, ".pfm");
+ImageFormat imageFormatOf(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (extension == ".png") return ImageFormat::Png;
+    if (extension == ".exr") return ImageFormat::Exr;
+    if (extension == ".pfm") return ImageFormat::Pfm;
+    throw std::invalid_argument(
+        (extension.empty() ? std::string("no image type") : "unsupported image type '" + extension + "'") +
+        " (expected .png, .exr or .pfm)");
 }
 
 void writePng(const std::string& path, uint32_t width, uint32_t height, std::span<const uint8_t> rgba) {
@@ -43,7 +46,8 @@ void writeHdr(const std::string& path, uint32_t width, uint32_t height, std::spa
     if (rgba.size() != size_t(width) * height * 4)
         throw std::runtime_error(path + ": pixel data does not match " + std::to_string(width) + "x" +
                                  std::to_string(height) + " RGBA float");
-    if (endsWith(path, ".exr")) {
+    const ImageFormat format = imageFormatOf(path);
+    if (format == ImageFormat::Exr) {
         const char* err = nullptr;
         // RGB, full float precision: the indirect-light view is compared against a path tracer.
         std::vector<float> rgb(size_t(width) * height * 3);
@@ -57,7 +61,7 @@ void writeHdr(const std::string& path, uint32_t width, uint32_t height, std::spa
         }
         return;
     }
-    if (!endsWith(path, ".pfm"))
+    if (format != ImageFormat::Pfm)
         throw std::runtime_error(path + ": HDR screenshots must end in .exr or .pfm");
     // PFM: "PF", size, negative scale = little endian; rows run bottom to top.
     std::string pfm = "PF\n" + std::to_string(width) + " " + std::to_string(height) + "\n-1.0\n";

@@ -13,8 +13,10 @@ namespace lpv::engine {
 
 void writeScreenshot(rhi::Device& device, const Renderer& renderer, const std::string& path) {
     const uint32_t w = renderer.width(), h = renderer.height();
+    // Before the read-back: an unsupported type is refused, never written as PNG.
+    const ImageFormat format = imageFormatOf(path);
     device.waitIdle();
-    if (isHdrPath(path)) {
+    if (format != ImageFormat::Png) {
         std::vector<uint16_t> half(size_t(w) * h * 4);
         device.readTexture(renderer.hdr(), 0, half.data(), half.size() * sizeof(uint16_t));
         std::vector<float> rgba(half.size());

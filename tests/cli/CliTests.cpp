@@ -170,3 +170,21 @@ TEST_CASE("cli: a screenshot that cannot be written is an error naming the path 
         CHECK(!contains(r.output, "game: wrote"));
     }
 }
+
+TEST_CASE("cli: a screenshot type other than .png, .exr or .pfm is refused before anything runs") {
+    // Such paths used to be written as PNG whatever they were called.
+    const Result jpg = runGame(kTinyRun + "--screenshot /tmp/lpv_cli_shot.jpg");
+    CHECK(jpg.exitCode == 2);
+    CHECK(contains(jpg.output, "--screenshot /tmp/lpv_cli_shot.jpg: unsupported image type '.jpg' (expected "
+                               ".png, .exr or .pfm)"));
+    CHECK(!contains(jpg.output, "running on backend"));
+    const Result bare = runGame(kTinyRun + "--screenshot /tmp/lpv_cli_shot");
+    CHECK(bare.exitCode == 2);
+    CHECK(
+        contains(bare.output, "--screenshot /tmp/lpv_cli_shot: no image type (expected .png, .exr or .pfm)"));
+    // The type is read in any case.
+    std::filesystem::remove("/tmp/lpv_cli_shot.PNG");
+    const Result upper = runGame(kTinyRun + "--screenshot /tmp/lpv_cli_shot.PNG");
+    CHECK_MESSAGE(upper.exitCode == 0, upper.output);
+    CHECK(std::filesystem::exists("/tmp/lpv_cli_shot.PNG"));
+}

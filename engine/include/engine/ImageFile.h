@@ -11,7 +11,10 @@ namespace lpv::engine {
 void writePng(const std::string& path, uint32_t width, uint32_t height, std::span<const uint8_t> rgba);
 // Linear RGBA float pixels, row 0 at the top; the format follows the extension (.exr or .pfm).
 void writeHdr(const std::string& path, uint32_t width, uint32_t height, std::span<const float> rgba);
-// True when `path` names an HDR format (.exr, .pfm).
-bool isHdrPath(const std::string& path);
+
+enum class ImageFormat : uint8_t { Png, Exr, Pfm };
+// The format named by the path's extension, in any case. Any other extension (or none) throws
+// std::invalid_argument: "unsupported image type '.jpg' (expected .png, .exr or .pfm)".
+ImageFormat imageFormatOf(const std::string& path);
 
 } // namespace lpv::engine

@@ -12,7 +12,8 @@ namespace lpv::engine {
 
 class Renderer;
 
-// Reads the frame back (waits for the GPU: not for steady-state frames) and writes `path`.
+// Reads the frame back (waits for the GPU: not for steady-state frames) and writes `path`, a .png,
+// .exr or .pfm (imageFormatOf); throws std::invalid_argument for another type.
 void writeScreenshot(rhi::Device& device, const Renderer& renderer, const std::string& path);
 
 } // namespace lpv::engine
