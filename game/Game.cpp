@@ -28,6 +28,9 @@
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace lpv::game {
 namespace {
@@ -83,6 +86,10 @@ void followGiIndirectView(engine::Config& config, const std::string& source) {
 
 } // namespace
 
+OutputError::OutputError(std::vector<std::string> failures)
+    : std::runtime_error(failures.empty() ? std::string("no output failed") : failures.front()),
+      failures_(std::move(failures)) {}
+
 int runGame(const GameOptions& opt) {
     engine::Config config;
     for (const std::string& file : opt.configFiles)
@@ -99,6 +106,21 @@ int runGame(const GameOptions& opt) {
         } catch (const std::invalid_argument& e) {
             throw engine::ConfigError("--screenshot " + opt.screenshot, 0, e.what());
         }
+    }
+    // Output paths are checked before the run, not found bad after it.
+    try {
+        if (!opt.screenshot.empty()) platforms::Platform::checkWritable(opt.screenshot);
+    } catch (const std::runtime_error& e) {
+        throw engine::ConfigError("--screenshot", 0, e.what());
+    }
+    try {
+        if (!opt.profileOut.empty()) {
+            platforms::Platform::createDirectories(opt.profileOut);
+            for (const char* name : engine::kProfileOutputFiles)
+                platforms::Platform::checkWritable(opt.profileOut + "/" + name);
+        }
+    } catch (const std::runtime_error& e) {
+        throw engine::ConfigError("--profile-out", 0, e.what());
     }
     const platforms::PlatformProfile profile = engine::activePlatformProfile(config);
     const uint32_t width = engine::renderWidth(config), height = engine::renderHeight(config);
@@ -199,18 +221,29 @@ int runGame(const GameOptions& opt) {
     }
     device->waitIdle();
 
+    // Every output that can be written is, and the summary is printed, whatever failed.
+    std::vector<std::string> failures;
     if (!opt.screenshot.empty()) {
-        engine::writeScreenshot(*device, renderer, opt.screenshot);
-        log::info("game: wrote " + opt.screenshot + " (backend '" +
-                  std::string(rhi::backendName(device->backend())) + "')");
+        try {
+            engine::writeScreenshot(*device, renderer, opt.screenshot);
+            log::info("game: wrote " + opt.screenshot + " (backend '" +
+                      std::string(rhi::backendName(device->backend())) + "')");
+        } catch (const std::exception& e) {
+            failures.emplace_back(e.what());
+        }
     }
     if (!opt.profileOut.empty()) {
         profiler.collectPending(); // the last frames' GPU timings
-        engine::writeProfileOutputs(profiler, opt.profileOut);
+        try {
+            engine::writeProfileOutputs(profiler, opt.profileOut);
+            log::info("game: profile written to " + opt.profileOut +
+                      " (trace.json, summary.md, summary.csv, frames.svg)");
+        } catch (const std::exception& e) {
+            failures.emplace_back(e.what());
+        }
         std::fputs(engine::profileSummaryText(profiler).c_str(), stdout);
-        log::info("game: profile written to " + opt.profileOut +
-                  " (trace.json, summary.md, summary.csv, frames.svg)");
     }
+    if (!failures.empty()) throw OutputError(std::move(failures));
     return 0;
 }
 

@@ -2,6 +2,7 @@
 // window, writing a screenshot and a profile report on request.
 #pragma once
 
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,8 +21,20 @@ struct GameOptions {
     std::string profileOut;
 };
 
-// Returns the process exit code; throws engine::ConfigError, engine::SceneError,
-// rhi::BackendUnavailable and std::exception for the caller to report.
+// The outputs that could not be written at the end of a run (the others were): one message per
+// failure, naming the path and the reason.
+class OutputError : public std::runtime_error {
+public:
+    explicit OutputError(std::vector<std::string> failures);
+    const std::vector<std::string>& failures() const { return failures_; }
+
+private:
+    std::vector<std::string> failures_;
+};
+
+// Returns the process exit code; throws engine::ConfigError (also for an output path that cannot
+// be written, found before the first frame), engine::SceneError, rhi::BackendUnavailable,
+// OutputError and std::exception for the caller to report.
 int runGame(const GameOptions& options);
 
 } // namespace lpv::game

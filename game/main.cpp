@@ -79,6 +79,10 @@ int main(int argc, char** argv) {
     } catch (const rhi::BackendUnavailable& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 3;
+    } catch (const game::OutputError& e) {
+        for (const std::string& failure : e.failures())
+            std::fprintf(stderr, "error: %s\n", failure.c_str());
+        return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 1;

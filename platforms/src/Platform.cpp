@@ -8,8 +8,11 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fcntl.h>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <unistd.h>
 
 namespace lpv::platforms {
 
@@ -91,6 +94,26 @@ void Platform::writeFile(const std::string& path, std::string_view contents) {
         throw std::runtime_error("cannot write " + path + ": " +
                                  (error ? std::strerror(error) : "write failed"));
     }
+}
+
+void Platform::createDirectories(const std::string& directory) {
+    std::error_code ec;
+    std::filesystem::create_directories(directory, ec);
+    if (ec) throw std::runtime_error("cannot create directory " + directory + ": " + ec.message());
+}
+
+void Platform::checkWritable(const std::string& path) {
+    const std::filesystem::path file(path);
+    if (file.has_parent_path()) createDirectories(file.parent_path().string());
+    std::error_code ec;
+    const bool existed = std::filesystem::exists(std::filesystem::symlink_status(file, ec));
+    // O_NONBLOCK: a FIFO without a reader fails instead of blocking. O_EXCL: the file removed below
+    // is the one made here.
+    const int fd = existed ? ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC)
+                           : ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+    ::close(fd);
+    if (!existed) ::unlink(path.c_str());
 }
 
 } // namespace lpv::platforms

@@ -188,3 +188,39 @@ TEST_CASE("cli: a screenshot type other than .png, .exr or .pfm is refused befor
     CHECK_MESSAGE(upper.exitCode == 0, upper.output);
     CHECK(std::filesystem::exists("/tmp/lpv_cli_shot.PNG"));
 }
+
+TEST_CASE("cli: an output path that cannot be written fails before the run, with the reason") {
+    // It used to fail after every frame was rendered, and cost the other outputs.
+    std::filesystem::remove_all("/tmp/lpv_cli_p1");
+    const Result shot = runGame(kTinyRun + "--screenshot /proc/lpv_cli.png --profile-out /tmp/lpv_cli_p1");
+    INFO(shot.output);
+    CHECK(shot.exitCode == 2);
+    CHECK(contains(shot.output, "error: --screenshot: cannot write /proc/lpv_cli.png: "));
+    CHECK(!contains(shot.output, "running on backend"));
+
+    FILE* f = std::fopen("/tmp/lpv_cli_not_a_folder", "w");
+    REQUIRE(f != nullptr);
+    std::fclose(f);
+    const Result profile = runGame(kTinyRun + "--profile-out /tmp/lpv_cli_not_a_folder/profile");
+    INFO(profile.output);
+    CHECK(profile.exitCode == 2);
+    CHECK(contains(profile.output,
+                   "error: --profile-out: cannot create directory /tmp/lpv_cli_not_a_folder/profile: "));
+    CHECK(!contains(profile.output, "running on backend"));
+}
+
+TEST_CASE("cli: outputs that fail at the end cost nothing else, and each failure is reported") {
+    const std::string shot = "/tmp/lpv_cli_full/b.png", profile = "/tmp/lpv_cli_profile_full";
+    std::filesystem::remove_all(profile);
+    linkToFullDevice(shot);
+    linkToFullDevice(profile + "/trace.json");
+    const Result r = runGame(kTinyRun + "--screenshot " + shot + " --profile-out " + profile);
+    INFO(r.output);
+    CHECK(r.exitCode == 1);
+    CHECK(contains(r.output, "error: cannot write " + shot + ": No space left on device"));
+    CHECK(contains(r.output, "error: cannot write " + profile + "/trace.json: No space left on device"));
+    CHECK(contains(r.output, "Frame profile: platform")); // the summary, printed all the same
+    CHECK(std::filesystem::file_size(profile + "/summary.md") > 0);
+    CHECK(std::filesystem::file_size(profile + "/summary.csv") > 0);
+    CHECK(std::filesystem::file_size(profile + "/frames.svg") > 0);
+}

@@ -2,11 +2,10 @@
 #include "engine/profiler/ProfileReport.h"
 
 #include "engine/profiler/FrameProfiler.h"
+#include "platforms/Platform.h"
 
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <functional>
 #include <map>
 #include <sstream>
@@ -365,20 +364,20 @@ std::string profileChartSvg(const FrameProfiler& p) {
 }
 
 void writeProfileOutputs(const FrameProfiler& p, const std::string& directory) {
-    std::error_code ec;
-    std::filesystem::create_directories(directory, ec);
-    if (ec)
-        throw std::runtime_error("cannot create profile output directory " + directory + ": " + ec.message());
-    const std::pair<const char*, std::string> files[] = {{"trace.json", profileTraceJson(p)},
-                                                         {"summary.md", profileSummaryMarkdown(p)},
-                                                         {"summary.csv", profileSummaryCsv(p)},
-                                                         {"frames.svg", profileChartSvg(p)}};
-    for (const auto& [name, text] : files) {
-        const std::string path = directory + "/" + name;
-        std::ofstream out(path, std::ios::binary);
-        out << text;
-        if (!out) throw std::runtime_error("cannot write " + path);
+    platforms::Platform::createDirectories(directory);
+    const std::string texts[] = {profileTraceJson(p), profileSummaryMarkdown(p), profileSummaryCsv(p),
+                                 profileChartSvg(p)};
+    static_assert(std::size(texts) == kProfileOutputFiles.size());
+    // One file that cannot be written does not cost the others.
+    std::string failures;
+    for (size_t i = 0; i < kProfileOutputFiles.size(); ++i) {
+        try {
+            platforms::Platform::writeFile(directory + "/" + kProfileOutputFiles[i], texts[i]);
+        } catch (const std::runtime_error& e) {
+            failures += (failures.empty() ? "" : "; ") + std::string(e.what());
+        }
     }
+    if (!failures.empty()) throw std::runtime_error(failures);
 }
 
 } // namespace lpv::engine

@@ -39,6 +39,12 @@ public:
     static int tryReadFile(const std::string& path, std::string& contents);
     // Flush and close errors count as failures (a full disk shows there, not at fwrite).
     static void writeFile(const std::string& path, std::string_view contents);
+    // Creates `directory` and its parents where missing; throws std::runtime_error with the reason.
+    static void createDirectories(const std::string& directory);
+    // For a file written at the end of a long run, checked before it starts: creates the file's
+    // folder and opens the file for writing (a file made for the check is removed again, one that
+    // was there is left unchanged). Throws std::runtime_error naming the path and the reason.
+    static void checkWritable(const std::string& path);
 
 private:
     explicit Platform(std::unique_ptr<Window> window, const WindowDesc& desc);

@@ -3,6 +3,7 @@
 // of per-frame stacked pass times against the budget line.
 #pragma once
 
+#include <array>
 #include <string>
 
 namespace lpv::engine {
@@ -15,8 +16,13 @@ std::string profileSummaryCsv(const FrameProfiler& profiler);
 std::string profileTraceJson(const FrameProfiler& profiler);
 std::string profileChartSvg(const FrameProfiler& profiler);
 
+// The files writeProfileOutputs writes into its directory.
+inline constexpr std::array<const char*, 4> kProfileOutputFiles{"trace.json", "summary.md", "summary.csv",
+                                                                "frames.svg"};
+
 // Writes trace.json, summary.md, summary.csv and frames.svg into `directory` (created if needed).
-// Throws std::runtime_error naming the file that could not be written.
+// Every file that can be written is; then throws std::runtime_error naming each file that could
+// not be, with the reason.
 void writeProfileOutputs(const FrameProfiler& profiler, const std::string& directory);
 
 } // namespace lpv::engine
