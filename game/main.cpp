@@ -3,6 +3,7 @@
 #include "Game.h"
 
 #include "engine/config/Config.h"
+#include "engine/config/Setting.h"
 #include "engine/config/SettingsHelp.h"
 #include "engine/scene/SceneLoading.h"
 #include "rhi/Error.h"
@@ -10,8 +11,29 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <string>
+#include <vector>
 
 using namespace lpv;
+
+namespace {
+
+// The "did you mean" that a misspelt setting gets, for a misspelt option.
+void reportMisspeltOptions(const CLI::App& app) {
+    std::vector<std::string> options;
+    for (const CLI::Option* option : app.get_options())
+        for (const std::string& name : option->get_lnames())
+            options.push_back("--" + name);
+    for (const std::string& arg : app.remaining()) {
+        if (!arg.starts_with("--")) continue;
+        const std::string flag = arg.substr(0, arg.find('='));
+        const std::string suggestion = engine::nearestName(flag, options);
+        const std::string hint = suggestion.empty() ? "" : " (did you mean '" + suggestion + "'?)";
+        std::fprintf(stderr, "error: unknown option '%s'%s\n", flag.c_str(), hint.c_str());
+    }
+}
+
+} // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"LPV Engine sample game: dynamic global illumination with light propagation volumes"};
@@ -61,7 +83,17 @@ int main(int argc, char** argv) {
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     app.add_option("--help-config", helpConfig, "List every setting (text or markdown) and exit")
         ->expected(0, 1);
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::Success& e) { // --help
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        // A bad command line is bad input (exit 2), whatever CLI11's own code for it.
+        std::fprintf(stderr, "error: %s\n", e.what());
+        reportMisspeltOptions(app);
+        std::fputs("Run with --help for more information.\n", stderr);
+        return 2;
+    }
     if (app.count("--help-config")) {
         std::fputs(
             (helpConfig == "markdown" ? engine::settingsMarkdownTable() : engine::settingsHelpText()).c_str(),

@@ -224,3 +224,24 @@ TEST_CASE("cli: outputs that fail at the end cost nothing else, and each failure
     CHECK(std::filesystem::file_size(profile + "/summary.csv") > 0);
     CHECK(std::filesystem::file_size(profile + "/frames.svg") > 0);
 }
+
+TEST_CASE("cli: a bad command line exits 2 with CLI11's message, and a misspelt option gets a hint") {
+    // CLI11's own exit codes (109, 104, 114) used to leak out instead of the documented 2.
+    const Result misspelt = runGame(kTinyRun + "--widht 100");
+    INFO(misspelt.output);
+    CHECK(misspelt.exitCode == 2);
+    CHECK(contains(misspelt.output, "--widht"));
+    CHECK(contains(misspelt.output, "error: unknown option '--widht' (did you mean '--width'?)"));
+    const Result assigned = runGame(kTinyRun + "--scren-shot=/tmp/x.png");
+    CHECK(assigned.exitCode == 2);
+    CHECK(contains(assigned.output, "error: unknown option '--scren-shot' (did you mean '--screenshot'?)"));
+    const Result notANumber = runGame("--headless --backend null --frames lots");
+    CHECK(notANumber.exitCode == 2);
+    CHECK(contains(notANumber.output, "lots"));
+    const Result noValue = runGame("--headless --backend null --scene");
+    CHECK(noValue.exitCode == 2);
+    CHECK(contains(noValue.output, "--scene"));
+    const Result help = runGame("--help");
+    CHECK(help.exitCode == 0);
+    CHECK(contains(help.output, "--screenshot"));
+}

@@ -150,6 +150,10 @@ std::string SettingRegistry::nearestTable(std::string_view name) const {
     return closest(name, tables);
 }
 
+std::string nearestName(std::string_view name, const std::vector<std::string>& candidates) {
+    return closest(name, std::vector<std::string_view>(candidates.begin(), candidates.end()));
+}
+
 std::vector<const SettingDecl*> SettingRegistry::all() const {
     std::vector<const SettingDecl*> out(decls_.begin(), decls_.end());
     std::sort(out.begin(), out.end(), [](auto* a, auto* b) { return a->name < b->name; });

@@ -44,6 +44,10 @@ struct SettingDecl {
     std::string format(const SettingValue& v) const;
 };
 
+// The candidate closest to `name` (edit distance), or empty when none is close enough to be a
+// likely misspelling: the "did you mean" of settings and of command-line options.
+std::string nearestName(std::string_view name, const std::vector<std::string>& candidates);
+
 class SettingRegistry {
 public:
     static SettingRegistry& global();
