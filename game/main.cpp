@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
         "Budget profile: x360, ps3, pc or a file (= --set platform.profile=...)");
     app.add_flag("--headless", opt.headless, "Never open a window");
     app.add_option("--frames", opt.frames,
-                   "Frames to render (default: 1 headless, until closed in a window)");
+                   "Frames to render, 1 or more (default: 1 headless, until closed in a window)");
     // Given twice (./lpv.sh run passes its own, then the caller's), the last one wins.
     app.add_option("--screenshot", opt.screenshot,
                    "Write the last frame: .png (sRGB) or .exr/.pfm (linear HDR); the last one given wins")
@@ -92,6 +92,11 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "error: %s\n", e.what());
         reportMisspeltOptions(app);
         std::fputs("Run with --help for more information.\n", stderr);
+        return 2;
+    }
+    // 0 is not "until closed": a window runs until closed when --frames is not given.
+    if (app.count("--frames") && opt.frames < 1) {
+        std::fprintf(stderr, "error: --frames: expected a positive number of frames, got %d\n", opt.frames);
         return 2;
     }
     if (app.count("--help-config")) {

@@ -245,3 +245,15 @@ TEST_CASE("cli: a bad command line exits 2 with CLI11's message, and a misspelt 
     CHECK(help.exitCode == 0);
     CHECK(contains(help.output, "--screenshot"));
 }
+
+TEST_CASE("cli: --frames takes a positive number") {
+    // 0 and negative counts used to fall back to the default: in a window, forever.
+    for (const char* frames : {"0", "-1"}) {
+        const Result r = runGame(std::string("--headless --backend null --frames ") + frames);
+        INFO(r.output);
+        CHECK(r.exitCode == 2);
+        CHECK(contains(r.output,
+                       std::string("error: --frames: expected a positive number of frames, got ") + frames));
+        CHECK(!contains(r.output, "running on backend"));
+    }
+}
