@@ -81,7 +81,8 @@ int main(int argc, char** argv) {
     app.add_option("--profile-out", opt.profileOut,
                    "Write the profiler's trace, summary and chart into this folder; the last one given wins")
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-    app.add_option("--help-config", helpConfig, "List every setting (text or markdown) and exit")
+    app.add_option("--help-config", helpConfig,
+                   "List every setting and exit: as text, or as a Markdown table with 'markdown'")
         ->expected(0, 1);
     try {
         app.parse(argc, argv);
@@ -100,6 +101,11 @@ int main(int argc, char** argv) {
         return 2;
     }
     if (app.count("--help-config")) {
+        if (!helpConfig.empty() && helpConfig != "markdown") {
+            std::fprintf(stderr, "error: --help-config: expected 'markdown' or nothing, got '%s'\n",
+                         helpConfig.c_str());
+            return 2;
+        }
         std::fputs(
             (helpConfig == "markdown" ? engine::settingsMarkdownTable() : engine::settingsHelpText()).c_str(),
             stdout);

@@ -257,3 +257,14 @@ TEST_CASE("cli: --frames takes a positive number") {
         CHECK(!contains(r.output, "running on backend"));
     }
 }
+
+TEST_CASE("cli: --help-config takes 'markdown' or nothing") {
+    // Any other word used to give the text list.
+    const Result bogus = runGame("--help-config bogus");
+    CHECK(bogus.exitCode == 2);
+    CHECK(contains(bogus.output, "error: --help-config: expected 'markdown' or nothing, got 'bogus'"));
+    CHECK(!contains(bogus.output, "render.backend"));
+    const Result markdown = runGame("--help-config markdown");
+    CHECK(markdown.exitCode == 0);
+    CHECK(contains(markdown.output, "| `render.backend` |"));
+}
