@@ -122,6 +122,7 @@ int runGame(const GameOptions& opt) {
     } catch (const std::runtime_error& e) {
         throw engine::ConfigError("--profile-out", 0, e.what());
     }
+    rhi::DeviceConfig deviceConfig = engine::deviceConfigFrom(config);
     const platforms::PlatformProfile profile = engine::activePlatformProfile(config);
     const uint32_t width = engine::renderWidth(config), height = engine::renderHeight(config);
 
@@ -134,7 +135,6 @@ int runGame(const GameOptions& opt) {
     const std::unique_ptr<platforms::Platform> platform =
         platforms::Platform::create(!opt.headless, platforms::WindowDesc{width, height, "LPV Engine"});
 
-    rhi::DeviceConfig deviceConfig = engine::deviceConfigFrom(config);
     deviceConfig.window = platform->window();
     t0 = platforms::nowNanoseconds();
     std::unique_ptr<rhi::Device> device = rhi::createDevice(deviceConfig);

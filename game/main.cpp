@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
                                          "Headless GL context: egl or osmesa");
     app.add_flag_callback(
         "--no-fallback", [&] { opt.overrides.emplace_back("--no-fallback", "render.allow_fallback=false"); },
-        "Fail instead of falling back to the other backend");
+        "Fail instead of falling back to the other backend (needs a named --backend)");
     app.add_flag_callback(
         "--validation", [&] { opt.overrides.emplace_back("--validation", "render.validation=true"); },
         "Vulkan validation layer / GL debug output");

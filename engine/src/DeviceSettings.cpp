@@ -34,6 +34,12 @@ rhi::DeviceConfig deviceConfigFrom(const Config& config) {
     d.glHeadless = config.get(kGlPlatform);
     d.allowFallback = config.get(kAllowFallback);
     d.validation = config.get(kValidation);
+    // "auto" is an order to try (vulkan, then gl), not one backend to stay on: refusing to fall
+    // back from it has no meaning, and quietly trying gl anyway would ignore what was asked.
+    if (d.backend == rhi::BackendKind::Auto && !d.allowFallback)
+        throw ConfigError(config.origin(kAllowFallback.decl()), 0,
+                          "render.allow_fallback=false needs a named render.backend (vulkan, gl or null); "
+                          "auto tries vulkan, then gl");
     return d;
 }
 

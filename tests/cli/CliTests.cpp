@@ -268,3 +268,20 @@ TEST_CASE("cli: --help-config takes 'markdown' or nothing") {
     CHECK(markdown.exitCode == 0);
     CHECK(contains(markdown.output, "| `render.backend` |"));
 }
+
+TEST_CASE("cli: --no-fallback needs a named backend") {
+    // With auto it used to fall back all the same, logging "falling back to 'gl'".
+    const std::string expected =
+        "error: --no-fallback: render.allow_fallback=false needs a named render.backend "
+        "(vulkan, gl or null); auto tries vulkan, then gl";
+    for (const char* backend : {"", "--backend auto "}) {
+        const Result r = runGame(std::string("--headless --no-fallback ") + backend);
+        INFO(r.output);
+        CHECK(r.exitCode == 2);
+        CHECK(contains(r.output, expected));
+        CHECK(!contains(r.output, "falling back"));
+        CHECK(!contains(r.output, "running on backend"));
+    }
+    const Result named = runGame(kTinyRun + "--no-fallback");
+    CHECK_MESSAGE(named.exitCode == 0, named.output);
+}

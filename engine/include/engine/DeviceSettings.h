@@ -6,7 +6,8 @@
 
 namespace lpv::engine {
 
-// Throws ConfigError for values the RHI cannot use.
+// Throws ConfigError for values the RHI cannot use, and for render.allow_fallback=false with
+// render.backend=auto (the error names where allow_fallback was set, e.g. "--no-fallback").
 rhi::DeviceConfig deviceConfigFrom(const Config& config);
 
 uint32_t renderWidth(const Config& config);
