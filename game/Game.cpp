@@ -21,6 +21,7 @@
 #include "platforms/Log.h"
 #include "platforms/Platform.h"
 #include "rhi/Device.h"
+#include "rhi/Error.h"
 
 #include <GLFW/glfw3.h>
 #include <glm/geometric.hpp>
@@ -135,6 +136,14 @@ int runGame(const GameOptions& opt) {
     const std::unique_ptr<platforms::Platform> platform =
         platforms::Platform::create(!opt.headless, platforms::WindowDesc{width, height, "LPV Engine"});
 
+    // Like a backend that cannot start: said, with GLFW's reason, and refused without fallback.
+    if (!platform->window() && !opt.headless) {
+        if (!deviceConfig.allowFallback)
+            throw rhi::BackendUnavailable("no window (" + platform->windowError() +
+                                          "); falling back to headless not allowed (--headless runs "
+                                          "without one)");
+        log::warn("game: no window (" + platform->windowError() + "); falling back to headless");
+    }
     deviceConfig.window = platform->window();
     t0 = platforms::nowNanoseconds();
     std::unique_ptr<rhi::Device> device = rhi::createDevice(deviceConfig);

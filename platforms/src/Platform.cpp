@@ -19,7 +19,9 @@ namespace lpv::platforms {
 std::unique_ptr<Platform> Platform::create(bool wantWindow, const WindowDesc& desc) {
     std::unique_ptr<Window> window;
     if (wantWindow && Window::displayAvailable()) window = std::make_unique<Window>(desc);
-    return std::unique_ptr<Platform>(new Platform(std::move(window), desc));
+    std::unique_ptr<Platform> platform(new Platform(std::move(window), desc));
+    if (wantWindow && !platform->window_) platform->windowError_ = Window::displayError();
+    return platform;
 }
 
 Platform::Platform(std::unique_ptr<Window> window, const WindowDesc& desc)

@@ -31,6 +31,11 @@ bool Window::displayAvailable() {
     return initGlfw();
 }
 
+std::string Window::displayError() {
+    if (initGlfw()) return {};
+    return gGlfwError.empty() ? "GLFW could not start" : gGlfwError;
+}
+
 Window::Window(const WindowDesc& desc) : desc_(desc) {
     if (!initGlfw()) throw std::runtime_error("cannot open a window: " + gGlfwError);
 }

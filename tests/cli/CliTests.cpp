@@ -285,3 +285,20 @@ TEST_CASE("cli: --no-fallback needs a named backend") {
     const Result named = runGame(kTinyRun + "--no-fallback");
     CHECK_MESSAGE(named.exitCode == 0, named.output);
 }
+
+TEST_CASE("cli: without a reachable X display the game says why it runs headless") {
+    // It used to run headless without a word. Nothing listens on display :4242.
+    const Result r = runGame("--backend null --width 160 --height 90 --frames 1", "DISPLAY=:4242");
+    INFO(r.output);
+    CHECK(r.exitCode == 0);
+    CHECK(contains(r.output, "[warning] game: no window (X11: Failed to open display :4242); falling back to "
+                             "headless"));
+    const Result strict =
+        runGame("--backend null --width 160 --height 90 --frames 1 --no-fallback", "DISPLAY=:4242");
+    INFO(strict.output);
+    CHECK(strict.exitCode == 3);
+    CHECK(contains(strict.output,
+                   "error: no window (X11: Failed to open display :4242); falling back to headless "
+                   "not allowed"));
+    CHECK(!contains(strict.output, "running on backend"));
+}

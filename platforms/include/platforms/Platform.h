@@ -15,13 +15,16 @@ namespace lpv::platforms {
 
 class Platform {
 public:
-    // Windowed when `wantWindow` and an X display is reachable, headless otherwise.
+    // Windowed when `wantWindow` and an X display is reachable, headless otherwise; then
+    // windowError() says why for the caller to report (or refuse).
     static std::unique_ptr<Platform> create(bool wantWindow, const WindowDesc& window);
     ~Platform();
 
     const char* name() const { return window_ ? "windowed (GLFW)" : "headless"; }
     // The window for the device to present to; null when headless.
     Window* window() { return window_.get(); }
+    // Why a window that was wanted could not open (GLFW's error); empty otherwise.
+    const std::string& windowError() const { return windowError_; }
 
     void pollEvents();
     bool quitRequested() const;
@@ -50,6 +53,7 @@ private:
     explicit Platform(std::unique_ptr<Window> window, const WindowDesc& desc);
     std::unique_ptr<Window> window_;
     WindowDesc desc_;
+    std::string windowError_;
 };
 
 } // namespace lpv::platforms
