@@ -1,5 +1,6 @@
 // Image output: PNG through stb_image_write, EXR through tinyexr, PFM written directly (a header
-// line and raw floats - there is no library for it among the project's packages).
+// line and raw floats - there is no library for it among the project's packages). Each is encoded
+// in memory and written by Platform::writeFile, which checks every step of the write.
 #include "engine/ImageFile.h"
 
 #include "platforms/Platform.h"
@@ -9,7 +10,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -48,17 +51,46 @@ void writeHdr(const std::string& path, uint32_t width, uint32_t height, std::spa
                                  std::to_string(height) + " RGBA float");
     const ImageFormat format = imageFormatOf(path);
     if (format == ImageFormat::Exr) {
+        // What SaveEXR does, but encoded in memory and written here: SaveEXR does not check fclose,
+        // so a full disk passed for success. RGB at full float precision (the indirect-light view is
+        // compared against a path tracer), channels in the B, G, R order viewers expect.
+        const size_t count = size_t(width) * height;
+        std::vector<float> planes[3];
+        for (size_t c = 0; c < 3; ++c) {
+            planes[c].resize(count);
+            for (size_t i = 0; i < count; ++i)
+                planes[c][i] = rgba[i * 4 + c];
+        }
+        float* bgr[3] = {planes[2].data(), planes[1].data(), planes[0].data()};
+        EXRImage image;
+        InitEXRImage(&image);
+        image.num_channels = 3;
+        image.images = reinterpret_cast<unsigned char**>(bgr);
+        image.width = int(width);
+        image.height = int(height);
+        EXRChannelInfo channels[3] = {};
+        channels[0].name[0] = 'B';
+        channels[1].name[0] = 'G';
+        channels[2].name[0] = 'R';
+        int pixelTypes[3] = {TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT};
+        EXRHeader header;
+        InitEXRHeader(&header);
+        header.compression_type =
+            width < 16 && height < 16 ? TINYEXR_COMPRESSIONTYPE_NONE : TINYEXR_COMPRESSIONTYPE_ZIP;
+        header.num_channels = 3;
+        header.channels = channels;
+        header.pixel_types = pixelTypes;
+        header.requested_pixel_types = pixelTypes;
+        unsigned char* memory = nullptr;
         const char* err = nullptr;
-        // RGB, full float precision: the indirect-light view is compared against a path tracer.
-        std::vector<float> rgb(size_t(width) * height * 3);
-        for (size_t i = 0; i < size_t(width) * height; ++i)
-            for (int c = 0; c < 3; ++c)
-                rgb[i * 3 + size_t(c)] = rgba[i * 4 + size_t(c)];
-        if (SaveEXR(rgb.data(), int(width), int(height), 3, 0, path.c_str(), &err) < 0) {
+        const size_t size = SaveEXRImageToMemory(&image, &header, &memory, &err);
+        const std::unique_ptr<unsigned char, decltype(&std::free)> owned(memory, &std::free);
+        if (size == 0) {
             const std::string message = err ? err : "unknown error";
             FreeEXRErrorMessage(err);
-            throw std::runtime_error("cannot write " + path + ": " + message);
+            throw std::runtime_error("cannot write " + path + ": EXR encoding failed: " + message);
         }
+        platforms::Platform::writeFile(path, std::string_view(reinterpret_cast<const char*>(memory), size));
         return;
     }
     if (format != ImageFormat::Pfm)

@@ -160,8 +160,9 @@ void linkToFullDevice(const std::string& link) {
 } // namespace
 
 TEST_CASE("cli: a screenshot that cannot be written is an error naming the path and the reason") {
-    // stbi_write_png ignores fwrite and fclose errors: a full disk used to pass for success.
-    for (const std::string path : {"/tmp/lpv_cli_full/a.png", "/tmp/lpv_cli_full/a.pfm"}) {
+    // stbi_write_png and SaveEXR ignore fclose errors: a full disk used to pass for success.
+    for (const std::string path :
+         {"/tmp/lpv_cli_full/a.png", "/tmp/lpv_cli_full/a.pfm", "/tmp/lpv_cli_full/a.exr"}) {
         linkToFullDevice(path);
         const Result r = runGame(kTinyRun + "--screenshot " + path);
         INFO(r.output);
