@@ -137,7 +137,10 @@ int runGame(const GameOptions& opt) {
         platforms::Platform::create(!opt.headless, platforms::WindowDesc{width, height, "LPV Engine"});
 
     // Like a backend that cannot start: said, with GLFW's reason, and refused without fallback.
-    if (!platform->window() && !opt.headless) {
+    // Without any display configured (DISPLAY unset: CI, a server) headless is what was asked for.
+    if (!platform->window() && !opt.headless && !platforms::Window::displayConfigured()) {
+        log::info("game: no display configured (DISPLAY is not set): headless");
+    } else if (!platform->window() && !opt.headless) {
         if (!deviceConfig.allowFallback)
             throw rhi::BackendUnavailable("no window (" + platform->windowError() +
                                           "); falling back to headless not allowed (--headless runs "

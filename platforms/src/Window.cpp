@@ -5,6 +5,7 @@
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <iterator>
 #include <mutex>
 #include <stdexcept>
@@ -29,6 +30,14 @@ bool initGlfw() {
 
 bool Window::displayAvailable() {
     return initGlfw();
+}
+
+bool Window::displayConfigured() {
+    const auto set = [](const char* name) {
+        const char* v = std::getenv(name);
+        return v && *v;
+    };
+    return set("DISPLAY") || set("WAYLAND_DISPLAY");
 }
 
 std::string Window::displayError() {

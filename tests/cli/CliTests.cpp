@@ -302,4 +302,12 @@ TEST_CASE("cli: without a reachable X display the game says why it runs headless
                    "error: no window (X11: Failed to open display :4242); falling back to headless "
                    "not allowed"));
     CHECK(!contains(strict.output, "running on backend"));
+    // With no display named at all (a server, CI) headless is what was asked for: no warning, and
+    // --no-fallback does not refuse it.
+    const Result none = runGame("--backend null --width 160 --height 90 --frames 1 --no-fallback",
+                                "env -u DISPLAY -u WAYLAND_DISPLAY");
+    INFO(none.output);
+    CHECK(none.exitCode == 0);
+    CHECK(contains(none.output, "no display configured (DISPLAY is not set): headless"));
+    CHECK(!contains(none.output, "[warning]"));
 }

@@ -42,6 +42,8 @@ public:
     bool keyPressed(int key) const;
     void cursorDelta(double& dx, double& dy) const;
     static bool displayAvailable();
+    // Whether a display is named at all (DISPLAY or WAYLAND_DISPLAY set), reachable or not.
+    static bool displayConfigured();
     // Why displayAvailable() is false: GLFW's error ("X11: Failed to open display :1").
     static std::string displayError();
 
