@@ -14,6 +14,7 @@
 #include <glm/matrix.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <optional>
 #include <string>
 
@@ -214,12 +215,14 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
         const uint64_t planned = giBytes(giResources(s)), allocated = device_.allocations().bytesIn("gi");
         if (allocated > profile_.giMemoryBudgetBytes) {
             const auto mib = [](uint64_t b) {
-                return std::to_string(double(b) / (1024.0 * 1024.0)).substr(0, 5);
+                char text[32];
+                std::snprintf(text, sizeof text, "%.3f", double(b) / (1024.0 * 1024.0));
+                return std::string(text);
             };
             log::warn("gi: the device allocated " + mib(allocated) + " MiB for GI, over platform '" +
                       profile_.name + "' GI memory budget of " + mib(profile_.giMemoryBudgetBytes) +
                       " MiB, where the configuration's resources hold " + mib(planned) +
-                      " MiB (the budget check's count): the driver rounds allocations up");
+                      " MiB (the budget check's count): the device allocates more, such as sizes rounded up");
         }
     }
     settings_ = s;

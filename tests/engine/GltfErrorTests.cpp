@@ -1,6 +1,7 @@
 // Broken glTF files, each the valid one-triangle file below with one change. Every one must be a
 // SceneError whose message names the file and the problem: not a crash, not a library's raw message
 // without the file, and not a silent default.
+#include "GltfErrorOf.h"
 #include "engine/scene/SceneLoading.h"
 #include "platforms/Log.h"
 
@@ -20,6 +21,8 @@ using namespace lpv::engine;
 using nlohmann::json;
 
 namespace {
+
+using lpv::test::gltfErrorOf;
 
 // One triangle: 3 float positions (36 bytes), then 3 uint16 indices (6 bytes and 2 of padding).
 json triangle() {
@@ -58,39 +61,28 @@ std::string pathOf(const std::string& name) {
     return (testDir() / name).string();
 }
 
-// The SceneError's message for loading this file, or "(no error)". Any other exception escapes
-// and fails the test.
-std::string errorOf(const std::string& path) {
-    try {
-        loadGltf(path);
-    } catch (const SceneError& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
-
-std::string errorOf(const std::string& name, const json& gltf) {
+std::string gltfErrorOf(const std::string& name, const json& gltf) {
     const std::string path = pathOf(name);
     std::ofstream(path, std::ios::binary) << gltf.dump();
-    return errorOf(path);
+    return gltfErrorOf(path);
 }
 
 } // namespace
 
 TEST_CASE("glTF errors: the unchanged triangle loads") {
-    CHECK(errorOf("ok.gltf", triangle()) == "(no error)");
+    CHECK(gltfErrorOf("ok.gltf", triangle()) == "(no error)");
     CHECK(loadGltf(pathOf("ok.gltf")).triangleCount() == 1);
 }
 
 TEST_CASE("glTF errors: a directory given as the scene") {
     const std::string path = pathOf("d.gltf");
     std::filesystem::create_directories(path);
-    CHECK(errorOf(path) == path + ": is a directory, not a glTF file");
+    CHECK(gltfErrorOf(path) == path + ": is a directory, not a glTF file");
 }
 
 TEST_CASE("glTF errors: a file that cannot be opened gives the system's reason") {
     const std::string path = pathOf("missing.gltf");
-    CHECK(errorOf(path) == path + ": cannot open the file: No such file or directory");
+    CHECK(gltfErrorOf(path) == path + ": cannot open the file: No such file or directory");
 }
 
 namespace {
@@ -106,7 +98,7 @@ void checkErrors(const std::vector<BrokenFile>& cases) {
     for (const BrokenFile& c : cases) {
         json gltf = triangle();
         c.change(gltf);
-        CHECK(errorOf(c.file, gltf) == pathOf(c.file) + ": " + c.problem);
+        CHECK(gltfErrorOf(c.file, gltf) == pathOf(c.file) + ": " + c.problem);
     }
 }
 
@@ -268,7 +260,7 @@ TEST_CASE("glTF errors: a version other than 2.x") {
     });
     json later = triangle();
     later["asset"]["version"] = "2.1"; // a later 2.x that asks for nothing past 2.0 loads
-    CHECK(errorOf("v21.gltf", later) == "(no error)");
+    CHECK(gltfErrorOf("v21.gltf", later) == "(no error)");
 }
 
 TEST_CASE("glTF errors: camera values the spec forbids") {
@@ -374,7 +366,7 @@ TEST_CASE("glTF errors: an orthographic camera warns that it is drawn in perspec
     json gltf = triangle();
     addCamera(gltf,
               R"({"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0, "zfar": 9}})");
-    const std::string e = errorOf("orthowarn.gltf", gltf);
+    const std::string e = gltfErrorOf("orthowarn.gltf", gltf);
     lpv::log::setSink(previous);
     CHECK(e == "(no error)");
     REQUIRE(warnings.size() == 1);

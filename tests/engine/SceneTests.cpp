@@ -1,5 +1,6 @@
 // Scenes: the built-in ones build with the expected contents; glTF files written by this test load,
 // and each kind of broken file gives an error naming the file and the problem.
+#include "GltfErrorOf.h"
 #include "engine/scene/BuiltinScenes.h"
 #include "engine/scene/SceneLoading.h"
 #include "platforms/Log.h"
@@ -21,6 +22,8 @@ using namespace lpv;
 using namespace lpv::engine;
 
 namespace {
+
+using lpv::test::gltfErrorOf;
 
 std::string base64(const std::vector<uint8_t>& bytes) {
     static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -103,15 +106,6 @@ std::string write(const std::string& name, const std::string& text) {
     const std::string path = "/tmp/lpv_scenetest_" + name;
     std::ofstream(path, std::ios::binary) << text;
     return path;
-}
-
-std::string errorOf(const std::string& path) {
-    try {
-        loadGltf(path);
-    } catch (const SceneError& e) {
-        return e.what();
-    }
-    return "(no error)";
 }
 
 } // namespace
@@ -212,32 +206,32 @@ TEST_CASE("scenes: a .glb with an external buffer file loads") {
 TEST_CASE("scenes: a truncated file is an error naming the file") {
     const std::string full = gltfJson(quadBuffer());
     const std::string path = write("truncated.gltf", full.substr(0, full.size() / 2));
-    const std::string e = errorOf(path);
+    const std::string e = gltfErrorOf(path);
     CHECK(e.find(path + ": not a valid glTF 2.0 file") == 0);
 }
 
 TEST_CASE("scenes: a missing buffer is an error naming the file") {
     const std::string path = write("nobuffer.gltf", gltfJson(quadBuffer(), {"does_not_exist.bin"}));
-    const std::string e = errorOf(path);
+    const std::string e = gltfErrorOf(path);
     CHECK(e.find(path + ": ") == 0);
     CHECK(e.find("does_not_exist.bin") != std::string::npos);
 }
 
 TEST_CASE("scenes: out-of-range indices are an error") {
     const std::string path = write("badindex.gltf", gltfJson(quadBuffer(0.0f, 7)));
-    CHECK(errorOf(path) ==
+    CHECK(gltfErrorOf(path) ==
           path + ": mesh 0 'quad' primitive 0: index 7 at position 5 is out of range (4 vertices)");
 }
 
 TEST_CASE("scenes: NaN positions are an error") {
     const std::string path = write("nan.gltf", gltfJson(quadBuffer(std::numeric_limits<float>::quiet_NaN())));
-    CHECK(errorOf(path) ==
+    CHECK(gltfErrorOf(path) ==
           path + ": mesh 0 'quad' primitive 0: vertex 0 has a non-finite position (NaN or infinity)");
 }
 
 TEST_CASE("scenes: an unsupported extension marked required is an error") {
     const std::string path = write("draco.gltf", gltfJson(quadBuffer(), {"", "KHR_draco_mesh_compression"}));
-    CHECK(errorOf(path) ==
+    CHECK(gltfErrorOf(path) ==
           path + ": requires extension 'KHR_draco_mesh_compression', which LPV Engine does not support");
 }
 
@@ -258,6 +252,6 @@ TEST_CASE("scenes: a missing texture warns and falls back to the flat color") {
 }
 
 TEST_CASE("scenes: a file that does not exist") {
-    CHECK(errorOf("/nonexistent/scene.gltf") ==
+    CHECK(gltfErrorOf("/nonexistent/scene.gltf") ==
           "/nonexistent/scene.gltf: cannot open the file: No such file or directory");
 }
