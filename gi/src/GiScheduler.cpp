@@ -96,6 +96,7 @@ std::string_view giBudgetPolicyName(GiBudgetPolicy policy) {
 GiLoad giLoadOf(const LpvSettings& settings, uint32_t cascades) {
     GiLoad load;
     load.cascades = std::max(cascades, 1u);
+    load.coarseUpdateInterval = std::max(settings.coarseUpdateInterval, 1u);
     load.iterations = settings.iterations;
     load.rsmSize = settings.rsmSize;
     load.resolutionDivisor = settings.resolutionDivisor;

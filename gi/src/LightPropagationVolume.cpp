@@ -174,15 +174,42 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     made_ = true;
 }
 
+// The budget check counts the bytes the configuration's resources hold; the device may allocate
+// more (lavapipe rounds 3D images up: the README's Xbox 360 example holds 2.98 MiB and gets 3.14
+// MiB), and devices that run both sides of every branch add the cascade classes (gi.lookup, one
+// texel per looked-up pixel), which a console's GPU would not need. The profiler's report then shows
+// GI over its memory budget: say why, once after each remake.
+void LightPropagationVolume::warnIfAllocatedOverBudget() const {
+    const uint64_t planned = giBytes(giResources(settings_)), allocated = device_.allocations().bytesIn("gi");
+    if (allocated <= profile_.giMemoryBudgetBytes) return;
+    const auto mib = [](uint64_t b) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.3f", double(b) / (1024.0 * 1024.0));
+        return std::string(text);
+    };
+    const uint64_t classes = device_.allocations().bytesIn("gi.lookup");
+    log::warn("gi: the device allocated " + mib(allocated) + " MiB for GI, over platform '" + profile_.name +
+              "' GI memory budget of " + mib(profile_.giMemoryBudgetBytes) +
+              " MiB, where the configuration's resources hold " + mib(planned) +
+              " MiB (the budget check's count): the device allocates more, such as sizes rounded up" +
+              (classes ? ", and " + mib(classes) +
+                             " MiB of cascade classes (gi.lookup) for a device that runs both "
+                             "sides of every branch"
+                       : std::string()));
+}
+
 void LightPropagationVolume::update(const engine::Config& config, const engine::Renderer& renderer,
                                     const engine::CameraMatrices& camera, engine::FrameProfiler* profiler) {
     const LpvSettings configured = readLpvSettings(config);
     LpvSettings s = configured;
     lightUpdates_ = volumeUpdates_ = ~0u;
-    if (profiler && configured.enabled) {
-        // The scheduler always sees the configured load; what it returns is this frame's.
+    if (configured.enabled) {
+        // The scheduler always sees the configured load; what it returns is this frame's. Without
+        // a profiler it has no cost to judge, but still spaces the coarse cascades' updates as
+        // gi.coarse_update_interval says.
         const uint64_t frame = device_.frameIndex() + 1;
-        schedule_ = scheduler_.schedule(frame, giFrameCost(*profiler), giBudgetOf(profile_),
+        const std::optional<GiFrameCost> cost = profiler ? giFrameCost(*profiler) : std::nullopt;
+        schedule_ = scheduler_.schedule(frame, cost, giBudgetOf(profile_),
                                         giLoadOf(configured, configured.cascades), configured.budgetPolicy);
         applyGiLoad(schedule_.load, s);
         lightUpdates_ = volumeUpdates_ = 0;
@@ -191,8 +218,9 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
             if (halves & kCascadeLight) lightUpdates_ |= 1u << c;
             if (halves & kCascadeVolume) volumeUpdates_ |= 1u << c;
         }
-        for (const GiChange& change : schedule_.changes())
-            profiler->note(kGiBudgetNoteTopic, change.text());
+        if (profiler)
+            for (const GiChange& change : schedule_.changes())
+                profiler->note(kGiBudgetNoteTopic, change.text());
     }
     renderer_ = &renderer;
     // RSMs for as many spot (point) lights as the scene has, up to gi.light_rsms
@@ -208,22 +236,7 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
         checkGiBudget(s, profile_); // throws before anything changes
         remake(s);
         cascadesValid_ = 0;
-        // The check counts the bytes the configuration's resources hold; the device may allocate
-        // more (lavapipe rounds 3D images up: the README's Xbox 360 example holds 2.98 MiB and
-        // gets 3.14 MiB), which the profiler's report then shows over the budget: say why here,
-        // once per remake.
-        const uint64_t planned = giBytes(giResources(s)), allocated = device_.allocations().bytesIn("gi");
-        if (allocated > profile_.giMemoryBudgetBytes) {
-            const auto mib = [](uint64_t b) {
-                char text[32];
-                std::snprintf(text, sizeof text, "%.3f", double(b) / (1024.0 * 1024.0));
-                return std::string(text);
-            };
-            log::warn("gi: the device allocated " + mib(allocated) + " MiB for GI, over platform '" +
-                      profile_.name + "' GI memory budget of " + mib(profile_.giMemoryBudgetBytes) +
-                      " MiB, where the configuration's resources hold " + mib(planned) +
-                      " MiB (the budget check's count): the device allocates more, such as sizes rounded up");
-        }
+        allocationCheckDue_ = true; // after the next lookup, which makes the cascade classes
     }
     settings_ = s;
     analyticLights_ = analyticLightsEnabled(config);
@@ -400,6 +413,10 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         classes_->classify(cmd, camera, gbuffer, std::span(grids.data(), cascades_.size()), blendBand,
                            settings_.glossy ? settings_.glossyMaxRoughness : 0.0f, targetDesc.width,
                            targetDesc.height, divisor);
+    }
+    if (allocationCheckDue_) {
+        allocationCheckDue_ = false;
+        warnIfAllocatedOverBudget();
     }
     {
         auto s = scope("lookup");

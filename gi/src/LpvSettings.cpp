@@ -14,6 +14,11 @@ const engine::FloatSetting kCellSize{"gi.cell_size", 0.25, 0.01, 100.0,
                                      "LPV cell size in metres (volume = grid x cell)"};
 const engine::IntSetting kCascades{"gi.cascades", 3, 1, 4,
                                    "Nested volumes, each twice the extent of the previous (cascaded LPV)"};
+const engine::IntSetting kCoarseUpdateInterval{
+    "gi.coarse_update_interval", 1, 1, 4,
+    "Frames between two updates of each coarse cascade (all but the finest), which keep their last result "
+    "in between and take turns; from 2 x (gi.cascades - 1) each update is split over two frames (its RSM, "
+    "then its volume). gi.budget_policy=adapt starts from this value"};
 const engine::IntSetting kIterations{"gi.iterations", 8, 1, 64, "Propagation iterations per frame"};
 const engine::IntSetting kRsmSize{"gi.rsm_size", 256, 32, 2048,
                                   "Reflective shadow map resolution (texels per side)"};
@@ -93,6 +98,7 @@ LpvSettings readLpvSettings(const engine::Config& config) {
     s.gridSize = uint32_t(config.get(kGridSize));
     s.cascades = uint32_t(config.get(kCascades));
     s.cellSize = float(config.get(kCellSize));
+    s.coarseUpdateInterval = uint32_t(config.get(kCoarseUpdateInterval));
     s.iterations = uint32_t(config.get(kIterations));
     s.rsmSize = uint32_t(config.get(kRsmSize));
     s.rsmLodTexels = float(config.get(kRsmLodTexels));

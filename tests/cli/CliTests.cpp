@@ -311,3 +311,21 @@ TEST_CASE("cli: without a reachable X display the game says why it runs headless
     CHECK(contains(none.output, "no display configured (DISPLAY is not set): headless"));
     CHECK(!contains(none.output, "[warning]"));
 }
+
+// The README's Xbox 360 example holds 2.98 MiB of the 3 MiB; a device may allocate more (lavapipe
+// rounds 3D images up, CPU devices add the cascade classes). Whenever the report marks GI memory
+// over budget, the log has said why.
+TEST_CASE("cli: GI memory allocated beyond the budget the check passed is explained in a warning") {
+    const Result r = runGame("--headless --backend vulkan --no-fallback --platform x360 --frames 1 "
+                             "--set gi.enabled=true --set gi.cascades=1 --set gi.iterations=6 "
+                             "--set gi.rsm_size=128 --set gi.vpl_count=1024 --set gi.sh_format=rgba8 "
+                             "--profile-out /tmp/lpv_cli_gi_memory");
+    INFO(r.output);
+    REQUIRE(r.exitCode == 0);
+    const bool over = r.output.find("of 3.000 MiB budget (OVER BUDGET)") != std::string::npos;
+    const bool warned = r.output.find("gi: the device allocated") != std::string::npos;
+    CHECK(over == warned);
+    if (warned) CHECK(r.output.find("the budget check's count") != std::string::npos);
+    // lavapipe allocates 3.14 MiB here: on this machine's CI the warning is exercised.
+    WARN_MESSAGE(over, "this device allocates within the budget: the warning was not exercised");
+}

@@ -1,6 +1,7 @@
 // The budget scheduler as a game would run it: frames on the null device, each GI pass a profiler
 // scope with its work counts, the scheduler fed the profiler's predicted Xbox 360 GI time (which
 // arrives frames late, as GPU results do), and its changes noted in the profiler's report.
+#include "AdaptedLpv.h"
 #include "ConsoleGiCost.h"
 
 #include "engine/config/Config.h"
@@ -28,6 +29,7 @@ using namespace lpv::gi;
 
 namespace {
 
+using test::AdaptedLpv;
 using test::nullDevice;
 
 // One frame's GI as scopes: the halves of every cascade update due this frame, then the lookup.
@@ -141,50 +143,6 @@ TEST_CASE("gi budget report: the profiler's report names each change, its frame 
     CHECK(engine::profileChartSvg(profiler).find("blue marks: notes") != std::string::npos);
 }
 
-namespace {
-
-// The real pipeline under gi.budget_policy=adapt on the null device and `profile`, with the game's
-// frame loop: the scheduler reads the profiler's predicted console GI time of checked frames. By
-// default one cascade, RGBA8, RSM 128 and `iterations` on the Cornell box at 160x120.
-struct AdaptedLpv {
-    std::unique_ptr<rhi::Device> device = nullDevice();
-    platforms::PlatformProfile profile;
-    engine::Config config;
-    engine::Scene scene;
-    engine::Renderer renderer;
-    engine::FrameProfiler profiler;
-    LightPropagationVolume lpv;
-    engine::CameraMatrices camera;
-
-    AdaptedLpv(platforms::PlatformProfile p, uint32_t iterations)
-        : AdaptedLpv(std::move(p),
-                     {"gi.enabled=true", "gi.sh_format=rgba8", "gi.rsm_size=128", "gi.vpl_count=1024",
-                      "gi.cascades=1", "gi.budget_policy=adapt",
-                      "gi.iterations=" + std::to_string(iterations)},
-                     engine::buildCornellBox(), 160, 120) {}
-    AdaptedLpv(platforms::PlatformProfile p, const std::vector<std::string>& overrides, engine::Scene s,
-               uint32_t width, uint32_t height)
-        : profile(std::move(p)), scene(std::move(s)), renderer(*device, width, height),
-          profiler(*device, profile), lpv(*device, profile),
-          camera(engine::cameraMatrices(*scene.camera, float(width) / float(height))) {
-        for (const std::string& o : overrides)
-            config.applyOverride(o, "test");
-        renderer.setScene(scene);
-    }
-    // One frame; the GI cost the scheduler will see next.
-    std::optional<GiFrameCost> frame() {
-        lpv.update(config, renderer, camera, &profiler);
-        rhi::CommandList& cmd = device->beginFrame();
-        profiler.beginFrame(cmd);
-        renderer.render(cmd, camera, config, &profiler, &lpv);
-        profiler.endFrame(cmd);
-        device->endFrame();
-        return giFrameCost(profiler);
-    }
-};
-
-} // namespace
-
 TEST_CASE("gi budget: the LPV under adapt on the x360 profile brings its predicted GI time under budget") {
     // 44 iterations: about 3.8 ms predicted on the Xbox 360.
     AdaptedLpv run(platforms::loadPlatformProfile("x360"), 44);
@@ -223,18 +181,18 @@ TEST_CASE("gi budget: past the RSM, adapt makes the renderer look up fewer pixel
 
 namespace {
 
-// The console preset lpv_bench predicts (3 cascades of 32^3, 8 iterations, 2 bounces, occlusion,
+// The frames part's PC settings at console formats, as lpv_bench predicts them (3 cascades of 32^3, 8 iterations, 2 bounces, occlusion,
 // glossy, RGBA8, RSM 128^2, gi.resolution=half) under adapt in the atrium at 1280x720, every pass
 // recorded with its work counts, the bilateral rebuild included (gi.rebuild). The consoles' 3 MiB
 // of GI memory hold one such cascade, not three, so the memory budget is lifted: this is about
 // time. Returns the worst predicted GI ms of the last 8 frames (two coarse update cycles at the
 // floor) after `frames` frames.
-struct ConsolePresetRun {
+struct PcSettingsOnConsole {
     platforms::PlatformProfile profile;
     AdaptedLpv run;
     double first = 0, lastWorst = 0;
 
-    ConsolePresetRun(const char* console, float atriumDetail,
+    PcSettingsOnConsole(const char* console, float atriumDetail,
                      const char* rsmLodTexels = "gi.rsm_lod_texels=0.5")
         : profile(liftedMemory(console)),
           run(profile,
@@ -267,27 +225,27 @@ struct ConsolePresetRun {
 } // namespace
 
 TEST_CASE(
-    "gi budget: adapt brings the console preset under 3.3 ms on both consoles through the real pipeline") {
+    "gi budget: adapt brings the PC settings under 3.3 ms on both consoles through the real pipeline") {
     // About 100k triangles (scene detail 0.4), the scene lpv_bench's console figures assume.
     for (const char* console : {"x360", "ps3"}) {
         SUBCASE(console) {
-            ConsolePresetRun preset(console, 0.4f);
-            CHECK(preset.run.scene.triangleCount() < 110000);
-            // The preset as configured: about 1.9x over (2.0-2.2x before the RSMs drew levels of detail).
-            CHECK(preset.first > 1.8 * preset.profile.giBudgetMs);
-            CHECK(preset.lastWorst > 0.0);
-            CHECK(preset.lastWorst <= preset.profile.giBudgetMs);
-            CHECK(preset.run.lpv.schedule().stepsInEffect > 0);
-            CHECK(!preset.run.lpv.schedule().timeOverBudget);
+            PcSettingsOnConsole pc(console, 0.4f);
+            CHECK(pc.run.scene.triangleCount() < 110000);
+            // As configured: about 1.9x over (2.0-2.2x before the RSMs drew levels of detail).
+            CHECK(pc.first > 1.8 * pc.profile.giBudgetMs);
+            CHECK(pc.lastWorst > 0.0);
+            CHECK(pc.lastWorst <= pc.profile.giBudgetMs);
+            CHECK(pc.run.lpv.schedule().stepsInEffect > 0);
+            CHECK(!pc.run.lpv.schedule().timeOverBudget);
             // At the floor each coarse update runs in halves on frames of their own: over the
             // frames the profiler kept, no frame draws a coarse cascade's RSM and propagates it,
             // the finest cascade runs whole every frame, and every coarse half does run.
-            const auto& scopes = preset.run.profiler.scopes();
+            const auto& scopes = pc.run.profiler.scopes();
             uint64_t newest = 0;
-            preset.run.profiler.forEachFrame(
+            pc.run.profiler.forEachFrame(
                 [&](const engine::FrameProfiler::FrameRecord& r) { newest = std::max(newest, r.frame); });
             uint32_t frames = 0, lightHalves = 0, volumeHalves = 0;
-            preset.run.profiler.forEachFrame([&](const engine::FrameProfiler::FrameRecord& r) {
+            pc.run.profiler.forEachFrame([&](const engine::FrameProfiler::FrameRecord& r) {
                 if (r.frame + 16 <= newest) return; // the last 16 frames, at the floor
                 ++frames;
                 for (uint32_t c = 0; c < 3; ++c) {
@@ -321,20 +279,20 @@ TEST_CASE("gi budget: in the full atrium the PS3 fits with the RSMs' levels of d
     // 258k triangles: the RSM of the finest cascade, which sees them all and updates every frame,
     // is bound by the PS3's triangle setup (about 0.9 ms in full). Levels of detail within half a
     // texel of the map (which grows as the scheduler shrinks the map) take most of them away.
-    ConsolePresetRun lod("ps3", 1.0f);
+    PcSettingsOnConsole lod("ps3", 1.0f);
     CHECK(lod.lastWorst <= lod.profile.giBudgetMs);
     CHECK(!lod.run.lpv.schedule().timeOverBudget);
 
-    ConsolePresetRun preset("ps3", 1.0f, "gi.rsm_lod_texels=0");
-    CHECK(preset.lastWorst > preset.profile.giBudgetMs);
-    const GiLoad& load = preset.run.lpv.schedule().load;
+    PcSettingsOnConsole pc("ps3", 1.0f, "gi.rsm_lod_texels=0");
+    CHECK(pc.lastWorst > pc.profile.giBudgetMs);
+    const GiLoad& load = pc.run.lpv.schedule().load;
     CHECK(load.coarseUpdateInterval == 4);
     CHECK(load.iterations == 4);
     CHECK(load.rsmSize == 64);
     CHECK(load.resolutionDivisor == 4);
     CHECK(load.bounces == 1);
-    CHECK(preset.run.lpv.schedule().timeOverBudget);
-    const std::string report = engine::profileSummaryMarkdown(preset.run.profiler);
+    CHECK(pc.run.lpv.schedule().timeOverBudget);
+    const std::string report = engine::profileSummaryMarkdown(pc.run.profiler);
     CHECK(report.find("with every knob at its floor") != std::string::npos);
 }
 

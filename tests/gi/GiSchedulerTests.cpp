@@ -3,7 +3,9 @@
 // a loose budget gets every step back in reverse order, and nothing flips back and forth.
 #include "ConsoleGiCost.h"
 
+#include "engine/config/Config.h"
 #include "gi/GiScheduler.h"
+#include "gi/LpvSettings.h"
 
 #include <doctest/doctest.h>
 
@@ -386,4 +388,32 @@ TEST_CASE("gi budget: a configuration change starts over from the configured loa
     const GiSchedule& one = single.frames(100, GiBudget{0.5, 0}, costOf);
     CHECK(one.load.coarseUpdateInterval == 1);
     CHECK(one.load.iterations == single.scheduler.limits().minIterations);
+}
+
+TEST_CASE("gi budget: gi.coarse_update_interval is part of the configured load, and adapt starts from it") {
+    engine::Config config;
+    config.applyOverride("gi.coarse_update_interval=2");
+    const LpvSettings settings = readLpvSettings(config);
+    CHECK(settings.coarseUpdateInterval == 2);
+    CHECK(giLoadOf(settings, 3).coarseUpdateInterval == 2);
+    CHECK_THROWS_AS(config.applyOverride("gi.coarse_update_interval=5"), engine::ConfigError);
+
+    Run run;
+    const test::ConsoleGiCost cost = test::x360Cascades(run.configured);
+    run.configured.coarseUpdateInterval = 2;
+    const auto costOf = [&](const GiLoad& l, uint64_t f) {
+        return std::pair(cost.frameMs(l, f), uint64_t(0));
+    };
+    // Fixed: the configured interval runs as it is, over budget or not.
+    run.policy = GiBudgetPolicy::Fixed;
+    CHECK(run.frames(40, GiBudget{3.3, 0}, costOf).load.coarseUpdateInterval == 2);
+    // Adapt: the first step goes on from 2 to 4 (each coarse update split in halves).
+    Run adapt;
+    adapt.configured = run.configured;
+    adapt.frames(120, GiBudget{3.3, 0}, costOf);
+    const auto steps = adapt.steps(false);
+    REQUIRE(!steps.empty());
+    CHECK(steps[0].change.knob == GiKnob::CoarseUpdateInterval);
+    CHECK(steps[0].change.from == 2);
+    CHECK(steps[0].change.to == 4);
 }

@@ -55,8 +55,12 @@ CornellFrame renderSceneFrame(rhi::Device& device, engine::Scene scene,
                               const std::function<void(engine::Renderer&)>& prepare, uint32_t width,
                               uint32_t height, int frames, glm::vec3 cameraOffset) {
     engine::Config config;
-    for (const std::string& s : settings)
-        config.applyOverride(s, "test");
+    for (const std::string& s : settings) {
+        if (s.ends_with(".toml"))
+            config.loadFile(s);
+        else
+            config.applyOverride(s, "test");
+    }
     CornellFrame f;
     f.scene = std::move(scene);
     f.width = width;
@@ -115,16 +119,16 @@ CornellFrame renderCornell(rhi::Device& device, const std::vector<std::string>& 
 }
 
 FramesOnBothApis renderOnGlAndVulkan(const engine::Scene& scene, const std::vector<std::string>& settings,
-                                     const std::function<void(engine::Renderer&)>& prepare) {
+                                     const std::function<void(engine::Renderer&)>& prepare, int frames) {
     FramesOnBothApis out;
     {
         TestDevice device(backendByName("gl-egl"));
-        out.gl = renderSceneFrame(*device, scene, settings, prepare);
+        out.gl = renderSceneFrame(*device, scene, settings, prepare, 320, 240, frames);
         device.expectSilent();
     }
     {
         TestDevice device(backendByName("vulkan"));
-        out.vk = renderSceneFrame(*device, scene, settings, prepare);
+        out.vk = renderSceneFrame(*device, scene, settings, prepare, 320, 240, frames);
         device.expectSilent();
     }
     return out;

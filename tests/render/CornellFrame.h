@@ -47,7 +47,8 @@ struct CornellFrame {
     }
 };
 
-// `settings`: key=value overrides (e.g. "render.debug_view=ssao", "gi.enabled=true").
+// `settings`: key=value overrides (e.g. "render.debug_view=ssao", "gi.enabled=true"), or the path of a
+// TOML config file (ending in .toml) to load; applied in order, as the game applies --config and --set.
 CornellFrame renderCornell(rhi::Device& device, const std::vector<std::string>& settings,
                            std::optional<glm::vec3> sunDirection = std::nullopt, uint32_t width = 320,
                            uint32_t height = 240, int frames = 1, glm::vec3 cameraOffset = glm::vec3(0.0f));
@@ -70,7 +71,8 @@ struct FramesOnBothApis {
     CornellFrame gl, vk;
 };
 FramesOnBothApis renderOnGlAndVulkan(const engine::Scene& scene, const std::vector<std::string>& settings,
-                                     const std::function<void(engine::Renderer&)>& prepare = {});
+                                     const std::function<void(engine::Renderer&)>& prepare = {},
+                                     int frames = 1);
 
 float luminance(glm::vec4 c);
 // The mean luminance of an image's texels.

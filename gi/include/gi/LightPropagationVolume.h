@@ -92,6 +92,7 @@ private:
         return device_.caps().vertexShaderLayer ? VolumeDraw::Layered : VolumeDraw::PerSlice;
     }
     void remake(const LpvSettings& settings);
+    void warnIfAllocatedOverBudget() const;
     void release();
 
     rhi::Device& device_;
@@ -116,9 +117,10 @@ private:
     std::vector<Cascade> cascades_;
     GiBudgetScheduler scheduler_;
     GiSchedule schedule_;
-    uint32_t lightUpdates_ = ~0u;  // bit c: cascade c's light half runs this frame
-    uint32_t volumeUpdates_ = ~0u; // bit c: cascade c's volume half runs this frame
-    uint32_t cascadesValid_ = 0;   // bit c: cascade c's result holds a solution
+    uint32_t lightUpdates_ = ~0u;     // bit c: cascade c's light half runs this frame
+    uint32_t volumeUpdates_ = ~0u;    // bit c: cascade c's volume half runs this frame
+    bool allocationCheckDue_ = false; // warnIfAllocatedOverBudget after the next lookup
+    uint32_t cascadesValid_ = 0;      // bit c: cascade c's result holds a solution
     const engine::Renderer* renderer_ = nullptr;
     std::unique_ptr<ReflectiveShadowMap> rsm_;
     std::unique_ptr<LpvVolumes> volumes_;

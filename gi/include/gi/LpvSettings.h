@@ -19,6 +19,9 @@ struct LpvSettings {
     uint32_t gridSize = 32;
     float cellSize = 0.25f; // of the finest cascade; each further cascade doubles it
     uint32_t cascades = 3;
+    // Frames between two updates of each coarse cascade (GiLoad::coarseUpdateInterval); under
+    // gi.budget_policy=adapt the scheduler starts here.
+    uint32_t coarseUpdateInterval = 1;
     uint32_t iterations = 8;
     uint32_t rsmSize = 256;
     // Geometric error an RSM may draw with, in its texels (engine::GpuDraw::lodWithin); 0: full meshes.
