@@ -83,14 +83,16 @@ void CascadeClasses::classify(rhi::CommandList& cmd, const engine::CameraMatrice
                               uint32_t divisor) {
     using namespace rhi;
     // Made on the first frame and when the lookup's size changes (a resize or gi.resolution), not
-    // in a steady-state frame. Its bytes are GI's, next to the lookup targets' render.lighting.
+    // in a steady-state frame. Only devices that run both sides of every branch need it, and a
+    // console's GPU would not: its bytes are the device's ("device.cascade_classes", listed in the
+    // profiler's report), not counted against the platform's GI memory budget ("gi.*").
     if (!target_ || device_.desc(target_).width != width || device_.desc(target_).height != height) {
         if (target_) {
             device_.waitIdle();
             device_.destroy(target_);
         }
         target_ = device_.createTexture({TextureKind::Tex2D, Format::D32FS8, width, height, 1, 1,
-                                         kTextureDepthTarget, "cascade classes", "gi.lookup"});
+                                         kTextureDepthTarget, "cascade classes", "device.cascade_classes"});
     }
     ClassifyUniforms u;
     u.invViewProjection = camera.invViewProjection;

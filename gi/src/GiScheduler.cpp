@@ -341,13 +341,15 @@ bool GiBudgetScheduler::nextTimeStep(Step& step) const {
     if (load_.cascades > 1) {
         // A longer interval only helps when the busiest frame then runs less coarse work: with
         // three coarse cascades, every 4 frames has the same worst frame as every 2.
+        // Doubling, capped at the limit (a configured interval of 3 can still go to 4).
         const uint32_t now = coarseHalvesInBusiestFrame(load_.cascades, load_.coarseUpdateInterval);
-        for (uint32_t k = std::max(load_.coarseUpdateInterval, 1u) * 2; k <= limits_.maxCoarseUpdateInterval;
-             k *= 2)
+        for (uint32_t k = std::max(load_.coarseUpdateInterval, 1u); k < limits_.maxCoarseUpdateInterval;) {
+            k = std::min(k * 2, limits_.maxCoarseUpdateInterval);
             if (coarseHalvesInBusiestFrame(load_.cascades, k) < now) {
                 step = {GiKnob::CoarseUpdateInterval, load_.coarseUpdateInterval, k};
                 return true;
             }
+        }
     }
     if (load_.iterations > limits_.minIterations) {
         // A quarter at a time (at least one): long settings converge in a few steps, short ones

@@ -176,9 +176,8 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
 
 // The budget check counts the bytes the configuration's resources hold; the device may allocate
 // more (lavapipe rounds 3D images up: the README's Xbox 360 example holds 2.98 MiB and gets 3.14
-// MiB), and devices that run both sides of every branch add the cascade classes (gi.lookup, one
-// texel per looked-up pixel), which a console's GPU would not need. The profiler's report then shows
-// GI over its memory budget: say why, once after each remake.
+// MiB), which the profiler's report then shows over the GI memory budget: say why, once after each
+// remake (after the first lookup, once every GI resource of the frame exists).
 void LightPropagationVolume::warnIfAllocatedOverBudget() const {
     const uint64_t planned = giBytes(giResources(settings_)), allocated = device_.allocations().bytesIn("gi");
     if (allocated <= profile_.giMemoryBudgetBytes) return;
@@ -187,15 +186,12 @@ void LightPropagationVolume::warnIfAllocatedOverBudget() const {
         std::snprintf(text, sizeof text, "%.3f", double(b) / (1024.0 * 1024.0));
         return std::string(text);
     };
-    const uint64_t classes = device_.allocations().bytesIn("gi.lookup");
     log::warn("gi: the device allocated " + mib(allocated) + " MiB for GI, over platform '" + profile_.name +
               "' GI memory budget of " + mib(profile_.giMemoryBudgetBytes) +
               " MiB, where the configuration's resources hold " + mib(planned) +
-              " MiB (the budget check's count): the device allocates more, such as sizes rounded up" +
-              (classes ? ", and " + mib(classes) +
-                             " MiB of cascade classes (gi.lookup) for a device that runs both "
-                             "sides of every branch"
-                       : std::string()));
+              " MiB (the budget check's count)" +
+              (allocated > planned ? ": the device allocates more than they hold, such as sizes rounded up"
+                                   : std::string()));
 }
 
 void LightPropagationVolume::update(const engine::Config& config, const engine::Renderer& renderer,
@@ -236,7 +232,7 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
         checkGiBudget(s, profile_); // throws before anything changes
         remake(s);
         cascadesValid_ = 0;
-        allocationCheckDue_ = true; // after the next lookup, which makes the cascade classes
+        allocationCheckDue_ = true; // after the next lookup (warnIfAllocatedOverBudget)
     }
     settings_ = s;
     analyticLights_ = analyticLightsEnabled(config);

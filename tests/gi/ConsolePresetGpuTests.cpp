@@ -1,7 +1,8 @@
 // The console preset (gi/presets/console.toml: 3 x 24^3 cascades of RGBA8, the coarse ones every
 // other frame, occlusion, 2 bounces, glossy, quarter-resolution lookup) on GL and Vulkan: the same
-// image, with indirect light in it. Three frames, so the second and third keep a coarse cascade's
-// earlier result while the other updates.
+// image, with indirect light in it. Three frames: without a profiler the LPV still spaces the
+// coarse cascades as configured, so the second and third frames draw with one coarse cascade kept
+// from an earlier frame (the cadence itself is checked on the null device, ConsolePresetTests).
 #include "../render/CornellFrame.h"
 #include "../support/TestDevice.h"
 
