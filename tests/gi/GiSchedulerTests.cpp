@@ -398,32 +398,28 @@ TEST_CASE("gi budget: gi.coarse_update_interval is part of the configured load, 
     CHECK(giLoadOf(settings, 3).coarseUpdateInterval == 2);
     CHECK_THROWS_AS(config.applyOverride("gi.coarse_update_interval=5"), engine::ConfigError);
 
-    Run adapt;
-    const test::ConsoleGiCost cost = test::x360Cascades(adapt.configured);
-    adapt.configured.coarseUpdateInterval = 2;
-    const auto costOf = [&](const GiLoad& l, uint64_t f) {
-        return std::pair(cost.frameMs(l, f), uint64_t(0));
+    // Under the x360 budget, adapt's first step from a configured interval goes on to 4 (each coarse
+    // update split in halves): from 2, and from 3, which is not a power of two.
+    const auto firstStepFrom = [](Run& run, uint32_t interval) {
+        const test::ConsoleGiCost cost = test::x360Cascades(run.configured);
+        run.configured.coarseUpdateInterval = interval;
+        run.frames(120, GiBudget{3.3, 0},
+                   [&](const GiLoad& l, uint64_t f) { return std::pair(cost.frameMs(l, f), uint64_t(0)); });
+        const auto steps = run.steps(false);
+        REQUIRE(!steps.empty());
+        CHECK(steps[0].change.knob == GiKnob::CoarseUpdateInterval);
+        CHECK(steps[0].change.from == interval);
+        CHECK(steps[0].change.to == 4);
     };
-    // Adapt's first step goes on from 2 to 4 (each coarse update split in halves) ...
-    adapt.frames(120, GiBudget{3.3, 0}, costOf);
-    const auto steps = adapt.steps(false);
-    REQUIRE(!steps.empty());
-    CHECK(steps[0].change.knob == GiKnob::CoarseUpdateInterval);
-    CHECK(steps[0].change.from == 2);
-    CHECK(steps[0].change.to == 4);
-    // ... and under a loose budget everything comes back to the configured 2, not to 1.
-    const GiSchedule& back = adapt.frames(400, GiBudget{100.0, 0}, costOf);
+    Run adapt, three;
+    firstStepFrom(adapt, 2);
+    firstStepFrom(three, 3);
+    // Under a loose budget everything comes back to the configured 2, not to 1.
+    GiLoad scratch;
+    const test::ConsoleGiCost cost = test::x360Cascades(scratch);
+    const GiSchedule& back = adapt.frames(400, GiBudget{100.0, 0}, [&](const GiLoad& l, uint64_t f) {
+        return std::pair(cost.frameMs(l, f), uint64_t(0));
+    });
     CHECK(back.load.coarseUpdateInterval == 2);
     CHECK(back.load == adapt.configured);
-
-    // A configured 3 (not a power of two) still steps to the limit, 4.
-    Run three;
-    three.configured = adapt.configured;
-    three.configured.coarseUpdateInterval = 3;
-    three.frames(120, GiBudget{3.3, 0}, costOf);
-    const auto fromThree = three.steps(false);
-    REQUIRE(!fromThree.empty());
-    CHECK(fromThree[0].change.knob == GiKnob::CoarseUpdateInterval);
-    CHECK(fromThree[0].change.from == 3);
-    CHECK(fromThree[0].change.to == 4);
 }
