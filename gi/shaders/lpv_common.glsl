@@ -12,9 +12,13 @@ const float PI = 3.14159265358979;
 vec4 shBasis(vec3 w) { return vec4(SH_Y0, SH_Y1 * w.y, SH_Y1 * w.z, SH_Y1 * w.x); }
 vec4 shCosineLobe(vec3 n) { return vec4(SH_COS_C0, SH_COS_C1 * n.y, SH_COS_C1 * n.z, SH_COS_C1 * n.x); }
 
-// RGBA8 volumes store coefficients range-encoded: v in [-range, range] as (v / range + 1) / 2.
-vec4 encodeShRange(vec4 v, float range) { return clamp(v / range * 0.5 + 0.5, 0.0, 1.0); }
-vec4 decodeShRange(vec4 v, float range) { return (v * 2.0 - 1.0) * range; }
+// RGBA8 volumes store coefficients range-encoded: v in [-range, range] as the code
+// 128 + 127 v / range, so zero is a code (gi/ShEncoding.h: the same on the CPU, and why).
+vec4 encodeShRange(vec4 v, float range) { return clamp((v / range * 127.0 + 128.0) / 255.0, 0.0, 1.0); }
+vec4 decodeShRange(vec4 v, float range) { return (v * 255.0 - 128.0) / 127.0 * range; }
+// A cascade's range from gi.rgba8_range, a radiance, and its placement (w: cell size), as
+// LpvVolumes::encodeRange.
+float cascadeRange(vec4 gridOrigin, float radianceRange) { return radianceRange * gridOrigin.w * gridOrigin.w; }
 
 // Where a vertex shader puts a point it does not draw (a VPL or surfel meant for another slice):
 // outside the clip volume in depth as well as on screen, so a rasterizer rejects it before

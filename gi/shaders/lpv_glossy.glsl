@@ -35,7 +35,7 @@ layout(binding = 0, std140) uniform Glossy {
     vec4 cameraPosition; // xyz
     vec4 gridOrigin[4];  // per cascade: xyz corner of cell 0, w: cell size
     ivec4 grid;          // x: cells per axis, y: volumes are rgba8-encoded, z: cascades (CASCADES), w: 0
-    vec4 encode;         // x: rgba8 range, y: gi.glossy_max_roughness
+    vec4 encode;         // x: gi.rgba8_range (a radiance: cascadeRange), y: gi.glossy_max_roughness
     ivec4 pixels;        // x: resolution divisor, yz: G-buffer size, w: 0 (see main)
 } glossy;
 layout(binding = 1) uniform sampler2D depthTexture;
@@ -48,7 +48,8 @@ layout(location = 0) out vec4 outRadiance;
 
 // Cascade c's intensity at uvw, each channel through its lobe (c constant in every call).
 vec3 project(int c, vec3 uvw, GlossyLobes lobes) {
-    return projectCascadePerChannel(c, uvw, lobes.r, lobes.g, lobes.b, glossy.grid.y != 0 ? glossy.encode.x : 0.0);
+    float range = glossy.grid.y != 0 ? cascadeRange(glossy.gridOrigin[c], glossy.encode.x) : 0.0;
+    return projectCascadePerChannel(c, uvw, lobes.r, lobes.g, lobes.b, range);
 }
 
 vec3 uvwIn(int c, vec3 p) { return uvwInVolume(glossy.gridOrigin[c], glossy.grid.x, p); }

@@ -27,7 +27,7 @@ layout(binding = 0, std140) uniform Lookup {
     mat4 invViewProjection;
     vec4 gridOrigin[4]; // per cascade: xyz corner of cell 0, w: cell size
     ivec4 grid;         // x: cells per axis, y: volumes are rgba8-encoded, z: damping on
-    vec4 encode;        // x: rgba8 range, y: blend band (fraction of the half-extent)
+    vec4 encode;        // x: gi.rgba8_range (a radiance: cascadeRange), y: blend band (fraction of the half-extent)
     vec4 intensity;     // x: gi.intensity (already applied at injection), y: damping strength,
                         // z: 1 the glossy lobe's mean direction, 0 the cosine lobe (gi.glossy off)
     ivec4 pixels;       // x: resolution divisor, yz: G-buffer size, w: 0 (see main)
@@ -44,11 +44,14 @@ layout(location = 1) out vec4 outGlossy;
 
 vec3 uvwIn(int c, vec3 p) { return uvwInVolume(lookup.gridOrigin[c], lookup.grid.x, p); }
 
+// Cascade c's rgba8 range, or 0 for float volumes.
+float encodeRangeOf(int c) { return lookup.grid.y != 0 ? cascadeRange(lookup.gridOrigin[c], lookup.encode.x) : 0.0; }
+
 // Cascade c's irradiance and glossy radiance at point p (c constant in every call); 0 outside it.
 CascadeSample lightAt(int c, vec3 p, LookupLobes lobes) {
     vec3 uvw = uvwIn(c, p);
     if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) return CascadeSample(vec3(0.0), vec3(0.0));
-    CascadeSample s = sampleCascade(c, uvw, lobes, lookup.grid.y != 0 ? lookup.encode.x : 0.0);
+    CascadeSample s = sampleCascade(c, uvw, lobes, encodeRangeOf(c));
     // Intensity over the cell's cross-section is radiance.
     float area = lookup.gridOrigin[c].w * lookup.gridOrigin[c].w;
     return CascadeSample(max(s.irradiance, vec3(0.0)) / area, max(s.glossy, vec3(0.0)) / area);
@@ -58,7 +61,7 @@ CascadeSample lightAt(int c, vec3 p, LookupLobes lobes) {
 vec3 irradianceAt(int c, vec3 p, vec4 cosine) {
     vec3 uvw = uvwIn(c, p);
     if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) return vec3(0.0);
-    vec3 e = projectCascade(c, uvw, cosine, lookup.grid.y != 0 ? lookup.encode.x : 0.0);
+    vec3 e = projectCascade(c, uvw, cosine, encodeRangeOf(c));
     return max(e, vec3(0.0)) / (lookup.gridOrigin[c].w * lookup.gridOrigin[c].w);
 }
 

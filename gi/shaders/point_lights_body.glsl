@@ -25,7 +25,7 @@ struct AnalyticLight {
 layout(binding = 0, std140) uniform PointLights {
     vec4 gridOrigin;  // xyz: corner of cell 0; w: cell size
     ivec4 grid;       // x: cells per axis, y: light count
-    vec4 encode;      // x: rgba8 range (|coefficient| stored as v * 2 - 1 times range)
+    vec4 encode;      // x: this cascade's rgba8 range (LpvVolumes::encodeRange)
 } params;
 layout(binding = 1, std140) uniform Lights {
     AnalyticLight lights[MAX_LIGHTS];

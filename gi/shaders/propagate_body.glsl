@@ -49,7 +49,9 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(binding = 0, std140) uniform Propagate {
     ivec4 grid;  // x: cells per axis, y: cells per thread along z
-    vec4 encode; // x: rgba8 range, y: handoff scale (0: none), z: 1 when the coarse volume is encoded
+    // x: rgba8 range (this volume's: LpvVolumes::encodeRange), y: handoff scale (0: none),
+    // z: 1 when the coarse volume is encoded
+    vec4 encode;
     vec4 handoff; // xyz: the coarse volume's uvw at cell (0,0,0)'s centre; w: uvw per cell
 } params;
 #ifdef HANDOFF
@@ -166,8 +168,9 @@ Sh3 outside(ivec3 c) {
     vec4 r = textureLod(coarseRed, uvw, 0.0), g = textureLod(coarseGreen, uvw, 0.0);
     vec4 b = textureLod(coarseBlue, uvw, 0.0);
     if (params.encode.z != 0.0) {
-        r = decodeShRange(r, params.encode.x), g = decodeShRange(g, params.encode.x);
-        b = decodeShRange(b, params.encode.x);
+        // In the coarser cascade's range: the same radiance over cells of 1 / encode.y the area.
+        float coarseRange = params.encode.x / params.encode.y;
+        r = decodeShRange(r, coarseRange), g = decodeShRange(g, coarseRange), b = decodeShRange(b, coarseRange);
     }
     return Sh3(r * params.encode.y, g * params.encode.y, b * params.encode.y);
 #endif

@@ -422,7 +422,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             u.gridOrigin[c] = glm::vec4(grids[c].origin, grids[c].cellSize);
         u.grid = glm::ivec4(int(grid_.size), volumes_->encoded() ? 1 : 0, settings_.damping ? 1 : 0,
                             int(cascades_.size()));
-        u.encode = glm::vec4(volumes_->encodeRange(), blendBand, 0, 0);
+        // gi.rgba8_range, a radiance: the shader takes each cascade's range from its cell size.
+        u.encode = glm::vec4(settings_.rgba8Range, blendBand, 0, 0);
         // z: the glossy lobe's mean direction (gi.glossy), or the cosine lobe around n.
         u.intensity = glm::vec4(settings_.intensity, 1.0f, settings_.glossy ? 1.0f : 0.0f, 0);
         // w = 0: the first column of the camera matrix, read at an index lavapipe cannot fold.
@@ -472,7 +473,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         for (size_t c = 0; c < cascades_.size(); ++c)
             glossyCascades[c] = {cascades_[c].grid, cascades_[c].result};
         glossy_.render(cmd, camera, gbuffer, std::span(glossyCascades.data(), cascades_.size()),
-                       volumes_->encoded() ? volumes_->encodeRange() : 0.0f, settings_.glossyMaxRoughness,
+                       volumes_->encoded() ? settings_.rgba8Range : 0.0f, settings_.glossyMaxRoughness,
                        glossyTarget, renderer_->specularAlbedoTexture(), divisor,
                        classified ? classes_.get() : nullptr);
         work(glossyWork(lookupPixels));
@@ -499,7 +500,7 @@ void LightPropagationVolume::renderDebugOverlay(rhi::CommandList& cmd, const eng
         SliceUniforms u;
         const uint32_t slice = std::min(settings_.debugSlice, grid_.size - 1);
         u.params = glm::vec4((float(slice) + 0.5f) / float(grid_.size),
-                             1.0f / (grid_.cellSize * grid_.cellSize), volumes_->encodeRange(), 0);
+                             1.0f / (grid_.cellSize * grid_.cellSize), volumes_->encodeRange(grid_), 0);
         u.flags = glm::ivec4(volumes_->encoded() ? 1 : 0, 0, 0, 0);
         cmd.bindPipeline(slicePipeline_);
         cmd.pushUniforms(0, &u, sizeof(u));

@@ -192,6 +192,7 @@ void LpvVolumes::inject(rhi::CommandList& cmd, std::span<const VplSource> source
     using namespace rhi;
     for (TextureHandle t : inject_)
         cmd.clearTexture(t, {0, 0, 0, 0});
+    injectedRange_ = encodeRange(grid);
     InjectUniforms u;
     u.gridOrigin = glm::vec4(grid.origin, grid.cellSize);
     u.intensity = glm::vec4(intensity, 0, 0, 0);
@@ -244,7 +245,7 @@ void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::Text
     const uint32_t texels = packedTexelCount(settings_.shFormat);
     PropagateUniforms u;
     u.grid = glm::ivec4(int(n), int(column), 0, 0);
-    u.encode = glm::vec4(settings_.rgba8Range, 0, encoded() ? 1 : 0, 0);
+    u.encode = glm::vec4(injectedRange_, 0, encoded() ? 1 : 0, 0);
     if (handoff) {
         const float coarseExtent = handoff->coarseGrid.cellSize * float(handoff->coarseGrid.size);
         const glm::vec3 firstCentre = handoff->fineGrid.origin + 0.5f * handoff->fineGrid.cellSize;

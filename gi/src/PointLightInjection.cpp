@@ -106,7 +106,7 @@ uint32_t PointLightInjection::inject(rhi::CommandList& cmd, std::span<const engi
     PointLightUniforms u;
     u.gridOrigin = glm::vec4(grid.origin, grid.cellSize);
     u.grid = glm::ivec4(int(volumes.gridSize()), int(count_), 0, 0);
-    u.encode = glm::vec4(volumes.encodeRange(), 0, 0, 0);
+    u.encode = glm::vec4(volumes.encodeRange(grid), 0, 0, 0);
     cmd.bindPipeline(pipeline_);
     cmd.pushUniforms(0, &u, sizeof(u));
     cmd.bindUniformBuffer(1, buffer);

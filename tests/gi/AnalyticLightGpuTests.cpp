@@ -9,6 +9,7 @@
 #include "gi/AnalyticLight.h"
 #include "gi/LpvVolumes.h"
 #include "gi/PointLightInjection.h"
+#include "gi/ShEncoding.h"
 
 #include <doctest/doctest.h>
 
@@ -62,7 +63,7 @@ std::array<Image, 3> readVolumes(rhi::Device& device, const gi::LpvVolumes& volu
 
 glm::vec4 decoded(const Image& image, uint32_t x, uint32_t y, uint32_t z, bool encoded, float range) {
     const glm::vec4 v = image.at(x, y, z);
-    return encoded ? (v * 2.0f - 1.0f) * range : v;
+    return encoded ? gi::decodeShRange(v, range) : v;
 }
 
 // The first visible floor point under a point light of `color` in the front half of the hall.
@@ -95,7 +96,7 @@ TEST_CASE("gi: analytic lights on the GPU match the CPU formula") {
     };
     // rgba32f: float rounding. rgba16f: one conversion to half precision (10 mantissa bits), at
     // most one unit in the last place, 2^-10 of the value, even where the driver truncates.
-    // rgba8: set below to one 8-bit step, 2 x range / 255, for either rounding.
+    // rgba8: set below to one 8-bit step, range / 127, for either rounding.
     const Case cases[] = {
         {gi::ShFormat::Rgba32f, 1e-4f}, {gi::ShFormat::Rgba16f, 1e-3f}, {gi::ShFormat::Rgba8, 0}};
     const gi::VolumeGrid grid{{0.0f, 0.0f, 0.0f}, 0.5f, 18};
@@ -121,13 +122,17 @@ TEST_CASE("gi: analytic lights on the GPU match the CPU formula") {
                 gi::LpvSettings s;
                 s.gridSize = grid.size;
                 s.shFormat = c.format;
-                s.rgba8Range = 1.05f * peak; // the largest coefficient fits the encoding
+                // The largest coefficient fits the encoding (gi.rgba8_range is over the cells'
+                // cross-section).
+                s.rgba8Range = 1.05f * peak / (grid.cellSize * grid.cellSize);
                 std::array<Image, 3> before, after;
+                float range = 0.0f;
                 {
                     gi::LpvVolumes volumes(*device, s);
                     gi::PointLightInjection injection(*device, s);
-                    // Clear to zero (0.5 encoded), read back, add the lights, read back.
-                    const float zero = volumes.encoded() ? 0.5f : 0.0f;
+                    range = volumes.encodeRange(grid);
+                    // Clear to zero (code 128 encoded), read back, add the lights, read back.
+                    const float zero = volumes.encoded() ? gi::encodeShRange(glm::vec4(0.0f), 1.0f).x : 0.0f;
                     rhi::CommandList& cmd = device->beginFrame();
                     for (rhi::TextureHandle t : volumes.accumulated())
                         cmd.clearTexture(t, {zero, zero, zero, zero});
@@ -144,7 +149,6 @@ TEST_CASE("gi: analytic lights on the GPU match the CPU formula") {
                                       packed.size() * sizeof(gi::AnalyticLight)) == 0);
                 }
                 const bool encoded = c.format == gi::ShFormat::Rgba8;
-                const float range = s.rgba8Range;
                 float worst = 0.0f;
                 for (uint32_t z = 0; z < grid.size; ++z)
                     for (uint32_t y = 0; y < grid.size; ++y)
@@ -158,7 +162,7 @@ TEST_CASE("gi: analytic lights on the GPU match the CPU formula") {
                                     worst = std::max(worst, std::fabs(got[k] - wants[ch][k]));
                             }
                         }
-                const float tolerance = encoded ? 2.0f * range / 255.0f / peak : c.tolerance;
+                const float tolerance = encoded ? range / 127.0f / peak : c.tolerance;
                 MESSAGE(backend.name << " " << gi::shFormatName(c.format) << ": largest difference "
                                      << worst / peak << " of the largest coefficient " << peak
                                      << " (tolerance " << tolerance << ")");

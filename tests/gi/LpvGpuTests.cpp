@@ -8,6 +8,7 @@
 #include "gi/GiBudget.h"
 #include "gi/LpvReference.h"
 #include "gi/LpvVolumes.h"
+#include "gi/ShEncoding.h"
 #include "platforms/PlatformProfile.h"
 
 #include <doctest/doctest.h>
@@ -50,7 +51,7 @@ float relativeError(const gi::ShVolume& ref, const std::array<Image, 3>& gpu, bo
                 const glm::vec4 want[3] = {c.r, c.g, c.b};
                 for (int ch = 0; ch < 3; ++ch) {
                     glm::vec4 got = gpu[size_t(ch)].at(x, y, z);
-                    if (encoded) got = (got * 2.0f - 1.0f) * range;
+                    if (encoded) got = gi::decodeShRange(got, range);
                     for (int k = 0; k < 4; ++k) {
                         worst = std::max(worst, std::fabs(got[k] - want[ch][k]));
                         peak = std::max(peak, std::fabs(want[ch][k]));
@@ -76,7 +77,7 @@ TEST_CASE("gi: GPU injection and propagation match the CPU reference") {
         float injectTolerance, propagateTolerance; // relative to the largest coefficient
     };
     // rgba32f: float rounding only. rgba16f: 11-bit mantissas, rounded at every iteration.
-    // rgba8: range-encoded 8 bits, half a step of 2 x range / 255 per store.
+    // rgba8: range-encoded 8 bits, half a step of range / 127 per store.
     const Case cases[] = {{gi::ShFormat::Rgba32f, 1e-4f, 1e-4f},
                           {gi::ShFormat::Rgba16f, 2e-3f, 4e-3f},
                           {gi::ShFormat::Rgba8, 2e-3f, 0.05f}};
@@ -110,8 +111,9 @@ TEST_CASE("gi: GPU injection and propagation match the CPU reference") {
                     s.gridSize = shape.n;
                     s.cascades = shape.cascades;
                     s.shFormat = c.format;
-                    // Range of the rgba8 encoding: the largest coefficient the accumulation reaches.
-                    s.rgba8Range = 1.05f * [&] {
+                    // Range of the rgba8 encoding: the largest coefficient the accumulation reaches
+                    // (gi.rgba8_range is over the cells' cross-section).
+                    s.rgba8Range = 1.05f / (grid.cellSize * grid.cellSize) * [&] {
                         float m = 0;
                         for (const gi::ShCell& cell : propagated.cells())
                             m = std::max(m, largestCoefficient(cell));
@@ -131,7 +133,8 @@ TEST_CASE("gi: GPU injection and propagation match the CPU reference") {
                             acc[size_t(ch)] = readImage(*device, volumes.accumulated()[size_t(ch)]);
                         }
                         const float injErr = relativeError(injected, inj, false, 0);
-                        const float accErr = relativeError(propagated, acc, volumes.encoded(), s.rgba8Range);
+                        const float accErr =
+                            relativeError(propagated, acc, volumes.encoded(), volumes.encodeRange(grid));
                         MESSAGE(backend.name << " " << gi::shFormatName(c.format) << ": injection error "
                                              << injErr << ", after " << shape.iterations << " iterations "
                                              << accErr << " (relative to the largest coefficient)");
@@ -196,12 +199,15 @@ TEST_CASE("gi: propagation takes in a coarser cascade's light beyond its border 
         }
         const float borderShare = relativeError(expected, without, false, 0.0f);
         REQUIRE(borderShare > 0.1f);
-        float range = 0.0f; // of the rgba8 encoding: the largest coefficient, coarse or result
+        // gi.rgba8_range: the largest coefficient of the result or of the coarse cascade, over the
+        // cross-section of its cells (the volumes encode each cascade in its own range).
+        float range = 0.0f;
         for (const gi::ShCell& cell : expected.cells())
-            range = std::max(range, largestCoefficient(cell));
+            range = std::max(range, largestCoefficient(cell) / (fine.cellSize * fine.cellSize));
         for (uint32_t i = 0; i < coarse.size; ++i) {
             range = std::max(range,
-                             largestCoefficient(field(coarse.origin + (float(i) + 0.5f) * coarse.cellSize)));
+                             largestCoefficient(field(coarse.origin + (float(i) + 0.5f) * coarse.cellSize)) /
+                                 (coarse.cellSize * coarse.cellSize));
         }
         range *= 1.05f;
         for (const auto& backend : selectedBackends()) {
@@ -215,7 +221,7 @@ TEST_CASE("gi: propagation takes in a coarser cascade's light beyond its border 
                     s.cascades = 3; // partial sums with a shell: where a handoff goes
                     s.shFormat = c.format;
                     s.rgba8Range = range;
-                    // The coarser cascade's result, in the volumes' format (range-encoded for rgba8).
+                    // The coarser cascade's result, in the volumes' format (rgba8: in its own range).
                     std::array<rhi::TextureHandle, 3> coarseResult{};
                     for (int ch = 0; ch < 3; ++ch) {
                         std::vector<float> f32;
@@ -227,11 +233,12 @@ TEST_CASE("gi: propagation takes in a coarser cascade's light beyond its border 
                                     const gi::ShCell cell =
                                         field(coarse.origin + (glm::vec3(x, y, z) + 0.5f) * coarse.cellSize);
                                     const glm::vec4 v = ch == 0 ? cell.r : ch == 1 ? cell.g : cell.b;
+                                    const glm::vec4 code =
+                                        gi::encodeShRange(v, range * coarse.cellSize * coarse.cellSize);
                                     for (int k = 0; k < 4; ++k) {
                                         f32.push_back(v[k]);
                                         f16.push_back(uint16_t(glm::packHalf1x16(v[k])));
-                                        const float e = std::clamp(v[k] / range * 0.5f + 0.5f, 0.0f, 1.0f);
-                                        u8.push_back(uint8_t(std::lround(e * 255.0f)));
+                                        u8.push_back(uint8_t(std::lround(code[k] * 255.0f)));
                                     }
                                 }
                         coarseResult[size_t(ch)] = device->createTexture(
@@ -259,7 +266,8 @@ TEST_CASE("gi: propagation takes in a coarser cascade's light beyond its border 
                         std::array<Image, 3> acc;
                         for (int ch = 0; ch < 3; ++ch)
                             acc[size_t(ch)] = readImage(*device, volumes.accumulated()[size_t(ch)]);
-                        const float err = relativeError(expected, acc, volumes.encoded(), s.rgba8Range);
+                        const float err =
+                            relativeError(expected, acc, volumes.encoded(), volumes.encodeRange(fine));
                         MESSAGE(backend.name
                                 << " " << gi::shFormatName(c.format) << " " << shape.n << "^3: error " << err
                                 << " against the reference with the border (which is " << borderShare

@@ -31,7 +31,7 @@ struct LpvSettings {
     ShFormat shFormat = ShFormat::Rgba16f;
     GiDebugView debugView = GiDebugView::None;
     uint32_t debugSlice = 16;
-    float rgba8Range = 2.0f;
+    float rgba8Range = 12.0f;
     bool damping = true;
     bool occlusion = true; // geometry volume attenuates propagation
     bool glossy = true;    // glossy reflections marched through the volume

@@ -18,7 +18,7 @@
 namespace lpv::gi {
 
 // Between iterations propagation keeps a cell's 12 coefficients in 1 RGBA32UI texel (rgba8,
-// packed), 3 RGBA16F texels (rgba16f, one per channel) or 3 RGBA32UI texels (rgba32f, the floats'
+// as 10-bit codes), 3 RGBA16F texels (rgba16f, one per channel) or 3 RGBA32UI texels (rgba32f, the floats'
 // bits): see propagate_body.glsl.
 uint32_t packedTexelCount(ShFormat f);
 rhi::Format packedTexelFormat(ShFormat f, uint32_t texel);
@@ -73,7 +73,8 @@ public:
     // volume), all in one pass per slice.
     void inject(rhi::CommandList& cmd, std::span<const VplSource> sources, const VolumeGrid& grid,
                 float intensity);
-    // Propagates `iterations` (>= 1) times from the injection volume; accumulated() then holds the
+    // Propagates `iterations` (>= 1) times from the injection volume, in the units of the grid last
+    // injected (rgba8: injectedEncodeRange()); accumulated() then holds the
     // injected volume plus every iteration's propagated light. With `faceTransmittance`
     // (GeometryVolume), the flux through every face is attenuated by it.
     // `result`: where the last iteration writes (a set from createResult(), e.g. another
@@ -90,14 +91,24 @@ public:
     const std::array<rhi::TextureHandle, 3>& injected() const { return inject_; }
     const std::array<rhi::TextureHandle, 3>& accumulated() const { return accum_; }
     bool encoded() const { return settings_.shFormat == ShFormat::Rgba8; }
-    float encodeRange() const { return settings_.rgba8Range; }
+    // The largest coefficient an rgba8 volume placed at `grid` stores (ShEncoding.h):
+    // gi.rgba8_range is a radiance (intensity over a cell's cross-section, what the lookup shows),
+    // so the range in a volume's intensities grows with its cells' area. A coarse cascade, whose
+    // cells are 4x and 16x the finest's area, then clips no sooner than the finest, and the finest
+    // keeps its steps small.
+    float encodeRange(const VolumeGrid& grid) const {
+        return settings_.rgba8Range * grid.cellSize * grid.cellSize;
+    }
+    // The range of the volume last injected (inject()), in which propagate() and the bounces encode.
+    float injectedEncodeRange() const { return injectedRange_; }
     uint32_t gridSize() const { return settings_.gridSize; }
 
 private:
     rhi::Device& device_;
     LpvSettings settings_;
     uint32_t columnLength_;
-    bool layered_; // injection in one layered draw (rhi Caps::vertexShaderLayer)
+    bool layered_;               // injection in one layered draw (rhi Caps::vertexShaderLayer)
+    float injectedRange_ = 0.0f; // encodeRange of the grid last injected
     std::array<rhi::TextureHandle, 3> inject_, accum_;
     // Partial sums between iterations, ping and pong, packed (packedTexelCount texels per cell),
     // partialSumSize^3.
