@@ -5,7 +5,6 @@
 #include "../support/TestDevice.h"
 
 #include "engine/scene/BuiltinScenes.h"
-#include "gi/ShEncoding.h"
 
 #include <doctest/doctest.h>
 
@@ -13,21 +12,6 @@
 
 using namespace lpv;
 using namespace lpv::test;
-
-TEST_CASE("gi: an rgba8 code for zero decodes to zero, and the decode is affine in the code") {
-    // The lookup clamps negative irradiance, so an empty cell that decoded to a small positive or
-    // negative value would turn into light where there is none.
-    for (const float range : {0.5f, 12.0f, 300.0f}) {
-        const glm::vec4 zero = gi::encodeShRange(glm::vec4(0.0f), range);
-        CHECK(zero.x * 255.0f == doctest::Approx(128.0f));
-        CHECK(gi::decodeShRange(glm::vec4(128.0f / 255.0f), range).x == 0.0f);
-        CHECK(gi::decodeShRange(glm::vec4(1.0f), range).x == doctest::Approx(range));
-        // Half-way between two codes decodes half-way between their values (filtering is exact).
-        const float a = gi::decodeShRange(glm::vec4(100.0f / 255.0f), range).x;
-        const float b = gi::decodeShRange(glm::vec4(101.0f / 255.0f), range).x;
-        CHECK(gi::decodeShRange(glm::vec4(100.5f / 255.0f), range).x == doctest::Approx(0.5f * (a + b)));
-    }
-}
 
 namespace {
 
