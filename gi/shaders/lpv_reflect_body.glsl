@@ -17,7 +17,7 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 layout(binding = 0, std140) uniform Reflect {
     ivec4 grid;  // x: cells per axis
-    vec4 encode; // x: rgba8 range; y: 1 when the source volume is range-encoded
+    vec4 encode; // x: the cascade's rgba8 range (LpvVolumes::injectedEncodeRange); y: 1 when encoded
 } params;
 layout(binding = 1) uniform sampler3D sourceRed;
 layout(binding = 2) uniform sampler3D sourceGreen;

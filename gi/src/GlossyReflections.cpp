@@ -68,7 +68,7 @@ GlossyReflections::~GlossyReflections() {
 
 void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                                const engine::GBufferView& gbuffer, std::span<const GlossyCascade> cascades,
-                               float encodeRange, float maxRoughness, rhi::TextureHandle target,
+                               float rgba8Range, float maxRoughness, rhi::TextureHandle target,
                                rhi::TextureHandle specularAlbedoTable, uint32_t divisor,
                                const CascadeClasses* classes) {
     using namespace rhi;
@@ -80,8 +80,8 @@ void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatric
     u.cameraPosition = glm::vec4(camera.position, 1.0f);
     for (uint32_t c = 0; c < 4; ++c)
         u.gridOrigin[c] = glm::vec4(cascade(c).grid.origin, cascade(c).grid.cellSize);
-    u.grid = glm::ivec4(int(cascades[0].grid.size), encodeRange > 0.0f ? 1 : 0, int(cascades.size()), 0);
-    u.encode = glm::vec4(encodeRange, maxRoughness, 0, 0);
+    u.grid = glm::ivec4(int(cascades[0].grid.size), rgba8Range > 0.0f ? 1 : 0, int(cascades.size()), 0);
+    u.encode = glm::vec4(rgba8Range, maxRoughness, 0, 0);
     // w = 0: the first column of the camera matrix, read at an index lavapipe cannot fold (shader).
     u.pixels = glm::ivec4(int(divisor), int(gbuffer.width), int(gbuffer.height), 0);
     RenderPassDesc pass;

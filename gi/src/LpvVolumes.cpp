@@ -239,6 +239,9 @@ void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::Text
     if (handoff && !shell_)
         throw std::logic_error(
             "LpvVolumes::propagate: a cascade handoff needs volumes made for several cascades");
+    // rgba8 propagates in the range of the grid last injected (encodeRange): there is none before.
+    if (encoded() && injectedRange_ <= 0.0f)
+        throw std::logic_error("LpvVolumes::propagate: rgba8 volumes propagate after an inject()");
     const std::array<rhi::TextureHandle, 3>& target = result ? *result : accum_;
     const uint32_t n = settings_.gridSize;
     const uint32_t column = columnLength_;

@@ -60,7 +60,7 @@ void MultipleBounces::add(rhi::CommandList& cmd, LpvVolumes& volumes, const Geom
     const uint32_t groups = (n + 3) / 4;
     BounceUniforms u;
     u.grid = glm::ivec4(int(n), 0, 0, 0);
-    // The cascade's own range: its light was injected last (LightPropagationVolume::update).
+    // The cascade's own range: its light was injected last (LightPropagationVolume::renderIndirect).
     u.encode = glm::vec4(volumes.injectedEncodeRange(), volumes.encoded() ? 1.0f : 0.0f, 0, 0);
     // The first further bounce reflects the cascade's light; each later one the previous bounce's.
     const std::array<rhi::TextureHandle, 3>* source = &result;

@@ -37,16 +37,16 @@ public:
     // holds the lookup's glossy radiance of the lobe's mean direction (the lobes from
     // `specularAlbedoTable`, engine::Renderer::specularAlbedoTexture()): premultiplied by the march's
     // share, its fade (gi.glossy_max_roughness: all of it up to 0.1 below `maxRoughness`, none from
-    // it on, where the march does not run and the texel keeps the lookup's value). `encodeRange` > 0:
-    // the volumes are rgba8, range-encoded. `target` is 1/divisor of the G-buffer per axis: its texel
+    // it on, where the march does not run and the texel keeps the lookup's value). `rgba8Range` > 0:
+    // the volumes are rgba8, encoded in gi.rgba8_range (a radiance; each cascade's range is it times
+    // its cell area, LpvVolumes::encodeRange). `target` is 1/divisor of the G-buffer per axis: its texel
     // t marches from G-buffer pixel t x divisor. With `classes` (classified this frame for these
     // cascades and the target's size, glossy on) each cascade marches only its own glossy classes'
     // texels (CascadeClasses.h); only where CascadeClasses::wanted(device).
     void render(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
-                const engine::GBufferView& gbuffer, std::span<const GlossyCascade> cascades,
-                float encodeRange, float maxRoughness, rhi::TextureHandle target,
-                rhi::TextureHandle specularAlbedoTable, uint32_t divisor = 1,
-                const CascadeClasses* classes = nullptr);
+                const engine::GBufferView& gbuffer, std::span<const GlossyCascade> cascades, float rgba8Range,
+                float maxRoughness, rhi::TextureHandle target, rhi::TextureHandle specularAlbedoTable,
+                uint32_t divisor = 1, const CascadeClasses* classes = nullptr);
 
 private:
     rhi::Device& device_;
