@@ -211,28 +211,34 @@ TEST_CASE("gi: many coloured lights light the indirect term in their colour, and
 TEST_CASE("gi: coarse cascades kept from an earlier frame get their analytic lights once") {
     // gi.coarse_update_interval=2 keeps each coarse cascade's result on alternate frames; the
     // lights are added to a result when it is made. Adding them to kept results as well counted
-    // them twice (here +43% after 4 frames; the game's lights hall +12%). The camera and lights stand still,
-    // so every interval must give the same frame: after 4 and after 5 frames, so that one of them ends on a
-    // frame that keeps cascade 1 (the game's cells, 0.17 m: the camera sees cascades 0 and 1). In
-    // rgba8 too, whose default range holds the hall's lights.
+    // them twice (here +43% after 4 frames; the game's lights hall +12%). The camera and lights
+    // stand still, so every interval must give the same frame: after 4 and after 5 frames, so that
+    // one of them ends on a frame that keeps cascade 1 (the game's cells, 0.17 m: the camera sees
+    // cascades 0 and 1, checked). In rgba8 too, whose default range holds the hall's lights.
     const engine::Scene hall = engine::buildLightHall();
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
             TestDevice device(backend);
             double every16f = 0.0;
             for (const char* format : {"gi.sh_format=rgba16f", "gi.sh_format=rgba8"}) {
-                const auto meanAt = [&](const char* interval, int frames) {
+                const auto meanAt = [&](const char* setting, int frames) {
                     const std::vector<std::string> settings = {"gi.enabled=true",
                                                                "render.debug_view=indirect",
                                                                "render.ssao=false",
                                                                "gi.cell_size=0.17",
                                                                format,
-                                                               interval};
+                                                               setting};
                     return meanLuminance(renderSceneFrame(*device, hall, settings, {}, 320, 240, frames).hdr);
                 };
                 const double every = meanAt("gi.coarse_update_interval=1", 1);
                 REQUIRE(every > 0.0);
-                if (every16f == 0.0) every16f = every;
+                if (every16f == 0.0) {
+                    every16f = every;
+                    // The coarse cascades are in the picture: with the finest alone it changes.
+                    const double finestOnly = meanAt("gi.cascades=1", 1);
+                    MESSAGE(backend.name << ": mean indirect light " << finestOnly << " with one cascade");
+                    CHECK(std::fabs(finestOnly / every - 1.0) > 0.05);
+                }
                 for (const int frames : {4, 5}) {
                     const double alternate = meanAt("gi.coarse_update_interval=2", frames);
                     MESSAGE(backend.name << " " << std::string(format) << ": mean indirect light " << every

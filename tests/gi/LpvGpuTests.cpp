@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 using namespace lpv;
 using namespace lpv::test;
@@ -423,4 +424,24 @@ TEST_CASE("gi: configurations that do not fit are refused with a clear message")
                          engine::ConfigError);
     config.applyOverride("gi.vpl_count=1000");
     CHECK_THROWS_AS(gi::readLpvSettings(config), engine::ConfigError);
+}
+
+TEST_CASE("gi: rgba8 volumes refuse to propagate before anything was injected") {
+    // They encode in the range of the grid last injected (LpvVolumes::encodeRange): before the
+    // first inject() there is none, and a zero range would write NaN codes.
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            gi::LpvSettings s;
+            s.gridSize = 8;
+            s.shFormat = gi::ShFormat::Rgba8;
+            gi::LpvVolumes volumes(*device, s);
+            rhi::CommandList& cmd = device->beginFrame();
+            CHECK_THROWS_WITH_AS(volumes.propagate(cmd, 2),
+                                 "LpvVolumes::propagate: rgba8 volumes propagate after an inject()",
+                                 std::logic_error);
+            device->endFrame();
+            device.expectSilent();
+        }
+    }
 }

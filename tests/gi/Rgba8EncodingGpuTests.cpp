@@ -59,6 +59,9 @@ TEST_CASE("gi: rgba8 volumes at the default range light the Cornell box and the 
             CHECK(std::fabs(court.meanShift) < 0.03);
             CHECK(box.meanDifference < 0.12);
             CHECK(court.meanDifference < 0.12);
+            // And rgba8 did run: 8-bit steps show in every frame.
+            CHECK(box.meanDifference > 0.01);
+            CHECK(court.meanDifference > 0.01);
             device.expectSilent();
         }
     }

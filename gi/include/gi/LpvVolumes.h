@@ -74,13 +74,12 @@ public:
     void inject(rhi::CommandList& cmd, std::span<const VplSource> sources, const VolumeGrid& grid,
                 float intensity);
     // Propagates `iterations` (>= 1) times from the injection volume, in the units of the grid last
-    // injected (rgba8: injectedEncodeRange()); accumulated() then holds the
-    // injected volume plus every iteration's propagated light. With `faceTransmittance`
-    // (GeometryVolume), the flux through every face is attenuated by it.
-    // `result`: where the last iteration writes (a set from createResult(), e.g. another
-    // cascade's); accumulated() when null. `handoff`: outside the volume, neighbours read the
-    // coarser cascade's result (in this volume's units) instead of nothing; only for volumes with a
-    // shell (partialSumShell), std::logic_error otherwise.
+    // injected (rgba8: injectedEncodeRange(); std::logic_error before any inject()); accumulated() then holds
+    // the injected volume plus every iteration's propagated light. With `faceTransmittance` (GeometryVolume),
+    // the flux through every face is attenuated by it. `result`: where the last iteration writes (a set from
+    // createResult(), e.g. another cascade's); accumulated() when null. `handoff`: outside the volume,
+    // neighbours read the coarser cascade's result (in this volume's units) instead of nothing; only for
+    // volumes with a shell (partialSumShell), std::logic_error otherwise.
     void propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::TextureHandle faceTransmittance = {},
                    const std::array<rhi::TextureHandle, 3>* result = nullptr,
                    const CascadeHandoff* handoff = nullptr);

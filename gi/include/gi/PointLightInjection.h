@@ -39,7 +39,8 @@ public:
     // directional lights are the RSM's), scaled by `intensityScale` (gi.intensity), uploads them and
     // adds them to `result` (volumes.accumulated() when null): cascade `cascade`'s result, placed
     // at `grid`. Call after the propagation of every cascade (a coarser cascade's result is also
-    // what the finer ones take in at their borders, and must not carry these lights then).
+    // what the finer ones take in at their borders, and should not carry these lights then; a
+    // coarse cascade kept from an earlier frame does, see LightPropagationVolume::renderIndirect).
     // `skip`: indices into `lights` left out (spot and point lights with an RSM of their own, SpotLightRsms).
     // Returns the lights added.
     uint32_t inject(rhi::CommandList& cmd, std::span<const engine::Light> lights, const LpvVolumes& volumes,

@@ -2,9 +2,10 @@
 // 8-bit code 128 + 127 v / range, the same as lpv_common.glsl's encodeShRange / decodeShRange.
 // Zero is a code (128), so an empty cell reads back as no light (to float rounding): with the
 // midpoint between two codes it decoded as +-range / 255, and the lookup's clamp of negative
-// irradiance kept the positive half (the Cornell box's indirect light came out 31% too bright at
-// range 2 and 87% at 4, PC settings, 640x360). The decode is affine in the code, so a sampler's
-// filtering of the codes stays exact.
+// irradiance kept the positive half: light where there was none (with the old single range in
+// intensity as well, the Cornell box's indirect light came out 31% too bright at range 2 and 87% at
+// 4, PC settings, 640x360). The decode is affine in the code, so a sampler's filtering of the codes
+// stays exact.
 #pragma once
 
 #include <glm/common.hpp>
