@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include <cmath>
+#include <stdexcept>
 #include <utility>
 
 namespace lpv::test {
@@ -31,6 +32,13 @@ double meanLuminanceDifference(const Image& a, const Image& b) {
     for (size_t i = 0; i < a.texels.size(); ++i)
         sum += std::fabs(double(luminance(a.texels[i])) - double(luminance(b.texels[i])));
     return sum / double(a.texels.size());
+}
+
+LuminanceChange luminanceChange(const Image& ref, const Image& image) {
+    const double mean = meanLuminance(ref);
+    if (image.texels.size() != ref.texels.size() || !(mean > 0.0))
+        throw std::invalid_argument("luminanceChange: images of different sizes, or a black reference");
+    return {meanLuminance(image) / mean - 1.0, meanLuminanceDifference(ref, image) / mean};
 }
 
 bool CornellFrame::pixelOf(glm::vec3 world, uint32_t& x, uint32_t& y) const {

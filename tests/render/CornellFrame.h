@@ -79,5 +79,11 @@ float luminance(glm::vec4 c);
 double meanLuminance(const Image& image);
 // The mean of |luminance(a) - luminance(b)| over two images of the same size.
 double meanLuminanceDifference(const Image& a, const Image& b);
+// `image` against `ref` (same size, some light in ref): its mean luminance's change and the mean
+// difference per pixel, both relative to ref's mean (std::invalid_argument otherwise).
+struct LuminanceChange {
+    double meanShift = 0.0, meanDifference = 0.0;
+};
+LuminanceChange luminanceChange(const Image& ref, const Image& image);
 
 } // namespace lpv::test
