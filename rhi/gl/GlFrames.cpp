@@ -39,6 +39,9 @@ void GlDevice::endFrame(TextureHandle presentTexture) {
         if (context_->hasDefaultFramebuffer()) present(source);
     }
     timestamps_.endFrame(frame_);
+    // Shader writes to MemoryAccess::HostRead buffers reach their persistent mappings by the time
+    // the fence below signals, for beginFrame()'s wait to make them readable.
+    gl_.glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
     fences_[frame_ % fences_.size()] = gl_.glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     gl_.glFlush(); // "submit": the driver starts on the frame now
     inFrame_ = false;

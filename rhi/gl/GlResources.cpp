@@ -17,8 +17,9 @@ BufferHandle GlDevice::createBuffer(const BufferDesc& desc, const void* initialD
     GlBuffer b;
     b.desc = desc;
     gl_.glCreateBuffers(1, &b.id);
-    const bool host = desc.access == MemoryAccess::HostWrite;
-    const GLbitfield mapFlags = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+    const bool host = desc.access != MemoryAccess::GpuOnly;
+    const GLbitfield mapFlags = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT |
+                                (desc.access == MemoryAccess::HostRead ? GL_MAP_READ_BIT : 0);
     // Dynamic storage: updateBuffer and uploadBuffer write through glNamedBufferSubData.
     gl_.glNamedBufferStorage(b.id, GLsizeiptr(desc.size), initialData,
                              GL_DYNAMIC_STORAGE_BIT | (host ? mapFlags : 0));

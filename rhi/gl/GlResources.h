@@ -14,7 +14,7 @@ namespace lpv::rhi::gl {
 struct GlBuffer {
     BufferDesc desc;
     GLuint id = 0;
-    void* mapped = nullptr; // MemoryAccess::HostWrite: persistent, coherent mapping
+    void* mapped = nullptr; // MemoryAccess::HostWrite or HostRead: persistent, coherent mapping
 };
 
 struct GlTexture {

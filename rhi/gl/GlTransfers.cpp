@@ -74,7 +74,8 @@ void GlDevice::readTexture(TextureHandle h, uint32_t mip, void* out, uint64_t si
 
 void* GlDevice::mapped(BufferHandle h) {
     GlBuffer& b = buffers.get(h);
-    if (!b.mapped) throw Error("buffer '" + b.desc.debugName + "' is not MemoryAccess::HostWrite");
+    if (!b.mapped)
+        throw Error("buffer '" + b.desc.debugName + "' is not MemoryAccess::HostWrite or HostRead");
     return b.mapped;
 }
 

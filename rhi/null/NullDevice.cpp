@@ -152,8 +152,8 @@ public:
     }
     void* mapped(BufferHandle h) override {
         NullBuffer& b = buffers.get(h);
-        if (b.desc.access != MemoryAccess::HostWrite)
-            throw Error("buffer '" + b.desc.debugName + "' is not MemoryAccess::HostWrite");
+        if (b.desc.access == MemoryAccess::GpuOnly)
+            throw Error("buffer '" + b.desc.debugName + "' is not MemoryAccess::HostWrite or HostRead");
         return b.bytes.data();
     }
 

@@ -13,6 +13,10 @@ namespace lpv::rhi::vk {
 // A full memory barrier: all earlier writes visible to every later stage and access.
 void fullBarrier(VkCommandBuffer cmd);
 
+// Every earlier write made available to the host, for the frame's fence wait to make visible
+// (a fence alone covers device access only): MemoryAccess::HostRead buffers.
+void hostReadBarrier(VkCommandBuffer cmd);
+
 // Moves mips [baseMip, baseMip + mipCount) of `texture` to `layout` (no-op for mips already
 // there). Must be recorded outside a dynamic rendering instance.
 void transition(VkCommandBuffer cmd, VulkanTexture& texture, uint32_t baseMip, uint32_t mipCount,

@@ -39,7 +39,7 @@ std::string usageNames(uint32_t usage) {
 } // namespace
 
 VulkanBuffer VulkanDevice::createBufferObject(uint64_t size, VkBufferUsageFlags usage, bool hostVisible,
-                                              const std::string& name) {
+                                              const std::string& name, bool hostReads) {
     const VkDevice device = ctx_->device;
     VulkanBuffer b;
     VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
@@ -54,8 +54,10 @@ VulkanBuffer VulkanDevice::createBufferObject(uint64_t size, VkBufferUsageFlags 
         alloc.allocationSize = req.size;
         const VkMemoryPropertyFlags host =
             VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        // The CPU reads a HostRead buffer: cached memory where there is some, uncached reads are slow.
+        const VkMemoryPropertyFlags wanted = hostReads ? host | VK_MEMORY_PROPERTY_HOST_CACHED_BIT : host;
         alloc.memoryTypeIndex =
-            hostVisible ? ctx_->memoryType(req.memoryTypeBits, host, host)
+            hostVisible ? ctx_->memoryType(req.memoryTypeBits, wanted, host)
                         : ctx_->memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
         vkCheck(vkAllocateMemory(device, &alloc, nullptr, &b.memory), "vkAllocateMemory (buffer)");
         vkCheck(vkBindBufferMemory(device, b.buffer, b.memory, 0), "vkBindBufferMemory");
@@ -102,8 +104,9 @@ void VulkanDevice::destroyPipelineObject(VulkanPipeline& p) {
 
 BufferHandle VulkanDevice::createBuffer(const BufferDesc& desc, const void* initialData) {
     if (desc.size == 0) throw Error("buffer '" + desc.debugName + "': size is 0");
-    const bool host = desc.access == MemoryAccess::HostWrite;
-    VulkanBuffer b = createBufferObject(desc.size, toVkBufferUsage(desc.usage), host, desc.debugName);
+    const bool host = desc.access != MemoryAccess::GpuOnly;
+    VulkanBuffer b = createBufferObject(desc.size, toVkBufferUsage(desc.usage), host, desc.debugName,
+                                        desc.access == MemoryAccess::HostRead);
     b.desc = desc;
     if (initialData && host) std::memcpy(b.mapped, initialData, desc.size);
     const BufferHandle h = buffers.insert(b);
@@ -290,8 +293,8 @@ void VulkanDevice::destroy(ComputePipelineHandle h) {
 
 void* VulkanDevice::mapped(BufferHandle h) {
     VulkanBuffer& b = buffers.get(h);
-    if (b.desc.access != MemoryAccess::HostWrite)
-        throw Error("buffer '" + b.desc.debugName + "' is not MemoryAccess::HostWrite");
+    if (b.desc.access == MemoryAccess::GpuOnly)
+        throw Error("buffer '" + b.desc.debugName + "' is not MemoryAccess::HostWrite or HostRead");
     return b.mapped;
 }
 

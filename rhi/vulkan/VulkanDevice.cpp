@@ -287,6 +287,7 @@ void VulkanDevice::endFrame(TextureHandle present) {
             if (presenting) recordPresent(f.cmd, source, imageIndex);
         }
     }
+    hostReadBarrier(f.cmd); // MemoryAccess::HostRead buffers, read after the fence
     vkCheck(vkEndCommandBuffer(f.cmd), "vkEndCommandBuffer");
 
     VkCommandBufferSubmitInfo cmdInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};

@@ -91,7 +91,7 @@ private:
     void shutdown();
 
     VulkanBuffer createBufferObject(uint64_t size, VkBufferUsageFlags usage, bool hostVisible,
-                                    const std::string& name);
+                                    const std::string& name, bool hostReads = false);
     void destroyBufferObject(VulkanBuffer& b);
     void destroyTextureObject(VulkanTexture& t);
     void destroyPipelineObject(VulkanPipeline& p);

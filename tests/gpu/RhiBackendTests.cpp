@@ -251,6 +251,50 @@ TEST_CASE("rhi: timestamps are ordered and read back frames later without waitin
     }
 }
 
+TEST_CASE("rhi: a HostRead buffer shows what shaders wrote once beginFrame() has waited for that frame") {
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            using namespace rhi;
+            // One region per frame in flight, at an offset any device's storage alignment allows.
+            constexpr uint64_t kRegion = 256;
+            const uint32_t regions = device->caps().framesInFlight;
+            const BufferHandle report = device->createBuffer(
+                {kRegion * regions, kBufferStorage, MemoryAccess::HostRead, "report back", "test"});
+            const ComputePipelineHandle pipeline =
+                device->createPipeline(ComputePipelineDesc{&shaders::report_back_comp, "report back"});
+            auto* bytes = static_cast<std::byte*>(device->mapped(report));
+            REQUIRE(bytes != nullptr);
+            constexpr uint32_t kGroups = 5, kInvocations = kGroups * 64;
+            uint32_t checked = 0;
+            for (uint32_t frame = 1; frame <= 3 * regions + 1; ++frame) {
+                CommandList& cmd = device->beginFrame();
+                REQUIRE(device->frameIndex() == frame);
+                auto* region = reinterpret_cast<uint32_t*>(bytes + kRegion * (frame % regions));
+                // This region was written framesInFlight frames ago, whose end beginFrame() waited for.
+                if (frame > regions) {
+                    const uint32_t scale = frame - regions;
+                    CHECK(region[0] == kInvocations);
+                    CHECK(region[1] == (kInvocations - 1) * scale);
+                    ++checked;
+                }
+                region[0] = region[1] = 0;
+                const glm::uvec4 params{frame, 0, 0, 0};
+                cmd.bindPipeline(pipeline);
+                cmd.bindStorageBuffer(0, report, kRegion * (frame % regions), kRegion);
+                cmd.pushUniforms(1, &params, sizeof(params));
+                cmd.dispatch(kGroups);
+                device->endFrame();
+            }
+            CHECK(checked == 2 * regions + 1);
+            device->waitIdle();
+            device->destroy(pipeline);
+            device->destroy(report);
+            device.expectSilent();
+        }
+    }
+}
+
 TEST_CASE("rhi: allocation record follows creation and destruction on a real device") {
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {

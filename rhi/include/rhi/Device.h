@@ -87,8 +87,8 @@ public:
     virtual void uploadTexture(TextureHandle h, uint32_t mipLevel, const void* data, uint64_t size) = 0;
     virtual void readBuffer(BufferHandle h, uint64_t offset, void* out, uint64_t size) = 0;
     virtual void readTexture(TextureHandle h, uint32_t mipLevel, void* out, uint64_t size) = 0;
-    // CPU pointer of a MemoryAccess::HostWrite buffer. Writes must not touch data a frame in
-    // flight still reads (keep one region per frame in flight).
+    // CPU pointer of a MemoryAccess::HostWrite or HostRead buffer. Writes must not touch data a
+    // frame in flight still uses (keep one region per frame in flight).
     virtual void* mapped(BufferHandle h) = 0;
 
     // Frames. beginFrame() waits until the oldest frame in flight has finished on the GPU, then

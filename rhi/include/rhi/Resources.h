@@ -22,6 +22,10 @@ enum BufferUsage : uint32_t {
 enum class MemoryAccess : uint8_t {
     GpuOnly,   // device local; written by uploads and shaders
     HostWrite, // persistently mapped for CPU writes (mapped() returns the pointer)
+    // Persistently mapped for CPU reads and writes, for what shaders report back (counters, peaks):
+    // a frame's shader writes are visible through mapped() once beginFrame() has waited for that
+    // frame, framesInFlight frames later. Keep one region per frame in flight, as for HostWrite.
+    HostRead,
 };
 
 struct BufferDesc {
