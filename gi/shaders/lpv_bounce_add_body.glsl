@@ -7,7 +7,7 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 layout(binding = 0, std140) uniform Add {
     ivec4 grid;  // x: cells per axis
-    vec4 encode; // x: the cascade's rgba8 range (LpvVolumes::injectedEncodeRange); y: 1 when encoded
+    vec4 encode; // x: the cascade's rgba8 range (LpvVolumes::injectedEncodeRange); y: 1 when encoded (the reflection's)
 } params;
 layout(binding = 1) uniform sampler3D bounceRed;
 layout(binding = 2) uniform sampler3D bounceGreen;
@@ -16,8 +16,14 @@ layout(binding = 4, SH_FORMAT) uniform image3D resultRed;
 layout(binding = 5, SH_FORMAT) uniform image3D resultGreen;
 layout(binding = 6, SH_FORMAT) uniform image3D resultBlue;
 
-vec4 decoded(vec4 v) { return params.encode.y != 0.0 ? decodeShRange(v, params.encode.x) : v; }
-vec4 encoded(vec4 v) { return params.encode.y != 0.0 ? encodeShRange(v, params.encode.x) : v; }
+#ifdef SH_ENCODED
+#include "rgba8_clipping.glsl"
+vec4 decoded(vec4 v) { return decodeShRange(v, params.encode.x); }
+vec4 encoded(vec4 v) { return encodeShNotingClips(v, params.encode.x); }
+#else
+vec4 decoded(vec4 v) { return v; }
+vec4 encoded(vec4 v) { return v; }
+#endif
 
 void main() {
     const ivec3 c = ivec3(gl_GlobalInvocationID);

@@ -37,7 +37,8 @@ layout(binding = 4, SH_FORMAT) uniform image3D accBlue;
 shared uint reaching[MAX_LIGHTS / 32];
 
 #ifdef SH_ENCODED
-vec4 encodeSh(vec4 v) { return encodeShRange(v, params.encode.x); }
+#include "rgba8_clipping.glsl"
+vec4 encodeSh(vec4 v) { return encodeShNotingClips(v, params.encode.x); }
 vec4 decodeSh(vec4 v) { return decodeShRange(v, params.encode.x); }
 #else
 vec4 encodeSh(vec4 v) { return v; }

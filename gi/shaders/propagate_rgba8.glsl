@@ -11,8 +11,12 @@
 #define PACKED0_FORMAT rgba32ui
 #define INJECT_FORMAT rgba16f // the injection volume (LpvVolumes.cpp)
 #include "propagate_body.glsl"
-
-vec4 encodeSh(vec4 v) { return encodeShRange(v, params.encode.x); }
+#ifdef TO_RESULT
+#include "rgba8_clipping.glsl"
+vec4 encodeSh(vec4 v) { return encodeShNotingClips(v, params.encode.x); }
+#else
+vec4 encodeSh(vec4 v) { return encodeShRange(v, params.encode.x); } // not called: no result here
+#endif
 
 uint pack3(vec3 v) {
     uvec3 q = uvec3(round(clamp(v / params.encode.x * 511.0 + 512.0, 0.0, 1023.0)));

@@ -153,6 +153,7 @@ void LightPropagationVolume::release() {
 
 void LightPropagationVolume::remake(const LpvSettings& s) {
     release();
+    clippingReported_ = 0.0f;
     rsm_ = std::make_unique<ReflectiveShadowMap>(device_, s.rsmSize);
     volumes_ = std::make_unique<LpvVolumes>(device_, s);
     cascades_.resize(s.cascades);
@@ -192,6 +193,27 @@ void LightPropagationVolume::warnIfAllocatedOverBudget() const {
               " MiB (the budget check's count)" +
               (allocated > planned ? ": the device allocates more than they hold, such as sizes rounded up"
                                    : std::string()));
+}
+
+void LightPropagationVolume::reportRgba8Clipping(engine::FrameProfiler* profiler) {
+    const Rgba8Clipping* clipping = volumes_ ? volumes_->clipping() : nullptr;
+    if (!clipping) return;
+    const auto& peaks = clipping->peaks();
+    const auto worst = std::max_element(peaks.begin(), peaks.end());
+    // From kReportedClipping on, once, and again when the light over the range grows by a tenth:
+    // a steady scene that clips says so once, not every frame.
+    if (*worst < kReportedClipping || *worst <= clippingReported_ * 1.1f) return;
+    clippingReported_ = *worst;
+    // Short enough for a profiler note (FrameProfiler::Note::kTextBytes).
+    char text[192];
+    std::snprintf(text, sizeof text,
+                  "cascade %d met light %.2fx gi.rgba8_range (%g); above it light is lost: set "
+                  "gi.rgba8_range to %g or more (frame %llu)",
+                  int(worst - peaks.begin()), double(*worst), double(settings_.rgba8Range),
+                  double(rangeToHold(settings_.rgba8Range, *worst)),
+                  static_cast<unsigned long long>(clipping->peaksFrame()));
+    log::warn(std::string("gi: RGBA8 volumes clip: ") + text);
+    if (profiler) profiler->note(kRgba8ClippingNoteTopic, text);
 }
 
 void LightPropagationVolume::update(const engine::Config& config, const engine::Renderer& renderer,
@@ -362,7 +384,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             std::array<VplSource, 1 + SpotLightRsms::kMaxRsms> sources;
             sources[0] = {cascade.vpls, settings_.vplSlots(), glm::vec4(cascade.lightDirection, 0.0f)};
             const uint32_t n = 1 + spotRsms_->sourcesReaching(grid, std::span(sources).subspan(1));
-            volumes_->inject(cmd, std::span(sources.data(), n), grid, settings_.intensity);
+            volumes_->inject(cmd, std::span(sources.data(), n), grid, settings_.intensity, c);
             work(injectWork(settings_, uint64_t(n - 1) * spotLightVplSlots(settings_), volumeDraw()));
         }
         {
@@ -399,6 +421,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         }
         work(lightsWork);
     }
+    reportRgba8Clipping(profiler);
     // The targets are 1/divisor of the G-buffer per axis (resolutionDivisor()); each texel looks
     // up the G-buffer pixel at texel x divisor, and the lighting pass rebuilds the rest.
     const uint32_t divisor = settings_.resolutionDivisor;

@@ -163,6 +163,7 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
     SamplerDesc linear;
     linear.mipFilter = Filter::Nearest;
     linearSampler_ = device.createSampler(linear);
+    if (encoded()) clipping_ = std::make_unique<Rgba8Clipping>(device);
 }
 
 LpvVolumes::~LpvVolumes() {
@@ -188,11 +189,12 @@ void LpvVolumes::inject(rhi::CommandList& cmd, rhi::BufferHandle vpls, uint32_t 
 }
 
 void LpvVolumes::inject(rhi::CommandList& cmd, std::span<const VplSource> sources, const VolumeGrid& grid,
-                        float intensity) {
+                        float intensity, uint32_t cascade) {
     using namespace rhi;
     for (TextureHandle t : inject_)
         cmd.clearTexture(t, {0, 0, 0, 0});
     injectedRange_ = encodeRange(grid);
+    injectedCascade_ = cascade;
     InjectUniforms u;
     u.gridOrigin = glm::vec4(grid.origin, grid.cellSize);
     u.intensity = glm::vec4(intensity, 0, 0, 0);
@@ -270,6 +272,7 @@ void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::Text
             if (!fromInjection) cmd.bindStorageImage(4 + t, partial_[(i + 1) % 2][t]);
             if (!last) cmd.bindStorageImage(7 + t, partial_[i % 2][t]);
         }
+        if (last && clipping_) clipping_->bind(cmd, injectedCascade_);
         cmd.dispatch((n + 15) / 16, (n + 15) / 16, (n + column - 1) / column);
     };
     if (!shell_) {

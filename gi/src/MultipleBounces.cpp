@@ -83,6 +83,7 @@ void MultipleBounces::add(rhi::CommandList& cmd, LpvVolumes& volumes, const Geom
             cmd.bindTexture(1 + c, bounce_[c], pointSampler_);
             cmd.bindStorageImage(4 + c, result[c]);
         }
+        if (Rgba8Clipping* clipping = volumes.clipping()) clipping->bind(cmd, volumes.injectedCascade());
         cmd.dispatch(groups, groups, groups);
         source = &bounce_;
     }

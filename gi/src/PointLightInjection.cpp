@@ -82,7 +82,7 @@ PointLightInjection::~PointLightInjection() {
 }
 
 uint32_t PointLightInjection::inject(rhi::CommandList& cmd, std::span<const engine::Light> lights,
-                                     const LpvVolumes& volumes, const VolumeGrid& grid, float intensityScale,
+                                     LpvVolumes& volumes, const VolumeGrid& grid, float intensityScale,
                                      const std::array<rhi::TextureHandle, 3>* result, uint32_t cascade,
                                      std::span<const uint32_t> skip) {
     const std::array<rhi::TextureHandle, 3>& target = result ? *result : volumes.accumulated();
@@ -112,6 +112,7 @@ uint32_t PointLightInjection::inject(rhi::CommandList& cmd, std::span<const engi
     cmd.bindUniformBuffer(1, buffer);
     for (uint32_t c = 0; c < 3; ++c)
         cmd.bindStorageImage(2 + c, target[c]);
+    if (Rgba8Clipping* clipping = volumes.clipping()) clipping->bind(cmd, cascade);
     const uint32_t blocks = (volumes.gridSize() + kBlock - 1) / kBlock;
     cmd.dispatch(blocks, blocks, blocks);
     return count_;

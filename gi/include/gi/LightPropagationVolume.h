@@ -93,6 +93,8 @@ private:
     }
     void remake(const LpvSettings& settings);
     void warnIfAllocatedOverBudget() const;
+    // rgba8: says when the volumes clip (Rgba8Clipping), once and again when it gets worse.
+    void reportRgba8Clipping(engine::FrameProfiler* profiler);
     void release();
 
     rhi::Device& device_;
@@ -120,6 +122,7 @@ private:
     uint32_t lightUpdates_ = ~0u;     // bit c: cascade c's light half runs this frame
     uint32_t volumeUpdates_ = ~0u;    // bit c: cascade c's volume half runs this frame
     bool allocationCheckDue_ = false; // warnIfAllocatedOverBudget after the next lookup
+    float clippingReported_ = 0.0f;   // the peak last reported (reportRgba8Clipping), 0: none
     uint32_t cascadesValid_ = 0;      // bit c: cascade c's result holds a solution
     const engine::Renderer* renderer_ = nullptr;
     std::unique_ptr<ReflectiveShadowMap> rsm_;

@@ -7,11 +7,13 @@
 
 #include "gi/LpvReference.h"
 #include "gi/LpvSettings.h"
+#include "gi/Rgba8Clipping.h"
 #include "rhi/Device.h"
 
 #include <glm/vec4.hpp>
 
 #include <array>
+#include <memory>
 #include <span>
 #include <string>
 
@@ -70,9 +72,10 @@ public:
     void inject(rhi::CommandList& cmd, rhi::BufferHandle vpls, uint32_t vplCount, const VolumeGrid& grid,
                 glm::vec3 lightDirection, float intensity);
     // Clears the injection volume and adds the VPLs of every source (several lights share the
-    // volume), all in one pass per slice.
+    // volume), all in one pass per slice. `cascade`: whose record (Rgba8Clipping) the rgba8
+    // encodes of what is propagated from this injection note clipping in.
     void inject(rhi::CommandList& cmd, std::span<const VplSource> sources, const VolumeGrid& grid,
-                float intensity);
+                float intensity, uint32_t cascade = 0);
     // Propagates `iterations` (>= 1) times from the injection volume, in the units of the grid last
     // injected (rgba8: injectedEncodeRange(); std::logic_error before any inject()); accumulated() then holds
     // the injected volume plus every iteration's propagated light. With `faceTransmittance` (GeometryVolume),
@@ -100,6 +103,11 @@ public:
     }
     // The range of the volume last injected (inject()), in which propagate() and the bounces encode.
     float injectedEncodeRange() const { return injectedRange_; }
+    // The cascade last injected (inject()'s `cascade`).
+    uint32_t injectedCascade() const { return injectedCascade_; }
+    // rgba8: where encodes note light over the range; null for the float formats, which do not clip.
+    Rgba8Clipping* clipping() { return clipping_.get(); }
+    const Rgba8Clipping* clipping() const { return clipping_.get(); }
     uint32_t gridSize() const { return settings_.gridSize; }
 
 private:
@@ -108,6 +116,8 @@ private:
     uint32_t columnLength_;
     bool layered_;               // injection in one layered draw (rhi Caps::vertexShaderLayer)
     float injectedRange_ = 0.0f; // encodeRange of the grid last injected
+    uint32_t injectedCascade_ = 0;
+    std::unique_ptr<Rgba8Clipping> clipping_; // rgba8 only
     std::array<rhi::TextureHandle, 3> inject_, accum_;
     // Partial sums between iterations, ping and pong, packed (packedTexelCount texels per cell),
     // partialSumSize^3.

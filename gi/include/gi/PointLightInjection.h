@@ -43,7 +43,7 @@ public:
     // coarse cascade kept from an earlier frame does, see LightPropagationVolume::renderIndirect).
     // `skip`: indices into `lights` left out (spot and point lights with an RSM of their own, SpotLightRsms).
     // Returns the lights added.
-    uint32_t inject(rhi::CommandList& cmd, std::span<const engine::Light> lights, const LpvVolumes& volumes,
+    uint32_t inject(rhi::CommandList& cmd, std::span<const engine::Light> lights, LpvVolumes& volumes,
                     const VolumeGrid& grid, float intensityScale,
                     const std::array<rhi::TextureHandle, 3>* result = nullptr, uint32_t cascade = 0,
                     std::span<const uint32_t> skip = {});
