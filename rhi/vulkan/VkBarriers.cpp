@@ -10,30 +10,27 @@ constexpr VkPipelineStageFlags2 kAllStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BI
 constexpr VkAccessFlags2 kAllWrites = VK_ACCESS_2_MEMORY_WRITE_BIT;
 constexpr VkAccessFlags2 kAllAccess = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
 
-} // namespace
-
-void fullBarrier(VkCommandBuffer cmd) {
+// Every earlier write, by every stage, made available to and visible at `dstStages`' `dstAccess`.
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 dstStages, VkAccessFlags2 dstAccess) {
     VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
     barrier.srcStageMask = kAllStages;
     barrier.srcAccessMask = kAllWrites;
-    barrier.dstStageMask = kAllStages;
-    barrier.dstAccessMask = kAllAccess;
+    barrier.dstStageMask = dstStages;
+    barrier.dstAccessMask = dstAccess;
     VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     dep.memoryBarrierCount = 1;
     dep.pMemoryBarriers = &barrier;
     vkCmdPipelineBarrier2(cmd, &dep);
 }
 
+} // namespace
+
+void fullBarrier(VkCommandBuffer cmd) {
+    memoryBarrier(cmd, kAllStages, kAllAccess);
+}
+
 void hostReadBarrier(VkCommandBuffer cmd) {
-    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    barrier.srcStageMask = kAllStages;
-    barrier.srcAccessMask = kAllWrites;
-    barrier.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-    barrier.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(cmd, &dep);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
 }
 
 void transition(VkCommandBuffer cmd, VulkanTexture& texture, uint32_t baseMip, uint32_t mipCount,
