@@ -204,15 +204,20 @@ void LightPropagationVolume::reportRgba8Clipping(engine::FrameProfiler* profiler
     // a steady scene that clips says so once, not every frame.
     if (*worst < kReportedClipping || *worst <= clippingReported_ * 1.1f) return;
     clippingReported_ = *worst;
-    // Short enough for a profiler note (FrameProfiler::Note::kTextBytes).
-    char text[192];
-    std::snprintf(text, sizeof text,
+    // No heap: a steady frame may report it. The note leaves out the log's prefix and is short
+    // enough for FrameProfiler::Note::kTextBytes.
+    static constexpr char kPrefix[] = "gi: RGBA8 volumes clip: ";
+    char line[sizeof kPrefix + 192];
+    char* const text = line + sizeof kPrefix - 1;
+    std::snprintf(line, sizeof kPrefix, "%s", kPrefix);
+    const int cascade = int(worst - peaks.begin());
+    std::snprintf(text, 192,
                   "cascade %d met light %.2fx gi.rgba8_range (%g); above it light is lost: set "
                   "gi.rgba8_range to %g or more (frame %llu)",
-                  int(worst - peaks.begin()), double(*worst), double(settings_.rgba8Range),
+                  cascade, double(*worst), double(settings_.rgba8Range),
                   double(rangeToHold(settings_.rgba8Range, *worst)),
-                  static_cast<unsigned long long>(clipping->peaksFrame()));
-    log::warn(std::string("gi: RGBA8 volumes clip: ") + text);
+                  static_cast<unsigned long long>(clipping->peakFrames()[size_t(cascade)]));
+    log::warn(line);
     if (profiler) profiler->note(kRgba8ClippingNoteTopic, text);
 }
 

@@ -22,9 +22,8 @@ float rangeToHold(float range, float peak) {
 }
 
 Rgba8Clipping::Rgba8Clipping(rhi::Device& device)
-    : device_(device), regions_(std::max(1u, device.caps().framesInFlight)) {
-    if (regions_ > regionFrame_.size())
-        throw std::runtime_error("gi: rgba8 clipping records: more frames in flight than kept");
+    : device_(device), regions_(std::max(1u, device.caps().framesInFlight)), regionFrame_(regions_, 0),
+      regionCascades_(regions_, 0) {
     buffer_ =
         device.createBuffer({kRecordBytes * kCascades * regions_, rhi::kBufferStorage,
                              rhi::MemoryAccess::HostRead, "lpv rgba8 clipping", "debug.rgba8_clipping"});
@@ -46,12 +45,13 @@ void Rgba8Clipping::takeIn(uint64_t frame) {
     frame_ = frame;
     const uint32_t region = uint32_t(frame % regions_);
     // Written framesInFlight or more frames ago: finished, since beginFrame() of this frame waited.
-    if (regionFrame_[region] != 0) {
-        for (uint32_t c = 0; c < kCascades; ++c) {
-            if (!(regionCascades_[region] & (1u << c))) continue;
-            peaks_[c] = std::bit_cast<float>(*recordAt(mapped_, region, c));
-        }
-        peaksFrame_ = regionFrame_[region];
+    // A frame that recorded nothing (GI off) leaves a region to be read later than a newer one:
+    // a cascade keeps the newest frame's peak.
+    const uint64_t written = regionFrame_[region];
+    for (uint32_t c = 0; c < kCascades; ++c) {
+        if (written == 0 || !(regionCascades_[region] & (1u << c)) || written <= peakFrames_[c]) continue;
+        peaks_[c] = std::bit_cast<float>(*recordAt(mapped_, region, c));
+        peakFrames_[c] = written;
     }
     for (uint32_t c = 0; c < kCascades; ++c)
         *recordAt(mapped_, region, c) = 0;

@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdlib>
+#include <initializer_list>
 #include <new>
 
 namespace {
@@ -52,10 +53,11 @@ void operator delete[](void* p, std::size_t) noexcept {
 using namespace lpv;
 
 // Heap allocations on this thread while 4 frames of `scene` (GI on) are recorded and submitted,
-// after 6 warm-up frames. `check` looks at the profiler and the LPV afterwards.
+// after 6 warm-up frames, with `extra` settings. `check` looks at the profiler and the LPV afterwards.
 template <typename Check>
 uint64_t steadyStateAllocations(const test::BackendUnderTest& backend, const engine::Scene& scene,
-                                float cellSize, Check&& check) {
+                                float cellSize, Check&& check,
+                                std::initializer_list<const char*> extra = {}) {
     rhi::DeviceConfig config;
     config.backend = backend.kind;
     config.glHeadless = backend.glHeadless;
@@ -65,6 +67,8 @@ uint64_t steadyStateAllocations(const test::BackendUnderTest& backend, const eng
     settings.applyOverride("gi.enabled=true");
     settings.applyOverride("gi.bounces=2"); // every GI pass, the further bounce included
     settings.set(*engine::SettingRegistry::global().find("gi.cell_size"), double(cellSize), "test");
+    for (const char* e : extra)
+        settings.applyOverride(e);
     engine::Renderer renderer(*device, 160, 120);
     renderer.setScene(scene);
     const auto profile = platforms::loadPlatformProfile("pc");
@@ -97,6 +101,26 @@ TEST_CASE("steady state: a frame with GI and the profiler allocates nothing") {
             const uint64_t n = steadyStateAllocations(
                 backend, engine::buildCornellBox(), 0.17f,
                 [](const engine::FrameProfiler&, const gi::LightPropagationVolume&) {});
+            MESSAGE(backend.name << ": " << n << " allocations in 4 steady-state frames");
+            CHECK(n == 0);
+        }
+    }
+}
+
+TEST_CASE("steady state: rgba8 volumes that clip, read back and reported, allocate nothing") {
+    for (const auto& backend : test::selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            // Range 4 clips the Cornell box (2.4x): every frame binds and reads back the clipping
+            // records, and the report (during the warm-up) keeps its peak.
+            const uint64_t n = steadyStateAllocations(
+                backend, engine::buildCornellBox(), 0.17f,
+                [](const engine::FrameProfiler&, const gi::LightPropagationVolume& lpv) {
+                    REQUIRE(lpv.volumes());
+                    REQUIRE(lpv.volumes()->clipping());
+                    const auto& peaks = lpv.volumes()->clipping()->peaks();
+                    CHECK(*std::max_element(peaks.begin(), peaks.end()) > gi::kReportedClipping);
+                },
+                {"gi.sh_format=rgba8", "gi.rgba8_range=4"});
             MESSAGE(backend.name << ": " << n << " allocations in 4 steady-state frames");
             CHECK(n == 0);
         }

@@ -14,6 +14,7 @@
 #include <array>
 #include <cstdint>
 #include <string_view>
+#include <vector>
 
 namespace lpv::gi {
 
@@ -22,12 +23,12 @@ inline constexpr std::string_view kRgba8ClippingNoteTopic = "GI RGBA8 clipping";
 
 // The peak (light over the range, as a multiple of it) from which LightPropagationVolume reports
 // clipping. A few of the brightest cells a little over lose little, and a larger range rounds
-// every dim cell more coarsely: at the default range (12) the Cornell box read 1.32x with its mean
+// every dim cell more coarsely: at the default range (12) the Cornell box read 1.32x (320x240) with its mean
 // indirect light 0.8% under RGBA16F's, and range 20, which does not clip, was worse per pixel
 // (6.9% against 5.4% of the mean; the atrium 9.5% against 6.1%). Clipped light no longer
 // propagates, so the loss grows fast beyond: the Cornell box read 1.43x at range 10 with its
 // light 2.5% under, 1.57x at 8 with 13% under; the atrium 1.56x at 8, 0.6% under, and 1.85x at 6,
-// 5% under (640x360, Vulkan, PC settings).
+// 5% under (640x360, Vulkan; the per-pixel figures with the PC settings, 0.2 m cells).
 inline constexpr float kReportedClipping = 1.5f;
 
 // The gi.rgba8_range that would hold light `peak` times the range `range`, with a quarter to spare
@@ -54,8 +55,8 @@ public:
     // as a multiple of its range, 0 when nothing was over. Kept until that cascade is encoded again
     // (a coarse cascade kept between updates keeps its value).
     const std::array<float, kCascades>& peaks() const { return peaks_; }
-    // The frame those peaks are from (0: none finished yet).
-    uint64_t peaksFrame() const { return peaksFrame_; }
+    // The frame each peak is from (0: none finished yet).
+    const std::array<uint64_t, kCascades>& peakFrames() const { return peakFrames_; }
 
 private:
     void takeIn(uint64_t frame);
@@ -66,10 +67,10 @@ private:
     uint32_t* mapped_ = nullptr;
     uint64_t frame_ = 0; // the frame whose region bind() fills
     // Per region: the frame that last wrote it and the cascades it bound.
-    std::array<uint64_t, 4> regionFrame_{};
-    std::array<uint32_t, 4> regionCascades_{};
+    std::vector<uint64_t> regionFrame_;
+    std::vector<uint32_t> regionCascades_;
     std::array<float, kCascades> peaks_{};
-    uint64_t peaksFrame_ = 0;
+    std::array<uint64_t, kCascades> peakFrames_{};
 };
 
 } // namespace lpv::gi
