@@ -16,14 +16,9 @@ layout(binding = 4, SH_FORMAT) uniform image3D resultRed;
 layout(binding = 5, SH_FORMAT) uniform image3D resultGreen;
 layout(binding = 6, SH_FORMAT) uniform image3D resultBlue;
 
-#ifdef SH_ENCODED
-#include "rgba8_clipping.glsl"
-vec4 decoded(vec4 v) { return decodeShRange(v, params.encode.x); }
-vec4 encoded(vec4 v) { return encodeShNotingClips(v, params.encode.x); }
-#else
-vec4 decoded(vec4 v) { return v; }
-vec4 encoded(vec4 v) { return v; }
-#endif
+#include "result_sh.glsl"
+vec4 decoded(vec4 v) { return loadResultSh(v, params.encode.x); }
+vec4 encoded(vec4 v) { return storeResultSh(v, params.encode.x); }
 
 void main() {
     const ivec3 c = ivec3(gl_GlobalInvocationID);

@@ -36,14 +36,9 @@ layout(binding = 4, SH_FORMAT) uniform image3D accBlue;
 
 shared uint reaching[MAX_LIGHTS / 32];
 
-#ifdef SH_ENCODED
-#include "rgba8_clipping.glsl"
-vec4 encodeSh(vec4 v) { return encodeShNotingClips(v, params.encode.x); }
-vec4 decodeSh(vec4 v) { return decodeShRange(v, params.encode.x); }
-#else
-vec4 encodeSh(vec4 v) { return v; }
-vec4 decodeSh(vec4 v) { return v; }
-#endif
+#include "result_sh.glsl"
+vec4 encodeSh(vec4 v) { return storeResultSh(v, params.encode.x); }
+vec4 decodeSh(vec4 v) { return loadResultSh(v, params.encode.x); }
 
 // One light at one cell centre (`k` = s^2 / pi): the formula of gi/AnalyticLight.h, or nothing.
 bool addLight(AnalyticLight l, vec3 centre, float halfCell, float k, inout vec4 r, inout vec4 g, inout vec4 b) {
