@@ -1,7 +1,8 @@
 // Deferred lighting into the HDR target: the shadowed sun, punctual lights, emissive, and the
 // indirect irradiance (filled by the GI, or the ambient constant) times SSAO. Lambertian diffuse
-// (none for metals) and GGX specular from the sun and the lights, plus the indirect light's glossy
-// radiance weighted by the GGX lobe's directional albedo. Two variants
+// (none for metals) under a GGX specular layer from the sun and the lights, plus the indirect
+// light's glossy radiance weighted by the GGX lobe's directional albedo; the diffuse base keeps
+// what the specular layer does not reflect (glTF's fresnel_mix). Two variants
 // (engine/CMakeLists.txt): `lighting` for frames where no punctual light has a shadow map, and
 // `lighting_shadowed` (LIGHT_SHADOWS) with the lights' shadow atlas; the renderer picks one per
 // frame. With the shadow lookups compiled in, even unexecuted, llvmpipe's lighting pass took 30%
@@ -160,24 +161,28 @@ struct Surface {
     float maskView;      // the view's masking term over n.v: G1(v) / (n.v)
 };
 
-// The specular reflection of light from direction l per unit irradiance (irradiance holds n.l):
-// GGX D x Smith-Schlick G x Schlick F / (4 n.l n.v), the lobe the glossy term's weight integrates.
-vec3 specularResponse(Surface s, vec3 l) {
+// How a surface answers light from direction l, per unit irradiance (irradiance holds n.l).
+struct Response {
+    vec3 specular; // GGX D x Smith-Schlick G x Schlick F / (4 n.l n.v): the lobe the glossy weight integrates
+    vec3 diffuse;  // 1 - F: what the specular layer lets through to the diffuse base (glTF's fresnel_mix)
+};
+
+Response responseTo(Surface s, vec3 l) {
     float nl = dot(s.n, l);
-    if (nl <= 0.0) return vec3(0.0);
+    if (nl <= 0.0) return Response(vec3(0.0), vec3(0.0));
     vec3 h = normalize(l + s.v);
     float nh = max(dot(s.n, h), 0.0), vh = max(dot(s.v, h), 0.0);
     float denom = nh * nh * (s.alpha2 - 1.0) + 1.0;
     float d = s.alpha2 / (PI * denom * denom);
     float maskLight = 1.0 / (nl * (1.0 - s.k) + s.k); // G1(l) / (n.l)
     vec3 fresnel = s.f0 + (1.0 - s.f0) * pow(1.0 - vh, 5.0);
-    return fresnel * (d * maskLight * s.maskView * 0.25);
+    return Response(fresnel * (d * maskLight * s.maskView * 0.25), 1.0 - fresnel);
 }
 
-// What a punctual light gives the surface: its irradiance (for the diffuse term) and the specular
-// radiance that irradiance reflects toward the eye.
+// What a punctual light gives the surface: the irradiance its diffuse base keeps (after the
+// specular layer's Fresnel) and the specular radiance reflected toward the eye.
 struct LightArrival {
-    vec3 irradiance;
+    vec3 diffuseIrradiance;
     vec3 specular;
 };
 
@@ -195,7 +200,8 @@ LightArrival punctualArrival(PunctualLight l, vec3 p, Surface s) {
     }
     if (l.directionType.w > 1.5) atten *= smoothstep(l.cone.x, l.cone.y, dot(-dir, l.directionType.xyz));
     vec3 e = l.colorIntensity.rgb * l.colorIntensity.w * atten * max(dot(n, dir), 0.0);
-    return LightArrival(e, e * specularResponse(s, dir));
+    Response r = responseTo(s, dir);
+    return LightArrival(e * r.diffuse, e * r.specular);
 }
 
 void main() {
@@ -228,14 +234,15 @@ void main() {
 
     vec3 L = -frame.sunDirection.xyz;
     vec3 sunIrradiance = frame.sunRadiance.rgb * max(dot(n, L), 0.0) * shadow;
-    vec3 irradiance = sunIrradiance;
-    vec3 specular = sunIrradiance * specularResponse(surface, L);
+    Response sunResponse = responseTo(surface, L);
+    vec3 irradiance = sunIrradiance * sunResponse.diffuse; // what the diffuse base receives
+    vec3 specular = sunIrradiance * sunResponse.specular;
 #ifdef LIGHT_SHADOWS
     // The lights without a shadow map this frame, then those with one.
     for (int i = 0; i < frame.counts.x; ++i) {
         if (hasShadowMap(i)) continue;
         LightArrival a = punctualArrival(lights[i], p, surface);
-        irradiance += a.irradiance;
+        irradiance += a.diffuseIrradiance;
         specular += a.specular;
     }
     for (int k = 0; k < shadows.count.x; ++k) {
@@ -245,25 +252,27 @@ void main() {
         int view = s.z == 6 ? s.y + cubeFace(fromLight) : s.y;
         LightArrival a = punctualArrival(l, p, surface);
         float lit = shadowInView(view, shadows.params[k].x, p, n, length(fromLight));
-        irradiance += a.irradiance * lit;
+        irradiance += a.diffuseIrradiance * lit;
         specular += a.specular * lit;
     }
 #else
     for (int i = 0; i < frame.counts.x; ++i) {
         LightArrival a = punctualArrival(lights[i], p, surface);
-        irradiance += a.irradiance;
+        irradiance += a.diffuseIrradiance;
         specular += a.specular;
     }
 #endif
     vec3 direct = diffuseColor / PI * irradiance + specular;
-    vec3 indirect = diffuseColor / PI * light.irradiance * ao;
-    vec3 emissive = textureLod(emissiveTexture, vUv, 0.0).rgb;
     // Glossy: the radiance the lobe gathers (the GI's march around the mirror direction, or its
     // lookup's lobe-mean reflection; the ambient constant / pi without GI), times the fraction the
-    // lobe sends to the eye, F0 x scale + bias (the split sum, SpecularAlbedo.h). Added on top of
-    // the diffuse without taking its share away.
+    // lobe sends to the eye, F0 x scale + bias (the split sum, SpecularAlbedo.h). The diffuse base
+    // gets the rest of the indirect light: 1 - that fraction, the hemisphere's average of the
+    // 1 - F the direct lights take above (the usual split-sum counterpart of glTF's fresnel_mix).
     vec2 scaleBias = specularAlbedoAt(specularAlbedoTexture, cosView, roughness, 0).rg;
-    vec3 glossy = (surface.f0 * scaleBias.x + scaleBias.y) * light.glossy * ao;
+    vec3 specularAlbedo = surface.f0 * scaleBias.x + scaleBias.y;
+    vec3 glossy = specularAlbedo * light.glossy * ao;
+    vec3 indirect = diffuseColor / PI * light.irradiance * (1.0 - specularAlbedo) * ao;
+    vec3 emissive = textureLod(emissiveTexture, vUv, 0.0).rgb;
 
     vec3 color = direct + indirect + glossy + emissive;
     if (debugView == 1) color = albedo;

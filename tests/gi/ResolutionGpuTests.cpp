@@ -30,15 +30,10 @@ CornellFrame renderAt(rhi::Device& device, const char* resolution) {
     return renderCornell(device, settings);
 }
 
-float linearFromSrgb(float c) {
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
-// The indirect debug view's value at pixel (x, y) from an irradiance: albedo x E / pi (SSAO off).
+// The indirect debug view's value at pixel (x, y) from an irradiance: albedo x E / pi, less what
+// the specular layer takes (SSAO off).
 glm::vec3 indirectView(const CornellFrame& f, uint32_t x, uint32_t y, glm::vec3 irradiance) {
-    const glm::vec4 a = f.albedo.at(x, y);
-    const glm::vec3 albedo(linearFromSrgb(a.r), linearFromSrgb(a.g), linearFromSrgb(a.b));
-    return albedo * irradiance / 3.14159265f;
+    return f.linearAlbedoAt(x, y) * f.diffuseKept(x, y) * irradiance / 3.14159265f;
 }
 
 // Plain bilinear upsampling of the small irradiance target with the rebuild's own footprint

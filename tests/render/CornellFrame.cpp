@@ -4,17 +4,27 @@
 #include "../support/TestDevice.h"
 
 #include "engine/config/Config.h"
+#include "engine/render/SpecularAlbedo.h"
 #include "engine/scene/BuiltinScenes.h"
 #include "gi/LightPropagationVolume.h"
 #include "platforms/PlatformProfile.h"
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
 
 namespace lpv::test {
+namespace {
+
+// A stored sRGB byte (as [0,1]) in linear light.
+float linearFromSrgb(float c) {
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+} // namespace
 
 float luminance(glm::vec4 c) {
     return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
@@ -58,6 +68,22 @@ glm::vec3 CornellFrame::worldAt(uint32_t x, uint32_t y) const {
     return glm::vec3(w) / w.w;
 }
 
+glm::vec3 CornellFrame::linearAlbedoAt(uint32_t x, uint32_t y) const {
+    const glm::vec4 a = albedo.at(x, y);
+    return {linearFromSrgb(a.r), linearFromSrgb(a.g), linearFromSrgb(a.b)};
+}
+
+glm::vec3 CornellFrame::diffuseKept(uint32_t x, uint32_t y) const {
+    const glm::vec4 n = normal.at(x, y);
+    const glm::vec3 toEye = glm::normalize(camera.position - worldAt(x, y));
+    const float cosView = std::max(glm::dot(glm::normalize(glm::vec3(n)), toEye), 0.0f);
+    const engine::SpecularAlbedo lobe =
+        engine::specularAlbedoTable().at(cosView, std::clamp(n.a, 0.0f, 1.0f));
+    // F0: 4% for dielectrics, the albedo for metals (albedo's alpha: metallic).
+    const glm::vec3 f0 = glm::mix(glm::vec3(0.04f), linearAlbedoAt(x, y), albedo.at(x, y).a);
+    return 1.0f - (f0 * lobe.scale + lobe.bias);
+}
+
 CornellFrame renderSceneFrame(rhi::Device& device, engine::Scene scene,
                               const std::vector<std::string>& settings,
                               const std::function<void(engine::Renderer&)>& prepare, uint32_t width,
@@ -95,6 +121,7 @@ CornellFrame renderSceneFrame(rhi::Device& device, engine::Scene scene,
         f.glossy = readImage(device, renderer.glossy());
         f.indirect = readImage(device, renderer.indirect());
         f.albedo = readImage(device, renderer.gbuffer().albedo);
+        f.normal = readImage(device, renderer.gbuffer().normal);
         f.indirectDivisor = renderer.indirectDivisor();
         if (lpv.settings().enabled)
             for (uint32_t c = 0; c < lpv.cascadeCount(); ++c) {

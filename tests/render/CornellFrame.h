@@ -26,7 +26,8 @@ struct CornellFrame {
     Image depth;
     Image glossy;   // the glossy radiance target (linear, before the specular weight)
     Image indirect; // the indirect irradiance target (linear)
-    Image albedo;   // the G-buffer's albedo, as [0,1] floats of the stored sRGB bytes
+    Image albedo;   // the G-buffer's albedo, as [0,1] floats of the stored sRGB bytes; alpha: metallic
+    Image normal;   // the G-buffer's world normal; alpha: roughness
     // The two targets above are 1/indirectDivisor of the frame per axis (gi.resolution): texel t
     // holds the answer for pixel t x indirectDivisor.
     uint32_t indirectDivisor = 1;
@@ -41,6 +42,12 @@ struct CornellFrame {
     bool pixelOf(glm::vec3 world, uint32_t& x, uint32_t& y) const;
     // The surface point pixel (x, y)'s centre shows, from the read-back depth (not on the sky).
     glm::vec3 worldAt(uint32_t x, uint32_t y) const;
+    // The G-buffer's albedo at pixel (x, y), linear.
+    glm::vec3 linearAlbedoAt(uint32_t x, uint32_t y) const;
+    // The share of the indirect light pixel (x, y)'s diffuse base keeps, per channel, as the
+    // lighting pass takes it: 1 - the specular lobe's directional albedo (F0 x scale + bias of
+    // engine/render/SpecularAlbedo.h's table at the pixel's view angle and roughness).
+    glm::vec3 diffuseKept(uint32_t x, uint32_t y) const;
     // The glossy target's texel that holds pixel (x, y)'s answer, or its nearest.
     glm::vec4 glossyAt(uint32_t x, uint32_t y) const {
         return glossy.at(x / indirectDivisor, y / indirectDivisor);
