@@ -175,6 +175,22 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     made_ = true;
 }
 
+void LightPropagationVolume::replaceUpdateResources(const LpvSettings& s) {
+    // The old resources' destructors wait for the frames in flight that still use them.
+    if (s.rsmSize != settings_.rsmSize) {
+        rsm_ = std::make_unique<ReflectiveShadowMap>(device_, s.rsmSize);
+        spotRsms_ = std::make_unique<SpotLightRsms>(device_, s);
+    }
+    if ((s.bounces > 1) != (bounces_ != nullptr)) {
+        // The geometry volume keeps surfel albedo for the bounces only; it is built anew for every
+        // cascade update, so nothing of it is kept either.
+        geometry_.reset();
+        bounces_.reset();
+        if (s.occlusion) geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize, s.bounces > 1);
+        if (s.bounces > 1) bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_);
+    }
+}
+
 // The budget check counts the bytes the configuration's resources hold; the device may allocate
 // more (lavapipe rounds 3D images up: the README's Xbox 360 example holds 2.98 MiB and gets 3.14
 // MiB), which the profiler's report then shows over the GI memory budget: say why, once after each
@@ -251,14 +267,22 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
     s.lightRsms = std::min(s.lightRsms, lightCount(renderer.punctualLights(), engine::LightType::Spot));
     s.pointLightRsms =
         std::min(s.pointLightRsms, lightCount(renderer.punctualLights(), engine::LightType::Point));
-    const bool resized = !made_ || s.rsmSize != settings_.rsmSize || s.vplCount != settings_.vplCount ||
-                         !volumes_->matches(s) || s.occlusion != (geometry_ != nullptr) ||
-                         (s.bounces > 1) != (bounces_ != nullptr) || s.cascades != settings_.cascades ||
+    const bool resized = !made_ || s.vplCount != settings_.vplCount || !volumes_->matches(s) ||
+                         s.occlusion != (geometry_ != nullptr) || s.cascades != settings_.cascades ||
                          s.lightRsms != settings_.lightRsms || s.pointLightRsms != settings_.pointLightRsms;
-    if (s.enabled && resized) {
+    // What adapt turns (gi/GiScheduler.h) changes no cascade's result: the results stay, so the
+    // frame after a step runs the scheduled cascades only, not every one (on PS3 the PC settings'
+    // frame after the RSM step predicted 5.24 ms against 4.59 at most in the cycles around it).
+    const bool updateResized =
+        !resized && (s.rsmSize != settings_.rsmSize || (s.bounces > 1) != (bounces_ != nullptr));
+    if (s.enabled && (resized || updateResized)) {
         checkGiBudget(s, profile_); // throws before anything changes
-        remake(s);
-        cascadesValid_ = 0;
+        if (resized) {
+            remake(s);
+            cascadesValid_ = 0;
+        } else {
+            replaceUpdateResources(s);
+        }
         allocationCheckDue_ = true; // after the next lookup (warnIfAllocatedOverBudget)
     }
     settings_ = s;

@@ -2,17 +2,24 @@
 // sun straight down through the ceiling opening, so the direct light hits only the floor: the
 // ceiling then receives more indirect light with 2 bounces than with 1 (the walls, lit by the
 // floor's bounce, reflect onto it), each further bounce adds less than the one before, and the
-// light a bounce adds over more iterations does not grow (energy stays bounded).
+// light a bounce adds over more iterations does not grow (energy stays bounded). And a change of
+// the bounces or the RSM size while the game runs (adapt's knobs) keeps the cascades.
 #include "../render/CornellFrame.h"
 #include "../support/TestDevice.h"
 
+#include "engine/config/Config.h"
+#include "engine/render/Renderer.h"
 #include "engine/scene/BuiltinScenes.h"
+#include "gi/LightPropagationVolume.h"
+#include "platforms/PlatformProfile.h"
 
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <string>
+#include <tuple>
 
 using namespace lpv;
 using namespace lpv::test;
@@ -150,4 +157,70 @@ TEST_CASE("gi: GL and Vulkan compute the same light with 2 bounces") {
     }
     // Tolerance: 1% of the brightest indirect value per channel, on 99% of the pixels (as with 1).
     checkBackendsAgree(gl.hdr, vk.hdr, "2 bounces, indirect");
+}
+
+TEST_CASE("gi: a change of the RSM size or the bounces mid-run keeps the cascades and ends where a fresh "
+          "run does") {
+    // adapt's knobs change while coarse cascades keep earlier frames' results (gi/GiScheduler.h):
+    // those results stay in use, and once each cascade has been made again, coarsest first, the frame
+    // is the one a run with the new settings from the start gives.
+    const engine::Scene scene = engine::buildCornellBox();
+    const auto settings = [](const char* rsm, const char* bounces) {
+        engine::Config config;
+        for (const char* s :
+             {"gi.enabled=true", "render.debug_view=indirect", "render.ssao=false", "gi.cell_size=0.17",
+              "gi.cascades=3", "gi.coarse_update_interval=2", "gi.occlusion=true", rsm, bounces})
+            config.applyOverride(s, "test");
+        return config;
+    };
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            // From RSM 256 and 2 bounces to a smaller RSM, to 1 bounce, and from 1 bounce back to 2.
+            for (const auto& [rsm, bounces, bouncesBefore] :
+                 {std::tuple{"gi.rsm_size=128", "gi.bounces=2", "gi.bounces=2"},
+                  {"gi.rsm_size=256", "gi.bounces=1", "gi.bounces=2"},
+                  {"gi.rsm_size=256", "gi.bounces=2", "gi.bounces=1"}}) {
+                const engine::Config before = settings("gi.rsm_size=256", bouncesBefore);
+                const engine::Config after = settings(rsm, bounces);
+                // `changeAt` frames at `before` (none: a fresh run), then the rest at `after`.
+                const auto run = [&](int changeAt) {
+                    engine::Renderer renderer(*device, 320, 240);
+                    renderer.setScene(scene);
+                    gi::LightPropagationVolume lpv(*device, platforms::loadPlatformProfile("pc"));
+                    const engine::CameraMatrices camera =
+                        engine::cameraMatrices(*scene.camera, 320.0f / 240.0f);
+                    for (int i = 0; i < 9; ++i) {
+                        const engine::Config& config = i < changeAt ? before : after;
+                        lpv.update(config, renderer, camera);
+                        rhi::CommandList& cmd = device->beginFrame();
+                        renderer.render(cmd, camera, config, nullptr, &lpv);
+                        device->endFrame();
+                    }
+                    device->waitIdle();
+                    return readImage(*device, renderer.hdr());
+                };
+                const Image fresh = run(0);
+                float peak = 0.0f;
+                for (const glm::vec4& t : fresh.texels)
+                    peak = std::max({peak, t.r, t.g, t.b});
+                REQUIRE(peak > 0.0f);
+                // Changed on a frame of each phase of the coarse cascades' cycle, 5 or 4 frames before
+                // the end: enough for cascade 2, then 1, then 0 to be made from the new light.
+                for (const int changeAt : {4, 5}) {
+                    const Image changed = run(changeAt);
+                    float worst = 0.0f;
+                    for (size_t i = 0; i < fresh.texels.size(); ++i)
+                        for (int ch = 0; ch < 3; ++ch)
+                            worst = std::max(worst, std::fabs(changed.texels[i][ch] - fresh.texels[i][ch]));
+                    MESSAGE(backend.name << ": " << std::string(rsm) << ", " << std::string(bounces)
+                                         << " (from " << std::string(bouncesBefore) << ") at frame "
+                                         << changeAt << ": largest difference from a fresh run "
+                                         << worst / peak << " of the peak");
+                    CHECK(worst <= 1e-3f * peak);
+                }
+            }
+            device.expectSilent();
+        }
+    }
 }

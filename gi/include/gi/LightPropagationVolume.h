@@ -5,7 +5,7 @@
 // each a profiler scope under "gi" with its work counts. The volume follows the camera, snapped to
 // whole cells and kept inside the scene. Settings are read every frame; a change of size or format
 // remakes the resources on that frame (not a steady-state frame), after checking the platform
-// profile's budget.
+// profile's budget; a change of the RSM size or the bounces keeps the cascades' results.
 #pragma once
 
 #include "engine/render/IndirectLighting.h"
@@ -92,6 +92,10 @@ private:
         return device_.caps().vertexShaderLayer ? VolumeDraw::Layered : VolumeDraw::PerSlice;
     }
     void remake(const LpvSettings& settings);
+    // The RSM size or the bounces changed (adapt's knobs): only the resources a cascade's update
+    // uses on its way are made again; every cascade keeps its result, so the frame after the change
+    // does not make them all at once.
+    void replaceUpdateResources(const LpvSettings& settings);
     void warnIfAllocatedOverBudget() const;
     // rgba8: says when the volumes clip (Rgba8Clipping), once and again when it gets worse.
     void reportRgba8Clipping(engine::FrameProfiler* profiler);
