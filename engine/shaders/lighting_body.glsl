@@ -2,7 +2,8 @@
 // indirect irradiance (filled by the GI, or the ambient constant) times SSAO. Lambertian diffuse
 // (none for metals) under a GGX specular layer from the sun and the lights, plus the indirect
 // light's glossy radiance weighted by the GGX lobe's directional albedo; the diffuse base keeps
-// what the specular layer does not reflect (glTF's fresnel_mix). Two variants
+// what the specular layer does not reflect (glTF's fresnel_mix, with the mixed F0 of glTF's sample
+// implementation for partly metallic surfaces). Two variants
 // (engine/CMakeLists.txt): `lighting` for frames where no punctual light has a shadow map, and
 // `lighting_shadowed` (LIGHT_SHADOWS) with the lights' shadow atlas; the renderer picks one per
 // frame. With the shadow lookups compiled in, even unexecuted, llvmpipe's lighting pass took 30%
@@ -266,8 +267,8 @@ void main() {
     // Glossy: the radiance the lobe gathers (the GI's march around the mirror direction, or its
     // lookup's lobe-mean reflection; the ambient constant / pi without GI), times the fraction the
     // lobe sends to the eye, F0 x scale + bias (the split sum, SpecularAlbedo.h). The diffuse base
-    // gets the rest of the indirect light: 1 - that fraction, the hemisphere's average of the
-    // 1 - F the direct lights take above (the usual split-sum counterpart of glTF's fresnel_mix).
+    // gets 1 - that fraction of the indirect light: the usual split-sum stand-in for the 1 - F the
+    // direct lights take above (it also gives the base what the lobe's masking loses).
     vec2 scaleBias = specularAlbedoAt(specularAlbedoTexture, cosView, roughness, 0).rg;
     vec3 specularAlbedo = surface.f0 * scaleBias.x + scaleBias.y;
     vec3 glossy = specularAlbedo * light.glossy * ao;
@@ -280,7 +281,7 @@ void main() {
     else if (debugView == 3) color = vec3(length(p - frame.cameraPosition.xyz) / 50.0);
     else if (debugView == 4) color = vec3(ao);
     else if (debugView == 5) color = vec3(shadow);
-    else if (debugView == 6) color = indirect;  // linear indirect diffuse alone (irradiance x diffuse colour / pi)
+    else if (debugView == 6) color = indirect;  // linear indirect diffuse alone, as added above
     else if (debugView == 7) color = glossy;    // linear glossy reflection alone, as added above
     else if (debugView == 8) color = specular;  // linear direct specular alone (sun and lights)
     outColor = vec4(color, 1.0);

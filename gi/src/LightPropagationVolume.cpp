@@ -154,6 +154,7 @@ void LightPropagationVolume::release() {
 void LightPropagationVolume::remake(const LpvSettings& s) {
     release();
     clippingReported_ = 0.0f;
+    madeWith_ = s;
     rsm_ = std::make_unique<ReflectiveShadowMap>(device_, s.rsmSize);
     volumes_ = std::make_unique<LpvVolumes>(device_, s);
     cascades_.resize(s.cascades);
@@ -177,10 +178,14 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
 
 void LightPropagationVolume::replaceUpdateResources(const LpvSettings& s) {
     // The old resources' destructors wait for the frames in flight that still use them.
-    if (s.rsmSize != settings_.rsmSize) {
+    if (s.rsmSize != madeWith_.rsmSize) {
+        // The old ones go first, so the device never holds both sizes.
+        rsm_.reset();
+        spotRsms_.reset();
         rsm_ = std::make_unique<ReflectiveShadowMap>(device_, s.rsmSize);
         spotRsms_ = std::make_unique<SpotLightRsms>(device_, s);
     }
+    madeWith_ = s;
     if ((s.bounces > 1) != (bounces_ != nullptr)) {
         // The geometry volume keeps surfel albedo for the bounces only; it is built anew for every
         // cascade update, so nothing of it is kept either.
@@ -267,14 +272,17 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
     s.lightRsms = std::min(s.lightRsms, lightCount(renderer.punctualLights(), engine::LightType::Spot));
     s.pointLightRsms =
         std::min(s.pointLightRsms, lightCount(renderer.punctualLights(), engine::LightType::Point));
-    const bool resized = !made_ || s.vplCount != settings_.vplCount || !volumes_->matches(s) ||
-                         s.occlusion != (geometry_ != nullptr) || s.cascades != settings_.cascades ||
-                         s.lightRsms != settings_.lightRsms || s.pointLightRsms != settings_.pointLightRsms;
-    // What adapt turns (gi/GiScheduler.h) changes no cascade's result: the results stay, so the
-    // frame after a step runs the scheduled cascades only, not every one (on PS3 the PC settings'
-    // frame after the RSM step predicted 5.24 ms against 4.59 at most in the cycles around it).
+    // Against what the resources were made for, not last frame's settings: a change made while GI
+    // was off still applies when it comes back on.
+    const bool resized = !made_ || s.vplCount != madeWith_.vplCount || !volumes_->matches(s) ||
+                         s.occlusion != (geometry_ != nullptr) || s.cascades != madeWith_.cascades ||
+                         s.lightRsms != madeWith_.lightRsms || s.pointLightRsms != madeWith_.pointLightRsms;
+    // What adapt turns (gi/GiScheduler.h) needs no cascade made again: the results stay (a kept
+    // cascade shows its old bounce count until its next update), so the frame after a step runs the
+    // scheduled cascades only, not every one (on PS3 the PC settings' frame after the RSM step
+    // predicted 5.24 ms against 4.59 at most in the cycles around it).
     const bool updateResized =
-        !resized && (s.rsmSize != settings_.rsmSize || (s.bounces > 1) != (bounces_ != nullptr));
+        !resized && (s.rsmSize != madeWith_.rsmSize || (s.bounces > 1) != (bounces_ != nullptr));
     if (s.enabled && (resized || updateResized)) {
         checkGiBudget(s, profile_); // throws before anything changes
         if (resized) {

@@ -356,3 +356,21 @@ TEST_CASE("gi budget: a change of the RSM size or the bounces keeps the cascades
         CHECK(coarsePropagated == (c.makesEveryCascade ? 2 : 1));
     }
 }
+
+TEST_CASE("gi: a change of gi.rsm_size or gi.vpl_count made while GI is off applies when it comes back on") {
+    AdaptedLpv run(platforms::loadPlatformProfile("pc"),
+                   {"gi.enabled=true", "gi.rsm_size=256", "gi.vpl_count=4096", "gi.budget_policy=fixed"},
+                   engine::buildCornellBox(), 160, 120);
+    run.frame();
+    const uint64_t rsmBytes = run.device->allocations().bytesIn("gi.rsm"),
+                   vplBytes = run.device->allocations().bytesIn("gi.vpl");
+    for (const char* s : {"gi.enabled=false", "gi.rsm_size=128", "gi.vpl_count=1024"}) {
+        run.config.applyOverride(s, "test");
+        run.frame();
+    }
+    run.config.applyOverride("gi.enabled=true", "test");
+    run.frame();
+    // A quarter of the RSM's texels and of the VPLs: the resources were made again at the new sizes.
+    CHECK(run.device->allocations().bytesIn("gi.rsm") * 4 == rsmBytes);
+    CHECK(run.device->allocations().bytesIn("gi.vpl") * 4 == vplBytes);
+}

@@ -104,6 +104,7 @@ private:
     rhi::Device& device_;
     platforms::PlatformProfile profile_;
     LpvSettings settings_;
+    LpvSettings madeWith_; // what the resources were made (or last replaced) for
     bool made_ = false;
     VolumeGrid grid_;
     // Cascade 0 is the finest; each further one has cells twice the size. Scratch (RSM, VPLs,
