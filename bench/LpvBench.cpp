@@ -26,6 +26,7 @@
 #include "engine/profiler/ProfileReport.h"
 #include "engine/render/CameraPath.h"
 #include "engine/render/Renderer.h"
+#include "engine/render/SpecularAlbedoTexture.h"
 #include "engine/scene/BuiltinScenes.h"
 #include "gi/GiBudget.h"
 #include "gi/GiScheduler.h"
@@ -371,6 +372,7 @@ struct NullAtrium {
     std::unique_ptr<rhi::Device> device;
     engine::Scene scene;
     std::unique_ptr<engine::GpuScene> gpu;
+    std::unique_ptr<engine::SpecularAlbedoTexture> specularAlbedo; // the RSMs' material response
 };
 NullAtrium nullAtrium() {
     rhi::DeviceConfig config;
@@ -379,6 +381,7 @@ NullAtrium nullAtrium() {
     a.device = rhi::createDevice(config);
     a.scene = engine::buildAtrium(0.4f);
     a.gpu = std::make_unique<engine::GpuScene>(*a.device, a.scene);
+    a.specularAlbedo = std::make_unique<engine::SpecularAlbedoTexture>(*a.device);
     return a;
 }
 
@@ -389,8 +392,8 @@ uint64_t atriumRsmTriangles(const NullAtrium& atrium, uint32_t rsmSize) {
     const glm::vec3 sun = atrium.scene.lights.at(0).direction;
     rsm.fit({atrium.scene.camera->position - glm::vec3(16.0f), 1.0f, 32}, sun);
     rhi::CommandList& cmd = atrium.device->beginFrame();
-    const uint64_t triangles =
-        rsm.render(cmd, *atrium.gpu, sun, glm::vec3(1.0f), 0.0f, gi::LpvSettings{}.rsmLodTexels);
+    const uint64_t triangles = rsm.render(cmd, *atrium.gpu, atrium.specularAlbedo->texture(), sun,
+                                          glm::vec3(1.0f), 0.0f, gi::LpvSettings{}.rsmLodTexels);
     atrium.device->endFrame();
     return triangles;
 }
@@ -409,10 +412,11 @@ LightRsmTriangles atriumLightRsmTriangles(const NullAtrium& atrium, uint32_t rsm
     const float lodTexels = gi::LpvSettings{}.rsmLodTexels;
     LightRsmTriangles out;
     rhi::CommandList& cmd = atrium.device->beginFrame();
-    out.spot = rsm.renderSpot(cmd, *atrium.gpu, light, reach, lodTexels);
+    out.spot = rsm.renderSpot(cmd, *atrium.gpu, atrium.specularAlbedo->texture(), light, reach, lodTexels);
     light.type = engine::LightType::Point;
     for (uint32_t f = 0; f < gi::kCubeFaces; ++f)
-        out.cube += rsm.renderCubeFace(cmd, *atrium.gpu, light, f, reach, lodTexels);
+        out.cube += rsm.renderCubeFace(cmd, *atrium.gpu, atrium.specularAlbedo->texture(), light, f, reach,
+                                       lodTexels);
     atrium.device->endFrame();
     return out;
 }

@@ -1,6 +1,7 @@
 // The table of engine/render/SpecularAlbedo.h as the renderer uploads it (RGBA16F, kSize texels
 // wide, twice that tall): block 0 of rows holds scale, bias and scaleDirection, block 1
-// biasDirection. Sampled with bilinear filtering, clamped: texel i of a block holds cos(view) or
+// biasDirection and, in z, the Schlick mean (SpecularAlbedo.h's integrateSchlickMean, by cos(light)
+// along x, the same in every row). Sampled with bilinear filtering, clamped: texel i of a block holds cos(view) or
 // roughness i / (kSize - 1), hence the half-texel inset, which also keeps a block's filtering off
 // the other's rows. Shared by the lighting pass and the GI's lookup.
 #ifndef SPECULAR_ALBEDO_GLSL

@@ -101,7 +101,11 @@ void main() {
 #endif
     vCoverage = abs(s.n);
     vFromCamera = 1;
-    vAlbedo = texelFetch(gbufferAlbedo, s.pixel, 0).rgb;
+    // What multiple bounces reflect with: the RSM's diffuse reflectance (rsm_diffuse.glsl), none
+    // for metals (alpha: metallic), without its Schlick mean (at most 2.7%: the angle light arrives
+    // at is not known here).
+    vec4 base = texelFetch(gbufferAlbedo, s.pixel, 0);
+    vAlbedo = base.rgb * (1.0 - base.a) * (1.0 - mix(vec3(0.04), base.rgb, base.a));
     gl_PointSize = 1.0;
     gl_Position = valid ? surfelPosition(p) : PARKED_POINT;
 }

@@ -1,7 +1,10 @@
 #version 450
-// RSM texel: world normal (facing the light) and reflected flux = albedo x irradiance x texel area.
-// The texel's projected area is fixed by the fit to the volume, so the weight does not depend on
-// the RSM or volume size (Kaplanyan 2009).
+#extension GL_GOOGLE_include_directive : require
+// RSM texel: world normal (facing the light) and reflected flux = diffuse albedo x the share the
+// specular layer lets through (rsm_diffuse.glsl) x irradiance x texel area. The texel's projected
+// area is fixed by the fit to the volume, so the weight does not depend on the RSM or volume size
+// (Kaplanyan 2009).
+#include "rsm_diffuse.glsl"
 layout(binding = 0, std140) uniform Rsm {
     mat4 lightViewProjection;
     vec4 lightDirection;
@@ -25,10 +28,9 @@ void main() {
     vec3 n = normalize(vNormal);
     // Two-sided: the side the light sees.
     if (dot(n, rsm.lightDirection.xyz) > 0.0) n = -n;
-    vec3 albedo = draw.baseColor.rgb;
-    if (draw.material.w > 0.5) albedo *= texture(baseColorTexture, vUv).rgb;
-    // Metals (material.x) reflect no diffuse light: no VPL, and no albedo for the bounces.
-    albedo *= 1.0 - draw.material.x;
+    vec3 base = draw.baseColor.rgb;
+    if (draw.material.w > 0.5) base *= texture(baseColorTexture, vUv).rgb;
     outNormal = vec4(n, 1.0);
-    outFlux = vec4(albedo * rsm.fluxScale.rgb, 1.0);
+    outFlux = vec4(diffuseReflectance(base, draw.material, -dot(n, rsm.lightDirection.xyz)) * rsm.fluxScale.rgb,
+                   1.0);
 }

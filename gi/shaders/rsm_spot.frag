@@ -1,10 +1,13 @@
 #version 450
-// Spot RSM texel: world normal (facing the light) and reflected flux = albedo x the flux the light
+#extension GL_GOOGLE_include_directive : require
+// Spot RSM texel: world normal (facing the light) and reflected flux = diffuse albedo x the share
+// the specular layer lets through (rsm_diffuse.glsl) x the flux the light
 // sends through the texel: I x cone x range window x the texel's solid angle. That is the
 // irradiance engine/shaders/lighting.frag gives the surface (I x cone x window / d^2 x cos) times
 // the surface area the texel covers (solid angle x d^2 / cos), so a spot VPL and a sun VPL of the
 // same reflected power carry the same flux. A texel of a perspective map subtends the axis texel's
 // solid angle times cos^3 of its angle off the axis.
+#include "rsm_diffuse.glsl"
 layout(binding = 0, std140) uniform SpotRsm {
     mat4 lightViewProjection;
     vec4 lightPosition;
@@ -39,10 +42,10 @@ void main() {
     float window = clamp(1.0 - q * q, 0.0, 1.0);
     float spot = smoothstep(rsm.cone.x, rsm.cone.y, cosAxis);
     float solidAngle = rsm.spotDirection.w * cosAxis * cosAxis * cosAxis;
-    vec3 albedo = draw.baseColor.rgb;
-    if (draw.material.w > 0.5) albedo *= texture(baseColorTexture, vUv).rgb;
-    // Metals (material.x) reflect no diffuse light: no VPL, and no albedo for the bounces.
-    albedo *= 1.0 - draw.material.x;
+    vec3 base = draw.baseColor.rgb;
+    if (draw.material.w > 0.5) base *= texture(baseColorTexture, vUv).rgb;
     outNormal = vec4(n, 1.0);
-    outFlux = vec4(albedo * rsm.intensity.rgb * (spot * window * solidAngle), 1.0);
+    outFlux = vec4(diffuseReflectance(base, draw.material, -dot(n, w)) * rsm.intensity.rgb *
+                       (spot * window * solidAngle),
+                   1.0);
 }

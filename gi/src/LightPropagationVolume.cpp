@@ -337,7 +337,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     // cascade they reach.
     if (const uint32_t lightRsms = spotRsms_->rsmCount()) {
         auto s = scope("lightrsm");
-        const uint64_t triangles = spotRsms_->render(cmd, *renderer_->scene(), renderer_->punctualLights());
+        const uint64_t triangles = spotRsms_->render(
+            cmd, *renderer_->scene(), renderer_->specularAlbedoTexture(), renderer_->punctualLights());
         work(lightRsmWork(settings_, lightRsms, triangles));
     }
     // Coarsest first: each finer cascade takes the light from beyond its border from the one
@@ -361,8 +362,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                 rsm_->fit(cascade.lit, lightDir);
                 // Objects smaller than a cell of this cascade are left to the finer ones.
                 const uint64_t triangles =
-                    rsm_->render(cmd, *renderer_->scene(), lightDir, sun.radiance,
-                                 c == 0 ? 0.0f : cascade.lit.cellSize, settings_.rsmLodTexels);
+                    rsm_->render(cmd, *renderer_->scene(), renderer_->specularAlbedoTexture(), lightDir,
+                                 sun.radiance, c == 0 ? 0.0f : cascade.lit.cellSize, settings_.rsmLodTexels);
                 work(rsmWork(settings_, triangles));
             }
             auto s = scope("vpl");

@@ -92,6 +92,10 @@ ReflectiveShadowMap::ReflectiveShadowMap(rhi::Device& device, uint32_t size, Rsm
     d.depthFormat = Format::D32F;
     d.debugName = light == RsmLight::Spot ? "spot rsm" : "rsm";
     pipeline_ = device.createPipeline(d);
+    SamplerDesc linear;
+    linear.mipFilter = Filter::Nearest;
+    linear.debugName = "rsm specular albedo";
+    linearSampler_ = device.createSampler(linear);
 }
 
 ReflectiveShadowMap::~ReflectiveShadowMap() {
@@ -100,6 +104,7 @@ ReflectiveShadowMap::~ReflectiveShadowMap() {
     device_.destroy(normal_);
     device_.destroy(flux_);
     device_.destroy(pipeline_);
+    device_.destroy(linearSampler_);
 }
 
 glm::mat4 ReflectiveShadowMap::fit(const VolumeGrid& grid, glm::vec3 lightDirection) {
@@ -125,8 +130,8 @@ glm::mat4 ReflectiveShadowMap::fit(const VolumeGrid& grid, glm::vec3 lightDirect
 }
 
 uint64_t ReflectiveShadowMap::render(rhi::CommandList& cmd, const engine::GpuScene& scene,
-                                     glm::vec3 lightDirection, glm::vec3 sunIrradiance, float minObjectSize,
-                                     float lodTexels) {
+                                     rhi::TextureHandle specularAlbedo, glm::vec3 lightDirection,
+                                     glm::vec3 sunIrradiance, float minObjectSize, float lodTexels) {
     if (light_ != RsmLight::Sun) throw rhi::Error("ReflectiveShadowMap::render() on a spot light's RSM");
     RsmUniforms u;
     u.lightViewProjection = viewProjection_;
@@ -134,33 +139,34 @@ uint64_t ReflectiveShadowMap::render(rhi::CommandList& cmd, const engine::GpuSce
     u.fluxScale = glm::vec4(sunIrradiance * texelArea_, 0.0f);
     // An orthographic texel is the same size everywhere in the view.
     const float maxError = lodTexels * texelSide_;
-    return draw(cmd, scene, &u, sizeof(u), minObjectSize,
+    return draw(cmd, scene, specularAlbedo, &u, sizeof(u), minObjectSize,
                 [maxError](const engine::GpuDraw&) { return maxError; });
 }
 
 uint64_t ReflectiveShadowMap::renderSpot(rhi::CommandList& cmd, const engine::GpuScene& scene,
-                                         const engine::Light& spot, float reach, float lodTexels) {
+                                         rhi::TextureHandle specularAlbedo, const engine::Light& spot,
+                                         float reach, float lodTexels) {
     if (light_ != RsmLight::Spot) throw rhi::Error("ReflectiveShadowMap::renderSpot() on the sun's RSM");
     // As the analytic lights (gi/AnalyticLight.cpp): smoothstep needs edge0 < edge1.
     const float cosOuter = std::cos(spot.outerConeAngle);
-    return renderPerspective(cmd, scene, spot, spotAxis(spot), fitSpotRsm(spot, reach), cosOuter,
-                             std::max(std::cos(spot.innerConeAngle), cosOuter + 1e-4f), lodTexels);
+    return renderPerspective(cmd, scene, specularAlbedo, spot, spotAxis(spot), fitSpotRsm(spot, reach),
+                             cosOuter, std::max(std::cos(spot.innerConeAngle), cosOuter + 1e-4f), lodTexels);
 }
 
 uint64_t ReflectiveShadowMap::renderCubeFace(rhi::CommandList& cmd, const engine::GpuScene& scene,
-                                             const engine::Light& point, uint32_t face, float reach,
-                                             float lodTexels) {
+                                             rhi::TextureHandle specularAlbedo, const engine::Light& point,
+                                             uint32_t face, float reach, float lodTexels) {
     if (light_ != RsmLight::Spot) throw rhi::Error("ReflectiveShadowMap::renderCubeFace() on the sun's RSM");
     // No cone: every direction of the face gets the light's intensity (smoothstep from -1 is 1
     // over the whole face, whose directions are within 55 degrees of its axis).
-    return renderPerspective(cmd, scene, point, cubeFaceAxis(face), fitCubeFace(point, face, reach), -1.0f,
-                             -1.0f + 1e-4f, lodTexels);
+    return renderPerspective(cmd, scene, specularAlbedo, point, cubeFaceAxis(face),
+                             fitCubeFace(point, face, reach), -1.0f, -1.0f + 1e-4f, lodTexels);
 }
 
 uint64_t ReflectiveShadowMap::renderPerspective(rhi::CommandList& cmd, const engine::GpuScene& scene,
-                                                const engine::Light& light, glm::vec3 axis,
-                                                const SpotRsmFit& fit, float cosOuter, float cosInner,
-                                                float lodTexels) {
+                                                rhi::TextureHandle specularAlbedo, const engine::Light& light,
+                                                glm::vec3 axis, const SpotRsmFit& fit, float cosOuter,
+                                                float cosInner, float lodTexels) {
     viewProjection_ = fit.viewProjection;
     // A texel's side on the image plane at 1 m is 2 tan / size: its area there is the solid angle
     // of the texel on the axis. texelArea_ is that area at the far plane (for the surfels' size).
@@ -177,15 +183,16 @@ uint64_t ReflectiveShadowMap::renderPerspective(rhi::CommandList& cmd, const eng
     const float errorPerMetre = lodTexels * texel;
     const glm::vec3 eye = light.position;
     const float nearPlane = fit.nearPlane;
-    return draw(cmd, scene, &u, sizeof(u), 0.0f, [=](const engine::GpuDraw& d) {
+    return draw(cmd, scene, specularAlbedo, &u, sizeof(u), 0.0f, [=](const engine::GpuDraw& d) {
         const glm::vec3 nearest = glm::clamp(eye, d.worldBounds.min, d.worldBounds.max);
         return errorPerMetre * std::max(nearPlane, glm::length(nearest - eye));
     });
 }
 
 template <class MaxError>
-uint64_t ReflectiveShadowMap::draw(rhi::CommandList& cmd, const engine::GpuScene& scene, const void* uniforms,
-                                   uint32_t bytes, float minObjectSize, MaxError&& maxError) {
+uint64_t ReflectiveShadowMap::draw(rhi::CommandList& cmd, const engine::GpuScene& scene,
+                                   rhi::TextureHandle specularAlbedo, const void* uniforms, uint32_t bytes,
+                                   float minObjectSize, MaxError&& maxError) {
     using namespace rhi;
     RenderPassDesc pass;
     pass.colors[0] = {normal_, 0, 0, LoadOp::Clear, {0, 1, 0, 0}};
@@ -198,6 +205,7 @@ uint64_t ReflectiveShadowMap::draw(rhi::CommandList& cmd, const engine::GpuScene
     cmd.pushUniforms(0, uniforms, bytes);
     cmd.bindVertexBuffer(0, scene.vertices());
     cmd.bindIndexBuffer(scene.indices(), IndexType::Uint32);
+    cmd.bindTexture(3, specularAlbedo, linearSampler_);
     uint64_t triangles = 0;
     for (const engine::GpuDraw& d : scene.draws()) {
         // The light's view holds the volume and, toward the light, its occluders (fit()): nothing

@@ -157,7 +157,7 @@ bool SpotLightRsms::selected(uint32_t index) const {
 }
 
 uint64_t SpotLightRsms::render(rhi::CommandList& cmd, const engine::GpuScene& scene,
-                               std::span<const engine::Light> lights) {
+                               rhi::TextureHandle specularAlbedo, std::span<const engine::Light> lights) {
     uint64_t triangles = 0;
     uint32_t slot = 0;
     for (uint32_t k = 0; k < count_ + pointCount_; ++k) {
@@ -165,8 +165,10 @@ uint64_t SpotLightRsms::render(rhi::CommandList& cmd, const engine::GpuScene& sc
         const float reach = farthestCorner(light.position, reachGrid_);
         for (uint32_t f = 0; f < (k < count_ ? 1u : kCubeFaces); ++f, ++slot) {
             ReflectiveShadowMap& rsm = *rsms_[slot];
-            triangles += k < count_ ? rsm.renderSpot(cmd, scene, light, reach, settings_.rsmLodTexels)
-                                    : rsm.renderCubeFace(cmd, scene, light, f, reach, settings_.rsmLodTexels);
+            triangles +=
+                k < count_
+                    ? rsm.renderSpot(cmd, scene, specularAlbedo, light, reach, settings_.rsmLodTexels)
+                    : rsm.renderCubeFace(cmd, scene, specularAlbedo, light, f, reach, settings_.rsmLodTexels);
             cluster(cmd, slot);
         }
     }

@@ -1,7 +1,8 @@
 // The glossy term's weight (engine/render/SpecularAlbedo.h): the importance-sampled integral agrees
 // with a plain quadrature of the same BRDF over the hemisphere, a mirror reflects all it receives
 // with Schlick's Fresnel, no texel reflects more than arrives, and roughness takes away the grazing
-// gain that Schlick's Fresnel alone gives.
+// gain that Schlick's Fresnel alone gives. The Schlick mean (the share of a light fresnel_mix takes
+// from the diffuse base over all views) agrees with a random sampling of the views.
 #include "engine/render/SpecularAlbedo.h"
 
 #include <doctest/doctest.h>
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 
 using namespace lpv::engine;
 
@@ -98,4 +100,32 @@ TEST_CASE(
     // The atrium's stone (roughness 0.7, F0 4%) seen at cos 0.1: Schlick's Fresnel alone gives 0.61,
     // the former weight (Schlick x (1 - roughness)) 0.18; the lobe reflects well under a tenth.
     CHECK(weight(table.at(0.1f, 0.7f), 0.04f) < 0.1f);
+}
+
+TEST_CASE("specular albedo: the Schlick mean agrees with random views and grows toward grazing light") {
+    // Views drawn uniformly over the hemisphere (pdf 1 / 2 pi), each weighted by cos(view) / pi.
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    const SpecularAlbedoTable& table = specularAlbedoTable();
+    float previous = -1.0f;
+    for (const float cosLight : {1.0f, 0.7f, 0.4f, 0.15f, 0.0f}) {
+        const double lx = std::sqrt(1.0 - double(cosLight) * cosLight);
+        const int samples = 400000;
+        double sum = 0.0;
+        for (int i = 0; i < samples; ++i) {
+            const double vz = uniform(random), phi = 2.0 * std::numbers::pi * uniform(random);
+            const double r = std::sqrt(1.0 - vz * vz), vx = r * std::cos(phi), vy = r * std::sin(phi);
+            const double hx = vx + lx, hy = vy, hz = vz + cosLight;
+            const double vh = (vx * hx + vy * hy + vz * hz) / std::sqrt(hx * hx + hy * hy + hz * hz);
+            sum += std::pow(1.0 - vh, 5.0) * vz / std::numbers::pi * 2.0 * std::numbers::pi;
+        }
+        const float sampled = float(sum / samples), mean = table.schlickMeanAt(cosLight);
+        INFO("cos(light) " << cosLight << ": table " << mean << ", random views " << sampled);
+        CHECK(mean == doctest::Approx(sampled).epsilon(0.03).scale(1e-3));
+        CHECK(mean > previous); // more of the light is taken the more grazing it arrives
+        previous = mean;
+    }
+    // Light along the normal loses almost nothing beyond F0; grazing light under 3%.
+    CHECK(table.schlickMeanAt(1.0f) < 1e-4f);
+    CHECK(table.schlickMeanAt(0.0f) < 0.03f);
 }

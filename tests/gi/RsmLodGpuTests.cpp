@@ -5,6 +5,7 @@
 #include "../support/Image.h"
 #include "../support/TestDevice.h"
 #include "engine/render/GpuScene.h"
+#include "engine/render/SpecularAlbedoTexture.h"
 #include "engine/scene/BuiltinScenes.h"
 #include "gi/ReflectiveShadowMap.h"
 
@@ -31,12 +32,13 @@ struct RsmImages {
 
 RsmImages renderRsm(rhi::Device& device, const engine::Scene& scene, float lodTexels) {
     const engine::GpuScene gpu(device, scene);
+    const engine::SpecularAlbedoTexture specularAlbedo(device);
     gi::ReflectiveShadowMap rsm(device, 256);
     const glm::vec3 sun = scene.lights.at(0).direction;
     rsm.fit(kGrid, sun);
     RsmImages out;
     rhi::CommandList& cmd = device.beginFrame();
-    out.triangles = rsm.render(cmd, gpu, sun, glm::vec3(1.0f), 0.0f, lodTexels);
+    out.triangles = rsm.render(cmd, gpu, specularAlbedo.texture(), sun, glm::vec3(1.0f), 0.0f, lodTexels);
     device.endFrame();
     device.waitIdle();
     out.flux = readImage(device, rsm.flux());
@@ -90,12 +92,13 @@ TEST_CASE("gi: a spot light's RSM draws levels of detail by distance and keeps i
         SUBCASE(backend.name.c_str()) {
             TestDevice device(backend);
             const engine::GpuScene gpu(*device, scene);
+            const engine::SpecularAlbedoTexture specularAlbedo(*device);
             gi::ReflectiveShadowMap rsm(*device, 256, gi::RsmLight::Spot);
             RsmImages full, lod, coarse;
             for (RsmImages* out : {&full, &lod, &coarse}) {
                 rhi::CommandList& cmd = device->beginFrame();
                 const float lodTexels = out == &full ? 0.0f : out == &lod ? 0.5f : 4.0f;
-                out->triangles = rsm.renderSpot(cmd, gpu, spot, 30.0f, lodTexels);
+                out->triangles = rsm.renderSpot(cmd, gpu, specularAlbedo.texture(), spot, 30.0f, lodTexels);
                 device->endFrame();
                 device->waitIdle();
                 out->flux = readImage(*device, rsm.flux());

@@ -3,13 +3,12 @@
 
 #include "EngineShaders.h"
 #include "engine/profiler/FrameProfiler.h"
-#include "engine/render/SpecularAlbedo.h"
+#include "engine/render/SpecularAlbedoTexture.h"
 #include "rhi/Error.h"
 
 #define GLM_FORCE_DEPTH_ZERO_TO_ONE
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
-#include <glm/packing.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -126,7 +125,7 @@ Renderer::Renderer(rhi::Device& device, uint32_t width, uint32_t height)
     compare.debugName = "shadow compare";
     shadowCompare_ = device.createSampler(compare);
     createTargets(uint32_t(std::get<int64_t>(kShadowMapSize.decl().defaultValue)));
-    createSpecularAlbedo();
+    specularAlbedo_ = std::make_unique<SpecularAlbedoTexture>(device);
     createPipelines();
     lightShadows_ = std::make_unique<LightShadows>(device);
 }
@@ -137,7 +136,7 @@ Renderer::~Renderer() {
     lightShadows_.reset();
     if (directLights_) device_.destroy(directLights_);
     destroyTargets();
-    device_.destroy(specularAlbedo_);
+    specularAlbedo_.reset();
     for (auto p : {gbufferPipeline_, shadowPipeline_, ssaoPipeline_, ssaoBlurPipeline_, lightingPipeline_,
                    lightingShadowedPipeline_, tonemapPipeline_})
         device_.destroy(p);
@@ -166,25 +165,6 @@ void Renderer::createTargets(uint32_t shadowSize) {
     targets_.shadow =
         device_.createTexture({TextureKind::Tex2D, Format::D32F, shadowSize, shadowSize, 1, 1,
                                kTextureDepthTarget | kTextureSampled, "sun shadow map", "render.shadow"});
-}
-
-void Renderer::createSpecularAlbedo() {
-    const SpecularAlbedoTable& table = specularAlbedoTable();
-    constexpr uint32_t n = SpecularAlbedoTable::kSize;
-    // RGBA16F, two blocks of n rows (shaders/specular_albedo.glsl): scale, bias, scaleDirection;
-    // then biasDirection.
-    std::vector<uint32_t> halves(size_t(n) * n * 2 * 2);
-    for (size_t i = 0; i < table.texels.size(); ++i) {
-        const SpecularAlbedo& t = table.texels[i];
-        halves[2 * i] = glm::packHalf2x16({t.scale, t.bias});
-        halves[2 * i + 1] = glm::packHalf2x16(t.scaleDirection);
-        halves[2 * (table.texels.size() + i)] = glm::packHalf2x16(t.biasDirection);
-        halves[2 * (table.texels.size() + i) + 1] = 0;
-    }
-    specularAlbedo_ = device_.createTexture({rhi::TextureKind::Tex2D, rhi::Format::RGBA16F, n, 2 * n, 1, 1,
-                                             rhi::kTextureSampled | rhi::kTextureTransfer, "specular albedo",
-                                             "render.lighting"});
-    device_.uploadTexture(specularAlbedo_, 0, halves.data(), halves.size() * sizeof(uint32_t));
 }
 
 void Renderer::createIndirectTargets(uint32_t divisor) {
@@ -483,7 +463,7 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
                            cmd.bindTexture(7, targets_.indirect, pointClamp_);
                            cmd.bindStorageBuffer(8, lightBuffer);
                            cmd.bindTexture(9, targets_.glossy, pointClamp_);
-                           cmd.bindTexture(12, specularAlbedo_, linearClamp_);
+                           cmd.bindTexture(12, specularAlbedo_->texture(), linearClamp_);
                            if (!lightShadows) return;
                            cmd.pushUniforms(10, &lightShadows_->uniforms(), sizeof(LightShadowUniforms));
                            cmd.bindTexture(11, lightShadows_->atlas(targets_.shadow), shadowCompare_);

@@ -59,6 +59,31 @@ SpecularAlbedo integrateSpecularAlbedo(float cosView, float roughness, uint32_t 
     return {float(scale / n), float(bias / n), glm::vec2(scaleDirection / n), glm::vec2(biasDirection / n)};
 }
 
+float integrateSchlickMean(float cosLight, uint32_t steps) {
+    // The light in the xz plane; the views over the hemisphere by (theta, phi), dw = sin d(theta) d(phi).
+    const double nl = std::clamp(double(cosLight), 0.0, 1.0), lx = std::sqrt(1.0 - nl * nl);
+    const double dTheta = std::numbers::pi / 2.0 / steps, dPhi = std::numbers::pi / steps;
+    double sum = 0.0;
+    for (uint32_t t = 0; t < steps; ++t) {
+        const double theta = (t + 0.5) * dTheta, vz = std::cos(theta), sinV = std::sin(theta);
+        for (uint32_t p = 0; p < 2 * steps; ++p) {
+            const double phi = (p + 0.5) * dPhi, vx = sinV * std::cos(phi), vy = sinV * std::sin(phi);
+            const double hx = vx + lx, hy = vy, hz = vz + nl;
+            const double len = std::sqrt(hx * hx + hy * hy + hz * hz);
+            const double vh = len > 0.0 ? (vx * hx + vy * hy + vz * hz) / len : 0.0;
+            // cos(view) / pi is the weight of a view in the cosine-weighted mean.
+            sum += std::pow(1.0 - std::clamp(vh, 0.0, 1.0), 5.0) * vz * sinV * dTheta * dPhi;
+        }
+    }
+    return float(sum / std::numbers::pi);
+}
+
+float SpecularAlbedoTable::schlickMeanAt(float cosLight) const {
+    const float x = std::clamp(cosLight, 0.0f, 1.0f) * float(kSize - 1);
+    const uint32_t i = std::min(uint32_t(x), kSize - 2);
+    return schlickMean[i] + (schlickMean[i + 1] - schlickMean[i]) * (x - float(i));
+}
+
 SpecularAlbedo SpecularAlbedoTable::at(float cosView, float roughness) const {
     const float last = float(kSize - 1);
     const float x = std::clamp(cosView, 0.0f, 1.0f) * last, y = std::clamp(roughness, 0.0f, 1.0f) * last;
@@ -83,6 +108,8 @@ const SpecularAlbedoTable& specularAlbedoTable() {
             for (uint32_t i = 0; i < SpecularAlbedoTable::kSize; ++i)
                 t.texels[j * SpecularAlbedoTable::kSize + i] =
                     integrateSpecularAlbedo(float(i) / last, float(j) / last, SpecularAlbedoTable::kSamples);
+        for (uint32_t i = 0; i < SpecularAlbedoTable::kSize; ++i)
+            t.schlickMean[i] = integrateSchlickMean(float(i) / last, 128);
         return t;
     }();
     return table;

@@ -53,17 +53,22 @@ public:
     // skipped. Each object is drawn at the coarsest level of detail that strays at most
     // `lodTexels` of this map's texels from its mesh (0: full meshes). Returns the triangles drawn
     // (the pass's work).
-    uint64_t render(rhi::CommandList& cmd, const engine::GpuScene& scene, glm::vec3 lightDirection,
-                    glm::vec3 sunIrradiance, float minObjectSize = 0.0f, float lodTexels = 0.0f);
+    // `specularAlbedo` (engine::SpecularAlbedoTexture) gives the share of the light the materials'
+    // specular layer leaves to their diffuse base (gi/shaders/rsm_diffuse.glsl).
+    uint64_t render(rhi::CommandList& cmd, const engine::GpuScene& scene, rhi::TextureHandle specularAlbedo,
+                    glm::vec3 lightDirection, glm::vec3 sunIrradiance, float minObjectSize = 0.0f,
+                    float lodTexels = 0.0f);
     // A spot RSM (RsmLight::Spot): fits it to `spot` (fitSpotRsm) and draws the scene in its view,
     // with levels of detail as render() (a texel measured at the object's nearest point to the
     // light). Returns the triangles drawn.
-    uint64_t renderSpot(rhi::CommandList& cmd, const engine::GpuScene& scene, const engine::Light& spot,
-                        float reach, float lodTexels = 0.0f);
+    uint64_t renderSpot(rhi::CommandList& cmd, const engine::GpuScene& scene,
+                        rhi::TextureHandle specularAlbedo, const engine::Light& spot, float reach,
+                        float lodTexels = 0.0f);
     // Face `face` of a point light's cube RSM (RsmLight::Spot maps; fitCubeFace): the light's
     // intensity through every texel of the face, no cone edge. Returns the triangles drawn.
-    uint64_t renderCubeFace(rhi::CommandList& cmd, const engine::GpuScene& scene, const engine::Light& point,
-                            uint32_t face, float reach, float lodTexels = 0.0f);
+    uint64_t renderCubeFace(rhi::CommandList& cmd, const engine::GpuScene& scene,
+                            rhi::TextureHandle specularAlbedo, const engine::Light& point, uint32_t face,
+                            float reach, float lodTexels = 0.0f);
 
     const glm::mat4& lightViewProjection() const { return viewProjection_; }
     float texelArea() const { return texelArea_; }
@@ -75,18 +80,19 @@ private:
     // A perspective RSM of `light` (spot or point) through `fit` along `axis`, weighted by the cone
     // from cosOuter to cosInner (smoothstep of the cosine to the axis).
     uint64_t renderPerspective(rhi::CommandList& cmd, const engine::GpuScene& scene,
-                               const engine::Light& light, glm::vec3 axis, const SpotRsmFit& fit,
-                               float cosOuter, float cosInner, float lodTexels);
+                               rhi::TextureHandle specularAlbedo, const engine::Light& light, glm::vec3 axis,
+                               const SpotRsmFit& fit, float cosOuter, float cosInner, float lodTexels);
     // `maxError(draw)`: the error (m) the draw's level of detail may have.
     template <class MaxError>
-    uint64_t draw(rhi::CommandList& cmd, const engine::GpuScene& scene, const void* uniforms, uint32_t bytes,
-                  float minObjectSize, MaxError&& maxError);
+    uint64_t draw(rhi::CommandList& cmd, const engine::GpuScene& scene, rhi::TextureHandle specularAlbedo,
+                  const void* uniforms, uint32_t bytes, float minObjectSize, MaxError&& maxError);
 
     rhi::Device& device_;
     uint32_t size_;
     RsmLight light_;
     rhi::TextureHandle depth_, normal_, flux_;
     rhi::GraphicsPipelineHandle pipeline_;
+    rhi::SamplerHandle linearSampler_; // the specular albedo table's
     glm::mat4 viewProjection_{1.0f};
     float texelArea_ = 0.0f;
     float texelSide_ = 0.0f; // of the sun's orthographic map (m)

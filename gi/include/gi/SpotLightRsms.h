@@ -48,8 +48,8 @@ public:
     uint32_t rsmCount() const { return rsmCount_; }
 
     // Draws every selected light's RSM(s) and clusters each into its VPLs; returns the triangles
-    // drawn.
-    uint64_t render(rhi::CommandList& cmd, const engine::GpuScene& scene,
+    // drawn. `specularAlbedo`: as ReflectiveShadowMap::render().
+    uint64_t render(rhi::CommandList& cmd, const engine::GpuScene& scene, rhi::TextureHandle specularAlbedo,
                     std::span<const engine::Light> lights);
     // The VPL buffers of the RSMs drawn, for LpvVolumes::inject with the sun's (render() fills them).
     std::span<const VplSource> sources() const { return {sources_.data(), rsmCount_}; }

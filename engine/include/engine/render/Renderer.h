@@ -11,6 +11,7 @@
 #include "engine/render/GpuScene.h"
 #include "engine/render/IndirectLighting.h"
 #include "engine/render/LightShadows.h"
+#include "engine/render/SpecularAlbedoTexture.h"
 #include "rhi/Device.h"
 
 #include <glm/vec3.hpp>
@@ -80,7 +81,7 @@ public:
     rhi::TextureHandle glossy() const { return targets_.glossy; }
     // engine/render/SpecularAlbedo.h's table (RGBA16F, laid out as shaders/specular_albedo.glsl
     // reads it), for an indirect provider that weighs its lobes as the lighting pass does.
-    rhi::TextureHandle specularAlbedoTexture() const { return specularAlbedo_; }
+    rhi::TextureHandle specularAlbedoTexture() const { return specularAlbedo_->texture(); }
     // RGBA16F linear: the indirect irradiance the provider wrote (or the ambient constant), at
     // 1/indirectDivisor() of the frame per axis.
     rhi::TextureHandle indirect() const { return targets_.indirect; }
@@ -98,7 +99,6 @@ private:
         rhi::TextureHandle albedo, normal, emissive, depth, aoRaw, ao, indirect, glossy, hdr, output, shadow;
     };
     void createTargets(uint32_t shadowSize);
-    void createSpecularAlbedo();
     // The indirect and glossy targets at 1/divisor of the frame per axis (IndirectLighting).
     void createIndirectTargets(uint32_t divisor);
     void destroyTargets();
@@ -116,7 +116,7 @@ private:
         lightingPipeline_, lightingShadowedPipeline_, tonemapPipeline_;
     rhi::SamplerHandle linearClamp_, pointClamp_, shadowCompare_;
     // The glossy term's weight per view angle and roughness (SpecularAlbedoTable), made once.
-    rhi::TextureHandle specularAlbedo_;
+    std::unique_ptr<SpecularAlbedoTexture> specularAlbedo_;
     std::unique_ptr<GpuScene> scene_;
     Bounds bounds_;
     SunLight sun_;

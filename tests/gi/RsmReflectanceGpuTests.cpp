@@ -1,0 +1,116 @@
+// What a reflective shadow map's texel reflects, on each backend: the diffuse colour (base colour x
+// (1 - metallic)) times the share glTF's fresnel_mix leaves the diffuse base of light arriving at the
+// sun's angle, (1 - F0) x (1 - the Schlick mean) (engine/render/SpecularAlbedo.h), times the sun's
+// irradiance and the texel's area: the light the lit surface shows, summed over every view. Dielectric
+// and partly metallic floors, the sun high and grazing; a metal reflects nothing.
+#include "../support/Image.h"
+#include "../support/TestDevice.h"
+
+#include "engine/render/GpuScene.h"
+#include "engine/render/SpecularAlbedo.h"
+#include "engine/render/SpecularAlbedoTexture.h"
+#include "engine/scene/MeshBuilder.h"
+#include "gi/ReflectiveShadowMap.h"
+
+#include <doctest/doctest.h>
+
+#include <glm/common.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace lpv;
+using namespace lpv::test;
+
+namespace {
+
+// A level floor of one material, 10 m across, larger than the RSM's view of the volume below.
+engine::Scene floorOf(glm::vec3 baseColor, float metallic, float roughness) {
+    engine::Scene scene;
+    scene.name = "floor";
+    engine::Material m;
+    m.name = "floor";
+    m.baseColor = glm::vec4(baseColor, 1.0f);
+    m.metallic = metallic;
+    m.roughness = roughness;
+    scene.materials.push_back(m);
+    engine::MeshBuilder builder(scene);
+    builder.begin("floor", 0);
+    builder.quad({-5.0f, 0.0f, 5.0f}, {10.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -10.0f}); // faces +y
+    builder.finish();
+    scene.updateBounds();
+    return scene;
+}
+
+struct FloorCase {
+    glm::vec3 baseColor;
+    float metallic, roughness;
+    float sunAngle; // from the floor's normal (radians)
+};
+
+} // namespace
+
+TEST_CASE("gi: an RSM texel reflects the diffuse share glTF's fresnel mix leaves its surface") {
+    const FloorCase cases[] = {
+        {{0.8f, 0.8f, 0.8f}, 0.0f, 0.3f, 1.047f}, // smooth dielectric, the sun 60 degrees down
+        {{0.9f, 0.5f, 0.2f}, 0.5f, 0.6f, 0.436f}, // partly metallic, the sun high (25 degrees)
+        {{0.7f, 0.7f, 0.7f}, 0.0f, 1.0f, 1.396f}, // rough dielectric, grazing sun (80 degrees)
+        {{0.9f, 0.6f, 0.3f}, 1.0f, 0.4f, 0.7f}};  // a metal: no diffuse base at all
+    const glm::vec3 sunIrradiance{2.0f, 1.5f, 1.0f};
+    const gi::VolumeGrid grid{{-4.0f, -4.0f, -4.0f}, 0.25f, 32};
+    const engine::SpecularAlbedoTable& table = engine::specularAlbedoTable();
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            const engine::SpecularAlbedoTexture specularAlbedo(*device);
+            for (const FloorCase& c : cases) {
+                const glm::vec3 sun{std::sin(c.sunAngle), -std::cos(c.sunAngle), 0.0f}; // travels
+                const float cosLight = std::cos(c.sunAngle);
+                const glm::vec3 f0 = glm::mix(glm::vec3(0.04f), c.baseColor, c.metallic);
+                const glm::vec3 diffuse = c.baseColor * (1.0f - c.metallic);
+                const glm::vec3 kept = (1.0f - f0) * (1.0f - table.schlickMeanAt(cosLight));
+                Image flux, normal;
+                float texelArea = 0.0f;
+                {
+                    const engine::GpuScene scene(*device, floorOf(c.baseColor, c.metallic, c.roughness));
+                    gi::ReflectiveShadowMap rsm(*device, 128);
+                    rsm.fit(grid, sun);
+                    rhi::CommandList& cmd = device->beginFrame();
+                    rsm.render(cmd, scene, specularAlbedo.texture(), sun, sunIrradiance);
+                    device->endFrame();
+                    device->waitIdle();
+                    flux = readImage(*device, rsm.flux());
+                    normal = readImage(*device, rsm.normal());
+                    texelArea = rsm.texelArea();
+                }
+                const glm::vec3 expected = diffuse * kept * sunIrradiance * texelArea;
+                uint32_t floorTexels = 0;
+                float worst = 0.0f, brightest = 0.0f;
+                for (size_t i = 0; i < flux.texels.size(); ++i) {
+                    if (normal.texels[i].w < 0.5f) continue; // cleared: no surface in this texel
+                    ++floorTexels;
+                    for (int ch = 0; ch < 3; ++ch) {
+                        brightest = std::max(brightest, flux.texels[i][ch]);
+                        if (expected[ch] > 0.0f)
+                            worst =
+                                std::max(worst, std::fabs(flux.texels[i][ch] - expected[ch]) / expected[ch]);
+                    }
+                }
+                MESSAGE(backend.name << ": metallic " << c.metallic << ", roughness " << c.roughness
+                                     << ", cos(sun) " << cosLight << ": " << floorTexels
+                                     << " floor texels; the base keeps " << kept.r << ", " << kept.g << ", "
+                                     << kept.b << "; largest relative difference " << worst);
+                REQUIRE(floorTexels > 1000);
+                if (c.metallic >= 1.0f) {
+                    CHECK(brightest == 0.0f);
+                    continue;
+                }
+                // Without the share, every texel would be more than 3.5% too bright.
+                CHECK(std::max({kept.r, kept.g, kept.b}) < 0.965f);
+                // RGBA16F rounding of the flux and of the table.
+                CHECK(worst <= 0.005f);
+            }
+            device.expectSilent();
+        }
+    }
+}
