@@ -9,11 +9,10 @@
 #include "engine/render/Renderer.h"
 #include "engine/scene/BuiltinScenes.h"
 #include "gi/AnalyticLight.h"
-#include "gi/LightPropagationVolume.h"
+#include "gi/GiScheduler.h"
 #include "gi/LpvVolumes.h"
 #include "gi/PointLightInjection.h"
 #include "gi/ShEncoding.h"
-#include "platforms/PlatformProfile.h"
 
 #include <doctest/doctest.h>
 
@@ -297,21 +296,12 @@ TEST_CASE("gi: turning analytic lights on or off takes effect in every cascade a
             TestDevice device(backend);
             for (const bool to : {true, false}) {
                 // `frames` frames at !to, then one at `to`; or that one frame alone.
+                const engine::Config before = settings(!to), after = settings(to);
                 const auto meanAfter = [&](int frames) {
-                    engine::Renderer renderer(*device, 320, 240);
-                    renderer.setScene(hall);
-                    gi::LightPropagationVolume lpv(*device, platforms::loadPlatformProfile("pc"));
-                    const engine::CameraMatrices camera =
-                        engine::cameraMatrices(*hall.camera, 320.0f / 240.0f);
-                    for (int i = 0; i <= frames; ++i) {
-                        const engine::Config config = settings(i == frames ? to : !to);
-                        lpv.update(config, renderer, camera);
-                        rhi::CommandList& cmd = device->beginFrame();
-                        renderer.render(cmd, camera, config, nullptr, &lpv);
-                        device->endFrame();
-                    }
-                    device->waitIdle();
-                    return meanLuminance(readImage(*device, renderer.hdr()));
+                    return meanLuminance(
+                        renderHdrAfterFrames(*device, hall, frames + 1, [&](int i) -> const engine::Config& {
+                            return i == frames ? after : before;
+                        }));
                 };
                 const double fresh = meanAfter(0);
                 REQUIRE(fresh > 0.0);

@@ -10,10 +10,10 @@
 #include "engine/config/Config.h"
 #include "engine/render/Renderer.h"
 #include "engine/scene/BuiltinScenes.h"
-#include "gi/LightPropagationVolume.h"
-#include "platforms/PlatformProfile.h"
 
 #include <doctest/doctest.h>
+
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -163,8 +163,18 @@ TEST_CASE("gi: a change of the RSM size or the bounces mid-run keeps the cascade
           "run does") {
     // adapt's knobs change while coarse cascades keep earlier frames' results (gi/GiScheduler.h):
     // those results stay in use, and once each cascade has been made again, coarsest first, the frame
-    // is the one a run with the new settings from the start gives.
-    const engine::Scene scene = engine::buildCornellBox();
+    // is the one a run with the new settings from the start gives. A spot light on the red wall
+    // has an RSM of its own (gi.light_rsms), which the RSM size changes too.
+    engine::Scene scene = engine::buildCornellBox();
+    engine::Light spot;
+    spot.name = "spot";
+    spot.type = engine::LightType::Spot;
+    spot.position = {0.5f, 3.0f, 2.0f};
+    spot.direction = glm::normalize(glm::vec3(-2.75f, 1.0f, 1.5f) - spot.position);
+    spot.innerConeAngle = 0.35f;
+    spot.outerConeAngle = 0.5f;
+    spot.intensity = 60.0f;
+    scene.lights.push_back(spot);
     const auto settings = [](const char* rsm, const char* bounces) {
         engine::Config config;
         for (const char* s :
@@ -176,6 +186,18 @@ TEST_CASE("gi: a change of the RSM size or the bounces mid-run keeps the cascade
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
             TestDevice device(backend);
+            {
+                // The spot's RSM adds its bounce to the indirect light.
+                const engine::Config config = settings("gi.rsm_size=256", "gi.bounces=2");
+                const auto once = [&](int) -> const engine::Config& { return config; };
+                engine::Scene withoutSpot = scene;
+                withoutSpot.lights.pop_back();
+                const double lit = meanLuminance(renderHdrAfterFrames(*device, scene, 1, once)),
+                             unlit = meanLuminance(renderHdrAfterFrames(*device, withoutSpot, 1, once));
+                MESSAGE(backend.name << ": mean indirect luminance " << lit << " with the spot, " << unlit
+                                     << " without");
+                CHECK(lit > 1.1 * unlit);
+            }
             // From RSM 256 and 2 bounces to a smaller RSM, to 1 bounce, and from 1 bounce back to 2.
             for (const auto& [rsm, bounces, bouncesBefore] :
                  {std::tuple{"gi.rsm_size=128", "gi.bounces=2", "gi.bounces=2"},
@@ -185,20 +207,9 @@ TEST_CASE("gi: a change of the RSM size or the bounces mid-run keeps the cascade
                 const engine::Config after = settings(rsm, bounces);
                 // `changeAt` frames at `before` (none: a fresh run), then the rest at `after`.
                 const auto run = [&](int changeAt) {
-                    engine::Renderer renderer(*device, 320, 240);
-                    renderer.setScene(scene);
-                    gi::LightPropagationVolume lpv(*device, platforms::loadPlatformProfile("pc"));
-                    const engine::CameraMatrices camera =
-                        engine::cameraMatrices(*scene.camera, 320.0f / 240.0f);
-                    for (int i = 0; i < 9; ++i) {
-                        const engine::Config& config = i < changeAt ? before : after;
-                        lpv.update(config, renderer, camera);
-                        rhi::CommandList& cmd = device->beginFrame();
-                        renderer.render(cmd, camera, config, nullptr, &lpv);
-                        device->endFrame();
-                    }
-                    device->waitIdle();
-                    return readImage(*device, renderer.hdr());
+                    return renderHdrAfterFrames(*device, scene, 9, [&](int i) -> const engine::Config& {
+                        return i < changeAt ? before : after;
+                    });
                 };
                 const Image fresh = run(0);
                 float peak = 0.0f;

@@ -135,6 +135,23 @@ CornellFrame renderSceneFrame(rhi::Device& device, engine::Scene scene,
     return f;
 }
 
+Image renderHdrAfterFrames(rhi::Device& device, const engine::Scene& scene, int frames,
+                           const std::function<const engine::Config&(int)>& configFor) {
+    engine::Renderer renderer(device, 320, 240);
+    renderer.setScene(scene);
+    gi::LightPropagationVolume lpv(device, platforms::loadPlatformProfile("pc"));
+    const engine::CameraMatrices camera = engine::cameraMatrices(*scene.camera, 320.0f / 240.0f);
+    for (int i = 0; i < frames; ++i) {
+        const engine::Config& config = configFor(i);
+        lpv.update(config, renderer, camera);
+        rhi::CommandList& cmd = device.beginFrame();
+        renderer.render(cmd, camera, config, nullptr, &lpv);
+        device.endFrame();
+    }
+    device.waitIdle();
+    return readImage(device, renderer.hdr());
+}
+
 CornellFrame renderAtriumIndirect(rhi::Device& device, const engine::Scene& scene,
                                   const std::string& setting) {
     return renderSceneFrame(

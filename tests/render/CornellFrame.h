@@ -4,6 +4,7 @@
 
 #include "../support/Image.h"
 
+#include "engine/config/Config.h"
 #include "engine/render/CameraMatrices.h"
 #include "engine/render/Renderer.h"
 #include "engine/scene/Scene.h"
@@ -66,6 +67,11 @@ CornellFrame renderSceneFrame(rhi::Device& device, engine::Scene scene,
                               const std::function<void(engine::Renderer&)>& prepare = {},
                               uint32_t width = 320, uint32_t height = 240, int frames = 1,
                               glm::vec3 cameraOffset = glm::vec3(0.0f));
+
+// The HDR target (or debug view) of `scene` from its own camera at 320x240 after `frames` frames,
+// frame i under `configFor(i)`: for tests that change a setting mid-run.
+Image renderHdrAfterFrames(rhi::Device& device, const engine::Scene& scene, int frames,
+                           const std::function<const engine::Config&(int)>& configFor);
 
 // The indirect light alone (render.debug_view=indirect, SSAO off) of `scene` (the atrium) with GI
 // on at lpv_bench's cell size (1 m) and `setting` on top, for the atrium's GI accuracy tests.
