@@ -1,17 +1,14 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// G-buffer: albedo (sRGB target) + metallic, world normal + roughness, emissive.
+// G-buffer: albedo (sRGB target) + metallic, world normal + roughness, emissive; the factors times
+// the material's maps where it has them (glTF: metallic in B, roughness in G of one linear map).
 #include "common.glsl"
 
-layout(binding = 1, std140) uniform Draw {
-    mat4 model;
-    mat4 normalMatrix;
-    vec4 baseColor;
-    vec4 emissive;
-    vec4 material;
-} draw;
+#include "draw_uniforms.glsl"
 layout(binding = 2) uniform sampler2D baseColorTexture;
 layout(binding = 3) uniform sampler2D normalTexture;
+layout(binding = 4) uniform sampler2D metallicRoughnessTexture;
+layout(binding = 5) uniform sampler2D emissiveTexture;
 
 layout(location = 0) in vec3 vNormal;
 layout(location = 1) in vec2 vUv;
@@ -34,7 +31,15 @@ void main() {
         vec3 m = texture(normalTexture, vUv).xyz * 2.0 - 1.0;
         n = normalize(m.x * t + m.y * b + m.z * n);
     }
-    outAlbedo = vec4(albedo.rgb, draw.material.x);
-    outNormal = vec4(n, draw.material.y);
-    outEmissive = vec4(draw.emissive.rgb, 0.0);
+    float metallic = draw.material.x, roughness = draw.material.y;
+    if (draw.maps.x > 0.5) {
+        vec4 mr = texture(metallicRoughnessTexture, vUv);
+        metallic *= mr.b;
+        roughness *= mr.g;
+    }
+    vec3 emissive = draw.emissive.rgb;
+    if (draw.maps.y > 0.5) emissive *= texture(emissiveTexture, vUv).rgb;
+    outAlbedo = vec4(albedo.rgb, metallic);
+    outNormal = vec4(n, roughness);
+    outEmissive = vec4(emissive, 0.0);
 }

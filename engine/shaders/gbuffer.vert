@@ -8,13 +8,7 @@ layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) in vec4 inTangent;
 
-layout(binding = 1, std140) uniform Draw {
-    mat4 model;
-    mat4 normalMatrix;
-    vec4 baseColor;
-    vec4 emissive;
-    vec4 material;  // x metallic, y roughness, z has normal map, w has base color texture
-} draw;
+#include "draw_uniforms.glsl"
 
 layout(location = 0) out vec3 vNormal;
 layout(location = 1) out vec2 vUv;

@@ -1,13 +1,8 @@
 #version 450
+#extension GL_GOOGLE_include_directive : require
 // One view of a spot or point light's shadow map (LightShadows): depth only, seen from the light.
 layout(location = 0) in vec3 inPosition;
-layout(binding = 1, std140) uniform Draw {
-    mat4 model;
-    mat4 normalMatrix;
-    vec4 baseColor;
-    vec4 emissive;
-    vec4 material;
-} draw;
+#include "draw_uniforms.glsl"
 layout(binding = 2, std140) uniform LightShadowView {
     mat4 viewProjection;
 } light;

@@ -4,13 +4,7 @@
 #include "common.glsl"
 
 layout(location = 0) in vec3 inPosition;
-layout(binding = 1, std140) uniform Draw {
-    mat4 model;
-    mat4 normalMatrix;
-    vec4 baseColor;
-    vec4 emissive;
-    vec4 material;
-} draw;
+#include "draw_uniforms.glsl"
 
 void main() {
     gl_Position = frame.sunViewProjection * draw.model * vec4(inPosition, 1.0);

@@ -10,14 +10,9 @@ layout(binding = 0, std140) uniform Rsm {
     vec4 lightDirection;
     vec4 fluxScale;
 } rsm;
-layout(binding = 1, std140) uniform Draw {
-    mat4 model;
-    mat4 normalMatrix;
-    vec4 baseColor;
-    vec4 emissive;
-    vec4 material;
-} draw;
+#include "draw_uniforms.glsl"
 layout(binding = 2) uniform sampler2D baseColorTexture;
+layout(binding = 4) uniform sampler2D metallicRoughnessTexture;
 
 layout(location = 0) in vec3 vNormal;
 layout(location = 1) in vec2 vUv;
@@ -30,7 +25,9 @@ void main() {
     if (dot(n, rsm.lightDirection.xyz) > 0.0) n = -n;
     vec3 base = draw.baseColor.rgb;
     if (draw.material.w > 0.5) base *= texture(baseColorTexture, vUv).rgb;
+    vec4 material = draw.material; // as the G-buffer has it: the factors times the map (glTF: B, G)
+    if (draw.maps.x > 0.5) material.xy *= texture(metallicRoughnessTexture, vUv).bg;
     outNormal = vec4(n, 1.0);
-    outFlux = vec4(diffuseReflectance(base, draw.material, -dot(n, rsm.lightDirection.xyz)) * rsm.fluxScale.rgb,
+    outFlux = vec4(diffuseReflectance(base, material, -dot(n, rsm.lightDirection.xyz)) * rsm.fluxScale.rgb,
                    1.0);
 }

@@ -1,4 +1,5 @@
 #version 450
+#extension GL_GOOGLE_include_directive : require
 // Reflective shadow map: the scene from the sun, fitted to the light volume.
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
@@ -9,13 +10,7 @@ layout(binding = 0, std140) uniform Rsm {
     vec4 lightDirection;  // xyz: where the light travels
     vec4 fluxScale;       // rgb: sun irradiance x texel area (watts per texel at albedo 1)
 } rsm;
-layout(binding = 1, std140) uniform Draw {
-    mat4 model;
-    mat4 normalMatrix;
-    vec4 baseColor;
-    vec4 emissive;
-    vec4 material;
-} draw;
+#include "draw_uniforms.glsl"
 
 layout(location = 0) out vec3 vNormal;
 layout(location = 1) out vec2 vUv;

@@ -15,14 +15,9 @@ layout(binding = 0, std140) uniform SpotRsm {
     vec4 cone;
     vec4 intensity;
 } rsm;
-layout(binding = 1, std140) uniform Draw {
-    mat4 model;
-    mat4 normalMatrix;
-    vec4 baseColor;
-    vec4 emissive;
-    vec4 material;
-} draw;
+#include "draw_uniforms.glsl"
 layout(binding = 2) uniform sampler2D baseColorTexture;
+layout(binding = 4) uniform sampler2D metallicRoughnessTexture;
 
 layout(location = 0) in vec3 vNormal;
 layout(location = 1) in vec2 vUv;
@@ -44,8 +39,10 @@ void main() {
     float solidAngle = rsm.spotDirection.w * cosAxis * cosAxis * cosAxis;
     vec3 base = draw.baseColor.rgb;
     if (draw.material.w > 0.5) base *= texture(baseColorTexture, vUv).rgb;
+    vec4 material = draw.material; // as the G-buffer has it: the factors times the map (glTF: B, G)
+    if (draw.maps.x > 0.5) material.xy *= texture(metallicRoughnessTexture, vUv).bg;
     outNormal = vec4(n, 1.0);
-    outFlux = vec4(diffuseReflectance(base, draw.material, -dot(n, w)) * rsm.intensity.rgb *
+    outFlux = vec4(diffuseReflectance(base, material, -dot(n, w)) * rsm.intensity.rgb *
                        (spot * window * solidAngle),
                    1.0);
 }

@@ -1,4 +1,5 @@
 #version 450
+#extension GL_GOOGLE_include_directive : require
 // Reflective shadow map of a spot light: the scene through the perspective frustum around its cone.
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
@@ -11,13 +12,7 @@ layout(binding = 0, std140) uniform SpotRsm {
     vec4 cone;           // x: cos(outer), y: cos(inner)
     vec4 intensity;      // rgb: radiant intensity (W/sr)
 } rsm;
-layout(binding = 1, std140) uniform Draw {
-    mat4 model;
-    mat4 normalMatrix;
-    vec4 baseColor;
-    vec4 emissive;
-    vec4 material;
-} draw;
+#include "draw_uniforms.glsl"
 
 layout(location = 0) out vec3 vNormal;
 layout(location = 1) out vec2 vUv;

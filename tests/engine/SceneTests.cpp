@@ -61,12 +61,15 @@ struct GltfOptions {
     std::string bufferUri; // empty: embedded data URI
     std::string extensionsRequired = "";
     std::string imageUri = ""; // non-empty: the material gets a base color texture from this image
+    std::string material = ""; // more of the material's members (from ", ")
+    bool baseColorMap = true;  // false: the image is there for `material`'s maps only
 };
 
 std::string gltfJson(const QuadBuffer& buffer, const GltfOptions& o = {}) {
     const std::string uri =
         o.bufferUri.empty() ? "data:application/octet-stream;base64," + base64(buffer.bytes) : o.bufferUri;
-    std::string texture = o.imageUri.empty() ? "" : R"(, "baseColorTexture": {"index": 0})";
+    std::string texture =
+        o.imageUri.empty() || !o.baseColorMap ? "" : R"(, "baseColorTexture": {"index": 0})";
     std::string images =
         o.imageUri.empty() ? ""
                            : R"(, "images": [{"uri": ")" + o.imageUri + R"("}], "textures": [{"source": 0}])";
@@ -88,7 +91,7 @@ std::string gltfJson(const QuadBuffer& buffer, const GltfOptions& o = {}) {
   "cameras": [{"type": "perspective", "perspective": {"yfov": 0.9, "znear": 0.1, "zfar": 50, "aspectRatio": 1.5}}],
   "meshes": [{"name": "quad", "primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
   "materials": [{"name": "paint", "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.2, 0.1, 1], "metallicFactor": 0, "roughnessFactor": 0.4)" +
-           texture + R"(}}],
+           texture + R"(})" + o.material + R"(}],
   "buffers": [{"byteLength": )" +
            std::to_string(buffer.bytes.size()) + R"(, "uri": ")" + uri + R"("}],
   "bufferViews": [
@@ -249,6 +252,34 @@ TEST_CASE("scenes: a missing texture warns and falls back to the flat color") {
     for (const auto& w : warnings)
         named = named || (w.find(path) == 0 && w.find("nothere.png") != std::string::npos);
     CHECK_MESSAGE(named, "no warning naming the file and the texture");
+}
+
+TEST_CASE("scenes: an emissive map is read, and an occlusion map is named as unused") {
+    std::vector<std::string> warnings;
+    auto previous = log::setSink([&](log::Level level, std::string_view m) {
+        if (level == log::Level::Warning) warnings.emplace_back(m);
+    });
+    // The emissive map's image is missing: the reader tries it, warns and keeps the flat factor.
+    const std::string path =
+        write("maps.gltf",
+              gltfJson(quadBuffer(), {"", "", "glow.png",
+                                      R"(, "emissiveFactor": [1, 0.5, 0], "emissiveTexture": {"index": 0},
+                                                     "occlusionTexture": {"index": 0})",
+                                      false}));
+    const Scene s = loadGltf(path);
+    log::setSink(previous);
+    CHECK(s.materials[0].emissiveTexture == -1);
+    CHECK(s.materials[0].emissive.g == doctest::Approx(0.5f));
+    bool triedEmissive = false, namedOcclusion = false;
+    for (const auto& w : warnings) {
+        triedEmissive = triedEmissive ||
+                        (w.find("glow.png") != std::string::npos && w.find("'paint'") != std::string::npos);
+        namedOcclusion =
+            namedOcclusion ||
+            (w.find(path) == 0 && w.find("'paint': occlusionTexture is not used") != std::string::npos);
+    }
+    CHECK_MESSAGE(triedEmissive, "no warning naming the emissive map's image");
+    CHECK_MESSAGE(namedOcclusion, "no warning naming the unused occlusion map");
 }
 
 TEST_CASE("scenes: a file that does not exist") {

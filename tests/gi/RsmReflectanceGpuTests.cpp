@@ -2,7 +2,8 @@
 // (1 - metallic)) times the share glTF's fresnel_mix leaves the diffuse base of light arriving at the
 // sun's angle, (1 - F0) x (1 - the Schlick mean) (engine/render/SpecularAlbedo.h), times the sun's
 // irradiance and the texel's area: the light the lit surface shows, summed over every view. Dielectric
-// and partly metallic floors, the sun high and grazing; a metal reflects nothing.
+// and partly metallic floors (one through its metallic-roughness map), the sun high and grazing; a
+// metal reflects nothing.
 #include "../support/Image.h"
 #include "../support/TestDevice.h"
 
@@ -24,8 +25,9 @@ using namespace lpv::test;
 
 namespace {
 
-// A level floor of one material, 10 m across, larger than the RSM's view of the volume below.
-engine::Scene floorOf(glm::vec3 baseColor, float metallic, float roughness) {
+// A level floor of one material, 10 m across, larger than the RSM's view of the volume below. With
+// `metallicMap` (0-255) its metallic factor is scaled by a uniform metallic-roughness map's B.
+engine::Scene floorOf(glm::vec3 baseColor, float metallic, float roughness, int metallicMap) {
     engine::Scene scene;
     scene.name = "floor";
     engine::Material m;
@@ -33,6 +35,16 @@ engine::Scene floorOf(glm::vec3 baseColor, float metallic, float roughness) {
     m.baseColor = glm::vec4(baseColor, 1.0f);
     m.metallic = metallic;
     m.roughness = roughness;
+    if (metallicMap >= 0) {
+        engine::TextureImage map;
+        map.name = "metallic-roughness";
+        map.width = map.height = 4;
+        map.srgb = false;
+        for (int i = 0; i < 16; ++i)
+            map.rgba.insert(map.rgba.end(), {0, 255, uint8_t(metallicMap), 255});
+        scene.textures.push_back(std::move(map));
+        m.metallicRoughnessTexture = 0;
+    }
     scene.materials.push_back(m);
     engine::MeshBuilder builder(scene);
     builder.begin("floor", 0);
@@ -45,17 +57,19 @@ engine::Scene floorOf(glm::vec3 baseColor, float metallic, float roughness) {
 struct FloorCase {
     glm::vec3 baseColor;
     float metallic, roughness;
-    float sunAngle; // from the floor's normal (radians)
+    float sunAngle;       // from the floor's normal (radians)
+    int metallicMap = -1; // the metallic-roughness map's B (none: -1)
 };
 
 } // namespace
 
 TEST_CASE("gi: an RSM texel reflects the diffuse share glTF's fresnel mix leaves its surface") {
     const FloorCase cases[] = {
-        {{0.8f, 0.8f, 0.8f}, 0.0f, 0.3f, 1.047f}, // smooth dielectric, the sun 60 degrees down
-        {{0.9f, 0.5f, 0.2f}, 0.5f, 0.6f, 0.436f}, // partly metallic, the sun high (25 degrees)
-        {{0.7f, 0.7f, 0.7f}, 0.0f, 1.0f, 1.396f}, // rough dielectric, grazing sun (80 degrees)
-        {{0.9f, 0.6f, 0.3f}, 1.0f, 0.4f, 0.7f}};  // a metal: no diffuse base at all
+        {{0.8f, 0.8f, 0.8f}, 0.0f, 0.3f, 1.047f},     // smooth dielectric, the sun 60 degrees down
+        {{0.9f, 0.5f, 0.2f}, 0.5f, 0.6f, 0.436f},     // partly metallic, the sun high (25 degrees)
+        {{0.7f, 0.7f, 0.7f}, 0.0f, 1.0f, 1.396f},     // rough dielectric, grazing sun (80 degrees)
+        {{0.9f, 0.6f, 0.3f}, 1.0f, 0.4f, 0.7f},       // a metal: no diffuse base at all
+        {{0.9f, 0.5f, 0.2f}, 1.0f, 0.5f, 0.6f, 128}}; // a metal whose map makes it half metallic
     const glm::vec3 sunIrradiance{2.0f, 1.5f, 1.0f};
     const gi::VolumeGrid grid{{-4.0f, -4.0f, -4.0f}, 0.25f, 32};
     const engine::SpecularAlbedoTable& table = engine::specularAlbedoTable();
@@ -66,13 +80,16 @@ TEST_CASE("gi: an RSM texel reflects the diffuse share glTF's fresnel mix leaves
             for (const FloorCase& c : cases) {
                 const glm::vec3 sun{std::sin(c.sunAngle), -std::cos(c.sunAngle), 0.0f}; // travels
                 const float cosLight = std::cos(c.sunAngle);
-                const glm::vec3 f0 = glm::mix(glm::vec3(0.04f), c.baseColor, c.metallic);
-                const glm::vec3 diffuse = c.baseColor * (1.0f - c.metallic);
+                const float metallic =
+                    c.metallic * (c.metallicMap >= 0 ? float(c.metallicMap) / 255.0f : 1.0f);
+                const glm::vec3 f0 = glm::mix(glm::vec3(0.04f), c.baseColor, metallic);
+                const glm::vec3 diffuse = c.baseColor * (1.0f - metallic);
                 const glm::vec3 kept = (1.0f - f0) * (1.0f - table.schlickMeanAt(cosLight));
                 Image flux, normal;
                 float texelArea = 0.0f;
                 {
-                    const engine::GpuScene scene(*device, floorOf(c.baseColor, c.metallic, c.roughness));
+                    const engine::GpuScene scene(
+                        *device, floorOf(c.baseColor, c.metallic, c.roughness, c.metallicMap));
                     gi::ReflectiveShadowMap rsm(*device, 128);
                     rsm.fit(grid, sun);
                     rhi::CommandList& cmd = device->beginFrame();
@@ -96,12 +113,12 @@ TEST_CASE("gi: an RSM texel reflects the diffuse share glTF's fresnel mix leaves
                                 std::max(worst, std::fabs(flux.texels[i][ch] - expected[ch]) / expected[ch]);
                     }
                 }
-                MESSAGE(backend.name << ": metallic " << c.metallic << ", roughness " << c.roughness
+                MESSAGE(backend.name << ": metallic " << metallic << ", roughness " << c.roughness
                                      << ", cos(sun) " << cosLight << ": " << floorTexels
                                      << " floor texels; the base keeps " << kept.r << ", " << kept.g << ", "
                                      << kept.b << "; largest relative difference " << worst);
                 REQUIRE(floorTexels > 1000);
-                if (c.metallic >= 1.0f) {
+                if (metallic >= 1.0f) {
                     CHECK(brightest == 0.0f);
                     continue;
                 }

@@ -15,6 +15,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -209,6 +210,62 @@ TEST_CASE("render: metals reflect no diffuse light, and bleed no colour through 
                     CHECK(floorMetal[ch] == doctest::Approx(floorBlack[ch]).epsilon(1e-3));
                 CHECK(floorMetal.r < 1.1f * floorMetal.g);
             }
+            device.expectSilent();
+        }
+    }
+}
+
+// glTF's maps scale the material's factors: roughness by the metallic-roughness map's G, metallic
+// by its B (linear), the emissive factor by the emissive map (sRGB). The Cornell box's white paint
+// (its floor among others) gets uniform maps, so every pixel of it carries the product.
+TEST_CASE("render: a material's metallic-roughness and emissive maps scale its factors (glTF)") {
+    const auto withMaps = [](bool emissiveMap) {
+        engine::Scene scene = engine::buildCornellBox();
+        const auto uniformMap = [&](const char* name, bool srgb, std::array<uint8_t, 4> texel) {
+            engine::TextureImage t;
+            t.name = name;
+            t.width = t.height = 4;
+            t.srgb = srgb;
+            for (int i = 0; i < 16; ++i)
+                t.rgba.insert(t.rgba.end(), texel.begin(), texel.end());
+            scene.textures.push_back(std::move(t));
+            return int32_t(scene.textures.size() - 1);
+        };
+        for (engine::Material& m : scene.materials)
+            if (m.name == "white") {
+                m.metallic = 1.0f;
+                m.roughness = 0.8f;
+                m.metallicRoughnessTexture = uniformMap("metallic-roughness", false, {0, 128, 153, 255});
+                m.emissive = glm::vec3(2.0f);
+                if (emissiveMap) m.emissiveTexture = uniformMap("emissive", true, {255, 128, 0, 255});
+            }
+        return scene;
+    };
+    const float metallic = 153.0f / 255.0f, roughness = 0.8f * 128.0f / 255.0f;
+    // sRGB 128 in linear light, times the factor 2; 255 and 0 are 1 and 0.
+    const glm::vec3 emissive =
+        2.0f * glm::vec3(1.0f, std::pow((128.0f / 255.0f + 0.055f) / 1.055f, 2.4f), 0.0f);
+    const glm::vec3 floorPoint(-2.2f, 0.0f, 1.5f); // clear of the boxes
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            const std::vector<std::string> settings = {"render.ssao=false"};
+            const CornellFrame mapped = renderSceneFrame(*device, withMaps(true), settings);
+            const CornellFrame factorOnly = renderSceneFrame(*device, withMaps(false), settings);
+            uint32_t x = 0, y = 0;
+            REQUIRE(mapped.pixelOf(floorPoint, x, y));
+            const glm::vec4 albedo = mapped.albedo.at(x, y), normal = mapped.normal.at(x, y);
+            // The emissive term is the only one the emissive map changes.
+            const glm::vec3 emissiveChange = glm::vec3(mapped.hdr.at(x, y) - factorOnly.hdr.at(x, y));
+            MESSAGE(backend.name << ": floor metallic " << albedo.a << " (want " << metallic
+                                 << "), roughness " << normal.a << " (want " << roughness
+                                 << "); the emissive map changes the pixel by "
+                                 << describe(glm::vec4(emissiveChange, 0)) << " (want "
+                                 << describe(glm::vec4(emissive - 2.0f, 0)) << ")");
+            CHECK(albedo.a == doctest::Approx(metallic).epsilon(0.01));
+            CHECK(normal.a == doctest::Approx(roughness).epsilon(0.002));
+            for (int ch = 0; ch < 3; ++ch)
+                CHECK(emissiveChange[ch] == doctest::Approx(emissive[ch] - 2.0f).epsilon(0.01).scale(0.01));
             device.expectSilent();
         }
     }

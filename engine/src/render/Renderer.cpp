@@ -415,6 +415,8 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
             cmd.pushUniforms(1, &d.uniforms, sizeof(d.uniforms));
             cmd.bindTexture(2, d.baseColor, scene_->materialSampler());
             cmd.bindTexture(3, d.normal, scene_->materialSampler());
+            cmd.bindTexture(4, d.metallicRoughness, scene_->materialSampler());
+            cmd.bindTexture(5, d.emissive, scene_->materialSampler());
             cmd.drawIndexed(d.lods[0].indexCount, 1, d.lods[0].firstIndex);
         }
         cmd.endRenderPass();

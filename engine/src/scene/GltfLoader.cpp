@@ -191,6 +191,11 @@ void GltfReader::readMaterials() {
         out.baseColorTexture = texture(pbr.baseColorTexture.index, true, m.name);
         out.metallicRoughnessTexture = texture(pbr.metallicRoughnessTexture.index, false, m.name);
         out.normalTexture = texture(m.normalTexture.index, false, m.name);
+        out.emissiveTexture = texture(m.emissiveTexture.index, true, m.name);
+        // SSAO darkens the indirect light instead: say so rather than drop the map unnoticed.
+        if (m.occlusionTexture.index >= 0)
+            log::warn(path_ + ": material '" + m.name +
+                      "': occlusionTexture is not used (screen-space ambient occlusion stands in for it)");
         if (m.emissiveFactor.size() == 3)
             out.emissive = glm::vec3(m.emissiveFactor[0], m.emissiveFactor[1], m.emissiveFactor[2]);
         if (auto it = m.extensions.find("KHR_materials_emissive_strength");

@@ -22,6 +22,7 @@ struct DrawUniforms {
     glm::vec4 baseColor;
     glm::vec4 emissive;
     glm::vec4 material; // metallic, roughness, has normal map, has base color texture
+    glm::vec4 maps;     // x: has a metallic-roughness texture, y: has an emissive texture
 };
 
 // std430 element of `Lights` in lighting.frag.
@@ -43,10 +44,12 @@ struct GpuDraw {
     // lods[0] is the full mesh; each further level is coarser (MeshLods.h).
     std::array<DrawLod, kMaxMeshLods> lods{};
     uint32_t lodCount = 1;
-    rhi::TextureHandle baseColor; // a 1x1 white texture when the material has none
-    rhi::TextureHandle normal;    // a 1x1 flat normal when the material has none
-    float worldSize = 0.0f;       // largest side of the world bounds (m): size filters use it
-    Bounds worldBounds;           // culling against a view (Bounds::outsideClipVolume)
+    rhi::TextureHandle baseColor;         // a 1x1 white texture when the material has none
+    rhi::TextureHandle normal;            // a 1x1 flat normal when the material has none
+    rhi::TextureHandle metallicRoughness; // a 1x1 white (linear) texture when the material has none
+    rhi::TextureHandle emissive;          // a 1x1 white texture when the material has none
+    float worldSize = 0.0f;               // largest side of the world bounds (m): size filters use it
+    Bounds worldBounds;                   // culling against a view (Bounds::outsideClipVolume)
     DrawUniforms uniforms;
 
     // The coarsest level that strays at most `maxError` m from the mesh (the full mesh when none).
@@ -81,7 +84,7 @@ private:
     rhi::Device& device_;
     rhi::BufferHandle vertices_, indices_, lights_;
     std::vector<rhi::TextureHandle> textures_;
-    rhi::TextureHandle white_, flatNormal_;
+    rhi::TextureHandle white_, flatNormal_, linearWhite_;
     rhi::SamplerHandle sampler_;
     std::vector<GpuDraw> draws_;
     std::vector<GpuPunctualLight> lightRecords_;

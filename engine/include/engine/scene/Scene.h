@@ -57,8 +57,9 @@ struct Material {
     int32_t normalTexture = -1;
     float metallic = 0.0f;
     float roughness = 1.0f;
-    int32_t metallicRoughnessTexture = -1;
+    int32_t metallicRoughnessTexture = -1; // linear: roughness in G, metallic in B (glTF)
     glm::vec3 emissive{0.0f};
+    int32_t emissiveTexture = -1; // sRGB, times `emissive`
 };
 
 struct Mesh {
