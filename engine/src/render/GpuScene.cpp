@@ -150,6 +150,7 @@ GpuScene::GpuScene(rhi::Device& device, const Scene& scene) : device_(device) {
                                         mat.baseColorTexture >= 0 ? 1.0f : 0.0f);
         d.uniforms.maps = glm::vec4(mat.metallicRoughnessTexture >= 0 ? 1.0f : 0.0f,
                                     mat.emissiveTexture >= 0 ? 1.0f : 0.0f, 0.0f, 0.0f);
+        hasMaterialMaps_ = hasMaterialMaps_ || d.hasMaterialMaps();
         draws_.push_back(d);
         triangles_ += mesh.indexCount / 3;
     }

@@ -137,8 +137,8 @@ Renderer::~Renderer() {
     if (directLights_) device_.destroy(directLights_);
     destroyTargets();
     specularAlbedo_.reset();
-    for (auto p : {gbufferPipeline_, shadowPipeline_, ssaoPipeline_, ssaoBlurPipeline_, lightingPipeline_,
-                   lightingShadowedPipeline_, tonemapPipeline_})
+    for (auto p : {gbufferPipeline_, gbufferMappedPipeline_, shadowPipeline_, ssaoPipeline_,
+                   ssaoBlurPipeline_, lightingPipeline_, lightingShadowedPipeline_, tonemapPipeline_})
         device_.destroy(p);
     for (auto s : {linearClamp_, pointClamp_, shadowCompare_})
         device_.destroy(s);
@@ -205,6 +205,9 @@ void Renderer::createPipelines() {
     g.depthFormat = Format::D32F;
     g.debugName = "gbuffer";
     gbufferPipeline_ = device_.createPipeline(g);
+    g.fragment = &shaders::gbuffer_mapped_frag;
+    g.debugName = "gbuffer with material maps";
+    gbufferMappedPipeline_ = device_.createPipeline(g);
 
     GraphicsPipelineDesc s;
     s.vertex = &shaders::shadow_vert;
@@ -407,17 +410,24 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         pass.depth = {targets_.depth, 0, LoadOp::Clear, 1.0f};
         pass.debugName = "gbuffer";
         cmd.beginRenderPass(pass);
-        cmd.bindPipeline(gbufferPipeline_);
-        cmd.pushUniforms(0, &frame_, sizeof(frame_));
-        cmd.bindVertexBuffer(0, scene_->vertices());
-        cmd.bindIndexBuffer(scene_->indices(), IndexType::Uint32);
-        for (const GpuDraw& d : scene_->draws()) {
-            cmd.pushUniforms(1, &d.uniforms, sizeof(d.uniforms));
-            cmd.bindTexture(2, d.baseColor, scene_->materialSampler());
-            cmd.bindTexture(3, d.normal, scene_->materialSampler());
-            cmd.bindTexture(4, d.metallicRoughness, scene_->materialSampler());
-            cmd.bindTexture(5, d.emissive, scene_->materialSampler());
-            cmd.drawIndexed(d.lods[0].indexCount, 1, d.lods[0].firstIndex);
+        // The draws without metallic-roughness or emissive maps, then those with (gbuffer_body.glsl).
+        for (const bool mapped : {false, true}) {
+            if (mapped && !scene_->hasMaterialMaps()) break;
+            cmd.bindPipeline(mapped ? gbufferMappedPipeline_ : gbufferPipeline_);
+            cmd.pushUniforms(0, &frame_, sizeof(frame_));
+            cmd.bindVertexBuffer(0, scene_->vertices());
+            cmd.bindIndexBuffer(scene_->indices(), IndexType::Uint32);
+            for (const GpuDraw& d : scene_->draws()) {
+                if (d.hasMaterialMaps() != mapped) continue;
+                cmd.pushUniforms(1, &d.uniforms, sizeof(d.uniforms));
+                cmd.bindTexture(2, d.baseColor, scene_->materialSampler());
+                cmd.bindTexture(3, d.normal, scene_->materialSampler());
+                if (mapped) {
+                    cmd.bindTexture(4, d.metallicRoughness, scene_->materialSampler());
+                    cmd.bindTexture(5, d.emissive, scene_->materialSampler());
+                }
+                cmd.drawIndexed(d.lods[0].indexCount, 1, d.lods[0].firstIndex);
+            }
         }
         cmd.endRenderPass();
         cmd.endMarker();

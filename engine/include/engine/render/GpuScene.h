@@ -52,6 +52,8 @@ struct GpuDraw {
     Bounds worldBounds;                   // culling against a view (Bounds::outsideClipVolume)
     DrawUniforms uniforms;
 
+    // A metallic-roughness or emissive map: drawn by the G-buffer's variant that reads them.
+    bool hasMaterialMaps() const { return uniforms.maps.x > 0.5f || uniforms.maps.y > 0.5f; }
     // The coarsest level that strays at most `maxError` m from the mesh (the full mesh when none).
     const DrawLod& lodWithin(float maxError) const {
         uint32_t k = 0;
@@ -77,6 +79,8 @@ public:
     // The records in lights(), in the order of the scene's point and spot lights.
     const std::vector<GpuPunctualLight>& lightRecords() const { return lightRecords_; }
     const std::vector<GpuDraw>& draws() const { return draws_; }
+    // Whether any draw hasMaterialMaps().
+    bool hasMaterialMaps() const { return hasMaterialMaps_; }
     rhi::SamplerHandle materialSampler() const { return sampler_; }
     uint64_t triangleCount() const { return triangles_; }
 
@@ -85,6 +89,7 @@ private:
     rhi::BufferHandle vertices_, indices_, lights_;
     std::vector<rhi::TextureHandle> textures_;
     rhi::TextureHandle white_, flatNormal_, linearWhite_;
+    bool hasMaterialMaps_ = false;
     rhi::SamplerHandle sampler_;
     std::vector<GpuDraw> draws_;
     std::vector<GpuPunctualLight> lightRecords_;

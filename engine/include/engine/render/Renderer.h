@@ -112,8 +112,8 @@ private:
     uint32_t width_, height_, shadowSize_ = 0;
     uint32_t indirectDivisor_ = 1;
     Targets targets_;
-    rhi::GraphicsPipelineHandle gbufferPipeline_, shadowPipeline_, ssaoPipeline_, ssaoBlurPipeline_,
-        lightingPipeline_, lightingShadowedPipeline_, tonemapPipeline_;
+    rhi::GraphicsPipelineHandle gbufferPipeline_, gbufferMappedPipeline_, shadowPipeline_, ssaoPipeline_,
+        ssaoBlurPipeline_, lightingPipeline_, lightingShadowedPipeline_, tonemapPipeline_;
     rhi::SamplerHandle linearClamp_, pointClamp_, shadowCompare_;
     // The glossy term's weight per view angle and roughness (SpecularAlbedoTable), made once.
     std::unique_ptr<SpecularAlbedoTexture> specularAlbedo_;

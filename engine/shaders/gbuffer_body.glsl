@@ -1,14 +1,18 @@
-#version 450
-#extension GL_GOOGLE_include_directive : require
-// G-buffer: albedo (sRGB target) + metallic, world normal + roughness, emissive; the factors times
-// the material's maps where it has them (glTF: metallic in B, roughness in G of one linear map).
+// G-buffer: albedo (sRGB target) + metallic, world normal + roughness, emissive. Two variants
+// (engine/CMakeLists.txt): `gbuffer` for materials with at most base colour and normal maps, and
+// `gbuffer_mapped` (MATERIAL_MAPS) for those with a metallic-roughness or emissive map, whose factors
+// it scales by them (glTF: metallic in B, roughness in G of one linear map). With the maps' code in
+// every draw, even where the flags skipped it, llvmpipe's G-buffer pass took 15% longer in the
+// atrium, which has none.
 #include "common.glsl"
 
 #include "draw_uniforms.glsl"
 layout(binding = 2) uniform sampler2D baseColorTexture;
 layout(binding = 3) uniform sampler2D normalTexture;
+#ifdef MATERIAL_MAPS
 layout(binding = 4) uniform sampler2D metallicRoughnessTexture;
 layout(binding = 5) uniform sampler2D emissiveTexture;
+#endif
 
 layout(location = 0) in vec3 vNormal;
 layout(location = 1) in vec2 vUv;
@@ -32,13 +36,15 @@ void main() {
         n = normalize(m.x * t + m.y * b + m.z * n);
     }
     float metallic = draw.material.x, roughness = draw.material.y;
+    vec3 emissive = draw.emissive.rgb;
+#ifdef MATERIAL_MAPS
     if (draw.maps.x > 0.5) {
         vec4 mr = texture(metallicRoughnessTexture, vUv);
         metallic *= mr.b;
         roughness *= mr.g;
     }
-    vec3 emissive = draw.emissive.rgb;
     if (draw.maps.y > 0.5) emissive *= texture(emissiveTexture, vUv).rgb;
+#endif
     outAlbedo = vec4(albedo.rgb, metallic);
     outNormal = vec4(n, roughness);
     outEmissive = vec4(emissive, 0.0);
