@@ -137,8 +137,9 @@ Renderer::~Renderer() {
     if (directLights_) device_.destroy(directLights_);
     destroyTargets();
     specularAlbedo_.reset();
-    for (auto p : {gbufferPipeline_, gbufferMappedPipeline_, shadowPipeline_, ssaoPipeline_,
-                   ssaoBlurPipeline_, lightingPipeline_, lightingShadowedPipeline_, tonemapPipeline_})
+    if (gbufferMappedPipeline_) device_.destroy(gbufferMappedPipeline_);
+    for (auto p : {gbufferPipeline_, shadowPipeline_, ssaoPipeline_, ssaoBlurPipeline_, lightingPipeline_,
+                   lightingShadowedPipeline_, tonemapPipeline_})
         device_.destroy(p);
     for (auto s : {linearClamp_, pointClamp_, shadowCompare_})
         device_.destroy(s);
@@ -189,11 +190,11 @@ void Renderer::destroyTargets() {
     targets_ = {};
 }
 
-void Renderer::createPipelines() {
+rhi::GraphicsPipelineDesc Renderer::gbufferPipelineDesc(bool materialMaps) {
     using namespace rhi;
     GraphicsPipelineDesc g;
     g.vertex = &shaders::gbuffer_vert;
-    g.fragment = &shaders::gbuffer_frag;
+    g.fragment = materialMaps ? &shaders::gbuffer_mapped_frag : &shaders::gbuffer_frag;
     g.vertexBuffers = {{sizeof(Vertex)}};
     g.attributes = {{0, VertexFormat::Float3, offsetof(Vertex, position)},
                     {1, VertexFormat::Float3, offsetof(Vertex, normal)},
@@ -203,11 +204,13 @@ void Renderer::createPipelines() {
     g.depthCompare = CompareOp::Less;
     g.colorFormats = {Format::RGBA8Srgb, Format::RGBA16F, Format::RGBA16F};
     g.depthFormat = Format::D32F;
-    g.debugName = "gbuffer";
-    gbufferPipeline_ = device_.createPipeline(g);
-    g.fragment = &shaders::gbuffer_mapped_frag;
-    g.debugName = "gbuffer with material maps";
-    gbufferMappedPipeline_ = device_.createPipeline(g);
+    g.debugName = materialMaps ? "gbuffer with material maps" : "gbuffer";
+    return g;
+}
+
+void Renderer::createPipelines() {
+    using namespace rhi;
+    gbufferPipeline_ = device_.createPipeline(gbufferPipelineDesc(false));
 
     GraphicsPipelineDesc s;
     s.vertex = &shaders::shadow_vert;
@@ -243,6 +246,10 @@ void Renderer::setScene(const Scene& scene) {
     device_.waitIdle();
     scene_.reset();
     scene_ = std::make_unique<GpuScene>(device_, scene);
+    // Made for the first scene that needs it: on llvmpipe and lavapipe the variant's mere existence
+    // added 50-200 ms to the first frame's G-buffer pass of the atrium, which has no such maps.
+    if (scene_->hasMaterialMaps() && !gbufferMappedPipeline_)
+        gbufferMappedPipeline_ = device_.createPipeline(gbufferPipelineDesc(true));
     if (directLights_) device_.destroy(directLights_);
     const uint32_t lightCount = scene_->lightCount();
     directLights_ = device_.createBuffer(

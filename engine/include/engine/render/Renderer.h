@@ -103,6 +103,8 @@ private:
     void createIndirectTargets(uint32_t divisor);
     void destroyTargets();
     void createPipelines();
+    // The G-buffer pass without or with metallic-roughness and emissive maps (gbuffer_body.glsl).
+    static rhi::GraphicsPipelineDesc gbufferPipelineDesc(bool materialMaps);
     // The point and spot lights the lighting pass lights itself (those `indirect` does not carry):
     // their count, and in `buffer` the buffer that holds them (the scene's, or directLights_ when
     // only some are left, refilled when that choice changes).
