@@ -3,7 +3,7 @@
 // biasDirection and, in z, the Schlick mean (SpecularAlbedo.h's integrateSchlickMean, by cos(light)
 // along x, the same in every row). Sampled with bilinear filtering, clamped: texel i of a block holds cos(view) or
 // roughness i / (kSize - 1), hence the half-texel inset, which also keeps a block's filtering off
-// the other's rows. Shared by the lighting pass and the GI's lookup.
+// the other's rows. Shared by the lighting pass, the GI's lookup and its RSMs.
 #ifndef SPECULAR_ALBEDO_GLSL
 #define SPECULAR_ALBEDO_GLSL
 

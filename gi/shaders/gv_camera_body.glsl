@@ -102,7 +102,7 @@ void main() {
     vCoverage = abs(s.n);
     vFromCamera = 1;
     // What multiple bounces reflect with: the RSM's diffuse reflectance (rsm_diffuse.glsl), none
-    // for metals (alpha: metallic), without its Schlick mean (at most 2.7%: the angle light arrives
+    // for metals (alpha: metallic), without its Schlick mean (at most 2.8%: the angle light arrives
     // at is not known here).
     vec4 base = texelFetch(gbufferAlbedo, s.pixel, 0);
     vAlbedo = base.rgb * (1.0 - base.a) * (1.0 - mix(vec3(0.04), base.rgb, base.a));

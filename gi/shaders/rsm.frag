@@ -25,8 +25,8 @@ void main() {
     if (dot(n, rsm.lightDirection.xyz) > 0.0) n = -n;
     vec3 base = draw.baseColor.rgb;
     if (draw.material.w > 0.5) base *= texture(baseColorTexture, vUv).rgb;
-    vec4 material = draw.material; // as the G-buffer has it: the factors times the map (glTF: B, G)
-    if (draw.maps.x > 0.5) material.xy *= texture(metallicRoughnessTexture, vUv).bg;
+    vec4 material = draw.material; // metallic as the G-buffer has it: the factor times the map's B
+    if (draw.maps.x > 0.5) material.x *= texture(metallicRoughnessTexture, vUv).b;
     outNormal = vec4(n, 1.0);
     outFlux = vec4(diffuseReflectance(base, material, -dot(n, rsm.lightDirection.xyz)) * rsm.fluxScale.rgb,
                    1.0);

@@ -213,7 +213,7 @@ uint64_t ReflectiveShadowMap::draw(rhi::CommandList& cmd, const engine::GpuScene
         if (d.worldSize < minObjectSize || d.worldBounds.outsideClipVolume(viewProjection_)) continue;
         cmd.pushUniforms(1, &d.uniforms, sizeof(d.uniforms));
         cmd.bindTexture(2, d.baseColor, scene.materialSampler());
-        cmd.bindTexture(4, d.metallicRoughness, scene.materialSampler());
+        cmd.bindTexture(4, d.metallicRoughnessMap, scene.materialSampler());
         const engine::DrawLod& lod = d.lodWithin(maxError(d));
         cmd.drawIndexed(lod.indexCount, 1, lod.firstIndex);
         triangles += lod.indexCount / 3;

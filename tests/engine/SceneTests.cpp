@@ -282,6 +282,27 @@ TEST_CASE("scenes: an emissive map is read, and an occlusion map is named as unu
     CHECK_MESSAGE(namedOcclusion, "no warning naming the unused occlusion map");
 }
 
+TEST_CASE("scenes: an emissive map that loads is kept as an sRGB texture") {
+    // A 1x1 PNG of (255, 128, 0), embedded as a data URI.
+    const std::string png =
+        "data:image/png;base64,"
+        "iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAIAAACQd1PeAAAADElEQVR4nGP438AAAAQBAYDFKhhdAAAAAElFTkSuQmCC";
+    const std::string path = write(
+        "emissive.gltf",
+        gltfJson(quadBuffer(),
+                 {"", "", png, R"(, "emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": 0})", false}));
+    const Scene s = loadGltf(path);
+    REQUIRE(s.materials[0].emissiveTexture >= 0);
+    CHECK(s.materials[0].baseColorTexture == -1);
+    const TextureImage& map = s.textures.at(size_t(s.materials[0].emissiveTexture));
+    CHECK(map.srgb);
+    REQUIRE(map.width == 1);
+    REQUIRE(map.rgba.size() == 4);
+    CHECK(map.rgba[0] == 255);
+    CHECK(map.rgba[1] == 128);
+    CHECK(map.rgba[2] == 0);
+}
+
 TEST_CASE("scenes: a file that does not exist") {
     CHECK(gltfErrorOf("/nonexistent/scene.gltf") ==
           "/nonexistent/scene.gltf: cannot open the file: No such file or directory");

@@ -187,16 +187,25 @@ TEST_CASE("gi: a change of the RSM size or the bounces mid-run keeps the cascade
         SUBCASE(backend.name.c_str()) {
             TestDevice device(backend);
             {
-                // The spot's RSM adds its bounce to the indirect light.
+                // The spot adds its bounce to the indirect light through its RSM: without the spot,
+                // or with it injected analytically (gi.light_rsms=0), the light differs.
                 const engine::Config config = settings("gi.rsm_size=256", "gi.bounces=2");
-                const auto once = [&](int) -> const engine::Config& { return config; };
+                engine::Config analytic = config;
+                analytic.applyOverride("gi.light_rsms=0", "test");
+                const auto under = [](const engine::Config& c) {
+                    return [&c](int) -> const engine::Config& { return c; };
+                };
                 engine::Scene withoutSpot = scene;
                 withoutSpot.lights.pop_back();
-                const double lit = meanLuminance(renderHdrAfterFrames(*device, scene, 1, once)),
-                             unlit = meanLuminance(renderHdrAfterFrames(*device, withoutSpot, 1, once));
-                MESSAGE(backend.name << ": mean indirect luminance " << lit << " with the spot, " << unlit
-                                     << " without");
+                const double lit = meanLuminance(renderHdrAfterFrames(*device, scene, 1, under(config))),
+                             unlit =
+                                 meanLuminance(renderHdrAfterFrames(*device, withoutSpot, 1, under(config))),
+                             injected =
+                                 meanLuminance(renderHdrAfterFrames(*device, scene, 1, under(analytic)));
+                MESSAGE(backend.name << ": mean indirect luminance " << lit << " with the spot's RSM, "
+                                     << injected << " with the spot analytic, " << unlit << " without it");
                 CHECK(lit > 1.1 * unlit);
+                CHECK(std::fabs(lit - injected) > 0.05 * lit);
             }
             // From RSM 256 and 2 bounces to a smaller RSM, to 1 bounce, and from 1 bounce back to 2.
             for (const auto& [rsm, bounces, bouncesBefore] :

@@ -297,7 +297,9 @@ TEST_CASE("gi: a spot light's RSM reflects the flux its cone delivers, times the
             CHECK(sum.lit > vpls.size() / 2);
             CHECK(sum.facingLight == sum.lit);
             for (int c = 0; c < 3; ++c)
-                CHECK(flux[c] == doctest::Approx(expected).epsilon(0.01)); // measured 0.4%
+                // Measured 0.4% under (0.05% before the share): the boxes' sides catch part of the
+                // cone at steeper angles than the level surfaces this formula assumes, and lose more.
+                CHECK(flux[c] == doctest::Approx(expected).epsilon(0.01));
             device.expectSilent();
         }
     }

@@ -81,7 +81,6 @@ GpuScene::GpuScene(rhi::Device& device, const Scene& scene) : device_(device) {
     const uint8_t white[4] = {255, 255, 255, 255}, flat[4] = {128, 128, 255, 255};
     white_ = solidTexture(device, white, Format::RGBA8Srgb, "white");
     flatNormal_ = solidTexture(device, flat, Format::RGBA8Unorm, "flat normal");
-    linearWhite_ = solidTexture(device, white, Format::RGBA8Unorm, "linear white");
     for (const TextureImage& image : scene.textures) {
         uint32_t levels = 1;
         const std::vector<uint8_t> chain = mipChain(image, levels);
@@ -135,10 +134,9 @@ GpuScene::GpuScene(rhi::Device& device, const Scene& scene) : device_(device) {
             d.lods[d.lodCount++] = {lod.firstIndex, lod.indexCount, lod.error * scale};
         d.baseColor = mat.baseColorTexture >= 0 ? textures_[size_t(mat.baseColorTexture)] : white_;
         d.normal = mat.normalTexture >= 0 ? textures_[size_t(mat.normalTexture)] : flatNormal_;
-        d.metallicRoughness = mat.metallicRoughnessTexture >= 0
-                                  ? textures_[size_t(mat.metallicRoughnessTexture)]
-                                  : linearWhite_;
-        d.emissive = mat.emissiveTexture >= 0 ? textures_[size_t(mat.emissiveTexture)] : white_;
+        d.metallicRoughnessMap =
+            mat.metallicRoughnessTexture >= 0 ? textures_[size_t(mat.metallicRoughnessTexture)] : white_;
+        d.emissiveMap = mat.emissiveTexture >= 0 ? textures_[size_t(mat.emissiveTexture)] : white_;
         d.worldBounds = inst.worldBounds.empty() ? mesh.bounds.transformed(inst.transform) : inst.worldBounds;
         const glm::vec3 size = d.worldBounds.size();
         d.worldSize = std::max({size.x, size.y, size.z});
@@ -162,7 +160,6 @@ GpuScene::~GpuScene() {
         device_.destroy(t);
     device_.destroy(white_);
     device_.destroy(flatNormal_);
-    device_.destroy(linearWhite_);
     device_.destroy(sampler_);
     device_.destroy(vertices_);
     device_.destroy(indices_);

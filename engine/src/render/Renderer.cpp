@@ -245,11 +245,13 @@ void Renderer::resize(uint32_t width, uint32_t height) {
 void Renderer::setScene(const Scene& scene) {
     device_.waitIdle();
     scene_.reset();
-    scene_ = std::make_unique<GpuScene>(device_, scene);
-    // Made for the first scene that needs it: on llvmpipe and lavapipe the variant's mere existence
-    // added 50-200 ms to the first frame's G-buffer pass of the atrium, which has no such maps.
-    if (scene_->hasMaterialMaps() && !gbufferMappedPipeline_)
+    auto next = std::make_unique<GpuScene>(device_, scene);
+    // Made for the first scene that needs it (before the scene is taken, so a failure leaves none
+    // to draw without it): on llvmpipe and lavapipe the variant's mere existence added 50-200 ms to
+    // the first frame's G-buffer pass of the atrium, which has no such maps.
+    if (next->hasMaterialMaps() && !gbufferMappedPipeline_)
         gbufferMappedPipeline_ = device_.createPipeline(gbufferPipelineDesc(true));
+    scene_ = std::move(next);
     if (directLights_) device_.destroy(directLights_);
     const uint32_t lightCount = scene_->lightCount();
     directLights_ = device_.createBuffer(
@@ -417,7 +419,9 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         pass.depth = {targets_.depth, 0, LoadOp::Clear, 1.0f};
         pass.debugName = "gbuffer";
         cmd.beginRenderPass(pass);
-        // The draws without metallic-roughness or emissive maps, then those with (gbuffer_body.glsl).
+        // The draws without metallic-roughness or emissive maps, then those with (gbuffer_body.glsl):
+        // each pipeline bound once. Equal depths keep the first draw, so where coplanar surfaces of
+        // the two kinds meet, the one without maps wins rather than the earlier in the scene.
         for (const bool mapped : {false, true}) {
             if (mapped && !scene_->hasMaterialMaps()) break;
             cmd.bindPipeline(mapped ? gbufferMappedPipeline_ : gbufferPipeline_);
@@ -430,8 +434,8 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
                 cmd.bindTexture(2, d.baseColor, scene_->materialSampler());
                 cmd.bindTexture(3, d.normal, scene_->materialSampler());
                 if (mapped) {
-                    cmd.bindTexture(4, d.metallicRoughness, scene_->materialSampler());
-                    cmd.bindTexture(5, d.emissive, scene_->materialSampler());
+                    cmd.bindTexture(4, d.metallicRoughnessMap, scene_->materialSampler());
+                    cmd.bindTexture(5, d.emissiveMap, scene_->materialSampler());
                 }
                 cmd.drawIndexed(d.lods[0].indexCount, 1, d.lods[0].firstIndex);
             }

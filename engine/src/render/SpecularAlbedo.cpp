@@ -109,7 +109,7 @@ const SpecularAlbedoTable& specularAlbedoTable() {
                 t.texels[j * SpecularAlbedoTable::kSize + i] =
                     integrateSpecularAlbedo(float(i) / last, float(j) / last, SpecularAlbedoTable::kSamples);
         for (uint32_t i = 0; i < SpecularAlbedoTable::kSize; ++i)
-            t.schlickMean[i] = integrateSchlickMean(float(i) / last, 128);
+            t.schlickMean[i] = integrateSchlickMean(float(i) / last, 64);
         return t;
     }();
     return table;

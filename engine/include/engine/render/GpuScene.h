@@ -15,7 +15,7 @@
 
 namespace lpv::engine {
 
-// std140 block `Draw` of gbuffer.vert / shadow.vert.
+// std140 block `Draw` of engine/shaders/draw_uniforms.glsl.
 struct DrawUniforms {
     glm::mat4 model;
     glm::mat4 normalMatrix;
@@ -24,6 +24,7 @@ struct DrawUniforms {
     glm::vec4 material; // metallic, roughness, has normal map, has base color texture
     glm::vec4 maps;     // x: has a metallic-roughness texture, y: has an emissive texture
 };
+static_assert(sizeof(DrawUniforms) == 192, "DrawUniforms must match the std140 block Draw");
 
 // std430 element of `Lights` in lighting.frag.
 struct GpuPunctualLight {
@@ -44,12 +45,13 @@ struct GpuDraw {
     // lods[0] is the full mesh; each further level is coarser (MeshLods.h).
     std::array<DrawLod, kMaxMeshLods> lods{};
     uint32_t lodCount = 1;
-    rhi::TextureHandle baseColor;         // a 1x1 white texture when the material has none
-    rhi::TextureHandle normal;            // a 1x1 flat normal when the material has none
-    rhi::TextureHandle metallicRoughness; // a 1x1 white (linear) texture when the material has none
-    rhi::TextureHandle emissive;          // a 1x1 white texture when the material has none
-    float worldSize = 0.0f;               // largest side of the world bounds (m): size filters use it
-    Bounds worldBounds;                   // culling against a view (Bounds::outsideClipVolume)
+    rhi::TextureHandle baseColor; // a 1x1 white texture when the material has none
+    rhi::TextureHandle normal;    // a 1x1 flat normal when the material has none
+    // Read only by the G-buffer's and RSMs' map variants, where uniforms.maps says the material has one;
+    // a 1x1 white texture otherwise.
+    rhi::TextureHandle metallicRoughnessMap, emissiveMap;
+    float worldSize = 0.0f; // largest side of the world bounds (m): size filters use it
+    Bounds worldBounds;     // culling against a view (Bounds::outsideClipVolume)
     DrawUniforms uniforms;
 
     // A metallic-roughness or emissive map: drawn by the G-buffer's variant that reads them.
@@ -88,7 +90,7 @@ private:
     rhi::Device& device_;
     rhi::BufferHandle vertices_, indices_, lights_;
     std::vector<rhi::TextureHandle> textures_;
-    rhi::TextureHandle white_, flatNormal_, linearWhite_;
+    rhi::TextureHandle white_, flatNormal_;
     bool hasMaterialMaps_ = false;
     rhi::SamplerHandle sampler_;
     std::vector<GpuDraw> draws_;

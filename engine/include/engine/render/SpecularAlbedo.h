@@ -40,12 +40,13 @@ SpecularAlbedo integrateSpecularAlbedo(float cosView, float roughness, uint32_t 
 // `cosLight`, in all it sends out: the base shows 1 - F(v.h) of it toward each view v, and over the
 // hemisphere of views, weighted by their cosine, that is (1 - F0) x (1 - this), the mean of Schlick's
 // (1 - v.h)^5. It does not depend on roughness (the mix weighs by the half vector, not by the lobe):
-// 8e-5 for light along the normal, 0.027 at grazing light. A reflective shadow map's texel reflects
+// 8e-5 for light along the normal, 0.028 at grazing light. A reflective shadow map's texel reflects
 // its light with this share (gi/shaders/rsm_diffuse.glsl), the share the lighting pass shows.
 // Midpoint quadrature over `steps` x 2 `steps` view directions.
 float integrateSchlickMean(float cosLight, uint32_t steps);
 
-// The table the lighting pass (scale and bias) and the GI's lookup (all of it) sample: size x size texels,
+// The table the lighting pass (scale and bias), the GI's lookup (all of it) and the RSMs (the
+// Schlick mean) sample: size x size texels,
 // cos(view angle) along x and roughness along y, texel (i, j) holding the integral at cosView = i / (size -
 // 1), roughness = j / (size - 1) (so both ends are exact under bilinear filtering, as at()).
 struct SpecularAlbedoTable {
