@@ -303,6 +303,30 @@ TEST_CASE("scenes: an emissive map that loads is kept as an sRGB texture") {
     CHECK(map.rgba[2] == 0);
 }
 
+TEST_CASE("scenes: a blended material and a map on a second texture set are named, not dropped unnoticed") {
+    std::vector<std::string> warnings;
+    auto previous = log::setSink([&](log::Level level, std::string_view m) {
+        if (level == log::Level::Warning) warnings.emplace_back(m);
+    });
+    const std::string path =
+        write("blend.gltf",
+              gltfJson(quadBuffer(),
+                       {"", "", "nothere.png",
+                        R"(, "alphaMode": "BLEND", "normalTexture": {"index": 0, "texCoord": 1})", false}));
+    const Scene s = loadGltf(path);
+    log::setSink(previous);
+    CHECK(s.materials.size() == 1);
+    bool blend = false, texCoord = false;
+    for (const auto& w : warnings) {
+        blend = blend || w == path + ": material 'paint': alphaMode BLEND is drawn as OPAQUE";
+        texCoord =
+            texCoord ||
+            w == path + ": material 'paint': normalTexture names TEXCOORD_1; it is read through TEXCOORD_0";
+    }
+    CHECK_MESSAGE(blend, "no warning for the blended material");
+    CHECK_MESSAGE(texCoord, "no warning for the second texture set");
+}
+
 TEST_CASE("scenes: a file that does not exist") {
     CHECK(gltfErrorOf("/nonexistent/scene.gltf") ==
           "/nonexistent/scene.gltf: cannot open the file: No such file or directory");

@@ -22,6 +22,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <utility>
 
 namespace lpv::engine {
 namespace {
@@ -192,10 +193,23 @@ void GltfReader::readMaterials() {
         out.metallicRoughnessTexture = texture(pbr.metallicRoughnessTexture.index, false, m.name);
         out.normalTexture = texture(m.normalTexture.index, false, m.name);
         out.emissiveTexture = texture(m.emissiveTexture.index, true, m.name);
-        // SSAO darkens the indirect light instead: say so rather than drop the map unnoticed.
+        // What the renderer does otherwise is said, not dropped unnoticed. SSAO darkens the indirect
+        // light instead of an occlusion map; every surface is drawn opaque; every map is read
+        // through the first set of texture coordinates, the only one the vertices keep.
+        const std::string who = path_ + ": material '" + m.name + "': ";
         if (m.occlusionTexture.index >= 0)
-            log::warn(path_ + ": material '" + m.name +
-                      "': occlusionTexture is not used (screen-space ambient occlusion stands in for it)");
+            log::warn(who + "occlusionTexture is not used (screen-space ambient occlusion stands in for it)");
+        if (!m.alphaMode.empty() && m.alphaMode != "OPAQUE")
+            log::warn(who + "alphaMode " + m.alphaMode + " is drawn as OPAQUE");
+        const std::pair<const char*, int> sets[] = {
+            {"baseColorTexture", pbr.baseColorTexture.texCoord},
+            {"metallicRoughnessTexture", pbr.metallicRoughnessTexture.texCoord},
+            {"normalTexture", m.normalTexture.texCoord},
+            {"emissiveTexture", m.emissiveTexture.texCoord}};
+        for (const auto& [map, set] : sets)
+            if (set != 0)
+                log::warn(who + map + " names TEXCOORD_" + std::to_string(set) +
+                          "; it is read through TEXCOORD_0");
         if (m.emissiveFactor.size() == 3)
             out.emissive = glm::vec3(m.emissiveFactor[0], m.emissiveFactor[1], m.emissiveFactor[2]);
         if (auto it = m.extensions.find("KHR_materials_emissive_strength");
