@@ -111,6 +111,24 @@ std::string write(const std::string& name, const std::string& text) {
     return path;
 }
 
+// `path` loaded, and the warnings the loader logged meanwhile (the sink is restored either way).
+struct LoadedWithWarnings {
+    Scene scene;
+    std::vector<std::string> warnings;
+};
+LoadedWithWarnings loadWithWarnings(const std::string& path) {
+    LoadedWithWarnings out;
+    auto previous = log::setSink([&](log::Level level, std::string_view m) {
+        if (level == log::Level::Warning) out.warnings.emplace_back(m);
+    });
+    struct Restore {
+        log::Sink sink;
+        ~Restore() { log::setSink(std::move(sink)); }
+    } restore{std::move(previous)};
+    out.scene = loadGltf(path);
+    return out;
+}
+
 } // namespace
 
 TEST_CASE("scenes: the Cornell box") {
@@ -239,13 +257,8 @@ TEST_CASE("scenes: an unsupported extension marked required is an error") {
 }
 
 TEST_CASE("scenes: a missing texture warns and falls back to the flat color") {
-    std::vector<std::string> warnings;
-    auto previous = log::setSink([&](log::Level level, std::string_view m) {
-        if (level == log::Level::Warning) warnings.emplace_back(m);
-    });
     const std::string path = write("notexture.gltf", gltfJson(quadBuffer(), {"", "", "nothere.png"}));
-    const Scene s = loadGltf(path);
-    log::setSink(previous);
+    const auto [s, warnings] = loadWithWarnings(path);
     CHECK(s.materials[0].baseColorTexture == -1);
     CHECK(s.materials[0].baseColor.r == doctest::Approx(0.9f));
     bool named = false;
@@ -255,10 +268,6 @@ TEST_CASE("scenes: a missing texture warns and falls back to the flat color") {
 }
 
 TEST_CASE("scenes: an emissive map is read, and an occlusion map is named as unused") {
-    std::vector<std::string> warnings;
-    auto previous = log::setSink([&](log::Level level, std::string_view m) {
-        if (level == log::Level::Warning) warnings.emplace_back(m);
-    });
     // The emissive map's image is missing: the reader tries it, warns and keeps the flat factor.
     const std::string path =
         write("maps.gltf",
@@ -266,8 +275,7 @@ TEST_CASE("scenes: an emissive map is read, and an occlusion map is named as unu
                                       R"(, "emissiveFactor": [1, 0.5, 0], "emissiveTexture": {"index": 0},
                                                      "occlusionTexture": {"index": 0})",
                                       false}));
-    const Scene s = loadGltf(path);
-    log::setSink(previous);
+    const auto [s, warnings] = loadWithWarnings(path);
     CHECK(s.materials[0].emissiveTexture == -1);
     CHECK(s.materials[0].emissive.g == doctest::Approx(0.5f));
     bool triedEmissive = false, namedOcclusion = false;
@@ -304,17 +312,12 @@ TEST_CASE("scenes: an emissive map that loads is kept as an sRGB texture") {
 }
 
 TEST_CASE("scenes: a blended material and a map on a second texture set are named, not dropped unnoticed") {
-    std::vector<std::string> warnings;
-    auto previous = log::setSink([&](log::Level level, std::string_view m) {
-        if (level == log::Level::Warning) warnings.emplace_back(m);
-    });
     const std::string path =
         write("blend.gltf",
               gltfJson(quadBuffer(),
                        {"", "", "nothere.png",
                         R"(, "alphaMode": "BLEND", "normalTexture": {"index": 0, "texCoord": 1})", false}));
-    const Scene s = loadGltf(path);
-    log::setSink(previous);
+    const auto [s, warnings] = loadWithWarnings(path);
     CHECK(s.materials.size() == 1);
     bool blend = false, texCoord = false;
     for (const auto& w : warnings) {
