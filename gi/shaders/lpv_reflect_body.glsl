@@ -19,14 +19,15 @@ layout(binding = 0, std140) uniform Reflect {
     ivec4 grid;  // x: cells per axis
     vec4 encode; // x: the cascade's rgba8 range (LpvVolumes::injectedEncodeRange); y: 1 when encoded
 } params;
-layout(binding = 1) uniform sampler3D sourceRed;
-layout(binding = 2) uniform sampler3D sourceGreen;
-layout(binding = 3) uniform sampler3D sourceBlue;
-layout(binding = 4) uniform sampler3D faceTransmittance; // xyz: the cell's -x, -y, -z faces
-layout(binding = 5) uniform sampler3D surfelAlbedo;      // rgb: mean albedo of the cell's surfels
-layout(binding = 6, INJECT_FORMAT) uniform writeonly image3D injectedRed;
-layout(binding = 7, INJECT_FORMAT) uniform writeonly image3D injectedGreen;
-layout(binding = 8, INJECT_FORMAT) uniform writeonly image3D injectedBlue;
+layout(binding = 4) uniform sampler3D sourceRed;
+layout(binding = 5) uniform sampler3D sourceGreen;
+layout(binding = 6) uniform sampler3D sourceBlue;
+layout(binding = 7) uniform sampler3D faceTransmittance; // xyz: the cell's -x, -y, -z faces
+layout(binding = 8) uniform sampler3D surfelAlbedo;      // rgb: mean albedo of the cell's surfels
+// Storage images take bindings 0-7 (rhi/Shader.h).
+layout(binding = 1, INJECT_FORMAT) uniform writeonly image3D injectedRed;
+layout(binding = 2, INJECT_FORMAT) uniform writeonly image3D injectedGreen;
+layout(binding = 3, INJECT_FORMAT) uniform writeonly image3D injectedBlue;
 
 
 vec4 source(sampler3D s, ivec3 c) {

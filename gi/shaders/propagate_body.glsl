@@ -61,11 +61,14 @@ layout(binding = 20) uniform sampler3D coarseRed;
 layout(binding = 21) uniform sampler3D coarseGreen;
 layout(binding = 22) uniform sampler3D coarseBlue;
 #endif
-// Everything the kernel reads cell by cell is a storage image: llvmpipe turns imageLoad into a
-// plain gather, where texelFetch goes through its sampler code.
-layout(binding = 1, INJECT_FORMAT) uniform readonly image3D injectedRed;
-layout(binding = 2, INJECT_FORMAT) uniform readonly image3D injectedGreen;
-layout(binding = 3, INJECT_FORMAT) uniform readonly image3D injectedBlue;
+// The partial sums and face transmittances, read cell by cell, are storage images: llvmpipe turns
+// imageLoad into a plain gather, where texelFetch goes through its sampler code. Storage images
+// take bindings 0-7 (rhi/Shader.h: OpenGL guarantees 8 image units and NVIDIA's driver has 8), and
+// with three partial-sum texels a kernel reads 3 and writes 3, so the injection volume, read once
+// per cell and step, is a texture.
+layout(binding = 8) uniform sampler3D injectedRed;
+layout(binding = 9) uniform sampler3D injectedGreen;
+layout(binding = 10) uniform sampler3D injectedBlue;
 // The partial sums: packed unsigned-integer texels, or (PARTIALS_AS_SH) one SH_FORMAT image per
 // channel like the result.
 #ifdef PARTIALS_AS_SH
@@ -78,39 +81,39 @@ layout(binding = 3, INJECT_FORMAT) uniform readonly image3D injectedBlue;
 // SHELL: partial sums are (n + 2)^3 (odd n: one more); cell c is at c + 1.
 #ifdef SEED
 // The other partial-sum volume: only its shell is written.
-layout(binding = 4, PACKED0_FORMAT) uniform writeonly PARTIAL_IMAGE shell0;
+layout(binding = 1, PACKED0_FORMAT) uniform writeonly PARTIAL_IMAGE shell0;
 #if PACKED_TEXELS > 1
-layout(binding = 5, PACKED1_FORMAT) uniform writeonly PARTIAL_IMAGE shell1;
+layout(binding = 2, PACKED1_FORMAT) uniform writeonly PARTIAL_IMAGE shell1;
 #endif
 #if PACKED_TEXELS > 2
-layout(binding = 6, PACKED2_FORMAT) uniform writeonly PARTIAL_IMAGE shell2;
+layout(binding = 3, PACKED2_FORMAT) uniform writeonly PARTIAL_IMAGE shell2;
 #endif
 #elif !defined(FROM_INJECTION)
-layout(binding = 4, PACKED0_FORMAT) uniform readonly PARTIAL_IMAGE src0;
+layout(binding = 1, PACKED0_FORMAT) uniform readonly PARTIAL_IMAGE src0;
 #if PACKED_TEXELS > 1
-layout(binding = 5, PACKED1_FORMAT) uniform readonly PARTIAL_IMAGE src1;
+layout(binding = 2, PACKED1_FORMAT) uniform readonly PARTIAL_IMAGE src1;
 #endif
 #if PACKED_TEXELS > 2
-layout(binding = 6, PACKED2_FORMAT) uniform readonly PARTIAL_IMAGE src2;
+layout(binding = 3, PACKED2_FORMAT) uniform readonly PARTIAL_IMAGE src2;
 #endif
 #endif
 #ifdef TO_RESULT
-layout(binding = 10, SH_FORMAT) uniform writeonly image3D resultRed;
-layout(binding = 11, SH_FORMAT) uniform writeonly image3D resultGreen;
-layout(binding = 12, SH_FORMAT) uniform writeonly image3D resultBlue;
+layout(binding = 4, SH_FORMAT) uniform writeonly image3D resultRed;
+layout(binding = 5, SH_FORMAT) uniform writeonly image3D resultGreen;
+layout(binding = 6, SH_FORMAT) uniform writeonly image3D resultBlue;
 #else
-layout(binding = 7, PACKED0_FORMAT) uniform writeonly PARTIAL_IMAGE dst0;
+layout(binding = 4, PACKED0_FORMAT) uniform writeonly PARTIAL_IMAGE dst0;
 #if PACKED_TEXELS > 1
-layout(binding = 8, PACKED1_FORMAT) uniform writeonly PARTIAL_IMAGE dst1;
+layout(binding = 5, PACKED1_FORMAT) uniform writeonly PARTIAL_IMAGE dst1;
 #endif
 #if PACKED_TEXELS > 2
-layout(binding = 9, PACKED2_FORMAT) uniform writeonly PARTIAL_IMAGE dst2;
+layout(binding = 6, PACKED2_FORMAT) uniform writeonly PARTIAL_IMAGE dst2;
 #endif
 #endif
 
 #ifdef OCCLUSION
 // Per cell: the transmittance of its -x, -y, -z faces (GeometryVolume).
-layout(binding = 19, rgba8) uniform readonly image3D faceTransmittance;
+layout(binding = 7, rgba8) uniform readonly image3D faceTransmittance;
 #endif
 
 struct Sh3 {
@@ -195,7 +198,7 @@ Sh3 loadPartial(ivec3 k) {
 // out, and storeCell drops those cells).
 Sh3 loadInjected(ivec3 c, int n) {
     const ivec3 k = min(c, ivec3(n - 1));
-    return Sh3(imageLoad(injectedRed, k), imageLoad(injectedGreen, k), imageLoad(injectedBlue, k));
+    return Sh3(texelFetch(injectedRed, k, 0), texelFetch(injectedGreen, k, 0), texelFetch(injectedBlue, k, 0));
 }
 
 #ifndef SEED
@@ -215,7 +218,7 @@ Sh3 insideOr(ivec3 c, ivec3 k, Sh3 v) {
 // The injection volume at a cell, or outside() beyond the volume.
 Sh3 loadInjected(ivec3 c, int n) {
     const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
-    return insideOr(c, k, Sh3(imageLoad(injectedRed, k), imageLoad(injectedGreen, k), imageLoad(injectedBlue, k)));
+    return insideOr(c, k, Sh3(texelFetch(injectedRed, k, 0), texelFetch(injectedGreen, k, 0), texelFetch(injectedBlue, k, 0)));
 }
 
 // The previous iteration's partial sum at a cell (outside() beyond the volume).

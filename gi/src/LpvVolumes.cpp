@@ -163,6 +163,7 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
     SamplerDesc linear;
     linear.mipFilter = Filter::Nearest;
     linearSampler_ = device.createSampler(linear);
+    pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
     if (encoded()) clipping_ = std::make_unique<Rgba8Clipping>(device);
 }
 
@@ -175,6 +176,7 @@ LpvVolumes::~LpvVolumes() {
     for (rhi::ComputePipelineHandle p : propagatePipelines_)
         if (p) device_.destroy(p);
     device_.destroy(linearSampler_);
+    device_.destroy(pointSampler_);
 }
 
 bool LpvVolumes::matches(const LpvSettings& s) const {
@@ -263,14 +265,14 @@ void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::Text
     const auto bindIteration = [&](int role, uint32_t i, bool fromInjection, bool last) {
         cmd.bindPipeline(propagatePipelines_[size_t(role)]);
         cmd.pushUniforms(0, &u, sizeof(u));
-        if (faceTransmittance) cmd.bindStorageImage(19, faceTransmittance);
+        if (faceTransmittance) cmd.bindStorageImage(7, faceTransmittance);
         for (uint32_t c = 0; c < 3; ++c) {
-            cmd.bindStorageImage(1 + c, inject_[c]);
-            if (last) cmd.bindStorageImage(10 + c, target[c]);
+            cmd.bindTexture(8 + c, inject_[c], pointSampler_);
+            if (last) cmd.bindStorageImage(4 + c, target[c]);
         }
         for (uint32_t t = 0; t < texels; ++t) {
-            if (!fromInjection) cmd.bindStorageImage(4 + t, partial_[(i + 1) % 2][t]);
-            if (!last) cmd.bindStorageImage(7 + t, partial_[i % 2][t]);
+            if (!fromInjection) cmd.bindStorageImage(1 + t, partial_[(i + 1) % 2][t]);
+            if (!last) cmd.bindStorageImage(4 + t, partial_[i % 2][t]);
         }
         if (last && clipping_) clipping_->bind(cmd, injectedCascade_);
         cmd.dispatch((n + 15) / 16, (n + 15) / 16, (n + column - 1) / column);
@@ -294,10 +296,10 @@ void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::Text
         for (uint32_t c = 0; c < 3; ++c)
             cmd.bindTexture(20 + c, handoff->coarse[c], linearSampler_);
     for (uint32_t c = 0; c < 3; ++c)
-        cmd.bindStorageImage(1 + c, inject_[c]);
+        cmd.bindTexture(8 + c, inject_[c], pointSampler_);
     for (uint32_t t = 0; t < texels; ++t) {
-        cmd.bindStorageImage(4 + t, partial_[0][t]);
-        cmd.bindStorageImage(7 + t, partial_[1][t]);
+        cmd.bindStorageImage(1 + t, partial_[0][t]);
+        cmd.bindStorageImage(4 + t, partial_[1][t]);
     }
     cmd.dispatch((padded + 7) / 8, (padded + 7) / 8, padded);
     for (uint32_t i = 0; i < iterations; ++i) {

@@ -68,11 +68,11 @@ void MultipleBounces::add(rhi::CommandList& cmd, LpvVolumes& volumes, const Geom
         cmd.bindPipeline(reflectPipeline_);
         cmd.pushUniforms(0, &u, sizeof(u));
         for (uint32_t c = 0; c < 3; ++c) {
-            cmd.bindTexture(1 + c, (*source)[c], pointSampler_);
-            cmd.bindStorageImage(6 + c, volumes.injected()[c]);
+            cmd.bindTexture(4 + c, (*source)[c], pointSampler_);
+            cmd.bindStorageImage(1 + c, volumes.injected()[c]);
         }
-        cmd.bindTexture(4, geometry.faceTransmittance(), pointSampler_);
-        cmd.bindTexture(5, geometry.surfelAlbedo(), pointSampler_);
+        cmd.bindTexture(7, geometry.faceTransmittance(), pointSampler_);
+        cmd.bindTexture(8, geometry.surfelAlbedo(), pointSampler_);
         cmd.dispatch(groups, groups, groups);
 
         volumes.propagate(cmd, iterations, geometry.faceTransmittance(), &bounce_);

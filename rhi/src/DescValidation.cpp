@@ -70,6 +70,13 @@ uint32_t layeredTargetLayers(const RenderPassDesc& desc, uint32_t index, const T
     return layers;
 }
 
+void validateStorageImageBinding(uint32_t binding, const char* what) {
+    if (binding >= kStorageImageBindings)
+        throw Error(std::string(what) + ": storage image binding " + std::to_string(binding) +
+                    " is not below " + std::to_string(kStorageImageBindings) +
+                    " (OpenGL's guaranteed image units; NVIDIA's driver has no more)");
+}
+
 void clipScissorToOrigin(int32_t& x, int32_t& y, uint32_t& width, uint32_t& height) {
     if (x < 0) {
         const uint32_t cut = uint32_t(-int64_t(x));

@@ -4,6 +4,7 @@
 #include "rhi/CommandList.h"
 #include "rhi/Device.h"
 #include "rhi/Pipeline.h"
+#include "rhi/Shader.h"
 
 #include <cstdint>
 
@@ -27,6 +28,9 @@ bool isLayeredPass(const RenderPassDesc& desc, const Caps& caps);
 // (`passLayers`). Returns the pass's layer count.
 uint32_t layeredTargetLayers(const RenderPassDesc& desc, uint32_t index, const TextureDesc& texture,
                              uint32_t layers, uint32_t passLayers);
+
+// Throws rhi::Error unless a storage image's binding is below kStorageImageBindings (rhi/Shader.h).
+void validateStorageImageBinding(uint32_t binding, const char* what);
 
 // Clips a scissor rectangle to the framebuffer's origin: Vulkan rejects negative offsets, and GL
 // must cut the same pixels.

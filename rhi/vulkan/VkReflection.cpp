@@ -1,6 +1,8 @@
 // Reflection of descriptor bindings with spirv_cross_c.
 #include "VkReflection.h"
 
+#include "../src/DescValidation.h"
+
 #include "rhi/Error.h"
 
 #include <spirv_cross_c.h>
@@ -84,6 +86,8 @@ void reflectBindings(const ShaderBinary& shader, VkShaderStageFlags stage,
             spvc_type type = spvc_compiler_get_type_handle(compiler, r.type_id);
             if (spvc_type_get_num_array_dimensions(type) > 0)
                 throw Error(name + " is an array of resources; the RHI binds single resources");
+            if (kind.type == SPVC_RESOURCE_TYPE_STORAGE_IMAGE)
+                validateStorageImageBinding(binding, name.c_str());
             bool merged = false;
             for (auto& b : bindings) {
                 if (b.binding != binding) continue;

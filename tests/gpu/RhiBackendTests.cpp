@@ -251,6 +251,29 @@ TEST_CASE("rhi: timestamps are ordered and read back frames later without waitin
     }
 }
 
+TEST_CASE("rhi: storage images bind below kStorageImageBindings, OpenGL's guaranteed image units") {
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            using namespace rhi;
+            const TextureHandle volume = device->createTexture(
+                {TextureKind::Tex3D, Format::RGBA16F, 4, 4, 4, 1, kTextureStorage, "bound volume", "test"});
+            const ComputePipelineHandle pipeline =
+                device->createPipeline(ComputePipelineDesc{&shaders::fill_volume_comp, "binding rule"});
+            CommandList& cmd = device->beginFrame();
+            cmd.bindPipeline(pipeline);
+            CHECK_NOTHROW(cmd.bindStorageImage(kStorageImageBindings - 1, volume));
+            CHECK_THROWS_WITH_AS(cmd.bindStorageImage(kStorageImageBindings, volume),
+                                 doctest::Contains("storage image binding 8 is not below 8"), Error);
+            device->endFrame();
+            device->waitIdle();
+            device->destroy(pipeline);
+            device->destroy(volume);
+            device.expectSilent();
+        }
+    }
+}
+
 TEST_CASE("rhi: a HostRead buffer shows what shaders wrote once beginFrame() has waited for that frame") {
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {

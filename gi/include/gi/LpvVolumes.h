@@ -127,6 +127,7 @@ private:
     // By kernel role (LpvVolumes.cpp's Role); those of the other layout stay null.
     std::array<rhi::ComputePipelineHandle, 14> propagatePipelines_{};
     rhi::SamplerHandle linearSampler_; // the coarse cascade's result (handoff)
+    rhi::SamplerHandle pointSampler_;  // the injection volume, read texel by texel
 };
 
 } // namespace lpv::gi
