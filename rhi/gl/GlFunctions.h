@@ -45,6 +45,7 @@ namespace lpv::rhi::gl {
     X(PFNGLNAMEDBUFFERSTORAGEPROC, glNamedBufferStorage)                                                     \
     X(PFNGLNAMEDBUFFERSUBDATAPROC, glNamedBufferSubData)                                                     \
     X(PFNGLGETNAMEDBUFFERSUBDATAPROC, glGetNamedBufferSubData)                                               \
+    X(PFNGLCOPYNAMEDBUFFERSUBDATAPROC, glCopyNamedBufferSubData)                                             \
     X(PFNGLMAPNAMEDBUFFERRANGEPROC, glMapNamedBufferRange)                                                   \
     X(PFNGLDELETEBUFFERSPROC, glDeleteBuffers)                                                               \
     X(PFNGLBINDBUFFERRANGEPROC, glBindBufferRange)                                                           \

@@ -61,7 +61,20 @@ void GlDevice::readBuffer(BufferHandle h, uint64_t offset, void* out, uint64_t s
     requireOutsideFrame("readBuffer");
     const GlBuffer& b = buffers.get(h);
     checkBufferRange(b, offset, size, "readBuffer");
-    if (size > 0) gl_.glGetNamedBufferSubData(b.id, GLintptr(offset), GLsizeiptr(size), out);
+    if (size == 0) return;
+    if (b.mapped) {
+        gl_.glGetNamedBufferSubData(b.id, GLintptr(offset), GLsizeiptr(size), out);
+        return;
+    }
+    // Through a client-storage copy: reading a GPU-only buffer directly makes NVIDIA's driver move
+    // it from video to host memory (and say so in a performance warning) after a few readbacks.
+    // Readbacks happen between frames, so the copy is made and freed here.
+    GLuint staging = 0;
+    gl_.glCreateBuffers(1, &staging);
+    gl_.glNamedBufferStorage(staging, GLsizeiptr(size), nullptr, GL_CLIENT_STORAGE_BIT | GL_MAP_READ_BIT);
+    gl_.glCopyNamedBufferSubData(b.id, staging, GLintptr(offset), 0, GLsizeiptr(size));
+    gl_.glGetNamedBufferSubData(staging, 0, GLsizeiptr(size), out);
+    gl_.glDeleteBuffers(1, &staging);
 }
 
 void GlDevice::readTexture(TextureHandle h, uint32_t mip, void* out, uint64_t size) {
