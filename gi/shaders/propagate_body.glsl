@@ -61,14 +61,22 @@ layout(binding = 20) uniform sampler3D coarseRed;
 layout(binding = 21) uniform sampler3D coarseGreen;
 layout(binding = 22) uniform sampler3D coarseBlue;
 #endif
-// The partial sums and face transmittances, read cell by cell, are storage images: llvmpipe turns
-// imageLoad into a plain gather, where texelFetch goes through its sampler code. Storage images
-// take bindings 0-7 (rhi/Shader.h: OpenGL guarantees 8 image units and NVIDIA's driver has 8), and
-// with three partial-sum texels a kernel reads 3 and writes 3, so the injection volume, read once
-// per cell and step, is a texture.
+// Everything the kernel reads cell by cell is a storage image: llvmpipe turns imageLoad into a
+// plain gather, where texelFetch goes through its sampler code. That takes up to 10 images, at
+// bindings up to 10; where a device has fewer storage image bindings (rhi Caps::
+// storageImageBindings: OpenGL guarantees 8, NVIDIA's driver has 8), INJECTED_AS_TEXTURE reads
+// the injection volume through texelFetch and the kernel keeps to bindings 1-7.
+#ifdef INJECTED_AS_TEXTURE
 layout(binding = 8) uniform sampler3D injectedRed;
 layout(binding = 9) uniform sampler3D injectedGreen;
 layout(binding = 10) uniform sampler3D injectedBlue;
+#define LOAD_INJECTED(volume, k) texelFetch(volume, k, 0)
+#else
+layout(binding = 8, INJECT_FORMAT) uniform readonly image3D injectedRed;
+layout(binding = 9, INJECT_FORMAT) uniform readonly image3D injectedGreen;
+layout(binding = 10, INJECT_FORMAT) uniform readonly image3D injectedBlue;
+#define LOAD_INJECTED(volume, k) imageLoad(volume, k)
+#endif
 // The partial sums: packed unsigned-integer texels, or (PARTIALS_AS_SH) one SH_FORMAT image per
 // channel like the result.
 #ifdef PARTIALS_AS_SH
@@ -198,7 +206,7 @@ Sh3 loadPartial(ivec3 k) {
 // out, and storeCell drops those cells).
 Sh3 loadInjected(ivec3 c, int n) {
     const ivec3 k = min(c, ivec3(n - 1));
-    return Sh3(texelFetch(injectedRed, k, 0), texelFetch(injectedGreen, k, 0), texelFetch(injectedBlue, k, 0));
+    return Sh3(LOAD_INJECTED(injectedRed, k), LOAD_INJECTED(injectedGreen, k), LOAD_INJECTED(injectedBlue, k));
 }
 
 #ifndef SEED
@@ -218,7 +226,7 @@ Sh3 insideOr(ivec3 c, ivec3 k, Sh3 v) {
 // The injection volume at a cell, or outside() beyond the volume.
 Sh3 loadInjected(ivec3 c, int n) {
     const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
-    return insideOr(c, k, Sh3(texelFetch(injectedRed, k, 0), texelFetch(injectedGreen, k, 0), texelFetch(injectedBlue, k, 0)));
+    return insideOr(c, k, Sh3(LOAD_INJECTED(injectedRed, k), LOAD_INJECTED(injectedGreen, k), LOAD_INJECTED(injectedBlue, k)));
 }
 
 // The previous iteration's partial sum at a cell (outside() beyond the volume).

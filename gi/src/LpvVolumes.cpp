@@ -65,23 +65,32 @@ bool shellRole(int role) {
     return role >= kSeed;
 }
 
-const rhi::ShaderBinary& propagateShader(ShFormat f, int role) {
+// The kernels' images take bindings up to kInjectedBindings (the injection volume's, 8-10);
+// `fetch` variants read that volume through texelFetch and keep to the portable 8.
+constexpr uint32_t kInjectedBindings = 11;
+
+const rhi::ShaderBinary& propagateShader(ShFormat f, int role, bool fetch) {
     using namespace shaders;
-#define LPV_ROLES(format)                                                                                    \
+#define LPV_ROLES(format, suffix)                                                                            \
     {                                                                                                        \
-        &propagate_##format##_first_comp, &propagate_##format##_next_comp, &propagate_##format##_last_comp,  \
-            &propagate_##format##_only_comp, &propagate_##format##_first_occluded_comp,                      \
-            &propagate_##format##_next_occluded_comp, &propagate_##format##_last_occluded_comp,              \
-            &propagate_##format##_only_occluded_comp, &propagate_##format##_seed_comp,                       \
-            &propagate_##format##_seed_handoff_comp, &propagate_##format##_shell_next_comp,                  \
-            &propagate_##format##_shell_last_comp, &propagate_##format##_shell_next_occluded_comp,           \
-            &propagate_##format##_shell_last_occluded_comp                                                   \
+        &propagate_##format##_first##suffix##_comp, &propagate_##format##_next##suffix##_comp,               \
+            &propagate_##format##_last##suffix##_comp, &propagate_##format##_only##suffix##_comp,            \
+            &propagate_##format##_first_occluded##suffix##_comp,                                             \
+            &propagate_##format##_next_occluded##suffix##_comp,                                              \
+            &propagate_##format##_last_occluded##suffix##_comp,                                              \
+            &propagate_##format##_only_occluded##suffix##_comp, &propagate_##format##_seed##suffix##_comp,   \
+            &propagate_##format##_seed_handoff##suffix##_comp,                                               \
+            &propagate_##format##_shell_next##suffix##_comp,                                                 \
+            &propagate_##format##_shell_last##suffix##_comp,                                                 \
+            &propagate_##format##_shell_next_occluded##suffix##_comp,                                        \
+            &propagate_##format##_shell_last_occluded##suffix##_comp                                         \
     }
-    static const rhi::ShaderBinary* const table[3][kRoles] = {LPV_ROLES(rgba8), LPV_ROLES(rgba16f),
-                                                              LPV_ROLES(rgba32f)};
+    static const rhi::ShaderBinary* const table[2][3][kRoles] = {
+        {LPV_ROLES(rgba8, ), LPV_ROLES(rgba16f, ), LPV_ROLES(rgba32f, )},
+        {LPV_ROLES(rgba8, _fetch), LPV_ROLES(rgba16f, _fetch), LPV_ROLES(rgba32f, _fetch)}};
 #undef LPV_ROLES
     const int row = f == ShFormat::Rgba8 ? 0 : f == ShFormat::Rgba16f ? 1 : 2;
-    return *table[row][role];
+    return *table[fetch ? 1 : 0][row][role];
 }
 
 } // namespace
@@ -123,7 +132,9 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
       columnLength_(columnLength
                         ? columnLength
                         : propagationColumnLength(settings.gridSize, device.caps().concurrentWorkgroups)),
-      layered_(device.caps().vertexShaderLayer), shell_(partialSumShell(settings)) {
+      layered_(device.caps().vertexShaderLayer),
+      injectedAsTexture_(device.caps().storageImageBindings < kInjectedBindings),
+      shell_(partialSumShell(settings)) {
     using namespace rhi;
     const uint32_t n = settings.gridSize;
     const Format injectFormat = settings.shFormat == ShFormat::Rgba32f ? Format::RGBA32F : Format::RGBA16F;
@@ -158,8 +169,8 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
     injectPipeline_ = device.createPipeline(d);
     for (int role = 0; role < kRoles; ++role)
         if (shellRole(role) == shell_)
-            propagatePipelines_[size_t(role)] = device.createPipeline(
-                ComputePipelineDesc{&propagateShader(settings.shFormat, role), kRoleNames[role]});
+            propagatePipelines_[size_t(role)] = device.createPipeline(ComputePipelineDesc{
+                &propagateShader(settings.shFormat, role, injectedAsTexture_), kRoleNames[role]});
     SamplerDesc linear;
     linear.mipFilter = Filter::Nearest;
     linearSampler_ = device.createSampler(linear);
@@ -262,14 +273,20 @@ void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::Text
         u.encode.y = ratio * ratio;
     }
     const int occluded = faceTransmittance ? 1 : 0;
+    const auto bindInjected = [&] {
+        for (uint32_t c = 0; c < 3; ++c)
+            if (injectedAsTexture_)
+                cmd.bindTexture(8 + c, inject_[c], pointSampler_);
+            else
+                cmd.bindStorageImage(8 + c, inject_[c]);
+    };
     const auto bindIteration = [&](int role, uint32_t i, bool fromInjection, bool last) {
         cmd.bindPipeline(propagatePipelines_[size_t(role)]);
         cmd.pushUniforms(0, &u, sizeof(u));
         if (faceTransmittance) cmd.bindStorageImage(7, faceTransmittance);
-        for (uint32_t c = 0; c < 3; ++c) {
-            cmd.bindTexture(8 + c, inject_[c], pointSampler_);
+        bindInjected();
+        for (uint32_t c = 0; c < 3; ++c)
             if (last) cmd.bindStorageImage(4 + c, target[c]);
-        }
         for (uint32_t t = 0; t < texels; ++t) {
             if (!fromInjection) cmd.bindStorageImage(1 + t, partial_[(i + 1) % 2][t]);
             if (!last) cmd.bindStorageImage(4 + t, partial_[i % 2][t]);
@@ -295,8 +312,7 @@ void LpvVolumes::propagate(rhi::CommandList& cmd, uint32_t iterations, rhi::Text
     if (handoff)
         for (uint32_t c = 0; c < 3; ++c)
             cmd.bindTexture(20 + c, handoff->coarse[c], linearSampler_);
-    for (uint32_t c = 0; c < 3; ++c)
-        cmd.bindTexture(8 + c, inject_[c], pointSampler_);
+    bindInjected();
     for (uint32_t t = 0; t < texels; ++t) {
         cmd.bindStorageImage(1 + t, partial_[0][t]);
         cmd.bindStorageImage(4 + t, partial_[1][t]);

@@ -305,7 +305,7 @@ void GlCommandList::bindTexture(uint32_t binding, TextureHandle texture, Sampler
 
 void GlCommandList::bindStorageImage(uint32_t binding, TextureHandle texture, uint32_t mipLevel) {
     checkBinding(binding, "bindStorageImage");
-    validateStorageImageBinding(binding, "bindStorageImage");
+    validateStorageImageBinding(binding, device_.caps(), "bindStorageImage");
     const GlTexture& t = device_.textures.get(texture);
     if (!(t.desc.usage & kTextureStorage))
         throw Error("texture '" + t.desc.debugName + "' lacks kTextureStorage");

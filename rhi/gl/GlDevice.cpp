@@ -1,5 +1,6 @@
 // OpenGL device: context start-up and capabilities, teardown, and the backend's factory entry.
 #include "GlDevice.h"
+#include "../src/DescValidation.h"
 
 #include "../src/BackendFactory.h"
 #include "../src/CpuRasterizer.h"
@@ -77,6 +78,11 @@ GlDevice::GlDevice(const DeviceConfig& config, std::unique_ptr<platforms::GlCont
     caps_.maskedBranches = config.maskedBranches.value_or(isCpuRasterizer(caps_.deviceName));
     // SPIRV-Cross writes gl_FragStencilRefARB under this extension.
     caps_.shaderStencilExport = hasExtension(gl_, "GL_ARB_shader_stencil_export");
+    // An image's binding is its image unit, and each stage counts its image uniforms.
+    caps_.storageImageBindings = configuredStorageImageBindings(
+        uint32_t(std::min({glInteger(gl_, GL_MAX_IMAGE_UNITS), glInteger(gl_, GL_MAX_COMPUTE_IMAGE_UNIFORMS),
+                           glInteger(gl_, GL_MAX_FRAGMENT_IMAGE_UNIFORMS)})),
+        config.storageImageBindings);
 
     const uint64_t region = std::max(config.uniformRingBytes, 256u);
     uniformRing_.create(gl_, region, config.framesInFlight);

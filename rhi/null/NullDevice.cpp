@@ -50,7 +50,7 @@ public:
     void bindUniformBuffer(uint32_t, BufferHandle b, uint64_t, uint64_t) override;
     void bindStorageBuffer(uint32_t, BufferHandle b, uint64_t, uint64_t) override;
     void bindTexture(uint32_t, TextureHandle t, SamplerHandle s) override;
-    void bindStorageImage(uint32_t, TextureHandle t, uint32_t) override;
+    void bindStorageImage(uint32_t binding, TextureHandle t, uint32_t) override;
     void pushUniforms(uint32_t, const void*, uint32_t) override {}
     void draw(uint32_t, uint32_t, uint32_t, uint32_t) override { requirePass(true, "draw"); }
     void drawIndexed(uint32_t, uint32_t, uint32_t, int32_t, uint32_t) override {
@@ -88,6 +88,7 @@ public:
         caps_.vertexShaderLayer = config.vertexShaderLayer;
         caps_.maskedBranches = config.maskedBranches.value_or(false);
         caps_.shaderStencilExport = true; // it runs no shader, so any may export
+        caps_.storageImageBindings = configuredStorageImageBindings(32, config.storageImageBindings);
     }
 
     BackendKind backend() const override { return BackendKind::Null; }
@@ -264,7 +265,8 @@ void NullCommandList::bindTexture(uint32_t, TextureHandle t, SamplerHandle s) {
     device_.textures.get(t);
     device_.samplers.get(s);
 }
-void NullCommandList::bindStorageImage(uint32_t, TextureHandle t, uint32_t) {
+void NullCommandList::bindStorageImage(uint32_t binding, TextureHandle t, uint32_t) {
+    validateStorageImageBinding(binding, device_.caps(), "bindStorageImage");
     device_.textures.get(t);
 }
 void NullCommandList::clearTexture(TextureHandle t, const std::array<float, 4>&) {

@@ -70,11 +70,17 @@ uint32_t layeredTargetLayers(const RenderPassDesc& desc, uint32_t index, const T
     return layers;
 }
 
-void validateStorageImageBinding(uint32_t binding, const char* what) {
-    if (binding >= kStorageImageBindings)
+void validateStorageImageBinding(uint32_t binding, const Caps& caps, std::string_view what) {
+    if (binding >= caps.storageImageBindings)
         throw Error(std::string(what) + ": storage image binding " + std::to_string(binding) +
-                    " is not below " + std::to_string(kStorageImageBindings) +
-                    " (OpenGL's guaranteed image units; NVIDIA's driver has no more)");
+                    " is not below " + std::to_string(caps.storageImageBindings) +
+                    ", the device's Caps::storageImageBindings (OpenGL guarantees " +
+                    std::to_string(kPortableStorageImageBindings) + ")");
+}
+
+uint32_t configuredStorageImageBindings(uint32_t device, std::optional<uint32_t> configured) {
+    constexpr uint32_t kTrackedBindings = 32; // the command lists' binding slots
+    return std::min({device, configured.value_or(kTrackedBindings), kTrackedBindings});
 }
 
 void clipScissorToOrigin(int32_t& x, int32_t& y, uint32_t& width, uint32_t& height) {

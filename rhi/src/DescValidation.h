@@ -7,6 +7,9 @@
 #include "rhi/Shader.h"
 
 #include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
 
 namespace lpv::rhi {
 
@@ -29,8 +32,12 @@ bool isLayeredPass(const RenderPassDesc& desc, const Caps& caps);
 uint32_t layeredTargetLayers(const RenderPassDesc& desc, uint32_t index, const TextureDesc& texture,
                              uint32_t layers, uint32_t passLayers);
 
-// Throws rhi::Error unless a storage image's binding is below kStorageImageBindings (rhi/Shader.h).
-void validateStorageImageBinding(uint32_t binding, const char* what);
+// Throws rhi::Error unless a storage image's binding is below the device's
+// Caps::storageImageBindings (rhi/Shader.h).
+void validateStorageImageBinding(uint32_t binding, const Caps& caps, std::string_view what);
+
+// The device's storage image bindings as DeviceConfig::storageImageBindings lowers them.
+uint32_t configuredStorageImageBindings(uint32_t device, std::optional<uint32_t> configured);
 
 // Clips a scissor rectangle to the framebuffer's origin: Vulkan rejects negative offsets, and GL
 // must cut the same pixels.

@@ -269,7 +269,7 @@ void VulkanCommandList::bindTexture(uint32_t binding, TextureHandle texture, Sam
 
 void VulkanCommandList::bindStorageImage(uint32_t binding, TextureHandle texture, uint32_t mipLevel) {
     Bound& s = slot(binding, "bindStorageImage");
-    validateStorageImageBinding(binding, "bindStorageImage");
+    validateStorageImageBinding(binding, device_.caps(), "bindStorageImage");
     const VulkanTexture& t = device_.textures.get(texture);
     if (!(t.desc.usage & kTextureStorage))
         throw Error("texture '" + t.desc.debugName + "' lacks kTextureStorage");

@@ -256,11 +256,11 @@ SamplerHandle VulkanDevice::createSampler(const SamplerDesc& desc) {
 }
 
 GraphicsPipelineHandle VulkanDevice::createPipeline(const GraphicsPipelineDesc& desc) {
-    return graphicsPipelines.insert(buildGraphicsPipeline(*ctx_, desc));
+    return graphicsPipelines.insert(buildGraphicsPipeline(*ctx_, caps_, desc));
 }
 
 ComputePipelineHandle VulkanDevice::createPipeline(const ComputePipelineDesc& desc) {
-    return computePipelines.insert(buildComputePipeline(*ctx_, desc));
+    return computePipelines.insert(buildComputePipeline(*ctx_, caps_, desc));
 }
 
 void VulkanDevice::destroy(BufferHandle h) {

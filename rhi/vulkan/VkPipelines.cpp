@@ -111,7 +111,8 @@ void destroyPipeline(VkDevice device, VulkanPipeline& p) {
     p.setLayout = VK_NULL_HANDLE;
 }
 
-VulkanPipeline buildGraphicsPipeline(const VulkanContext& ctx, const GraphicsPipelineDesc& desc) {
+VulkanPipeline buildGraphicsPipeline(const VulkanContext& ctx, const Caps& caps,
+                                     const GraphicsPipelineDesc& desc) {
     if (!desc.vertex) throw Error("graphics pipeline '" + desc.debugName + "': no vertex shader");
     if (desc.vertex->stage != ShaderStage::Vertex)
         throw Error("graphics pipeline '" + desc.debugName + "': '" + std::string(desc.vertex->name) +
@@ -132,8 +133,8 @@ VulkanPipeline buildGraphicsPipeline(const VulkanContext& ctx, const GraphicsPip
     p.pointChunk = pointChunk(ctx, desc);
     try {
         std::vector<VkDescriptorSetLayoutBinding> bindings;
-        reflectBindings(*desc.vertex, VK_SHADER_STAGE_VERTEX_BIT, bindings);
-        if (desc.fragment) reflectBindings(*desc.fragment, VK_SHADER_STAGE_FRAGMENT_BIT, bindings);
+        reflectBindings(*desc.vertex, VK_SHADER_STAGE_VERTEX_BIT, caps, bindings);
+        if (desc.fragment) reflectBindings(*desc.fragment, VK_SHADER_STAGE_FRAGMENT_BIT, caps, bindings);
         createLayout(ctx, p, bindings);
 
         Modules modules{ctx};
@@ -256,7 +257,8 @@ VulkanPipeline buildGraphicsPipeline(const VulkanContext& ctx, const GraphicsPip
     return p;
 }
 
-VulkanPipeline buildComputePipeline(const VulkanContext& ctx, const ComputePipelineDesc& desc) {
+VulkanPipeline buildComputePipeline(const VulkanContext& ctx, const Caps& caps,
+                                    const ComputePipelineDesc& desc) {
     if (!desc.compute) throw Error("compute pipeline '" + desc.debugName + "': no compute shader");
     if (desc.compute->stage != ShaderStage::Compute)
         throw Error("compute pipeline '" + desc.debugName + "': '" + std::string(desc.compute->name) +
@@ -266,7 +268,7 @@ VulkanPipeline buildComputePipeline(const VulkanContext& ctx, const ComputePipel
     p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
     try {
         std::vector<VkDescriptorSetLayoutBinding> bindings;
-        reflectBindings(*desc.compute, VK_SHADER_STAGE_COMPUTE_BIT, bindings);
+        reflectBindings(*desc.compute, VK_SHADER_STAGE_COMPUTE_BIT, caps, bindings);
         createLayout(ctx, p, bindings);
         Modules modules{ctx};
         modules.list[0] = createModule(ctx, *desc.compute);

@@ -5,12 +5,15 @@
 #include "VkContext.h"
 #include "VkResources.h"
 
+#include "rhi/Device.h"
 #include "rhi/Pipeline.h"
 
 namespace lpv::rhi::vk {
 
-VulkanPipeline buildGraphicsPipeline(const VulkanContext& ctx, const GraphicsPipelineDesc& desc);
-VulkanPipeline buildComputePipeline(const VulkanContext& ctx, const ComputePipelineDesc& desc);
+VulkanPipeline buildGraphicsPipeline(const VulkanContext& ctx, const Caps& caps,
+                                     const GraphicsPipelineDesc& desc);
+VulkanPipeline buildComputePipeline(const VulkanContext& ctx, const Caps& caps,
+                                    const ComputePipelineDesc& desc);
 void destroyPipeline(VkDevice device, VulkanPipeline& pipeline);
 
 } // namespace lpv::rhi::vk

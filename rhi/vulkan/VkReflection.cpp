@@ -34,7 +34,7 @@ const char* typeName(VkDescriptorType t) {
 
 } // namespace
 
-void reflectBindings(const ShaderBinary& shader, VkShaderStageFlags stage,
+void reflectBindings(const ShaderBinary& shader, VkShaderStageFlags stage, const Caps& caps,
                      std::vector<VkDescriptorSetLayoutBinding>& bindings) {
     const std::string where = "shader '" + std::string(shader.name) + "'";
     if (shader.spirv.empty()) throw Error(where + ": no SPIR-V");
@@ -87,7 +87,7 @@ void reflectBindings(const ShaderBinary& shader, VkShaderStageFlags stage,
             if (spvc_type_get_num_array_dimensions(type) > 0)
                 throw Error(name + " is an array of resources; the RHI binds single resources");
             if (kind.type == SPVC_RESOURCE_TYPE_STORAGE_IMAGE)
-                validateStorageImageBinding(binding, name.c_str());
+                validateStorageImageBinding(binding, caps, name);
             bool merged = false;
             for (auto& b : bindings) {
                 if (b.binding != binding) continue;

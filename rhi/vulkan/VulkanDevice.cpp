@@ -1,6 +1,7 @@
 // The Vulkan device: creation, frames in flight, presentation, timestamps and deferred release.
 // Resource creation lives in VkDeviceResources.cpp, immediate transfers in VkTransfers.cpp.
 #include "VulkanDevice.h"
+#include "../src/DescValidation.h"
 
 #include "VkBarriers.h"
 #include "VkCheck.h"
@@ -57,6 +58,8 @@ VulkanDevice::VulkanDevice(const DeviceConfig& config) : config_(config) {
         caps_.maskedBranches =
             config.maskedBranches.value_or(ctx_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
         caps_.shaderStencilExport = ctx_->shaderStencilExport;
+        caps_.storageImageBindings = configuredStorageImageBindings(limits.maxPerStageDescriptorStorageImages,
+                                                                    config.storageImageBindings);
 
         timestamps_.create(*ctx_, timestamps, config.framesInFlight + 1, config.maxTimestampsPerFrame);
         createFrames();

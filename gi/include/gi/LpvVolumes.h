@@ -114,7 +114,10 @@ private:
     rhi::Device& device_;
     LpvSettings settings_;
     uint32_t columnLength_;
-    bool layered_;               // injection in one layered draw (rhi Caps::vertexShaderLayer)
+    bool layered_; // injection in one layered draw (rhi Caps::vertexShaderLayer)
+    // Propagation reads the injection volume through texelFetch: the device has too few storage
+    // image bindings for it (rhi Caps::storageImageBindings).
+    bool injectedAsTexture_;
     float injectedRange_ = 0.0f; // encodeRange of the grid last injected
     uint32_t injectedCascade_ = 0;
     std::unique_ptr<Rgba8Clipping> clipping_; // rgba8 only

@@ -2,10 +2,12 @@
 // SPIR-V at build time, and turned back into GLSL 4.50 by SPIRV-Cross for the OpenGL backend.
 // Binding numbers in the source are the only resource namespace: a pipeline's uniform buffers,
 // textures, storage images and storage buffers each use a distinct `binding`, all in set 0.
-// Storage images take bindings below kStorageImageBindings: OpenGL binds them to image units, of
-// which it guarantees 8 (NVIDIA's driver has exactly 8, Mesa 32), so a shader written against
-// Mesa alone would not compile there. Vulkan pipeline creation and every bindStorageImage enforce
-// it, so the rule is checked wherever the tests run.
+// Storage images take bindings below Caps::storageImageBindings: OpenGL binds them to image units,
+// of which it guarantees 8 (NVIDIA's driver has exactly 8, Mesa 32), so a shader meant for every
+// device keeps them below kPortableStorageImageBindings, and one that needs more is a variant
+// chosen by that capability. Vulkan pipeline creation and every bindStorageImage enforce the
+// device's limit; DeviceConfig::storageImageBindings lowers it, so tests run the narrow paths
+// (and catch a shader beyond them) on any device.
 #pragma once
 
 #include <cstdint>
@@ -14,7 +16,7 @@
 
 namespace lpv::rhi {
 
-inline constexpr uint32_t kStorageImageBindings = 8;
+inline constexpr uint32_t kPortableStorageImageBindings = 8;
 
 enum class ShaderStage : uint8_t { Vertex, Fragment, Compute };
 
