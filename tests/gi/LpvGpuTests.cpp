@@ -394,7 +394,12 @@ TEST_CASE("gi: with OpenGL's minimum of 8 storage image bindings the volumes hol
                 CornellFrame wide, narrow;
                 {
                     TestDevice device(backend);
-                    REQUIRE(device->caps().storageImageBindings >= 11); // Mesa's 32: the imageLoad kernels
+                    if (device->caps().storageImageBindings < 11) {
+                        MESSAGE("backend " << backend.name << " has " << device->caps().storageImageBindings
+                                           << " storage image bindings: only the texelFetch kernels; "
+                                              "nothing to compare");
+                        return;
+                    }
                     wide = renderCornell(*device, on);
                     device.expectSilent();
                 }
