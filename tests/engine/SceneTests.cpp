@@ -267,6 +267,25 @@ TEST_CASE("scenes: a missing texture warns and falls back to the flat color") {
     CHECK_MESSAGE(named, "no warning naming the file and the texture");
 }
 
+TEST_CASE("scenes: an optional extension the reader does not know is named in a warning") {
+    std::string json = gltfJson(quadBuffer());
+    const std::string used = R"("extensionsUsed": ["KHR_lights_punctual"])";
+    REQUIRE(json.find(used) != std::string::npos);
+    json.replace(json.find(used), used.size(),
+                 R"("extensionsUsed": ["KHR_lights_punctual", "KHR_texture_transform"])");
+    const std::string path = write("transform.gltf", json);
+    const auto [s, warnings] = loadWithWarnings(path);
+    CHECK(s.materials.size() == 1);
+    bool named = false, lights = false;
+    for (const auto& w : warnings) {
+        named = named || (w.find(path) == 0 &&
+                          w.find("'KHR_texture_transform', which LPV Engine ignores") != std::string::npos);
+        lights = lights || w.find("KHR_lights_punctual") != std::string::npos;
+    }
+    CHECK_MESSAGE(named, "no warning naming the file and the extension");
+    CHECK_FALSE(lights); // a supported extension is not reported
+}
+
 TEST_CASE("scenes: an emissive map is read, and an occlusion map is named as unused") {
     // The emissive map's image is missing: the reader tries it, warns and keeps the flat factor.
     const std::string path =

@@ -418,6 +418,12 @@ Scene GltfReader::read() {
         if (std::find(std::begin(kSupportedExtensions), std::end(kSupportedExtensions), ext) ==
             std::end(kSupportedExtensions))
             fail("requires extension '" + ext + "', which LPV Engine does not support");
+    // An optional extension the reader does not know (KHR_texture_transform, KHR_materials_clearcoat...)
+    // changes what the author meant to be seen: said once, not dropped unnoticed.
+    for (const std::string& ext : model_.extensionsUsed)
+        if (std::find(std::begin(kSupportedExtensions), std::end(kSupportedExtensions), ext) ==
+            std::end(kSupportedExtensions))
+            log::warn(path_ + ": uses extension '" + ext + "', which LPV Engine ignores");
     scene_.name = std::filesystem::path(path_).stem().string();
     readMaterials();
     readMeshes();
