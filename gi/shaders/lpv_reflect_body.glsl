@@ -24,7 +24,7 @@ layout(binding = 5) uniform sampler3D sourceGreen;
 layout(binding = 6) uniform sampler3D sourceBlue;
 layout(binding = 7) uniform sampler3D faceTransmittance; // xyz: the cell's -x, -y, -z faces
 layout(binding = 8) uniform sampler3D surfelAlbedo;      // rgb: mean albedo of the cell's surfels
-// Storage images take bindings 0-7 (rhi/Shader.h).
+// Storage images below kPortableStorageImageBindings (rhi/Shader.h), which every device has.
 layout(binding = 1, INJECT_FORMAT) uniform writeonly image3D injectedRed;
 layout(binding = 2, INJECT_FORMAT) uniform writeonly image3D injectedGreen;
 layout(binding = 3, INJECT_FORMAT) uniform writeonly image3D injectedBlue;

@@ -30,7 +30,10 @@
 //   RGBA16F as three RGBA16F images (one per channel, 6 words per cell either way).
 // - On llvmpipe (Mesa 22.3; in-process A/B runs of CPU time, this 2-core machine being noisy):
 //   every per-cell read is an imageLoad of a storage image, which llvmpipe compiles to a gather;
-//   texelFetch goes through its sampler code and cost 13-20% more of the whole kernel.
+//   texelFetch goes through its sampler code and cost 13-20% more of the whole kernel when the
+//   kernel read everything that way (an earlier kernel), 18-29% more for the injection volume
+//   alone in this one (c4ea6de): only the `_fetch` variants, for devices with 8 storage image
+//   bindings, read it so.
 //   In the bounded layout out-of-volume cells are chosen with mix(bvec) selects: ?: and && on
 //   vectors compile to branches, and a CPU rasterizer runs every branch under lane masks.
 // - RGBA16F partial sums used to be packed halves (an RGBA32UI and an RG32UI texel: 2 fetches per

@@ -145,7 +145,8 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, uint32_
             return device.createTexture({TextureKind::Tex3D, f, n, n, n, 1, usage | kTextureTransfer,
                                          std::string("lpv ") + what + " " + channels[c], "gi.lpv"});
         };
-        // Storage too: the propagation kernel reads it with imageLoad (propagate_body.glsl) and
+        // Storage too: the propagation kernel reads it with imageLoad, or texelFetch where the
+        // device has too few storage image bindings (propagate_body.glsl), and
         // further bounces write their reflected light here (MultipleBounces).
         inject_[size_t(c)] =
             volume(injectFormat, kTextureColorTarget | kTextureSampled | kTextureStorage, "injection");

@@ -47,8 +47,7 @@ public:
     void beginMarker(const char* name) override;
     void endMarker() override;
 
-    // Bindings are numbered like Vulkan descriptors in set 0; the same cap keeps the two alike.
-    static constexpr uint32_t kMaxBindings = 32;
+    // Bindings are numbered like Vulkan descriptors in set 0, below rhi::kMaxBindings.
     static constexpr uint32_t kMaxVertexBuffers = 8;
 
 private:

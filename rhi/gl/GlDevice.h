@@ -72,6 +72,7 @@ private:
     void requireOutsideFrame(const char* what) const;
     const GlTexture& transferTexture(TextureHandle h, uint32_t mip, uint64_t size, const char* what) const;
     GLuint linkProgram(std::initializer_list<const ShaderBinary*> stages, const std::string& name);
+    void checkStorageImageUnits(GLuint program, const std::string& name) const;
     void present(const GlTexture& source);
     void releaseAll();
 

@@ -89,6 +89,9 @@ namespace lpv::rhi::gl {
     X(PFNGLATTACHSHADERPROC, glAttachShader)                                                                 \
     X(PFNGLLINKPROGRAMPROC, glLinkProgram)                                                                   \
     X(PFNGLGETPROGRAMIVPROC, glGetProgramiv)                                                                 \
+    X(PFNGLGETPROGRAMINTERFACEIVPROC, glGetProgramInterfaceiv)                                               \
+    X(PFNGLGETPROGRAMRESOURCEIVPROC, glGetProgramResourceiv)                                                 \
+    X(PFNGLGETUNIFORMIVPROC, glGetUniformiv)                                                                 \
     X(PFNGLGETPROGRAMINFOLOGPROC, glGetProgramInfoLog)                                                       \
     X(PFNGLDELETESHADERPROC, glDeleteShader)                                                                 \
     X(PFNGLDELETEPROGRAMPROC, glDeleteProgram)                                                               \

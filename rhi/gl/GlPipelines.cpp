@@ -34,6 +34,27 @@ void requireStage(const ShaderBinary& s, ShaderStage stage, const std::string& p
 
 } // namespace
 
+// A storage image's binding is its image unit. A driver with fewer units than a binding rejects
+// the shader when compiling it; this holds a linked program to the device's
+// Caps::storageImageBindings as Vulkan pipeline creation does, so a lowered
+// DeviceConfig::storageImageBindings catches a shader past it on every backend.
+void GlDevice::checkStorageImageUnits(GLuint program, const std::string& name) const {
+    GLint uniforms = 0;
+    gl_.glGetProgramInterfaceiv(program, GL_UNIFORM, GL_ACTIVE_RESOURCES, &uniforms);
+    for (GLint i = 0; i < uniforms; ++i) {
+        const GLenum props[2] = {GL_TYPE, GL_LOCATION};
+        GLint values[2] = {0, -1};
+        gl_.glGetProgramResourceiv(program, GL_UNIFORM, GLuint(i), 2, props, 2, nullptr, values);
+        // GL's image types are one contiguous range of enums.
+        const bool image =
+            values[0] >= GL_IMAGE_1D && values[0] <= GL_UNSIGNED_INT_IMAGE_2D_MULTISAMPLE_ARRAY;
+        if (!image || values[1] < 0) continue;
+        GLint unit = 0;
+        gl_.glGetUniformiv(program, values[1], &unit);
+        validateStorageImageBinding(uint32_t(unit), caps_, "OpenGL: pipeline '" + name + "'");
+    }
+}
+
 GLuint GlDevice::linkProgram(std::initializer_list<const ShaderBinary*> stages, const std::string& name) {
     const GLuint program = gl_.glCreateProgram();
     GLuint shaders[3] = {};
@@ -70,6 +91,12 @@ GLuint GlDevice::linkProgram(std::initializer_list<const ShaderBinary*> stages, 
         gl_.glGetProgramInfoLog(program, sizeof(log), nullptr, log);
         gl_.glDeleteProgram(program);
         throw Error("OpenGL: pipeline '" + name + "' does not link: " + log);
+    }
+    try {
+        checkStorageImageUnits(program, name);
+    } catch (...) {
+        gl_.glDeleteProgram(program);
+        throw;
     }
     label_(GL_PROGRAM, program, name);
     return program;

@@ -79,8 +79,11 @@ void validateStorageImageBinding(uint32_t binding, const Caps& caps, std::string
 }
 
 uint32_t configuredStorageImageBindings(uint32_t device, std::optional<uint32_t> configured) {
-    constexpr uint32_t kTrackedBindings = 32; // the command lists' binding slots
-    return std::min({device, configured.value_or(kTrackedBindings), kTrackedBindings});
+    if (configured && *configured < kPortableStorageImageBindings)
+        throw Error("DeviceConfig::storageImageBindings " + std::to_string(*configured) + " is below the " +
+                    std::to_string(kPortableStorageImageBindings) +
+                    " every OpenGL 4.5 device has, which the engine's shaders are written for");
+    return std::min({device, configured.value_or(kMaxBindings), kMaxBindings});
 }
 
 void clipScissorToOrigin(int32_t& x, int32_t& y, uint32_t& width, uint32_t& height) {

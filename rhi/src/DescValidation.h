@@ -36,7 +36,8 @@ uint32_t layeredTargetLayers(const RenderPassDesc& desc, uint32_t index, const T
 // Caps::storageImageBindings (rhi/Shader.h).
 void validateStorageImageBinding(uint32_t binding, const Caps& caps, std::string_view what);
 
-// The device's storage image bindings as DeviceConfig::storageImageBindings lowers them.
+// The device's storage image bindings as DeviceConfig::storageImageBindings lowers them (to no
+// less than kPortableStorageImageBindings: throws rhi::Error), at most kMaxBindings.
 uint32_t configuredStorageImageBindings(uint32_t device, std::optional<uint32_t> configured);
 
 // Clips a scissor rectangle to the framebuffer's origin: Vulkan rejects negative offsets, and GL

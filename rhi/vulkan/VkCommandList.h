@@ -50,7 +50,6 @@ public:
     void endMarker() override;
 
 private:
-    static constexpr uint32_t kMaxBindings = 32;
     enum class BoundKind : uint8_t { None, UniformBuffer, StorageBuffer, Texture, StorageImage };
     struct Bound {
         BoundKind kind = BoundKind::None;

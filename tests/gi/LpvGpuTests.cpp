@@ -391,32 +391,35 @@ TEST_CASE("gi: with OpenGL's minimum of 8 storage image bindings the volumes hol
                                              "gi.occlusion=true", "gi.bounces=2"};
         for (const auto& backend : selectedBackends()) {
             SUBCASE((backend.name + " " + cascades).c_str()) {
+                // Not a return where there is nothing to compare: doctest would skip the later
+                // subcases of the loop with it.
                 CornellFrame wide, narrow;
+                bool comparable = true;
                 {
                     TestDevice device(backend);
-                    if (device->caps().storageImageBindings < 11) {
+                    comparable = device->caps().storageImageBindings >= 11;
+                    if (comparable)
+                        wide = renderCornell(*device, on);
+                    else
                         MESSAGE("backend " << backend.name << " has " << device->caps().storageImageBindings
                                            << " storage image bindings: only the texelFetch kernels; "
                                               "nothing to compare");
-                        return;
-                    }
-                    wide = renderCornell(*device, on);
                     device.expectSilent();
                 }
-                {
+                if (comparable) {
                     rhi::DeviceConfig eight;
                     eight.storageImageBindings = rhi::kPortableStorageImageBindings;
                     TestDevice device(backend, eight);
                     REQUIRE(device->caps().storageImageBindings == 8);
                     narrow = renderCornell(*device, on);
                     device.expectSilent();
+                    // The same texels read either way and the same arithmetic: bit-identical volumes.
+                    const auto [differing, peak] = compareVolumes(wide, narrow);
+                    MESSAGE(backend.name << " " << std::string(cascades) << ": " << differing
+                                         << " differing texels, peak " << peak);
+                    CHECK(peak > 0.0f);
+                    CHECK(differing == 0);
                 }
-                // The same texels read either way and the same arithmetic: bit-identical volumes.
-                const auto [differing, peak] = compareVolumes(wide, narrow);
-                MESSAGE(backend.name << " " << std::string(cascades) << ": " << differing
-                                     << " differing texels, peak " << peak);
-                CHECK(peak > 0.0f);
-                CHECK(differing == 0);
             }
         }
     }

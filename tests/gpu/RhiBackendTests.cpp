@@ -284,6 +284,13 @@ TEST_CASE("rhi: storage images bind below Caps::storageImageBindings, which a de
                 }
                 device->endFrame();
                 device->waitIdle();
+                // A shader with a storage image at binding 8 is refused at creation where the limit
+                // is 8 (Vulkan's reflection, GL's link-time check or its compiler), made otherwise.
+                const ComputePipelineDesc past{&shaders::image_binding_8_comp, "image at binding 8"};
+                if (limit > 8)
+                    device->destroy(device->createPipeline(past));
+                else
+                    CHECK_THROWS_WITH_AS(device->createPipeline(past), doctest::Contains("binding 8"), Error);
                 device->destroy(pipeline);
                 device->destroy(volume);
                 device.expectSilent();

@@ -8,6 +8,7 @@
 #include "rhi/Handle.h"
 #include "rhi/Pipeline.h"
 #include "rhi/Resources.h"
+#include "rhi/Shader.h"
 
 #include <cstdint>
 #include <span>

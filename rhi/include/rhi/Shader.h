@@ -16,6 +16,8 @@
 
 namespace lpv::rhi {
 
+// Every backend tracks bindings 0..kMaxBindings-1.
+inline constexpr uint32_t kMaxBindings = 32;
 inline constexpr uint32_t kPortableStorageImageBindings = 8;
 
 enum class ShaderStage : uint8_t { Vertex, Fragment, Compute };
