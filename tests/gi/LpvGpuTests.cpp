@@ -388,45 +388,49 @@ TEST_CASE("gi: with OpenGL's minimum of 8 storage image bindings the volumes hol
     // Propagation then reads the injection volume through texelFetch instead of imageLoad
     // (LpvVolumes, Caps::storageImageBindings): NVIDIA's GL driver has only 8. Every kernel role:
     // bounded partial sums with one cascade, the shell and the handoff with three; occlusion and a
-    // bounce in both. On Vulkan the narrow device also rejects any pipeline of the frame that
-    // puts a storage image at binding 8 or above.
-    for (const char* cascades : {"gi.cascades=1", "gi.cascades=3"}) {
-        const std::vector<std::string> on = {"gi.enabled=true", "render.debug_view=indirect", cascades,
-                                             "gi.occlusion=true", "gi.bounces=2"};
-        for (const auto& backend : selectedBackends()) {
-            SUBCASE((backend.name + " " + cascades).c_str()) {
-                // Not a return where there is nothing to compare: doctest would skip the later
-                // subcases of the loop with it.
-                CornellFrame wide, narrow;
-                bool comparable = true;
-                {
-                    TestDevice device(backend);
-                    comparable = device->caps().storageImageBindings >= 11;
-                    if (comparable)
-                        wide = renderCornell(*device, on);
-                    else
-                        MESSAGE("backend " << backend.name << " has " << device->caps().storageImageBindings
-                                           << " storage image bindings: only the texelFetch kernels; "
-                                              "nothing to compare");
-                    device.expectSilent();
-                }
-                if (comparable) {
-                    rhi::DeviceConfig eight;
-                    eight.storageImageBindings = rhi::kPortableStorageImageBindings;
-                    TestDevice device(backend, eight);
-                    REQUIRE(device->caps().storageImageBindings == 8);
-                    narrow = renderCornell(*device, on);
-                    device.expectSilent();
-                    // The same texels read either way and the same arithmetic: bit-identical volumes.
-                    const auto [differing, peak] = compareVolumes(wide, narrow);
-                    MESSAGE(backend.name << " " << std::string(cascades) << ": " << differing
-                                         << " differing texels, peak " << peak);
-                    CHECK(peak > 0.0f);
-                    CHECK(differing == 0);
+    // bounce in both; each volume format, whose kernels are variants of their own. On Vulkan the
+    // narrow device also rejects any pipeline of the frame that puts a storage image at binding 8
+    // or above.
+    for (const char* cascades : {"gi.cascades=1", "gi.cascades=3"})
+        for (const char* format : {"gi.sh_format=rgba8", "gi.sh_format=rgba16f", "gi.sh_format=rgba32f"}) {
+            const std::vector<std::string> on = {
+                "gi.enabled=true", "render.debug_view=indirect", cascades, format, "gi.occlusion=true",
+                "gi.bounces=2"};
+            for (const auto& backend : selectedBackends()) {
+                SUBCASE((backend.name + " " + cascades + " " + format).c_str()) {
+                    // Not a return where there is nothing to compare: doctest would skip the later
+                    // subcases of the loop with it.
+                    CornellFrame wide, narrow;
+                    bool comparable = true;
+                    {
+                        TestDevice device(backend);
+                        comparable = device->caps().storageImageBindings >= 11;
+                        if (comparable)
+                            wide = renderCornell(*device, on);
+                        else
+                            MESSAGE("backend " << backend.name << " has "
+                                               << device->caps().storageImageBindings
+                                               << " storage image bindings: only the texelFetch kernels; "
+                                                  "nothing to compare");
+                        device.expectSilent();
+                    }
+                    if (comparable) {
+                        rhi::DeviceConfig eight;
+                        eight.storageImageBindings = rhi::kPortableStorageImageBindings;
+                        TestDevice device(backend, eight);
+                        REQUIRE(device->caps().storageImageBindings == 8);
+                        narrow = renderCornell(*device, on);
+                        device.expectSilent();
+                        // The same texels read either way and the same arithmetic: bit-identical volumes.
+                        const auto [differing, peak] = compareVolumes(wide, narrow);
+                        MESSAGE(backend.name << " " << std::string(cascades) << " " << std::string(format)
+                                             << ": " << differing << " differing texels, peak " << peak);
+                        CHECK(peak > 0.0f);
+                        CHECK(differing == 0);
+                    }
                 }
             }
         }
-    }
 }
 
 TEST_CASE("gi: GL and Vulkan compute the same indirect light") {
