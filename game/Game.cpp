@@ -162,9 +162,17 @@ int runGame(const GameOptions& opt) {
     // The overlay goes on frames that are presented, not on screenshots of headless runs.
     std::unique_ptr<engine::ProfilerOverlay> overlay;
     if (device->caps().presentation) overlay = std::make_unique<engine::ProfilerOverlay>(*device);
-    // The gi.* values of the last configuration that fitted the budget, restored when a change
-    // made while running does not fit.
-    std::vector<std::pair<const engine::SettingDecl*, engine::SettingValue>> lastGoodGi;
+    // The gi.* values of the last configuration that fitted the budget, with where each came from,
+    // restored when a change made while running does not fit. The origins come back too: a check
+    // may depend on them (gi.debug_slice's default is clamped to a small volume, a chosen slice is
+    // not), and a value restored as a new choice could be refused on every frame after.
+    struct KeptSetting {
+        const engine::SettingDecl* decl;
+        engine::SettingValue value;
+        std::string origin;
+    };
+    std::vector<KeptSetting> lastGoodGi;
+    bool restoring = false; // the last frame staged lastGoodGi
     bool firstFrame = true;
     const engine::Camera start = defaultCamera(scene);
     FreeCamera freeCamera(start);
@@ -212,15 +220,25 @@ int runGame(const GameOptions& opt) {
             // GiBudgetError or ConfigError: at startup the configuration is refused outright; while
             // running the change is undone.
             if (firstFrame) throw engine::ConfigError("gi settings", 0, e.what());
-            log::error(std::string("game: GI change refused: ") + e.what());
-            for (const auto& [decl, value] : lastGoodGi)
-                config.stage(*decl, value, "restored");
+            // What ran before cannot be refused now; if it is, undoing again would loop forever.
+            if (restoring)
+                throw engine::ConfigError("gi settings", 0,
+                                          std::string("the last accepted GI settings were refused when "
+                                                      "restored: ") +
+                                              e.what());
+            log::error(std::string("game: GI change refused (the previous GI settings come back): ") +
+                       e.what());
+            for (const KeptSetting& k : lastGoodGi)
+                config.stage(*k.decl, k.value, k.origin);
+            restoring = true;
             continue;
         }
+        restoring = false;
         if (firstFrame || !changes.empty()) {
             lastGoodGi.clear();
             for (const engine::SettingDecl* d : engine::SettingRegistry::global().all())
-                if (d->name.starts_with("gi.")) lastGoodGi.emplace_back(d, config.value(*d));
+                if (d->name.starts_with("gi."))
+                    lastGoodGi.push_back({d, config.value(*d), config.origin(*d)});
         }
         firstFrame = false;
 

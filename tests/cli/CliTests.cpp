@@ -315,6 +315,29 @@ TEST_CASE("cli: without a reachable X display the game says why it runs headless
 // The README's Xbox 360 example holds 2.98 MiB of the 3 MiB; a device may allocate more (lavapipe
 // rounds 3D images up, CPU devices add the cascade classes). Whenever the report marks GI memory
 // over budget, the log has said why.
+// A console change the GI refuses is undone, and the frames go on. The restored settings keep
+// where they came from: gi.debug_slice's default (16) is clamped to a 16-cell volume, but restored as
+// a new choice it was refused on every frame after, and the game stopped drawing.
+TEST_CASE("cli: a refused console change is undone once and the frames go on") {
+    const Result r = runGame("--headless --backend null --width 64 --height 48 --frames 400 "
+                             "--set gi.enabled=true --set gi.grid_size=16 --profile-out /tmp/lpv_cli_refused",
+                             "printf 'gi.debug_slice=20\\n' |");
+    INFO(r.output);
+    REQUIRE(r.exitCode == 0);
+    size_t refusals = 0;
+    for (size_t at = r.output.find("GI change refused"); at != std::string::npos;
+         at = r.output.find("GI change refused", at + 1))
+        ++refusals;
+    CHECK(refusals == 1);
+    CHECK(r.output.find("'gi.debug_slice' = 20: outside the volume") != std::string::npos);
+    CHECK(r.output.find("game: gi.debug_slice = 16") != std::string::npos);
+    // The console's reader thread hands the line over within the first frames: nearly every frame
+    // is drawn and checked (a frame whose change is refused is not drawn).
+    const size_t checked = r.output.find("frames checked ");
+    REQUIRE(checked != std::string::npos);
+    CHECK(std::stoi(r.output.substr(checked + 15)) >= 390);
+}
+
 TEST_CASE("cli: GI memory allocated beyond the budget the check passed is explained in a warning") {
     const Result r = runGame("--headless --backend vulkan --no-fallback --platform x360 --frames 1 "
                              "--set gi.enabled=true --set gi.cascades=1 --set gi.iterations=6 "
