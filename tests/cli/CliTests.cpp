@@ -338,6 +338,31 @@ TEST_CASE("cli: a refused console change is undone once and the frames go on") {
     CHECK(std::stoi(r.output.substr(checked + 15)) >= 390);
 }
 
+// The report's peak memory is what the configured run allocated: the renderer used to make the
+// sun's shadow map and the indirect targets at their defaults (2048^2, full resolution) before the
+// first frame remade them, and the peak counted both.
+TEST_CASE("cli: the report's peak memory holds no render targets made at default sizes") {
+    const Result r = runGame("--headless --backend null --width 320 --height 180 --config " LPV_SAMPLE_CONFIG
+                             " --set render.shadow_map_size=256 --profile-out /tmp/lpv_cli_peak");
+    INFO(r.output);
+    REQUIRE(r.exitCode == 0);
+    // "  render.shadow: 0.250 MiB / 0.250 MiB" (current / peak)
+    const auto memory = [&](const std::string& category) {
+        const size_t at = r.output.find("  " + category + ": ");
+        REQUIRE(at != std::string::npos);
+        const std::string line = r.output.substr(at, r.output.find('\n', at) - at);
+        const size_t slash = line.find(" / ");
+        REQUIRE(slash != std::string::npos);
+        return std::pair{std::stod(line.substr(line.find(": ") + 2)), std::stod(line.substr(slash + 3))};
+    };
+    const auto [shadowNow, shadowPeak] = memory("render.shadow");
+    CHECK(shadowNow == doctest::Approx(0.25)); // 256^2 x 4 bytes
+    CHECK(shadowPeak == shadowNow);
+    // The sample config's GI looks up a quarter of the pixels (gi.resolution=half).
+    const auto [lightingNow, lightingPeak] = memory("render.lighting");
+    CHECK(lightingPeak == lightingNow);
+}
+
 TEST_CASE("cli: GI memory allocated beyond the budget the check passed is explained in a warning") {
     const Result r = runGame("--headless --backend vulkan --no-fallback --platform x360 --frames 1 "
                              "--set gi.enabled=true --set gi.cascades=1 --set gi.iterations=6 "

@@ -124,7 +124,11 @@ Renderer::Renderer(rhi::Device& device, uint32_t width, uint32_t height)
     compare.compareOp = CompareOp::LessOrEqual;
     compare.debugName = "shadow compare";
     shadowCompare_ = device.createSampler(compare);
-    createTargets(uint32_t(std::get<int64_t>(kShadowMapSize.decl().defaultValue)));
+    // The sun's shadow map and the indirect targets wait for the first frame, which knows their
+    // sizes (render.shadow_map_size, the GI's resolution): made here at the defaults and remade
+    // there, they were allocated for nothing, and the profiler's peak memory counted them (16 MiB of
+    // shadow map where the config asked for 0.25).
+    createTargets(0);
     specularAlbedo_ = std::make_unique<SpecularAlbedoTexture>(device);
     createPipelines();
     lightShadows_ = std::make_unique<LightShadows>(device);
@@ -159,13 +163,14 @@ void Renderer::createTargets(uint32_t shadowSize) {
                                             "gbuffer depth", "render.gbuffer"});
     targets_.aoRaw = target(Format::R32F, 0, "ssao raw", "render.ssao");
     targets_.ao = target(Format::R32F, kTextureTransfer, "ssao", "render.ssao");
-    createIndirectTargets(indirectDivisor_);
+    if (indirectDivisor_ > 0) createIndirectTargets(indirectDivisor_);
     targets_.hdr = target(Format::RGBA16F, kTextureTransfer, "hdr", "render.lighting");
     targets_.output = target(Format::RGBA8Srgb, kTextureTransfer, "output", "render.output");
     shadowSize_ = shadowSize;
-    targets_.shadow =
-        device_.createTexture({TextureKind::Tex2D, Format::D32F, shadowSize, shadowSize, 1, 1,
-                               kTextureDepthTarget | kTextureSampled, "sun shadow map", "render.shadow"});
+    if (shadowSize > 0)
+        targets_.shadow =
+            device_.createTexture({TextureKind::Tex2D, Format::D32F, shadowSize, shadowSize, 1, 1,
+                                   kTextureDepthTarget | kTextureSampled, "sun shadow map", "render.shadow"});
 }
 
 void Renderer::createIndirectTargets(uint32_t divisor) {
@@ -309,8 +314,9 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
     if (!scene_) throw Error("Renderer::render() before setScene()");
     const uint32_t wantShadow = uint32_t(config.get(kShadowMapSize));
     if (wantShadow != shadowSize_) {
-        // A settings change, not a steady-state frame: the shadow map is remade at its new size.
-        device_.destroy(targets_.shadow);
+        // The first frame, or a settings change, not a steady-state frame: the shadow map is
+        // (re)made at its new size.
+        if (targets_.shadow) device_.destroy(targets_.shadow);
         shadowSize_ = wantShadow;
         targets_.shadow =
             device_.createTexture({TextureKind::Tex2D, Format::D32F, shadowSize_, shadowSize_, 1, 1,
@@ -327,9 +333,10 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
 
     const uint32_t divisor = indirect ? std::clamp(indirect->resolutionDivisor(), 1u, 8u) : 1u;
     if (divisor != indirectDivisor_) {
-        // A settings change (the GI's resolution, or GI on/off), not a steady-state frame.
-        device_.destroy(targets_.indirect);
-        device_.destroy(targets_.glossy);
+        // The first frame, or a settings change (the GI's resolution, or GI on/off), not a
+        // steady-state frame.
+        if (targets_.indirect) device_.destroy(targets_.indirect);
+        if (targets_.glossy) device_.destroy(targets_.glossy);
         createIndirectTargets(divisor);
     }
 

@@ -83,7 +83,8 @@ public:
     // reads it), for an indirect provider that weighs its lobes as the lighting pass does.
     rhi::TextureHandle specularAlbedoTexture() const { return specularAlbedo_->texture(); }
     // RGBA16F linear: the indirect irradiance the provider wrote (or the ambient constant), at
-    // 1/indirectDivisor() of the frame per axis.
+    // 1/indirectDivisor() of the frame per axis. This, glossy() and the sun's shadow map exist
+    // from the first render() on (indirectDivisor() is 0 before).
     rhi::TextureHandle indirect() const { return targets_.indirect; }
     uint32_t indirectDivisor() const { return indirectDivisor_; }
     GBufferView gbuffer() const;
@@ -112,7 +113,7 @@ private:
 
     rhi::Device& device_;
     uint32_t width_, height_, shadowSize_ = 0;
-    uint32_t indirectDivisor_ = 1;
+    uint32_t indirectDivisor_ = 0; // 0: no indirect targets yet (the first frame makes them)
     Targets targets_;
     rhi::GraphicsPipelineHandle gbufferPipeline_, gbufferMappedPipeline_, shadowPipeline_, ssaoPipeline_,
         ssaoBlurPipeline_, lightingPipeline_, lightingShadowedPipeline_, tonemapPipeline_;
