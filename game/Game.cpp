@@ -250,6 +250,7 @@ int runGame(const GameOptions& opt) {
         device->endFrame(renderer.output());
     }
     device->waitIdle();
+    lpv.collectPending(&profiler); // what the last frames' GPU work left to report
 
     // Every output that can be written is, and the summary is printed, whatever failed.
     std::vector<std::string> failures;

@@ -216,6 +216,14 @@ void LightPropagationVolume::warnIfAllocatedOverBudget() const {
                                    : std::string()));
 }
 
+void LightPropagationVolume::collectPending(engine::FrameProfiler* profiler) {
+    Rgba8Clipping* clipping = volumes_ ? volumes_->clipping() : nullptr;
+    if (!clipping) return;
+    device_.waitIdle();
+    clipping->takeInFinished();
+    reportRgba8Clipping(profiler);
+}
+
 void LightPropagationVolume::reportRgba8Clipping(engine::FrameProfiler* profiler) {
     const Rgba8Clipping* clipping = volumes_ ? volumes_->clipping() : nullptr;
     if (!clipping) return;
@@ -239,7 +247,8 @@ void LightPropagationVolume::reportRgba8Clipping(engine::FrameProfiler* profiler
                   double(rangeToHold(settings_.rgba8Range, *worst)),
                   static_cast<unsigned long long>(clipping->peakFrames()[size_t(cascade)]));
     log::warn(line);
-    if (profiler) profiler->note(kRgba8ClippingNoteTopic, text);
+    // Under the frame that met it, not the one that read it back.
+    if (profiler) profiler->note(kRgba8ClippingNoteTopic, text, clipping->peakFrames()[size_t(cascade)]);
 }
 
 void LightPropagationVolume::update(const engine::Config& config, const engine::Renderer& renderer,

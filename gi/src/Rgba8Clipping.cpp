@@ -41,22 +41,32 @@ static uint32_t* recordAt(uint32_t* mapped, uint32_t region, uint32_t cascade) {
     return mapped + (uint64_t(region) * Rgba8Clipping::kCascades + cascade) * kRecordBytes / sizeof(uint32_t);
 }
 
-void Rgba8Clipping::takeIn(uint64_t frame) {
-    frame_ = frame;
-    const uint32_t region = uint32_t(frame % regions_);
-    // Written framesInFlight or more frames ago: finished, since beginFrame() of this frame waited.
-    // A frame that recorded nothing (GI off) leaves a region to be read later than a newer one:
-    // a cascade keeps the newest frame's peak.
+// A frame that recorded nothing (GI off) leaves a region to be read later than a newer one: a
+// cascade keeps the newest frame's peak.
+void Rgba8Clipping::takeInRegion(uint32_t region) {
     const uint64_t written = regionFrame_[region];
     for (uint32_t c = 0; c < kCascades; ++c) {
         if (written == 0 || !(regionCascades_[region] & (1u << c)) || written <= peakFrames_[c]) continue;
         peaks_[c] = std::bit_cast<float>(*recordAt(mapped_, region, c));
         peakFrames_[c] = written;
     }
+}
+
+void Rgba8Clipping::takeIn(uint64_t frame) {
+    frame_ = frame;
+    const uint32_t region = uint32_t(frame % regions_);
+    // Written framesInFlight or more frames ago: finished, since beginFrame() of this frame waited.
+    takeInRegion(region);
     for (uint32_t c = 0; c < kCascades; ++c)
         *recordAt(mapped_, region, c) = 0;
     regionFrame_[region] = frame;
     regionCascades_[region] = 0;
+}
+
+void Rgba8Clipping::takeInFinished() {
+    // In any order: a region is taken only where it is newer than what a cascade holds.
+    for (uint32_t region = 0; region < regions_; ++region)
+        takeInRegion(region);
 }
 
 void Rgba8Clipping::bind(rhi::CommandList& cmd, uint32_t cascade) {

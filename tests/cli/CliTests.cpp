@@ -363,6 +363,20 @@ TEST_CASE("cli: the report's peak memory holds no render targets made at default
     CHECK(lightingPeak == lightingNow);
 }
 
+// RGBA8 clipping is read back frames after the frame that met it; a run of one frame (what
+// `./lpv.sh run` renders) reads it at its end, so it warns as a long run does.
+TEST_CASE("cli: a run of one frame whose RGBA8 volumes clip says so in the log and the report") {
+    const Result r =
+        runGame("--headless --backend gl --width 96 --height 64 --frames 1 --config " LPV_SAMPLE_CONFIG
+                " --set gi.sh_format=rgba8 --set gi.rgba8_range=4 --profile-out /tmp/lpv_cli_clip1");
+    INFO(r.output);
+    REQUIRE(r.exitCode == 0);
+    CHECK(r.output.find("gi: RGBA8 volumes clip: cascade 0 met light") != std::string::npos);
+    const std::string summary = fileBytes("/tmp/lpv_cli_clip1/summary.md");
+    CHECK(summary.find("## GI RGBA8 clipping") != std::string::npos);
+    CHECK(summary.find("set gi.rgba8_range to") != std::string::npos);
+}
+
 TEST_CASE("cli: GI memory allocated beyond the budget the check passed is explained in a warning") {
     const Result r = runGame("--headless --backend vulkan --no-fallback --platform x360 --frames 1 "
                              "--set gi.enabled=true --set gi.cascades=1 --set gi.iterations=6 "

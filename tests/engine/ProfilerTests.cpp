@@ -295,6 +295,33 @@ TEST_CASE("profiler: notes belong to their frame and reach every report") {
     CHECK(profileSummaryText(profiler).find("(3 older notes dropped)") != std::string::npos);
 }
 
+// A note about a frame that has ended (a result read back later, or at the end of a run) goes
+// under that frame and is reported at once; notes waiting for the next frame stay waiting.
+TEST_CASE("profiler: a note about an ended frame is reported under that frame") {
+    auto device = nullDevice();
+    FrameProfiler profiler(*device, tinyProfile(100, 100));
+    frame(*device, profiler, 1, 1);
+    const uint64_t ended = device->frameIndex();
+    frame(*device, profiler, 1, 1);
+    profiler.note("next", "waits for the next frame");
+    profiler.note("GI RGBA8 clipping", "read back late", ended);
+    std::vector<std::pair<uint64_t, std::string>> notes;
+    profiler.forEachNote(
+        [&](const FrameProfiler::Note& n) { notes.emplace_back(n.frame, std::string(n.text())); });
+    REQUIRE(notes.size() == 1);
+    CHECK(notes[0] == std::pair(ended, std::string("read back late")));
+    CHECK(profileSummaryMarkdown(profiler).find("| " + std::to_string(ended) + " | read back late |") !=
+          std::string::npos);
+
+    frame(*device, profiler, 1, 1);
+    const uint64_t next = device->frameIndex();
+    notes.clear();
+    profiler.forEachNote(
+        [&](const FrameProfiler::Note& n) { notes.emplace_back(n.frame, std::string(n.text())); });
+    REQUIRE(notes.size() == 2);
+    CHECK(notes[1] == std::pair(next, std::string("waits for the next frame")));
+}
+
 TEST_CASE("profiler: the predicted GI time adds up its passes, and names the frame it is of") {
     auto device = nullDevice();
     FrameProfiler profiler(*device, platforms::loadPlatformProfile("x360"));

@@ -133,13 +133,7 @@ void FrameProfiler::setWork(const WorkCounts& work) {
     if (open.sample != UINT32_MAX) current_->samples[open.sample].work = work;
 }
 
-void FrameProfiler::note(std::string_view topic, std::string_view text) {
-    if (!current_ && pendingNotes_ + 1 >= notes_.size()) {
-        ++pendingLost_; // a flood between two frames: keep the first ones and a slot for the last frame's
-        return;
-    }
-    Note& n = notes_[noted_ % notes_.size()];
-    ++noted_;
+static void writeNote(FrameProfiler::Note& n, std::string_view topic, std::string_view text) {
     const auto copy = [](std::string_view from, auto& to) {
         const size_t length = std::min(from.size(), to.size() - 1);
         std::copy_n(from.data(), length, to.data());
@@ -147,6 +141,34 @@ void FrameProfiler::note(std::string_view topic, std::string_view text) {
     };
     copy(topic, n.topicBuffer);
     copy(text, n.textBuffer);
+}
+
+void FrameProfiler::note(std::string_view topic, std::string_view text, uint64_t frame) {
+    if (pendingNotes_ + 1 >= notes_.size()) {
+        ++pendingLost_;
+        return;
+    }
+    Note& n = notes_[noted_ % notes_.size()];
+    ++noted_;
+    writeNote(n, topic, text);
+    n.frame = frame;
+    n.cpuTime = platforms::nowNanoseconds();
+    forEachFrame([&](const FrameRecord& r) {
+        if (r.frame == frame) n.cpuTime = r.cpuEnd;
+    });
+    // Notes waiting for the next frame stay the newest in the ring (forEachNote leaves them out).
+    for (uint64_t i = 0; i < pendingNotes_; ++i)
+        std::swap(notes_[(noted_ - 1 - i) % notes_.size()], notes_[(noted_ - 2 - i) % notes_.size()]);
+}
+
+void FrameProfiler::note(std::string_view topic, std::string_view text) {
+    if (!current_ && pendingNotes_ + 1 >= notes_.size()) {
+        ++pendingLost_; // a flood between two frames: keep the first ones and a slot for the last frame's
+        return;
+    }
+    Note& n = notes_[noted_ % notes_.size()];
+    ++noted_;
+    writeNote(n, topic, text);
     if (current_) {
         n.frame = current_->frame;
         n.cpuTime = platforms::nowNanoseconds();

@@ -50,6 +50,10 @@ public:
                 const engine::CameraMatrices& camera, engine::FrameProfiler* profiler = nullptr);
     // The scheduler's answer for the current frame (the configured load without a profiler).
     const GiSchedule& schedule() const { return schedule_; }
+    // At the end of a run, once the device is idle: reports what the last frames' GPU work left to
+    // say (RGBA8 clipping, read back framesInFlight frames late while running), so a run of one
+    // frame warns as a long one does.
+    void collectPending(engine::FrameProfiler* profiler);
 
     void renderIndirect(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                         const engine::GBufferView& gbuffer, rhi::TextureHandle target,

@@ -51,6 +51,10 @@ public:
     // beginFrame() waited for.
     void bind(rhi::CommandList& cmd, uint32_t cascade);
 
+    // Takes in every frame's record, all of them finished: for the end of a run, once the device
+    // is idle (a run shorter than framesInFlight frames would otherwise read none).
+    void takeInFinished();
+
     // For each cascade, what the last finished frame that encoded it met: its largest coefficient
     // as a multiple of its range, 0 when nothing was over. Kept until that cascade is encoded again
     // (a coarse cascade kept between updates keeps its value).
@@ -60,6 +64,7 @@ public:
 
 private:
     void takeIn(uint64_t frame);
+    void takeInRegion(uint32_t region);
 
     rhi::Device& device_;
     uint32_t regions_; // one per frame in flight

@@ -97,6 +97,9 @@ public:
     // (topic "GI budget changes"). Between endFrame() and beginFrame() it goes to the next frame.
     // Copied into fixed-size storage: long texts are cut, the oldest notes give way.
     void note(std::string_view topic, std::string_view text);
+    // A note about frame `frame`, which has ended (what its GPU work left, read back frames later,
+    // or once the device is idle at the end of a run): the report shows it under that frame.
+    void note(std::string_view topic, std::string_view text, uint64_t frame);
 
     const std::vector<ScopeInfo>& scopes() const { return scopes_; }
     // A scope's work counts plus those of every scope nested in it (a parent such as "gi" sets
