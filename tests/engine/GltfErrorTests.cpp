@@ -175,6 +175,35 @@ TEST_CASE("glTF errors: byte ranges past the end are caught however large the nu
     });
 }
 
+// Core glTF 2.0: positions, normals and tangents are floats (integers need KHR_mesh_quantization,
+// which the reader does not support and so refuses when required); texture coordinates may be
+// normalized unsigned bytes or shorts. An unsigned-byte position used to load as a fraction of 255.
+TEST_CASE("glTF errors: attribute component types the spec forbids") {
+    checkErrors({
+        {"u8position.gltf", [](json& g) { g["accessors"][0]["componentType"] = 5121; },
+         "POSITION accessor 0 has component type 5121, expected float (5126)"},
+        {"u16position.gltf",
+         [](json& g) {
+             g["accessors"][0]["componentType"] = 5123;
+             g["accessors"][0]["normalized"] = true;
+         },
+         "POSITION accessor 0 has component type 5123 (normalized), expected float (5126)"},
+        {"u16uv.gltf",
+         [](json& g) {
+             g["accessors"].push_back(
+                 json::parse(R"({"bufferView": 0, "componentType": 5123, "count": 3, "type": "VEC2"})"));
+             g["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 2;
+         },
+         "TEXCOORD_0 accessor 2 has component type 5123, expected float (5126), or normalized unsigned byte "
+         "(5121) or short (5123)"},
+    });
+    json uv = triangle();
+    uv["accessors"].push_back(json::parse(
+        R"({"bufferView": 0, "componentType": 5123, "normalized": true, "count": 3, "type": "VEC2"})"));
+    uv["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 2;
+    CHECK(gltfErrorOf("u16uv-normalized.gltf", uv) == "(no error)");
+}
+
 TEST_CASE("glTF errors: nodes must form disjoint trees") {
     checkErrors({
         {"selfchild.gltf", [](json& g) { g["nodes"][0]["children"] = {0}; }, "node 0 is its own ancestor"},

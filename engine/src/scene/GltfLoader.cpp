@@ -52,7 +52,12 @@ private:
 
     // Returns a pointer to element 0 and the stride; validateGltf has checked the range is in the buffer.
     const uint8_t* accessorData(int accessorIndex, size_t elementSize, size_t& stride, size_t& count) const;
-    template <int N> std::vector<glm::vec<N, float>> readFloats(int accessorIndex, const char* what) const;
+    // `integers`: also normalized unsigned bytes and shorts, as glTF 2.0 allows for texture
+    // coordinates (positions, normals and tangents are floats unless KHR_mesh_quantization, which
+    // this reader does not support, is required).
+    template <int N>
+    std::vector<glm::vec<N, float>> readFloats(int accessorIndex, const char* what,
+                                               bool integers = false) const;
     std::vector<uint32_t> readIndices(int accessorIndex) const;
     int32_t texture(int gltfTexture, bool srgb, const std::string& materialName);
     void readMaterials();
@@ -82,8 +87,19 @@ const uint8_t* GltfReader::accessorData(int accessorIndex, size_t elementSize, s
 }
 
 template <int N>
-std::vector<glm::vec<N, float>> GltfReader::readFloats(int accessorIndex, const char* what) const {
+std::vector<glm::vec<N, float>> GltfReader::readFloats(int accessorIndex, const char* what,
+                                                       bool integers) const {
     const tinygltf::Accessor& a = model_.accessors[size_t(accessorIndex)];
+    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
+        const bool normalizedInteger = (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                        a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) &&
+                                       a.normalized;
+        if (!integers || !normalizedInteger)
+            fail(std::string(what) + " accessor " + std::to_string(accessorIndex) + " has component type " +
+                 std::to_string(a.componentType) + (a.normalized ? " (normalized)" : "") + ", expected " +
+                 (integers ? "float (5126), or normalized unsigned byte (5121) or short (5123)"
+                           : "float (5126)"));
+    }
     const int components = tinygltf::GetNumComponentsInType(uint32_t(a.type));
     if (components != N)
         fail(std::string(what) + " accessor " + std::to_string(accessorIndex) + " has " +
@@ -245,7 +261,7 @@ void GltfReader::readMeshes() {
             if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end())
                 normals = readFloats<3>(it->second, "NORMAL");
             if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end())
-                uvs = readFloats<2>(it->second, "TEXCOORD_0");
+                uvs = readFloats<2>(it->second, "TEXCOORD_0", true);
             if (auto it = prim.attributes.find("TANGENT"); it != prim.attributes.end())
                 tangents = readFloats<4>(it->second, "TANGENT");
             for (const auto* attr : {&normals})
