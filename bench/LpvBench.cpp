@@ -17,6 +17,7 @@
 //             [--scenes=cornell,atrium] [--parts=propagation,lights,frames,profiler,console] [--out=DIR]
 //             [--set key=value ...]   (lpv_bench --help says what each does)
 #include "BenchBackends.h"
+#include "BenchCommandLine.h"
 #include "BenchShaders.h"
 
 #include "engine/Screenshot.h"
@@ -655,27 +656,37 @@ int main(int argc, char** argv) {
     int kernelRuns = 101; // propagation: a run takes ~50 ms, and this machine's noise needs many
     app.add_option("--kernel-runs", kernelRuns, "Propagation runs (medians of)")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(CLI::Range(1, 1000000));
     app.add_option("--runs", runs, "Runs of the lights part")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(CLI::Range(1, 1000000));
     app.add_option("--frames", frames, "Frames per scene and backend (frames and profiler parts)")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(CLI::Range(1, 1000000));
     std::string outDir;
     app.add_option("--out", outDir, "Folder for the frames' traces, charts and screenshots");
     std::vector<std::string> overrides;
     app.add_option("--set", overrides,
                    "Override a setting in the frames part, after the benchmark's own: --set "
                    "gi.glossy_max_roughness=0.6 (repeatable)");
-    CLI11_PARSE(app, argc, argv);
+    if (const std::optional<int> exit = parseCommandLine(app, argc, argv)) return *exit;
     // A wrong key or value fails before any device starts, naming the setting.
     try {
         engine::Config check;
         for (const std::string& o : overrides)
             check.applyOverride(o);
     } catch (const engine::ConfigError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
+        std::string message = e.what();
+        // The game's hint; lpv_bench has no --help-config.
+        if (const size_t hint = message.find(" (--help-config lists them all)"); hint != std::string::npos)
+            message.erase(hint);
+        // The game's --help-config lists the game's settings; the frame size, backends, scenes and
+        // platform here are the benchmark's own options, not settings.
+        std::fprintf(stderr,
+                     "error: %s\nlpv_bench --set takes the settings its frames part reads (gi.*, and the "
+                     "renderer's render.*); the frame is 1280x720 on the backends of --backends and the "
+                     "scenes of --scenes, on the pc profile\n",
+                     message.c_str());
         return 2;
     }
     const auto want = [&](const char* part) {

@@ -5,6 +5,7 @@
 //
 //   lpv_rhi_bench [--backends=vulkan,gl-egl,gl-osmesa] [--runs=N]
 #include "BenchBackends.h"
+#include "BenchCommandLine.h"
 #include "BenchShaders.h"
 
 #include "platforms/Clock.h"
@@ -181,8 +182,8 @@ int main(int argc, char** argv) {
     int runs = 5;
     app.add_option("--runs", runs, "Runs per figure (the median is printed)")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
-    CLI11_PARSE(app, argc, argv);
+        ->check(CLI::Range(1, 1000000));
+    if (const std::optional<int> exit = parseCommandLine(app, argc, argv)) return *exit;
     std::printf(
         "RHI benchmark, median of %d runs (ms). GPU columns: device timestamps; wall: submit to idle.\n",
         runs);
