@@ -10,8 +10,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace lpv;
@@ -89,8 +91,13 @@ int main(int argc, char** argv) {
     } catch (const CLI::Success& e) { // --help
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        // A bad command line is bad input (exit 2), whatever CLI11's own code for it.
-        std::fprintf(stderr, "error: %s\n", e.what());
+        // A bad command line is bad input (exit 2), whatever CLI11's own code for it. Unknown
+        // options are named once, with a hint, by reportMisspeltOptions.
+        const bool onlyUnknownOptions =
+            dynamic_cast<const CLI::ExtrasError*>(&e) != nullptr &&
+            std::all_of(app.remaining().begin(), app.remaining().end(),
+                        [](const std::string& arg) { return arg.starts_with("--"); });
+        if (!onlyUnknownOptions) std::fprintf(stderr, "error: %s\n", e.what());
         reportMisspeltOptions(app);
         std::fputs("Run with --help for more information.\n", stderr);
         return 2;
@@ -100,6 +107,14 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "error: --frames: expected a positive number of frames, got %d\n", opt.frames);
         return 2;
     }
+    // An empty path would write nothing, silently.
+    for (const auto& [flag, path] :
+         {std::pair<const char*, const std::string*>{"--screenshot", &opt.screenshot},
+          {"--profile-out", &opt.profileOut}})
+        if (app.count(flag) && path->empty()) {
+            std::fprintf(stderr, "error: %s: expected a path, got an empty one\n", flag);
+            return 2;
+        }
     if (app.count("--help-config")) {
         if (!helpConfig.empty() && helpConfig != "markdown") {
             std::fprintf(stderr, "error: --help-config: expected 'markdown' or nothing, got '%s'\n",

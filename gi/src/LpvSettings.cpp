@@ -68,8 +68,8 @@ const engine::IntSetting kBounces{
     "Light bounces: 2-3 reflect the light the geometry volume blocks off its surfels (needs gi.occlusion)"};
 const engine::IntSetting kBounceCascades{
     "gi.bounce_cascades", 1, 1, 4,
-    "Cascades, finest first, that add the further bounces of gi.bounces; the coarser ones carry one bounce "
-    "(each costs about a propagation)"};
+    "Cascades, finest first, that add the further bounces of gi.bounces (more than gi.cascades: every "
+    "cascade); the coarser ones carry one bounce (each costs about a propagation)"};
 const engine::IntSetting kLightRsms{"gi.light_rsms", 1, 0, 4,
                                     "Spot lights (the brightest reaching the volume) with their own RSM: "
                                     "bounce light in the colour they hit"};
@@ -85,6 +85,20 @@ const engine::EnumSetting<uint32_t> kResolution{
     "the others with a depth- and normal-aware (bilateral) filter"};
 const engine::IntSetting kDebugSlice{"gi.debug_slice", 16, 0, 63,
                                      "Volume slice (z) shown by gi.debug_view=volume_slice"};
+
+// The valid gi.vpl_count nearest `wanted` (a square whose side divides rsmSize; the smaller on a
+// tie), for the error that refuses `wanted`.
+uint32_t nearestVplCount(uint32_t wanted, uint32_t rsmSize) {
+    uint32_t best = 1;
+    for (uint32_t side = 1; side <= rsmSize; ++side) {
+        if (rsmSize % side != 0) continue;
+        const uint64_t count = uint64_t(side) * side;
+        const uint64_t distance = count > wanted ? count - wanted : wanted - count;
+        const uint64_t bestDistance = best > wanted ? best - wanted : wanted - best;
+        if (distance < bestDistance) best = uint32_t(count);
+    }
+    return best;
+}
 
 } // namespace
 
@@ -127,8 +141,8 @@ LpvSettings readLpvSettings(const engine::Config& config) {
         throw engine::ConfigError(config.origin(kVplCount.decl()), 0,
                                   "'gi.vpl_count' = " + std::to_string(s.vplCount) +
                                       ": expected a square number whose side divides gi.rsm_size (" +
-                                      std::to_string(s.rsmSize) + "), e.g. " +
-                                      std::to_string((s.rsmSize / 4) * (s.rsmSize / 4)));
+                                      std::to_string(s.rsmSize) + "), such as " +
+                                      std::to_string(nearestVplCount(s.vplCount, s.rsmSize)));
     // Only a slice someone chose: the default (16, the middle of the default 32 grid) is clamped
     // to the last slice of a smaller volume when shown.
     if (s.debugSlice >= s.gridSize && config.origin(kDebugSlice.decl()) != "default")

@@ -245,6 +245,18 @@ TEST_CASE("cli: a bad command line exits 2 with CLI11's message, and a misspelt 
     const Result help = runGame("--help");
     CHECK(help.exitCode == 0);
     CHECK(contains(help.output, "--screenshot"));
+    // An unknown option alone is named once (CLI11's message said it again).
+    const Result unknown = runGame("--bogus");
+    INFO(unknown.output);
+    CHECK(unknown.exitCode == 2);
+    CHECK(unknown.output.find("--bogus") == unknown.output.rfind("--bogus"));
+    // An empty output path would write nothing, silently.
+    for (const char* flag : {"--screenshot", "--profile-out"}) {
+        const Result empty = runGame(kTinyRun + flag + " ''");
+        INFO(empty.output);
+        CHECK(empty.exitCode == 2);
+        CHECK(contains(empty.output, std::string(flag) + ": expected a path, got an empty one"));
+    }
 }
 
 TEST_CASE("cli: --frames takes a positive number") {

@@ -85,6 +85,14 @@ TEST_CASE("glTF errors: a file that cannot be opened gives the system's reason")
     CHECK(gltfErrorOf(path) == path + ": cannot open the file: No such file or directory");
 }
 
+// It went to the JSON parser, whose error ("last read: 'g'") said nothing of the magic.
+TEST_CASE("glTF errors: a .glb that does not begin with the magic says so") {
+    const std::string path = pathOf("badmagic.GLB");
+    std::ofstream(path, std::ios::binary) << "glTX" << std::string(16, '\0');
+    CHECK(gltfErrorOf(path) ==
+          path + ": is not a binary glTF (GLB) file: it begins with 'glTX', not the magic 'glTF'");
+}
+
 namespace {
 
 // A broken variant of the triangle: the file to write, the change, and the problem the error must name.

@@ -16,6 +16,7 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -493,8 +494,20 @@ GltfContainer probeGltfFile(const std::string& path) {
     char magic[4] = {};
     const size_t read = std::fread(magic, 1, sizeof(magic), file);
     std::fclose(file);
-    return read == sizeof(magic) && std::string_view(magic, 4) == "glTF" ? GltfContainer::Binary
-                                                                         : GltfContainer::Json;
+    if (read == sizeof(magic) && std::string_view(magic, 4) == "glTF") return GltfContainer::Binary;
+    // A .glb that does not begin with the magic would go to the JSON parser, whose error says
+    // nothing of it.
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (extension == ".glb") {
+        std::string shown;
+        for (size_t i = 0; i < read; ++i)
+            shown += std::isprint(static_cast<unsigned char>(magic[i])) ? magic[i] : '?';
+        throw SceneError(path, "is not a binary glTF (GLB) file: it begins with '" + shown +
+                                   "', not the magic 'glTF'");
+    }
+    return GltfContainer::Json;
 }
 
 Scene readGltfFile(const std::string& path) {
