@@ -267,6 +267,23 @@ TEST_CASE("scenes: a missing texture warns and falls back to the flat color") {
     CHECK_MESSAGE(named, "no warning naming the file and the texture");
 }
 
+// Image data that cannot be decoded is handled as a missing image: it used to end the load
+// (exit 2) where a missing file only warned.
+TEST_CASE("scenes: an image that cannot be decoded warns and falls back to the flat color") {
+    const std::string notPng = "data:image/png;base64,bm90IGEgcG5nIGF0IGFsbA=="; // "not a png at all"
+    const std::string path = write("badimage.gltf", gltfJson(quadBuffer(), {"", "", notPng}));
+    const auto [s, warnings] = loadWithWarnings(path);
+    CHECK(s.materials[0].baseColorTexture == -1);
+    CHECK(s.materials[0].baseColor.r == doctest::Approx(0.9f));
+    bool fellBack = false, named = false;
+    for (const auto& w : warnings) {
+        fellBack = fellBack || (w.find(path) == 0 && w.find("uses its flat factor") != std::string::npos);
+        named = named || (w.find(path) == 0 && w.find("image 0 cannot be decoded") != std::string::npos);
+    }
+    CHECK_MESSAGE(fellBack, "no warning naming the material's fallback");
+    CHECK_MESSAGE(named, "no warning naming the image that cannot be decoded");
+}
+
 TEST_CASE("scenes: an optional extension the reader does not know is named in a warning") {
     std::string json = gltfJson(quadBuffer());
     const std::string used = R"("extensionsUsed": ["KHR_lights_punctual"])";

@@ -463,8 +463,8 @@ Scene GltfReader::read() {
 }
 
 // tinygltf decodes an image stored in a bufferView without checking that the view lies inside its
-// buffer; this runs first, before a byte of it is read. `model` is the model being parsed, whose
-// buffers and bufferViews are complete when images are reached.
+// buffer; this runs first, before a byte of it is read (a broken file: an error). `model` is the model being
+// parsed, whose buffers and bufferViews are complete when images are reached.
 bool loadImageInsideBuffer(tinygltf::Image* image, const int index, std::string* err, std::string* warn,
                            int width, int height, const unsigned char* bytes, int size, void* model) {
     if (image->bufferView >= 0) {
@@ -476,7 +476,14 @@ bool loadImageInsideBuffer(tinygltf::Image* image, const int index, std::string*
             return false;
         }
     }
-    return tinygltf::LoadImageData(image, index, err, warn, width, height, bytes, size, nullptr);
+    // Image data that cannot be decoded is what a missing image file is to tinygltf (a warning):
+    // the materials that use it keep their flat factors, each named in a warning (GltfReader).
+    std::string decodeError;
+    if (!tinygltf::LoadImageData(image, index, &decodeError, warn, width, height, bytes, size, nullptr)) {
+        *warn += "image " + std::to_string(index) + " cannot be decoded: " + decodeError;
+        image->image.clear();
+    }
+    return true;
 }
 
 enum class GltfContainer { Json, Binary };
