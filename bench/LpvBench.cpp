@@ -606,13 +606,14 @@ void consolePresetFlight(const char* console, bool printPasses) {
     for (double ms : later)
         worst = std::max(worst, ms);
     const gi::LpvSettings s = gi::readLpvSettings(config);
-    std::printf(
-        "\n%s: predicted GI %.2f ms on the first frame (every cascade made), then %.2f ms median and %.2f "
-        "ms at most over %zu frames (goal: at most %.1f ms); adapt took %u steps; GI memory %.2f MiB "
-        "allocated of %.2f MiB (%.2f planned before the start, a spot light's RSM included)\n",
-        console, first, median(later), worst, later.size(), profile.giBudgetMs, lpv.schedule().stepsInEffect,
-        double(profiler.allocations().bytesIn("gi")) / 1048576.0,
-        double(profile.giMemoryBudgetBytes) / 1048576.0, double(gi::giBytes(gi::giResources(s))) / 1048576.0);
+    std::printf("\n%s: predicted GI %.2f ms on the first frame (every cascade made, its second bounce left "
+                "to the next), then %.2f ms median and %.2f "
+                "ms at most over %zu frames (goal: at most %.1f ms); adapt took %u steps; GI memory %.2f MiB "
+                "allocated of %.2f MiB (%.2f planned before the start, a spot light's RSM included)\n",
+                console, first, median(later), worst, later.size(), profile.giBudgetMs,
+                lpv.schedule().stepsInEffect, double(profiler.allocations().bytesIn("gi")) / 1048576.0,
+                double(profile.giMemoryBudgetBytes) / 1048576.0,
+                double(gi::giBytes(gi::giResources(s))) / 1048576.0);
     if (!printPasses) return;
     // Each pass's predicted ms in the last frame that ran it: the same work on either profile. A
     // frame runs cascade0, one of the two coarse cascades, the lookup, the march and the rebuild.
