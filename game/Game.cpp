@@ -172,7 +172,7 @@ int runGame(const GameOptions& opt) {
         std::string origin;
     };
     std::vector<KeptSetting> lastGoodGi;
-    bool restoring = false; // the last frame staged lastGoodGi
+    std::string refusal; // set when the restored GI settings were refused too: the run ends
     bool firstFrame = true;
     const engine::Camera start = defaultCamera(scene);
     FreeCamera freeCamera(start);
@@ -220,20 +220,23 @@ int runGame(const GameOptions& opt) {
             // GiBudgetError or ConfigError: at startup the configuration is refused outright; while
             // running the change is undone.
             if (firstFrame) throw engine::ConfigError("gi settings", 0, e.what());
-            // What ran before cannot be refused now; if it is, undoing again would loop forever.
-            if (restoring)
-                throw engine::ConfigError("gi settings", 0,
-                                          std::string("the last accepted GI settings were refused when "
-                                                      "restored: ") +
-                                              e.what());
             log::error(std::string("game: GI change refused (the previous GI settings come back): ") +
                        e.what());
             for (const KeptSetting& k : lastGoodGi)
                 config.stage(*k.decl, k.value, k.origin);
-            restoring = true;
-            continue;
+            // At once, before any new input can mix in, and the frame goes on with what ran before.
+            for (const engine::SettingDecl* restored : config.applyPending())
+                log::info("game: " + restored->name + " = " + restored->format(config.value(*restored)) +
+                          " (restored)");
+            try {
+                lpv.update(config, renderer, matrices, &profiler);
+            } catch (const std::runtime_error& again) {
+                // What ran before cannot be refused now; undoing again could loop forever.
+                refusal =
+                    std::string("the last accepted GI settings were refused when restored: ") + again.what();
+                break;
+            }
         }
-        restoring = false;
         if (firstFrame || !changes.empty()) {
             lastGoodGi.clear();
             for (const engine::SettingDecl* d : engine::SettingRegistry::global().all())
@@ -273,6 +276,11 @@ int runGame(const GameOptions& opt) {
             failures.emplace_back(e.what());
         }
         std::fputs(engine::profileSummaryText(profiler).c_str(), stdout);
+    }
+    if (!refusal.empty()) {
+        for (const std::string& f : failures)
+            log::error("game: " + f);
+        throw engine::ConfigError("gi settings", 0, refusal);
     }
     if (!failures.empty()) throw OutputError(std::move(failures));
     return 0;

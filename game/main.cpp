@@ -93,10 +93,11 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         // A bad command line is bad input (exit 2), whatever CLI11's own code for it. Unknown
         // options are named once, with a hint, by reportMisspeltOptions.
-        const bool onlyUnknownOptions =
-            dynamic_cast<const CLI::ExtrasError*>(&e) != nullptr &&
-            std::all_of(app.remaining().begin(), app.remaining().end(),
-                        [](const std::string& arg) { return arg.starts_with("--"); });
+        const std::vector<std::string> rest = app.remaining(); // a copy: one vector to walk
+        const bool onlyUnknownOptions = dynamic_cast<const CLI::ExtrasError*>(&e) != nullptr &&
+                                        std::all_of(rest.begin(), rest.end(), [](const std::string& arg) {
+                                            return arg.starts_with("--");
+                                        });
         if (!onlyUnknownOptions) std::fprintf(stderr, "error: %s\n", e.what());
         reportMisspeltOptions(app);
         std::fputs("Run with --help for more information.\n", stderr);

@@ -220,8 +220,10 @@ void LightPropagationVolume::collectPending(engine::FrameProfiler* profiler) {
     Rgba8Clipping* clipping = volumes_ ? volumes_->clipping() : nullptr;
     if (!clipping) return;
     device_.waitIdle();
-    clipping->takeInFinished();
-    reportRgba8Clipping(profiler);
+    // Frame by frame, oldest first, as while running: a frame that clipped is reported even when a
+    // later one did not.
+    while (clipping->takeInNextFinished())
+        reportRgba8Clipping(profiler);
 }
 
 void LightPropagationVolume::reportRgba8Clipping(engine::FrameProfiler* profiler) {
@@ -232,6 +234,7 @@ void LightPropagationVolume::reportRgba8Clipping(engine::FrameProfiler* profiler
     // From kReportedClipping on, once, and again when the light over the range grows by a tenth:
     // a steady scene that clips says so once, not every frame.
     if (*worst < kReportedClipping || *worst <= clippingReported_ * 1.1f) return;
+    // The range the volumes were made with (not a later setting, while GI is off, say).
     clippingReported_ = *worst;
     // No heap: a steady frame may report it. The note leaves out the log's prefix and is short
     // enough for FrameProfiler::Note::kTextBytes.
@@ -243,8 +246,8 @@ void LightPropagationVolume::reportRgba8Clipping(engine::FrameProfiler* profiler
     std::snprintf(text, 192,
                   "cascade %d met light %.2fx gi.rgba8_range (%g); above it light is lost: set "
                   "gi.rgba8_range to %g or more (frame %llu)",
-                  cascade, double(*worst), double(settings_.rgba8Range),
-                  double(rangeToHold(settings_.rgba8Range, *worst)),
+                  cascade, double(*worst), double(madeWith_.rgba8Range),
+                  double(rangeToHold(madeWith_.rgba8Range, *worst)),
                   static_cast<unsigned long long>(clipping->peakFrames()[size_t(cascade)]));
     log::warn(line);
     // Under the frame that met it, not the one that read it back.

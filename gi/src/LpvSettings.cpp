@@ -86,18 +86,17 @@ const engine::EnumSetting<uint32_t> kResolution{
 const engine::IntSetting kDebugSlice{"gi.debug_slice", 16, 0, 63,
                                      "Volume slice (z) shown by gi.debug_view=volume_slice"};
 
-// The valid gi.vpl_count nearest `wanted` (a square whose side divides rsmSize; the smaller on a
-// tie), for the error that refuses `wanted`.
-uint32_t nearestVplCount(uint32_t wanted, uint32_t rsmSize) {
-    uint32_t best = 1;
+// The valid gi.vpl_count nearest `wanted` (a square whose side divides rsmSize, within the
+// setting's range; the smaller on a tie), for the error that refuses `wanted`; 0 when there is none.
+uint32_t nearestVplCount(uint32_t wanted, uint32_t rsmSize, int64_t least, int64_t most) {
+    uint64_t best = 0, bestDistance = ~uint64_t(0);
     for (uint32_t side = 1; side <= rsmSize; ++side) {
-        if (rsmSize % side != 0) continue;
         const uint64_t count = uint64_t(side) * side;
+        if (rsmSize % side != 0 || count < uint64_t(least) || count > uint64_t(most)) continue;
         const uint64_t distance = count > wanted ? count - wanted : wanted - count;
-        const uint64_t bestDistance = best > wanted ? best - wanted : wanted - best;
-        if (distance < bestDistance) best = uint32_t(count);
+        if (distance < bestDistance) best = count, bestDistance = distance;
     }
-    return best;
+    return uint32_t(best);
 }
 
 } // namespace
@@ -137,12 +136,19 @@ LpvSettings readLpvSettings(const engine::Config& config) {
     s.resolutionDivisor = config.get(kResolution);
     s.budgetPolicy = readGiBudgetPolicy(config);
     const uint32_t side = s.vplGridSide();
-    if (side * side != s.vplCount || s.rsmSize % side != 0)
-        throw engine::ConfigError(config.origin(kVplCount.decl()), 0,
-                                  "'gi.vpl_count' = " + std::to_string(s.vplCount) +
-                                      ": expected a square number whose side divides gi.rsm_size (" +
-                                      std::to_string(s.rsmSize) + "), such as " +
-                                      std::to_string(nearestVplCount(s.vplCount, s.rsmSize)));
+    if (side * side != s.vplCount || s.rsmSize % side != 0) {
+        const uint32_t nearest = nearestVplCount(s.vplCount, s.rsmSize, int64_t(kVplCount.decl().min),
+                                                 int64_t(kVplCount.decl().max));
+        throw engine::ConfigError(
+            config.origin(kVplCount.decl()), 0,
+            "'gi.vpl_count' = " + std::to_string(s.vplCount) +
+                ": expected a square number whose side divides gi.rsm_size (" + std::to_string(s.rsmSize) +
+                ")" +
+                (nearest ? ", such as " + std::to_string(nearest)
+                         : ", and none from " + std::to_string(int64_t(kVplCount.decl().min)) + " to " +
+                               std::to_string(int64_t(kVplCount.decl().max)) +
+                               " is: choose a gi.rsm_size with more divisors, such as a power of two"));
+    }
     // Only a slice someone chose: the default (16, the middle of the default 32 grid) is clamped
     // to the last slice of a smaller volume when shown.
     if (s.debugSlice >= s.gridSize && config.origin(kDebugSlice.decl()) != "default")

@@ -23,7 +23,7 @@ float rangeToHold(float range, float peak) {
 
 Rgba8Clipping::Rgba8Clipping(rhi::Device& device)
     : device_(device), regions_(std::max(1u, device.caps().framesInFlight)), regionFrame_(regions_, 0),
-      regionCascades_(regions_, 0) {
+      regionCascades_(regions_, 0), regionTaken_(regions_, 0) {
     buffer_ =
         device.createBuffer({kRecordBytes * kCascades * regions_, rhi::kBufferStorage,
                              rhi::MemoryAccess::HostRead, "lpv rgba8 clipping", "debug.rgba8_clipping"});
@@ -50,6 +50,7 @@ void Rgba8Clipping::takeInRegion(uint32_t region) {
         peaks_[c] = std::bit_cast<float>(*recordAt(mapped_, region, c));
         peakFrames_[c] = written;
     }
+    regionTaken_[region] = 1;
 }
 
 void Rgba8Clipping::takeIn(uint64_t frame) {
@@ -61,12 +62,18 @@ void Rgba8Clipping::takeIn(uint64_t frame) {
         *recordAt(mapped_, region, c) = 0;
     regionFrame_[region] = frame;
     regionCascades_[region] = 0;
+    regionTaken_[region] = 0;
 }
 
-void Rgba8Clipping::takeInFinished() {
-    // In any order: a region is taken only where it is newer than what a cascade holds.
+bool Rgba8Clipping::takeInNextFinished() {
+    uint32_t oldest = regions_;
     for (uint32_t region = 0; region < regions_; ++region)
-        takeInRegion(region);
+        if (regionFrame_[region] != 0 && !regionTaken_[region] &&
+            (oldest == regions_ || regionFrame_[region] < regionFrame_[oldest]))
+            oldest = region;
+    if (oldest == regions_) return false;
+    takeInRegion(oldest);
+    return true;
 }
 
 void Rgba8Clipping::bind(rhi::CommandList& cmd, uint32_t cascade) {

@@ -91,6 +91,13 @@ TEST_CASE("glTF errors: a .glb that does not begin with the magic says so") {
     std::ofstream(path, std::ios::binary) << "glTX" << std::string(16, '\0');
     CHECK(gltfErrorOf(path) ==
           path + ": is not a binary glTF (GLB) file: it begins with 'glTX', not the magic 'glTF'");
+    const std::string empty = pathOf("empty.glb");
+    std::ofstream(empty, std::ios::binary).flush();
+    CHECK(gltfErrorOf(empty) == empty + ": is empty, not a binary glTF (GLB) file");
+    // A glTF's JSON under a .glb name loads, as it did before the magic was checked.
+    const std::string jsonGlb = pathOf("json.glb");
+    std::ofstream(jsonGlb, std::ios::binary) << triangle().dump();
+    CHECK(gltfErrorOf(jsonGlb) == "(no error)");
 }
 
 namespace {

@@ -132,6 +132,8 @@ TEST_CASE(
                 REQUIRE(indirect.indirectDivisor == 1);
                 size_t compared = 0;
                 float worstDirect = 0.0f, worstIndirect = 0.0f, mostKept = 0.0f, mostIndirectKept = 0.0f;
+                float worstMaterial = 0.0f; // the stored metallic and roughness against the scene's
+                size_t unlit = 0;           // pixels whose expected light is not positive
                 for (uint32_t y = 0; y < full.height; y += 2)
                     for (uint32_t x = 0; x < full.width; x += 2) {
                         if (full.depth.at(x, y).x >= 1.0f || shadow.hdr.at(x, y).x < 1.0f) continue;
@@ -141,17 +143,21 @@ TEST_CASE(
                         // The material as the G-buffer stores it (8-bit albedo and metallic).
                         const glm::vec3 albedo = full.linearAlbedoAt(x, y);
                         const float metal = full.albedo.at(x, y).a;
+                        worstMaterial = std::max({worstMaterial, std::fabs(metal - metallic),
+                                                  std::fabs(full.normal.at(x, y).a - roughness)});
                         const glm::vec3 indirectKept = indirect.diffuseKept(x, y);
                         for (int ch = 0; ch < 3; ++ch) {
                             const float f0 = 0.04f + (albedo[ch] - 0.04f) * metal;
                             const float kept = diffuseShare(v, l, f0);
                             const float diffuse = albedo[ch] * (1.0f - metal) / std::numbers::pi_v<float>;
                             const float expectedDirect = diffuse * sunRadiance[ch] * l.y * kept;
+                            unlit += expectedDirect > 0.0f ? 0 : 1;
                             const float shownDirect = full.hdr.at(x, y)[ch] - specular.hdr.at(x, y)[ch];
                             worstDirect = std::max(worstDirect,
                                                    std::fabs(shownDirect - expectedDirect) / expectedDirect);
                             const float expectedIndirect =
                                 diffuse * indirect.indirect.at(x, y)[ch] * indirectKept[ch];
+                            unlit += expectedIndirect > 0.0f ? 0 : 1;
                             const float shownIndirect = indirect.hdr.at(x, y)[ch];
                             worstIndirect =
                                 std::max(worstIndirect,
@@ -169,6 +175,11 @@ TEST_CASE(
                                     "direct "
                                  << worstDirect << ", indirect " << worstIndirect);
                 CHECK(compared >= 50);
+                // The expectations are built from the G-buffer's material: it must be the scene's
+                // (8-bit metallic, 16-bit roughness), and give light to compare (a ratio to 0 would
+                // be NaN, which std::max would pass over).
+                CHECK(worstMaterial <= 1.0f / 255.0f);
+                CHECK(unlit == 0);
                 // Every pixel loses more than twice the tolerance below to the specular layer, so the
                 // layers' plain sum fails (measured on the dielectric: 4.2% off direct, 18% indirect);
                 // the half-metal's base loses far more.

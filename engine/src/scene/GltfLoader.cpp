@@ -502,12 +502,16 @@ GltfContainer probeGltfFile(const std::string& path) {
     const size_t read = std::fread(magic, 1, sizeof(magic), file);
     std::fclose(file);
     if (read == sizeof(magic) && std::string_view(magic, 4) == "glTF") return GltfContainer::Binary;
-    // A .glb that does not begin with the magic would go to the JSON parser, whose error says
-    // nothing of it.
+    // A .glb that begins with neither the magic nor JSON (a glTF's JSON under a .glb name still
+    // loads) would go to the JSON parser, whose error says nothing of the magic.
     std::string extension = std::filesystem::path(path).extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
-    if (extension == ".glb") {
+    const std::string_view start(magic, read);
+    const size_t first = start.find_first_not_of(" \t\r\n");
+    const bool json = first != std::string_view::npos && start[first] == '{';
+    if (extension == ".glb" && !json) {
+        if (read == 0) throw SceneError(path, "is empty, not a binary glTF (GLB) file");
         std::string shown;
         for (size_t i = 0; i < read; ++i)
             shown += std::isprint(static_cast<unsigned char>(magic[i])) ? magic[i] : '?';

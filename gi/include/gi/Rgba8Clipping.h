@@ -51,9 +51,11 @@ public:
     // beginFrame() waited for.
     void bind(rhi::CommandList& cmd, uint32_t cascade);
 
-    // Takes in every frame's record, all of them finished: for the end of a run, once the device
-    // is idle (a run shorter than framesInFlight frames would otherwise read none).
-    void takeInFinished();
+    // At the end of a run, once the device is idle: takes in the oldest frame's record not taken
+    // in yet and returns true, or returns false when none is left (a run shorter than
+    // framesInFlight frames would otherwise read none). Called until false, with a look at peaks()
+    // after each, as while running.
+    bool takeInNextFinished();
 
     // For each cascade, what the last finished frame that encoded it met: its largest coefficient
     // as a multiple of its range, 0 when nothing was over. Kept until that cascade is encoded again
@@ -74,6 +76,7 @@ private:
     // Per region: the frame that last wrote it and the cascades it bound.
     std::vector<uint64_t> regionFrame_;
     std::vector<uint32_t> regionCascades_;
+    std::vector<uint8_t> regionTaken_; // its record has been taken in since it was written
     std::array<float, kCascades> peaks_{};
     std::array<uint64_t, kCascades> peakFrames_{};
 };

@@ -1,8 +1,9 @@
 // The deferred renderer: sun shadow map, spot and point light shadow maps (LightShadows),
 // G-buffer (albedo, normal, emissive, depth), SSAO, indirect light (from an IndirectLighting
 // provider or the ambient constant), HDR lighting and tone mapping to sRGB. Every pass goes through
-// the RHI with a debug marker and a profiler scope. Targets are made at construction and on resize
-// or when a setting that sizes them changes, never in a steady-state frame.
+// the RHI with a debug marker and a profiler scope. Targets are made at construction (the sun's shadow
+// map and the indirect targets on the first frame, which knows their sizes), on resize and when a
+// setting that sizes them changes, never in a steady-state frame.
 #pragma once
 
 #include "engine/config/Config.h"
