@@ -291,13 +291,11 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
     double giMs = 0;
     for (size_t i = 0; i < profiler.scopes().size(); ++i) {
         const engine::ScopeInfo& s = profiler.scopes()[i];
-        const engine::WorkCounts work = profiler.inclusiveWork(i);
+        const engine::FrameProfiler::ScopePrediction predicted = profiler.predicted(i);
         const engine::SampleStats st = s.gpuMs.count() ? s.gpuMs.stats() : s.cpuMs.stats();
         if (s.depth == 0 && s.name == "gi") giMs = st.median;
         std::printf("| %s%s | %.2f | %.2f | %.3f | %.3f |\n", std::string(2 * s.depth, ' ').c_str(),
-                    s.path.c_str(), st.median, st.p95,
-                    engine::predictCost(work, profiler.x360().throughput).ms,
-                    engine::predictCost(work, profiler.ps3().throughput).ms);
+                    s.path.c_str(), st.median, st.p95, predicted.x360.ms, predicted.ps3.ms);
     }
     const engine::SampleStats frame =
         profiler.frameGpuMs().count ? profiler.frameGpuMs() : profiler.frameCpuMs();

@@ -191,6 +191,9 @@ int runGame(const GameOptions& opt) {
         if (platform->keyPressed(GLFW_KEY_F2)) cycle(config, "gi.debug_view");
         if (platform->keyPressed(GLFW_KEY_G)) toggle(config, "gi.enabled");
         for (const std::string& line : console.takeLines()) {
+            // Enter alone, or a comment (as in a config file): nothing to change, nothing to say.
+            const size_t first = line.find_first_not_of(" \t\r");
+            if (first == std::string::npos || line[first] == '#') continue;
             try {
                 config.stage(line, "console");
             } catch (const engine::ConfigError& e) {

@@ -333,7 +333,7 @@ TEST_CASE("cli: a refused console change is undone once and the frames go on") {
     // long before the end, however busy the machine.
     const Result r = runGame("--headless --backend null --width 64 --height 48 --frames 200000 "
                              "--set gi.enabled=true --set gi.grid_size=16 --profile-out /tmp/lpv_cli_refused",
-                             "printf 'gi.debug_slice=20\\nplatform.profile=x360\\n' |");
+                             "printf 'gi.debug_slice=20\\n\\n# a comment\\nplatform.profile=x360\\n' |");
     INFO(r.output);
     REQUIRE(r.exitCode == 0);
     size_t refusals = 0;
@@ -346,6 +346,8 @@ TEST_CASE("cli: a refused console change is undone once and the frames go on") {
     // The profiler and the GI took the profile at startup: a change waits for a restart, and says so.
     CHECK(r.output.find("game: platform.profile = x360 (takes effect after a restart)") != std::string::npos);
     CHECK(r.output.find("Frame profile: platform pc") != std::string::npos);
+    // An empty line and a comment change nothing and say nothing.
+    CHECK(r.output.find("expected key=value") == std::string::npos);
     // Every frame is drawn and checked, the refused change's too (with the settings restored).
     const size_t checked = r.output.find("frames checked ");
     REQUIRE(checked != std::string::npos);

@@ -322,6 +322,61 @@ TEST_CASE("profiler: a note about an ended frame is reported under that frame") 
     CHECK(notes[1] == std::pair(next, std::string("waits for the next frame")));
 }
 
+// A pass's predicted console time in the report is its passes of the last frame that ran it, each
+// predicted and added, as the budget check adds them: the gi row used to predict the summed work
+// of every pass that had ever run under it (one roofline over the sum, less than the sum of the
+// passes'), and counted passes that had stopped running.
+TEST_CASE("profiler: a parent's predicted time adds its passes of the last frame that ran it") {
+    auto device = nullDevice();
+    FrameProfiler profiler(*device, platforms::loadPlatformProfile("x360"));
+    WorkCounts alu, fetches;
+    alu.aluOps = 200'000'000;
+    fetches.texelsRead = 20'000'000;
+    const auto run = [&](bool stoppedPassToo) {
+        rhi::CommandList& cmd = device->beginFrame();
+        profiler.beginFrame(cmd);
+        {
+            auto gi = profiler.scope("gi");
+            {
+                auto a = profiler.scope("math");
+                profiler.setWork(alu);
+            }
+            {
+                auto b = profiler.scope("fetch");
+                profiler.setWork(fetches);
+            }
+            if (stoppedPassToo) {
+                auto c = profiler.scope("stopped");
+                profiler.setWork(alu);
+            }
+        }
+        profiler.endFrame(cmd);
+        device->endFrame();
+    };
+    run(true);
+    run(false);
+    profiler.collectPending();
+    const double math = predictCost(alu, profiler.x360().throughput).ms;
+    const double fetch = predictCost(fetches, profiler.x360().throughput).ms;
+    WorkCounts both = alu;
+    both += fetches;
+    REQUIRE(predictCost(both, profiler.x360().throughput).ms < 0.95 * (math + fetch)); // the two differ
+    // "pass,depth,timing_source,...,predicted_x360_ms,..." in the CSV: the 10th column.
+    const std::string csv = profileSummaryCsv(profiler);
+    const auto predictedOf = [&](const std::string& path) {
+        const size_t at = csv.find("\n" + path + ",");
+        REQUIRE(at != std::string::npos);
+        size_t field = at + 1;
+        for (int i = 0; i < 9; ++i)
+            field = csv.find(',', field) + 1;
+        return std::stod(csv.substr(field));
+    };
+    CHECK(predictedOf("gi") == doctest::Approx(math + fetch).epsilon(1e-3));
+    CHECK(predictedOf("gi/math") == doctest::Approx(math).epsilon(1e-3));
+    // The stopped pass keeps its own last run, but its parent no longer counts it.
+    CHECK(predictedOf("gi/stopped") == doctest::Approx(math).epsilon(1e-3));
+}
+
 TEST_CASE("profiler: the predicted GI time adds up its passes, and names the frame it is of") {
     auto device = nullDevice();
     FrameProfiler profiler(*device, platforms::loadPlatformProfile("x360"));

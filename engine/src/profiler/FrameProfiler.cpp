@@ -126,6 +126,36 @@ WorkCounts FrameProfiler::inclusiveWork(size_t scope) const {
     return w;
 }
 
+FrameProfiler::ScopePrediction FrameProfiler::predicted(size_t scope) const {
+    const FrameRecord* last = nullptr;
+    forEachFrame([&](const FrameRecord& r) {
+        if (r.frame == scopes_[scope].lastFrame) last = &r;
+    });
+    if (!last) {
+        const WorkCounts work = inclusiveWork(scope);
+        return {predictCost(work, x360_.throughput), predictCost(work, ps3_.throughput)};
+    }
+    ScopePrediction out;
+    double largest = -1.0;
+    for (uint32_t k = 0; k < last->sampleCount; ++k) {
+        const Sample& sample = last->samples[k];
+        bool under = false;
+        for (int32_t s = int32_t(sample.scope); s >= 0 && !under; s = scopes_[size_t(s)].parent)
+            under = size_t(s) == scope;
+        if (!under) continue;
+        const CostPrediction x360 = predictCost(sample.work, x360_.throughput);
+        const CostPrediction ps3 = predictCost(sample.work, ps3_.throughput);
+        out.x360.ms += x360.ms;
+        out.ps3.ms += ps3.ms;
+        if (x360.ms > largest) {
+            largest = x360.ms;
+            out.x360.bottleneck = x360.bottleneck;
+            out.ps3.bottleneck = ps3.bottleneck;
+        }
+    }
+    return out;
+}
+
 void FrameProfiler::setWork(const WorkCounts& work) {
     if (stack_.empty()) throw std::logic_error("profiler: setWork() with no open scope");
     const Open& open = stack_.back();

@@ -60,14 +60,8 @@ struct Row {
 std::vector<Row> rows(const FrameProfiler& p) {
     std::vector<Row> out;
     for (const ScopeInfo& s : p.scopes()) {
-        const WorkCounts work = p.inclusiveWork(size_t(&s - p.scopes().data()));
-        Row r{&s,
-              s.cpuMs.stats(),
-              s.gpuMs.stats(),
-              predictCost(work, p.x360().throughput),
-              predictCost(work, p.ps3().throughput),
-              0,
-              0};
+        const FrameProfiler::ScopePrediction predicted = p.predicted(size_t(&s - p.scopes().data()));
+        Row r{&s, s.cpuMs.stats(), s.gpuMs.stats(), predicted.x360, predicted.ps3, 0, 0};
         const double t = r.gpu.count ? r.gpu.median : r.cpu.median;
         r.shareOfFrame = p.profile().frameBudgetMs > 0 ? 100.0 * t / p.profile().frameBudgetMs : 0;
         r.shareOfGi =

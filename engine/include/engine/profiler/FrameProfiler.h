@@ -105,6 +105,16 @@ public:
     // A scope's work counts plus those of every scope nested in it (a parent such as "gi" sets
     // none of its own).
     WorkCounts inclusiveWork(size_t scope) const;
+    // A scope's predicted console times: the passes under it (itself included) in the last frame
+    // that ran it, each predicted and added, as the budget check adds a frame's GI passes (passes
+    // run one after another, each as long as its own busiest unit); the bottleneck is the largest
+    // pass's. So a parent counts only what ran in that frame: not a coarse cascade kept from an
+    // earlier one, nor a pass that has stopped running. When that frame is no longer recorded, the
+    // scope's inclusive work predicted as one.
+    struct ScopePrediction {
+        CostPrediction x360, ps3;
+    };
+    ScopePrediction predicted(size_t scope) const;
     const platforms::PlatformProfile& profile() const { return profile_; }
     const platforms::PlatformProfile& x360() const { return x360_; }
     const platforms::PlatformProfile& ps3() const { return ps3_; }
