@@ -234,7 +234,6 @@ void LightPropagationVolume::reportRgba8Clipping(engine::FrameProfiler* profiler
     // From kReportedClipping on, once, and again when the light over the range grows by a tenth:
     // a steady scene that clips says so once, not every frame.
     if (*worst < kReportedClipping || *worst <= clippingReported_ * 1.1f) return;
-    // The range the volumes were made with (not a later setting, while GI is off, say).
     clippingReported_ = *worst;
     // No heap: a steady frame may report it. The note leaves out the log's prefix and is short
     // enough for FrameProfiler::Note::kTextBytes.
@@ -246,6 +245,7 @@ void LightPropagationVolume::reportRgba8Clipping(engine::FrameProfiler* profiler
     std::snprintf(text, 192,
                   "cascade %d met light %.2fx gi.rgba8_range (%g); above it light is lost: set "
                   "gi.rgba8_range to %g or more (frame %llu)",
+                  // The range the volumes were made with (not a later setting, while GI is off, say).
                   cascade, double(*worst), double(madeWith_.rgba8Range),
                   double(rangeToHold(madeWith_.rgba8Range, *worst)),
                   static_cast<unsigned long long>(clipping->peakFrames()[size_t(cascade)]));
@@ -258,6 +258,14 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
                                     const engine::CameraMatrices& camera, engine::FrameProfiler* profiler) {
     const LpvSettings configured = readLpvSettings(config);
     LpvSettings s = configured;
+    // A configuration the budget check refuses below must leave the scheduler as it was: its steps
+    // carry over to the settings the game restores. Only a changed configuration can be refused,
+    // so only then is its state kept (fixed-size: no heap).
+    const bool reconfigured = configured != lastConfigured_;
+    if (reconfigured) {
+        schedulerBefore_ = scheduler_;
+        scheduleBefore_ = schedule_;
+    }
     lightUpdates_ = volumeUpdates_ = ~0u;
     if (configured.enabled) {
         // The scheduler always sees the configured load; what it returns is this frame's. Without
@@ -274,9 +282,6 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
             if (halves & kCascadeLight) lightUpdates_ |= 1u << c;
             if (halves & kCascadeVolume) volumeUpdates_ |= 1u << c;
         }
-        if (profiler)
-            for (const GiChange& change : schedule_.changes())
-                profiler->note(kGiBudgetNoteTopic, change.text());
     }
     renderer_ = &renderer;
     // RSMs for as many spot (point) lights as the scene has, up to gi.light_rsms
@@ -296,7 +301,15 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
     const bool updateResized =
         !resized && (s.rsmSize != madeWith_.rsmSize || (s.bounces > 1) != (bounces_ != nullptr));
     if (s.enabled && (resized || updateResized)) {
-        checkGiBudget(s, profile_); // throws before anything changes
+        try {
+            checkGiBudget(s, profile_); // throws before anything else changes
+        } catch (...) {
+            if (reconfigured) {
+                scheduler_ = schedulerBefore_;
+                schedule_ = scheduleBefore_;
+            }
+            throw;
+        }
         if (resized) {
             remake(s);
             cascadesValid_ = 0;
@@ -305,6 +318,11 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
         }
         allocationCheckDue_ = true; // after the next lookup (warnIfAllocatedOverBudget)
     }
+    // The scheduler's notes once the configuration is accepted.
+    if (configured.enabled && profiler)
+        for (const GiChange& change : schedule_.changes())
+            profiler->note(kGiBudgetNoteTopic, change.text());
+    lastConfigured_ = configured;
     settings_ = s;
     // Kept coarse cascades hold the lights as they were added (or not) when they were made: a
     // change makes every cascade again, so none carries the lights twice or misses them.
@@ -320,18 +338,21 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
                               : cascades_[0].placement;
     // Under adapt, a frame that must make cascades its schedule leaves for later (the first frame,
     // or one after the volumes were remade: none has a result yet) does all of them at once; it
-    // leaves its further bounces to the next frame, which makes the finest cascade again anyway.
+    // leaves the finest cascade's further bounces to the next frame, which makes that cascade again
+    // anyway (a coarse cascade keeps its result for frames, so it keeps its bounces). A cascade
+    // with only one of its halves scheduled still runs both while it has no result.
     // One frame without the second bounce is the least visible way back under the budget: on PS3
     // the console preset's first frame predicted 3.57 ms against 3.12 on every later one.
     deferredBounces_ = false;
     if (s.enabled && s.budgetPolicy == GiBudgetPolicy::Adapt && s.bounces > 1)
         for (uint32_t c = 0; c < uint32_t(cascades_.size()); ++c) {
             const uint32_t bit = 1u << c;
-            if (!(cascadesValid_ & bit) && !((lightUpdates_ | volumeUpdates_) & bit)) deferredBounces_ = true;
+            if (!(cascadesValid_ & bit) && !(lightUpdates_ & volumeUpdates_ & bit)) deferredBounces_ = true;
         }
     if (deferredBounces_ && profiler)
-        profiler->note(kGiBudgetNoteTopic, "further bounces left to the next frame: this frame makes every "
-                                           "cascade (none has a result yet)");
+        profiler->note(kGiBudgetNoteTopic, "the finest cascade's further bounces left to the next frame: "
+                                           "this frame makes cascades its schedule left for later (they "
+                                           "have no result yet)");
     // Before the renderer asks which lights the volume carries.
     if (s.enabled && made_) spotRsms_->select(renderer.punctualLights(), cascades_.back().placement);
 }
@@ -460,7 +481,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                                 &cascades_[c].result, c + 1 < cascades_.size() ? &handoff : nullptr);
             work(propagateWork(settings_));
         }
-        if (bounces_ && settings_.bouncesIn(c) && !deferredBounces_) {
+        if (bounces_ && settings_.bouncesIn(c) && !(deferredBounces_ && c == 0)) {
             auto s = scope("bounces");
             bounces_->add(cmd, *volumes_, *geometry_, settings_.bounces, settings_.iterations,
                           cascades_[c].result);

@@ -98,6 +98,10 @@ TEST_CASE("glTF errors: a .glb that does not begin with the magic says so") {
     const std::string jsonGlb = pathOf("json.glb");
     std::ofstream(jsonGlb, std::ios::binary) << triangle().dump();
     CHECK(gltfErrorOf(jsonGlb) == "(no error)");
+    // Also after a byte order mark and more white space than the magic's 4 bytes.
+    const std::string bomGlb = pathOf("bom.glb");
+    std::ofstream(bomGlb, std::ios::binary) << "\xEF\xBB\xBF\n\n    " << triangle().dump();
+    CHECK(gltfErrorOf(bomGlb) == "(no error)");
 }
 
 namespace {

@@ -163,6 +163,35 @@ TEST_CASE("gi budget: the LPV under adapt on the x360 profile brings its predict
     CHECK(report.find("iterations 33 (was 44): GI") != std::string::npos);
 }
 
+// A change the budget check refuses (the game then restores the settings that ran) leaves the
+// scheduler as it was: its steps used to be dropped by the refused configuration (with a note for
+// a change that never took effect), and the restored one started again from the configured load.
+TEST_CASE("gi budget: a change the budget check refuses leaves adapt's steps in place") {
+    AdaptedLpv run(platforms::loadPlatformProfile("x360"), 44);
+    for (int f = 0; f < 60; ++f)
+        run.frame();
+    const gi::GiSchedule before = run.lpv.schedule();
+    REQUIRE(before.stepsInEffect > 0);
+    uint64_t notesBefore = 0;
+    run.profiler.forEachNote([&](const engine::FrameProfiler::Note&) { ++notesBefore; });
+
+    // A change of the scheduler's load (the cascades) that does not fit the Xbox 360's 3 MiB.
+    run.config.applyOverride("gi.cascades=3", "console");
+    CHECK_THROWS_AS(run.lpv.update(run.config, run.renderer, run.camera, &run.profiler), gi::GiBudgetError);
+    run.config.applyOverride("gi.cascades=1", "restored");
+    run.frame();
+    CHECK(run.lpv.schedule().stepsInEffect == before.stepsInEffect);
+    CHECK(run.lpv.schedule().load == before.load);
+    uint64_t notesAfter = 0;
+    bool restarted = false;
+    run.profiler.forEachNote([&](const engine::FrameProfiler::Note& n) {
+        ++notesAfter;
+        restarted = restarted || n.text().find("configured load again") != std::string_view::npos;
+    });
+    CHECK_FALSE(restarted);
+    CHECK(notesAfter == notesBefore);
+}
+
 TEST_CASE("gi budget: past the RSM, adapt makes the renderer look up fewer pixels") {
     // Under a budget no knob reaches, the ladder ends at gi.resolution, and the renderer's indirect
     // targets follow it.

@@ -131,7 +131,13 @@ FrameProfiler::ScopePrediction FrameProfiler::predicted(size_t scope) const {
     forEachFrame([&](const FrameRecord& r) {
         if (r.frame == scopes_[scope].lastFrame) last = &r;
     });
-    if (!last) {
+    // A frame past its sample slots (ProfilerOptions::maxScopesPerFrame) recorded no sample of
+    // the scope: its own last work, as for a frame no longer recorded.
+    bool sampled = false;
+    if (last)
+        for (uint32_t k = 0; k < last->sampleCount && !sampled; ++k)
+            sampled = last->samples[k].scope == scope;
+    if (!sampled) {
         const WorkCounts work = inclusiveWork(scope);
         return {predictCost(work, x360_.throughput), predictCost(work, ps3_.throughput)};
     }

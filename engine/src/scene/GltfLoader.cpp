@@ -498,23 +498,24 @@ GltfContainer probeGltfFile(const std::string& path) {
     if (!ec && !std::filesystem::is_regular_file(status)) throw SceneError(path, "is not a regular file");
     std::FILE* file = std::fopen(path.c_str(), "rb");
     if (!file) throw SceneError(path, std::string("cannot open the file: ") + std::strerror(errno));
-    char magic[4] = {};
-    const size_t read = std::fread(magic, 1, sizeof(magic), file);
+    char head[256] = {}; // the magic, or enough to see JSON past a byte order mark and white space
+    const size_t read = std::fread(head, 1, sizeof(head), file);
     std::fclose(file);
-    if (read == sizeof(magic) && std::string_view(magic, 4) == "glTF") return GltfContainer::Binary;
+    if (read >= 4 && std::string_view(head, 4) == "glTF") return GltfContainer::Binary;
     // A .glb that begins with neither the magic nor JSON (a glTF's JSON under a .glb name still
     // loads) would go to the JSON parser, whose error says nothing of the magic.
     std::string extension = std::filesystem::path(path).extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
-    const std::string_view start(magic, read);
+    std::string_view start(head, read);
+    if (start.starts_with("\xEF\xBB\xBF")) start.remove_prefix(3); // UTF-8 byte order mark
     const size_t first = start.find_first_not_of(" \t\r\n");
     const bool json = first != std::string_view::npos && start[first] == '{';
     if (extension == ".glb" && !json) {
         if (read == 0) throw SceneError(path, "is empty, not a binary glTF (GLB) file");
         std::string shown;
-        for (size_t i = 0; i < read; ++i)
-            shown += std::isprint(static_cast<unsigned char>(magic[i])) ? magic[i] : '?';
+        for (size_t i = 0; i < std::min<size_t>(read, 4); ++i)
+            shown += std::isprint(static_cast<unsigned char>(head[i])) ? head[i] : '?';
         throw SceneError(path, "is not a binary glTF (GLB) file: it begins with '" + shown +
                                    "', not the magic 'glTF'");
     }

@@ -133,7 +133,12 @@ private:
     bool allocationCheckDue_ = false; // warnIfAllocatedOverBudget after the next lookup
     float clippingReported_ = 0.0f;   // the peak last reported (reportRgba8Clipping), 0: none
     uint32_t cascadesValid_ = 0;      // bit c: cascade c's result holds a solution
-    bool deferredBounces_ = false;    // this frame leaves its further bounces to the next (update())
+    bool deferredBounces_ = false;
+    // update()'s configuration last accepted, and the scheduler as it was before a changed one
+    // (put back when the budget check refuses the change).
+    LpvSettings lastConfigured_;
+    GiBudgetScheduler schedulerBefore_;
+    GiSchedule scheduleBefore_; // this frame leaves its further bounces to the next (update())
     const engine::Renderer* renderer_ = nullptr;
     std::unique_ptr<ReflectiveShadowMap> rsm_;
     std::unique_ptr<LpvVolumes> volumes_;

@@ -109,8 +109,8 @@ public:
     // that ran it, each predicted and added, as the budget check adds a frame's GI passes (passes
     // run one after another, each as long as its own busiest unit); the bottleneck is the largest
     // pass's. So a parent counts only what ran in that frame: not a coarse cascade kept from an
-    // earlier one, nor a pass that has stopped running. When that frame is no longer recorded, the
-    // scope's inclusive work predicted as one.
+    // earlier one, nor a pass that has stopped running. When that frame is no longer recorded (or
+    // ran out of sample slots before the scope), the scope's inclusive work predicted as one.
     struct ScopePrediction {
         CostPrediction x360, ps3;
     };
