@@ -621,16 +621,13 @@ void consolePresetFlight(const char* console, bool printPasses) {
     std::printf("| pass | predicted x360 ms | predicted ps3 ms |\n|---|---|---|\n");
     for (size_t i = 0; i < profiler.scopes().size(); ++i) {
         const engine::ScopeInfo& scope = profiler.scopes()[i];
-        // Passes only: a parent's last-run work would add both coarse cascades, and predicting
-        // summed work is not the sum of its passes' predictions (the budget check adds passes).
+        // Passes only: a parent's row would be one frame's, with one of the two coarse cascades.
         const bool parent =
             std::any_of(profiler.scopes().begin(), profiler.scopes().end(),
                         [&](const engine::ScopeInfo& o) { return o.path.starts_with(scope.path + "/"); });
         if (scope.path.rfind("gi", 0) != 0 || parent) continue;
-        const engine::WorkCounts work = profiler.inclusiveWork(i);
-        std::printf("| %s | %.3f | %.3f |\n", scope.path.c_str(),
-                    engine::predictCost(work, profiler.x360().throughput).ms,
-                    engine::predictCost(work, profiler.ps3().throughput).ms);
+        const engine::FrameProfiler::ScopePrediction predicted = profiler.predicted(i);
+        std::printf("| %s | %.3f | %.3f |\n", scope.path.c_str(), predicted.x360.ms, predicted.ps3.ms);
     }
 }
 
