@@ -184,9 +184,10 @@ int main(int argc, char** argv) {
         ->capture_default_str()
         ->check(CLI::Range(1, 1000000));
     if (const std::optional<int> exit = parseCommandLine(app, argc, argv)) return *exit;
-    std::printf(
-        "RHI benchmark, median of %d runs (ms). GPU columns: device timestamps; wall: submit to idle.\n",
-        runs);
+    std::printf("RHI benchmark, median of %d runs (ms). GPU columns: as the row's timing source measures "
+                "them (gpu-timestamp: the device's timestamps; cpu-after-finish: CPU time around a finish); "
+                "wall: submit to idle.\n",
+                runs);
     std::printf("| backend   | device   | gfx pipe | cmp pipe | 32^3 gpu | 32^3 wall| 100k gpu | 100k wall| "
                 "timing source    |\n");
     std::printf("|-----------|----------|----------|----------|----------|----------|----------|----------|--"

@@ -28,6 +28,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -172,6 +173,7 @@ int runGame(const GameOptions& opt) {
         std::string origin;
     };
     std::vector<KeptSetting> lastGoodGi;
+    const engine::SettingDecl* renderView = engine::SettingRegistry::global().find("render.debug_view");
     std::string refusal; // set when the restored GI settings were refused too: the run ends
     bool firstFrame = true;
     const engine::Camera start = defaultCamera(scene);
@@ -181,11 +183,14 @@ int runGame(const GameOptions& opt) {
     // Until closed when presenting to a window, else one frame unless --frames says otherwise.
     const int frames = opt.frames > 0 ? opt.frames : (device->caps().presentation ? 0 : 1);
     uint64_t last = platforms::nowNanoseconds();
-    for (int frame = 0; frames == 0 || frame < frames; ++frame) {
+    bool minimised = false;
+    for (int frame = 0; frames == 0 || frame < frames;) {
+        // Minimised, it waits for the window to come back (a tenth of a second at a time) rather
+        // than spin; such a wait draws nothing and is not one of the --frames.
+        platform->pollEvents(minimised ? 0.1 : 0.0);
         const uint64_t now = platforms::nowNanoseconds();
         const float dt = float(now - last) / 1e9f;
         last = now;
-        platform->pollEvents();
         if (platform->quitRequested()) break;
         if (platform->keyPressed(GLFW_KEY_F1)) cycle(config, "render.debug_view");
         if (platform->keyPressed(GLFW_KEY_F2)) cycle(config, "gi.debug_view");
@@ -202,10 +207,17 @@ int runGame(const GameOptions& opt) {
         }
         uint32_t fw = 0, fh = 0;
         platform->frameSize(fw, fh);
-        if (fw == 0 || fh == 0) continue; // minimised
+        minimised = fw == 0 || fh == 0;
+        if (minimised) continue;
         const std::vector<const engine::SettingDecl*> changes = config.applyPending();
+        // render.debug_view as it was before gi.debug_view moved it: a refused GI change undoes that too.
+        std::optional<KeptSetting> viewBeforeFollow;
         for (const engine::SettingDecl* changed : changes) {
-            if (changed->name == "gi.debug_view") followGiIndirectView(config, changed->name);
+            if (changed->name == "gi.debug_view") {
+                viewBeforeFollow =
+                    KeptSetting{renderView, config.value(*renderView), config.origin(*renderView)};
+                followGiIndirectView(config, changed->name);
+            }
             log::info("game: " + changed->name + " = " + changed->format(config.value(*changed)) +
                       (changed->apply == engine::Apply::Restart ? " (takes effect after a restart)" : ""));
         }
@@ -227,6 +239,8 @@ int runGame(const GameOptions& opt) {
                        e.what());
             for (const KeptSetting& k : lastGoodGi)
                 config.stage(*k.decl, k.value, k.origin);
+            if (viewBeforeFollow)
+                config.stage(*renderView, viewBeforeFollow->value, viewBeforeFollow->origin);
             // At once, before any new input can mix in, and the frame goes on with what ran before.
             for (const engine::SettingDecl* restored : config.applyPending())
                 log::info("game: " + restored->name + " = " + restored->format(config.value(*restored)) +
@@ -254,6 +268,7 @@ int runGame(const GameOptions& opt) {
         if (overlay) overlay->draw(cmd, profiler, renderer.output());
         profiler.endFrame(cmd);
         device->endFrame(renderer.output());
+        ++frame;
     }
     device->waitIdle();
     lpv.collectPending(&profiler); // what the last frames' GPU work left to report

@@ -29,8 +29,8 @@ Platform::Platform(std::unique_ptr<Window> window, const WindowDesc& desc)
 
 Platform::~Platform() = default;
 
-void Platform::pollEvents() {
-    if (window_) window_->pollEvents();
+void Platform::pollEvents(double waitSeconds) {
+    if (window_) window_->pollEvents(waitSeconds);
 }
 
 bool Platform::quitRequested() const {

@@ -92,9 +92,12 @@ bool Window::shouldClose() const {
     return window_ && glfwWindowShouldClose(window_);
 }
 
-void Window::pollEvents() {
+void Window::pollEvents(double waitSeconds) {
     std::fill(std::begin(pressed_), std::end(pressed_), false);
-    glfwPollEvents();
+    if (waitSeconds > 0.0)
+        glfwWaitEventsTimeout(waitSeconds);
+    else
+        glfwPollEvents();
     dx_ = dy_ = 0;
     if (!window_) return;
     double x = 0, y = 0;

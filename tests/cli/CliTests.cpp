@@ -354,6 +354,23 @@ TEST_CASE("cli: a refused console change is undone once and the frames go on") {
     CHECK(std::stoi(r.output.substr(checked + 15)) == 200000);
 }
 
+// gi.debug_view=indirect moves render.debug_view along; when the change it came with is refused,
+// the restore puts render.debug_view back too (it stayed on the indirect view).
+TEST_CASE("cli: a refused console change undoes the view gi.debug_view moved") {
+    const Result r = runGame("--headless --backend null --width 64 --height 48 --frames 200000 "
+                             "--set gi.enabled=true --set gi.grid_size=16",
+                             "printf 'gi.debug_view=indirect\ngi.debug_slice=20\n' |");
+    INFO(r.output);
+    REQUIRE(r.exitCode == 0);
+    REQUIRE(contains(r.output, "GI change refused"));
+    // The console's thread hands lines over one by one: both usually arrive in the same frame, and
+    // then both are undone; else the view change was accepted a frame earlier and stays.
+    if (contains(r.output, "game: gi.debug_view = none (restored)"))
+        CHECK(contains(r.output, "game: render.debug_view = final (restored)"));
+    else
+        CHECK(!contains(r.output, "render.debug_view = final (restored)"));
+}
+
 // The report's peak memory is what the configured run allocated: the renderer used to make the
 // sun's shadow map and the indirect targets at their defaults (2048^2, full resolution) before the
 // first frame remade them, and the peak counted both.

@@ -161,6 +161,30 @@ TEST_CASE("profiler: budget checks trip exactly past the boundary") {
     CHECK(profiler.framesOverBudget() == 2);
 }
 
+TEST_CASE("profiler: a frame's memory counter includes what the frame made") {
+    // The renderer makes its targets and the GI its volumes lazily, inside their first frame.
+    auto device = nullDevice();
+    FrameProfiler profiler(*device, tinyProfile(100, 100));
+    frame(*device, profiler, 1, 1);
+    rhi::CommandList& cmd = device->beginFrame();
+    profiler.beginFrame(cmd);
+    rhi::BufferDesc desc;
+    desc.size = 3 << 20;
+    desc.usage = rhi::kBufferStorage;
+    desc.category = "gi.lpv";
+    const rhi::BufferHandle made = device->createBuffer(desc);
+    profiler.endFrame(cmd);
+    device->endFrame();
+    const auto trace = nlohmann::json::parse(profileTraceJson(profiler));
+    std::vector<uint64_t> gi;
+    for (const auto& e : trace.at("traceEvents"))
+        if (e.at("ph") == "C" && e.at("name") == "memory") gi.push_back(e.at("args").at("gi_bytes"));
+    REQUIRE(gi.size() == 2);
+    CHECK(gi[0] == 0);
+    CHECK(gi[1] >= desc.size);
+    device->destroy(made);
+}
+
 TEST_CASE("profiler: the trace is valid JSON with CPU and GPU tracks, counters and every pass") {
     auto device = nullDevice();
     FrameProfiler profiler(*device, tinyProfile(100, 100));

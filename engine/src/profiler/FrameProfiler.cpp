@@ -70,8 +70,6 @@ void FrameProfiler::beginFrame(rhi::CommandList& cmd) {
     r.gpuResolved = false;
     r.checked = false;
     r.sampleCount = 0;
-    r.memoryTotal = device_.allocations().totalBytes();
-    r.memoryGi = device_.allocations().bytesIn("gi");
     r.check = {};
     current_ = &r;
     // Notes made since the last frame ended belong to this one.
@@ -222,6 +220,10 @@ void FrameProfiler::endFrame(rhi::CommandList& cmd) {
                                "' still open at endFrame()");
     if (gpuSlots_) cmd.writeTimestamp(1);
     current_->cpuEnd = platforms::nowNanoseconds();
+    // Sampled at the end: what the frame made lazily (the renderer's targets on its first
+    // render(), the volumes of a rebuild) is memory it ran with.
+    current_->memoryTotal = device_.allocations().totalBytes();
+    current_->memoryGi = device_.allocations().bytesIn("gi");
     frameCpu_.add(ms(current_->cpuBegin, current_->cpuEnd));
     if (!gpuSlots_) finishCheck(*current_);
     current_ = nullptr;

@@ -26,7 +26,8 @@ public:
     // Why a window that was wanted could not open (GLFW's error); empty otherwise.
     const std::string& windowError() const { return windowError_; }
 
-    void pollEvents();
+    // See Window::pollEvents; headless never waits.
+    void pollEvents(double waitSeconds = 0.0);
     bool quitRequested() const;
     bool keyDown(int key) const;
     bool keyPressed(int key) const;

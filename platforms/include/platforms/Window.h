@@ -35,7 +35,9 @@ public:
 
     void framebufferSize(uint32_t& width, uint32_t& height) const;
     bool shouldClose() const;
-    void pollEvents();
+    // With `waitSeconds` > 0, sleeps until an event arrives or that time passes (a minimised
+    // window has nothing to draw, and spinning would take a core).
+    void pollEvents(double waitSeconds = 0.0);
     // Input, polled: a key by its GLFW_KEY_* code, keys pressed since the last pollEvents() (for
     // toggles), and the cursor movement since the last pollEvents() while the right button is held.
     bool keyDown(int key) const;
