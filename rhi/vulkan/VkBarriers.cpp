@@ -1,8 +1,6 @@
 // Layout transitions and global memory barriers with synchronization2.
 #include "VkBarriers.h"
 
-#include <array>
-
 namespace lpv::rhi::vk {
 namespace {
 
@@ -33,20 +31,9 @@ void hostReadBarrier(VkCommandBuffer cmd) {
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
 }
 
-void transition(VkCommandBuffer cmd, VulkanTexture& texture, uint32_t baseMip, uint32_t mipCount,
-                VkImageLayout layout) {
-    // Runs of mips with the same old layout become one barrier; a fixed array keeps this free of
-    // heap allocation (16 covers every mip chain up to 32k texels).
-    std::array<VkImageMemoryBarrier2, 16> barriers{};
-    uint32_t count = 0;
-    auto flush = [&] {
-        if (count == 0) return;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.imageMemoryBarrierCount = count;
-        dep.pImageMemoryBarriers = barriers.data();
-        vkCmdPipelineBarrier2(cmd, &dep);
-        count = 0;
-    };
+void BarrierBatch::transition(VulkanTexture& texture, uint32_t baseMip, uint32_t mipCount,
+                              VkImageLayout layout) {
+    // Runs of mips with the same old layout become one barrier.
     const uint32_t end = baseMip + mipCount;
     for (uint32_t mip = baseMip; mip < end;) {
         const VkImageLayout old = texture.layouts[mip];
@@ -54,8 +41,8 @@ void transition(VkCommandBuffer cmd, VulkanTexture& texture, uint32_t baseMip, u
         while (runEnd < end && texture.layouts[runEnd] == old)
             ++runEnd;
         if (old != layout) {
-            if (count == barriers.size()) flush();
-            VkImageMemoryBarrier2& b = barriers[count++];
+            if (imageCount_ == images_.size()) flush();
+            VkImageMemoryBarrier2& b = images_[imageCount_++];
             b = {VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
             b.srcStageMask = kAllStages;
             b.srcAccessMask = kAllWrites;
@@ -72,7 +59,23 @@ void transition(VkCommandBuffer cmd, VulkanTexture& texture, uint32_t baseMip, u
         }
         mip = runEnd;
     }
-    flush();
+}
+
+void BarrierBatch::flush() {
+    if (imageCount_ == 0 && !memory_) return;
+    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    barrier.srcStageMask = kAllStages;
+    barrier.srcAccessMask = kAllWrites;
+    barrier.dstStageMask = kAllStages;
+    barrier.dstAccessMask = kAllAccess;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = memory_ ? 1 : 0;
+    dep.pMemoryBarriers = &barrier;
+    dep.imageMemoryBarrierCount = imageCount_;
+    dep.pImageMemoryBarriers = images_.data();
+    vkCmdPipelineBarrier2(cmd_, &dep);
+    imageCount_ = 0;
+    memory_ = false;
 }
 
 } // namespace lpv::rhi::vk

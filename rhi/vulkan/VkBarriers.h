@@ -8,7 +8,38 @@
 
 #include <vulkan/vulkan.h>
 
+#include <array>
+
 namespace lpv::rhi::vk {
+
+// Barriers that go into one vkCmdPipelineBarrier2: a driver may drain its pipeline once per call
+// (NVIDIA's does), so a render pass's layout moves and its memory barrier are recorded together.
+// Fixed storage, no heap. Flushed by flush() or at the end of its scope; recorded outside a dynamic
+// rendering instance.
+class BarrierBatch {
+public:
+    explicit BarrierBatch(VkCommandBuffer cmd) : cmd_(cmd) {}
+    ~BarrierBatch() { flush(); }
+    BarrierBatch(const BarrierBatch&) = delete;
+    BarrierBatch& operator=(const BarrierBatch&) = delete;
+
+    // Moves mips [baseMip, baseMip + mipCount) of `texture` to `layout` (nothing for mips already
+    // there; the tracked layouts change now, so a later move in the same batch sees them).
+    void transition(VulkanTexture& texture, uint32_t baseMip, uint32_t mipCount, VkImageLayout layout);
+    // Back to the texture's home layout, all mips.
+    void transitionHome(VulkanTexture& texture) {
+        transition(texture, 0, texture.desc.mipLevels, texture.home);
+    }
+    // All earlier writes visible to every later stage and access.
+    void memory() { memory_ = true; }
+    void flush();
+
+private:
+    VkCommandBuffer cmd_;
+    std::array<VkImageMemoryBarrier2, 32> images_{};
+    uint32_t imageCount_ = 0;
+    bool memory_ = false;
+};
 
 // A full memory barrier: all earlier writes visible to every later stage and access.
 void fullBarrier(VkCommandBuffer cmd);
@@ -17,14 +48,15 @@ void fullBarrier(VkCommandBuffer cmd);
 // (a fence alone covers device access only): MemoryAccess::HostRead buffers.
 void hostReadBarrier(VkCommandBuffer cmd);
 
-// Moves mips [baseMip, baseMip + mipCount) of `texture` to `layout` (no-op for mips already
-// there). Must be recorded outside a dynamic rendering instance.
-void transition(VkCommandBuffer cmd, VulkanTexture& texture, uint32_t baseMip, uint32_t mipCount,
-                VkImageLayout layout);
+// One texture's move, as BarrierBatch::transition, recorded at once.
+inline void transition(VkCommandBuffer cmd, VulkanTexture& texture, uint32_t baseMip, uint32_t mipCount,
+                       VkImageLayout layout) {
+    BarrierBatch(cmd).transition(texture, baseMip, mipCount, layout);
+}
 
 // Back to the texture's home layout, all mips.
 inline void transitionHome(VkCommandBuffer cmd, VulkanTexture& texture) {
-    transition(cmd, texture, 0, texture.desc.mipLevels, texture.home);
+    BarrierBatch(cmd).transitionHome(texture);
 }
 
 } // namespace lpv::rhi::vk

@@ -188,8 +188,9 @@ void VulkanDevice::collectGarbage() {
 }
 
 void VulkanDevice::flushNewTextures(VkCommandBuffer cmd) {
+    BarrierBatch barriers(cmd);
     for (TextureHandle h : newTextures_)
-        if (textures.contains(h)) transitionHome(cmd, textures.get(h));
+        if (textures.contains(h)) barriers.transitionHome(textures.get(h));
     newTextures_.clear();
 }
 
