@@ -27,15 +27,16 @@ struct Field {
     const char* expected;
 };
 
-template <typename T> Field number(T PlatformProfile::*member) {
+// Budgets and sizes: 0 would make every frame over budget or no volume fit, with no word why.
+template <typename T> Field positive(T PlatformProfile::*member) {
     return {[member](const toml::node& n, PlatformProfile& p) {
                 if (!n.is_number()) return false;
                 const double v = *n.value<double>();
-                if (v < 0) return false;
+                if (!(v > 0) || T(v) <= T(0)) return false;
                 p.*member = T(v);
                 return true;
             },
-            "a non-negative number"};
+            "a positive number"};
 }
 
 Field throughput(double Throughput::*member) {
@@ -60,10 +61,10 @@ const std::map<std::string, Field>& fields() {
     static const std::map<std::string, Field> f = {
         {"name", text(&PlatformProfile::name)},
         {"description", text(&PlatformProfile::description)},
-        {"frame.target_ms", number(&PlatformProfile::frameBudgetMs)},
-        {"gi.budget_ms", number(&PlatformProfile::giBudgetMs)},
-        {"gi.memory_budget_bytes", number(&PlatformProfile::giMemoryBudgetBytes)},
-        {"gi.max_volume_size", number(&PlatformProfile::maxVolumeSize)},
+        {"frame.target_ms", positive(&PlatformProfile::frameBudgetMs)},
+        {"gi.budget_ms", positive(&PlatformProfile::giBudgetMs)},
+        {"gi.memory_budget_bytes", positive(&PlatformProfile::giMemoryBudgetBytes)},
+        {"gi.max_volume_size", positive(&PlatformProfile::maxVolumeSize)},
         {"gi.sh_formats",
          {[](const toml::node& n, PlatformProfile& p) {
               const toml::array* a = n.as_array();
@@ -76,7 +77,7 @@ const std::map<std::string, Field>& fields() {
               return true;
           },
           "a non-empty array of \"rgba8\", \"rgba16f\", \"rgba32f\""}},
-        {"memory.gpu_bytes", number(&PlatformProfile::gpuMemoryBytes)},
+        {"memory.gpu_bytes", positive(&PlatformProfile::gpuMemoryBytes)},
         {"throughput.alu_gflops", throughput(&Throughput::aluGflops)},
         {"throughput.texel_rate_g", throughput(&Throughput::texelRateG)},
         {"throughput.fill_rate_gpix", throughput(&Throughput::fillRateGpix)},

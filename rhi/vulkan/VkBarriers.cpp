@@ -9,12 +9,17 @@ constexpr VkAccessFlags2 kAllWrites = VK_ACCESS_2_MEMORY_WRITE_BIT;
 constexpr VkAccessFlags2 kAllAccess = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
 
 // Every earlier write, by every stage, made available to and visible at `dstStages`' `dstAccess`.
-void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 dstStages, VkAccessFlags2 dstAccess) {
+VkMemoryBarrier2 allWritesVisibleAt(VkPipelineStageFlags2 dstStages, VkAccessFlags2 dstAccess) {
     VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
     barrier.srcStageMask = kAllStages;
     barrier.srcAccessMask = kAllWrites;
     barrier.dstStageMask = dstStages;
     barrier.dstAccessMask = dstAccess;
+    return barrier;
+}
+
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 dstStages, VkAccessFlags2 dstAccess) {
+    const VkMemoryBarrier2 barrier = allWritesVisibleAt(dstStages, dstAccess);
     VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     dep.memoryBarrierCount = 1;
     dep.pMemoryBarriers = &barrier;
@@ -24,7 +29,7 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 dstStages, VkAcces
 } // namespace
 
 void fullBarrier(VkCommandBuffer cmd) {
-    memoryBarrier(cmd, kAllStages, kAllAccess);
+    BarrierBatch(cmd).memory();
 }
 
 void hostReadBarrier(VkCommandBuffer cmd) {
@@ -63,11 +68,7 @@ void BarrierBatch::transition(VulkanTexture& texture, uint32_t baseMip, uint32_t
 
 void BarrierBatch::flush() {
     if (imageCount_ == 0 && !memory_) return;
-    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    barrier.srcStageMask = kAllStages;
-    barrier.srcAccessMask = kAllWrites;
-    barrier.dstStageMask = kAllStages;
-    barrier.dstAccessMask = kAllAccess;
+    const VkMemoryBarrier2 barrier = allWritesVisibleAt(kAllStages, kAllAccess);
     VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     dep.memoryBarrierCount = memory_ ? 1 : 0;
     dep.pMemoryBarriers = &barrier;

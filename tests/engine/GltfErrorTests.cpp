@@ -350,16 +350,25 @@ TEST_CASE("glTF errors: camera values the spec forbids") {
 
 TEST_CASE("glTF errors: light values the spec forbids") {
     checkErrors({
+        {"coneequal.gltf",
+         [](json& g) {
+             addLight(g, R"({"type": "spot", "spot": {"innerConeAngle": 0.5, "outerConeAngle": 0.5}})");
+         },
+         "light 0: innerConeAngle 0.5 must be in [0, outerConeAngle 0.5)"},
+        {"range0.gltf", [](json& g) { addLight(g, R"({"type": "point", "range": 0})"); },
+         "light 0: range 0 must be greater than 0"},
+        {"hugeintensity.gltf", [](json& g) { addLight(g, R"({"type": "point", "intensity": 1e39})"); },
+         "light 0: intensity 1e+39 is too large (at most 3.40282e+38)"},
         {"intensity.gltf", [](json& g) { addLight(g, R"({"type": "point", "intensity": -5})"); },
          "light 0: intensity -5 must be 0 or more"},
         {"innerouter.gltf",
          [](json& g) {
              addLight(g, R"({"type": "spot", "spot": {"innerConeAngle": 1, "outerConeAngle": 0.5}})");
          },
-         "light 0: innerConeAngle 1 must be in [0, outerConeAngle 0.5]"},
+         "light 0: innerConeAngle 1 must be in [0, outerConeAngle 0.5)"},
         {"innerneg.gltf",
          [](json& g) { addLight(g, R"({"type": "spot", "spot": {"innerConeAngle": -0.1}})"); },
-         "light 0: innerConeAngle -0.1 must be in [0, outerConeAngle 0.785398]"},
+         "light 0: innerConeAngle -0.1 must be in [0, outerConeAngle 0.785398)"},
         {"outer.gltf", [](json& g) { addLight(g, R"({"type": "spot", "spot": {"outerConeAngle": 2}})"); },
          "light 0: outerConeAngle 2 must be in (0, pi/2]"},
         {"color.gltf", [](json& g) { addLight(g, R"({"type": "point", "color": [1, 2, 1]})"); },
@@ -421,4 +430,50 @@ TEST_CASE("glTF errors: an orthographic camera warns that it is drawn in perspec
     CHECK(warnings[0] ==
           pathOf("orthowarn.gltf") +
               ": camera 0 is orthographic; it is drawn in perspective with the default field of view");
+}
+
+// tinygltf skips an optional property of the wrong type and the object keeps its default: a light
+// with "intensity": "5" lit the scene as with 1, with no word.
+TEST_CASE("glTF errors: an optional property of the wrong type is refused by name") {
+    checkErrors({
+        {"intensitystr.gltf", [](json& g) { addLight(g, R"({"type": "point", "intensity": "5"})"); },
+         "light 0: intensity is \"5\", expected a number"},
+        {"colorstr.gltf", [](json& g) { addLight(g, R"({"type": "point", "color": ["1", 0, 0]})"); },
+         "light 0: color is [\"1\",0,0], expected an array of 3 numbers"},
+        {"conestr.gltf", [](json& g) { addLight(g, R"({"type": "spot", "spot": {"outerConeAngle": "1"}})"); },
+         "light 0: spot.outerConeAngle is \"1\", expected a number"},
+        {"translationstr.gltf", [](json& g) { g["nodes"][0]["translation"] = "1 2 3"; },
+         "node 0: translation is \"1 2 3\", expected an array of 3 numbers"},
+        {"meshfloat.gltf", [](json& g) { g["nodes"][0]["mesh"] = 0.5; },
+         "node 0: mesh is 0.5, expected an integer"},
+        {"basecolorstr.gltf",
+         [](json& g) {
+             g["materials"] =
+                 json::parse(R"([{"name": "m", "pbrMetallicRoughness": {"baseColorFactor": "red"}}])");
+         },
+         "material 0 'm': pbrMetallicRoughness.baseColorFactor is \"red\", expected an array of 4 numbers"},
+        {"normalscale.gltf",
+         [](json& g) { g["materials"] = json::parse(R"([{"normalTexture": {"index": 0, "scale": "2"}}])"); },
+         "material 0: normalTexture.scale is \"2\", expected a number"},
+        {"yfovstr.gltf",
+         [](json& g) {
+             addCamera(g, R"({"type": "perspective", "perspective": {"yfov": 1, "znear": 0.1, "aspectRatio": "1"}})");
+         },
+         "camera 0: perspective.aspectRatio is \"1\", expected a number"},
+    });
+    // tinygltf skips an index written as 0.0 too (the triangle's node lost its mesh).
+    json whole = triangle();
+    whole["nodes"][0]["mesh"] = 0.0;
+    CHECK(gltfErrorOf("meshwhole.gltf", whole) ==
+          pathOf("meshwhole.gltf") + ": node 0: mesh is 0.0, expected an integer");
+    // The same types in a binary glTF's JSON chunk.
+    json wrong = triangle();
+    wrong["nodes"][0]["scale"] = json::array({1, "1", 1});
+    std::string chunk = wrong.dump();
+    chunk.append((4 - chunk.size() % 4) % 4, ' ');
+    const auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+    const std::string glb = pathOf("scalestr.glb");
+    std::ofstream(glb, std::ios::binary) << "glTF" << u32(2) << u32(uint32_t(20 + chunk.size()))
+                                         << u32(uint32_t(chunk.size())) << "JSON" << chunk;
+    CHECK(gltfErrorOf(glb) == glb + ": node 0: scale is [1,\"1\",1], expected an array of 3 numbers");
 }

@@ -68,7 +68,13 @@ texture_blocks_alu = false
     std::string wrong = good;
     wrong.replace(wrong.find("budget_ms = 3.3"), 15, "budget_ms = \"x\"");
     CHECK(errorOf([&] { platforms::parsePlatformProfile(wrong, "t.toml"); }) ==
-          "t.toml:6: 'gi.budget_ms': expected a non-negative number");
+          "t.toml:6: 'gi.budget_ms': expected a positive number");
+    // A zero budget would put every frame over it, each pass at 0% of it.
+    std::string zero = good;
+    zero.replace(zero.find("target_ms = "), 12, "target_ms = 0 #");
+    CHECK(errorOf([&] {
+              platforms::parsePlatformProfile(zero, "t.toml");
+          }).ends_with("'frame.target_ms': expected a positive number"));
     std::string missing = good;
     missing.erase(missing.find("edram_gbs = 0\n"), 14);
     CHECK(errorOf([&] { platforms::parsePlatformProfile(missing, "t.toml"); }) ==

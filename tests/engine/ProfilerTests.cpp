@@ -161,6 +161,35 @@ TEST_CASE("profiler: budget checks trip exactly past the boundary") {
     CHECK(profiler.framesOverBudget() == 2);
 }
 
+// On x360 and ps3 the GI check holds the predicted console time to the GI budget: the pass table
+// said "ok" for a gi row whose prediction was twice the budget, on frames counted over it.
+TEST_CASE("profiler: on a console profile a GI pass predicted over the GI budget is OVER in the report") {
+    auto device = nullDevice();
+    platforms::PlatformProfile x360 = platforms::loadPlatformProfile("x360");
+    x360.giBudgetMs = 0.5; // the propagate pass's work is 1 ms on Xbox 360; measured, microseconds
+    FrameProfiler profiler(*device, x360);
+    for (int i = 0; i < 6; ++i)
+        frame(*device, profiler, 1, 1);
+    profiler.collectPending();
+    CHECK(profiler.framesOverBudget() == profiler.framesChecked());
+    const std::string md = profileSummaryMarkdown(profiler);
+    const size_t row = md.find("gi/propagate |");
+    REQUIRE(row != std::string::npos);
+    const std::string line = md.substr(row, md.find('\n', row) - row);
+    CHECK(line.find("(predicted x360: 200.0%)") != std::string::npos);
+    CHECK(line.find("**OVER**") != std::string::npos);
+    CHECK(profileSummaryText(profiler).find("OVER") != std::string::npos);
+    CHECK(profileSummaryCsv(profiler).find(",200.00\n") != std::string::npos);
+    CHECK(profileTraceJson(profiler).find("\"gi_predicted_ms\":1.0") != std::string::npos);
+    // Off the consoles nothing is predicted against the budget.
+    auto pcDevice = nullDevice();
+    FrameProfiler pc(*pcDevice, tinyProfile(100, 0.5));
+    for (int i = 0; i < 6; ++i)
+        frame(*pcDevice, pc, 1, 1);
+    CHECK(profileSummaryMarkdown(pc).find("predicted x360:") == std::string::npos);
+    CHECK(profileTraceJson(pc).find("gi_predicted_ms") == std::string::npos);
+}
+
 TEST_CASE("profiler: a frame's memory counter includes what the frame made") {
     // The renderer makes its targets and the GI its volumes lazily, inside their first frame.
     auto device = nullDevice();

@@ -55,17 +55,29 @@ struct Row {
     SampleStats cpu, gpu;
     CostPrediction x360, ps3;
     double shareOfFrame, shareOfGi; // percent of the profile's budgets, on the GPU median when timed
+    // On the x360 and ps3 profiles, whose GI check also holds the predicted console time to the GI
+    // budget: a GI pass's prediction for that console, in percent of the budget; else 0.
+    double predictedShareOfGi;
 };
+
+// The console whose predicted time the GI check holds to the budget: "x360", "ps3", or empty.
+std::string_view predictedConsole(const FrameProfiler& p) {
+    const std::string& name = p.profile().name;
+    return name == "x360" || name == "ps3" ? std::string_view(name) : std::string_view();
+}
 
 std::vector<Row> rows(const FrameProfiler& p) {
     std::vector<Row> out;
     for (const ScopeInfo& s : p.scopes()) {
         const FrameProfiler::ScopePrediction predicted = p.predicted(size_t(&s - p.scopes().data()));
-        Row r{&s, s.cpuMs.stats(), s.gpuMs.stats(), predicted.x360, predicted.ps3, 0, 0};
+        Row r{&s, s.cpuMs.stats(), s.gpuMs.stats(), predicted.x360, predicted.ps3, 0, 0, 0};
         const double t = r.gpu.count ? r.gpu.median : r.cpu.median;
         r.shareOfFrame = p.profile().frameBudgetMs > 0 ? 100.0 * t / p.profile().frameBudgetMs : 0;
         r.shareOfGi =
             s.path.starts_with("gi") && p.profile().giBudgetMs > 0 ? 100.0 * t / p.profile().giBudgetMs : 0;
+        if (r.shareOfGi > 0 && !predictedConsole(p).empty())
+            r.predictedShareOfGi =
+                100.0 * (predictedConsole(p) == "x360" ? r.x360.ms : r.ps3.ms) / p.profile().giBudgetMs;
         out.push_back(r);
     }
     // Depth-first order of the scope tree, so children follow their parent.
@@ -86,9 +98,9 @@ uint64_t giMemory(const FrameProfiler& p) {
 }
 
 // A pass is over budget when its median alone exceeds the frame budget, or, for GI passes, the
-// GI budget.
+// GI budget, or on a console profile when its predicted console time does.
 bool overBudget(const Row& r) {
-    return r.shareOfFrame > 100.0 || r.shareOfGi > 100.0;
+    return r.shareOfFrame > 100.0 || r.shareOfGi > 100.0 || r.predictedShareOfGi > 100.0;
 }
 
 // Notes grouped by topic, topics in the order they first appear.
@@ -184,8 +196,10 @@ std::string profileSummaryMarkdown(const FrameProfiler& p) {
         else
             o << "- | - | - | - | - | ";
         o << fixed(r.x360.ms) << " | " << fixed(r.ps3.ms) << " | " << r.x360.bottleneck << " | "
-          << fixed(r.shareOfFrame, 1) << "% | " << (r.shareOfGi > 0 ? fixed(r.shareOfGi, 1) + "%" : "-")
-          << " | " << (overBudget(r) ? "**OVER**" : "ok") << " |\n";
+          << fixed(r.shareOfFrame, 1) << "% | " << (r.shareOfGi > 0 ? fixed(r.shareOfGi, 1) + "%" : "-");
+        if (r.predictedShareOfGi > 0)
+            o << " (predicted " << predictedConsole(p) << ": " << fixed(r.predictedShareOfGi, 1) << "%)";
+        o << " | " << (overBudget(r) ? "**OVER**" : "ok") << " |\n";
     }
     o << "\n## Memory\n\n| category | current | peak | resources |\n|---|---|---|---|\n";
     for (const auto& [category, usage] : p.allocations().categories())
@@ -205,13 +219,13 @@ std::string profileSummaryMarkdown(const FrameProfiler& p) {
 std::string profileSummaryCsv(const FrameProfiler& p) {
     std::ostringstream o;
     o << "pass,depth,timing_source,cpu_median_ms,gpu_last_ms,gpu_mean_ms,gpu_median_ms,gpu_p95_ms,gpu_max_ms,"
-         "predicted_x360_ms,predicted_ps3_ms,share_of_frame_pct,share_of_gi_pct\n";
+         "predicted_x360_ms,predicted_ps3_ms,share_of_frame_pct,share_of_gi_pct,predicted_share_of_gi_pct\n";
     for (const Row& r : rows(p)) {
         o << r.scope->path << "," << r.scope->depth << "," << (r.gpu.count ? gpuSourceName(p) : "cpu") << ","
           << fixed(r.cpu.median, 4) << "," << fixed(r.gpu.last, 4) << "," << fixed(r.gpu.mean, 4) << ","
           << fixed(r.gpu.median, 4) << "," << fixed(r.gpu.p95, 4) << "," << fixed(r.gpu.max, 4) << ","
           << fixed(r.x360.ms, 4) << "," << fixed(r.ps3.ms, 4) << "," << fixed(r.shareOfFrame, 2) << ","
-          << fixed(r.shareOfGi, 2) << "\n";
+          << fixed(r.shareOfGi, 2) << "," << fixed(r.predictedShareOfGi, 2) << "\n";
     }
     o << "\ncategory,current_bytes,peak_bytes,resources\n";
     for (const auto& [category, usage] : p.allocations().categories())
@@ -262,12 +276,16 @@ std::string profileTraceJson(const FrameProfiler& p) {
         }
         o << ",\n{\"name\":\"memory\",\"ph\":\"C\",\"pid\":1,\"ts\":" << us(r.cpuBegin)
           << ",\"args\":{\"total_bytes\":" << r.memoryTotal << ",\"gi_bytes\":" << r.memoryGi << "}}";
-        if (r.checked)
+        if (r.checked) {
             o << ",\n{\"name\":\"budget\",\"ph\":\"C\",\"pid\":1,\"ts\":" << us(r.cpuBegin)
               << ",\"args\":{\"frame_ms\":" << fixed(r.check.frameMs)
               << ",\"frame_budget_ms\":" << fixed(p.profile().frameBudgetMs)
-              << ",\"gi_ms\":" << fixed(r.check.giMs) << ",\"gi_budget_ms\":" << fixed(p.profile().giBudgetMs)
-              << "}}";
+              << ",\"gi_ms\":" << fixed(r.check.giMs)
+              << ",\"gi_budget_ms\":" << fixed(p.profile().giBudgetMs);
+            // On a console profile the GI check holds the predicted time to the budget too.
+            if (!predictedConsole(p).empty()) o << ",\"gi_predicted_ms\":" << fixed(r.check.giBudgetedMs);
+            o << "}}";
+        }
     });
     // Notes as global instant events (a vertical line across the tracks), the text as the name.
     p.forEachNote([&](const FrameProfiler::Note& n) {
@@ -299,7 +317,7 @@ std::string profileChartSvg(const FrameProfiler& p) {
       << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
     o << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
     o << "<text x=\"" << left << "\" y=\"18\" font-size=\"13\">Per-frame pass times (" << gpuSourceName(p)
-      << " where resolved, else CPU), platform " << p.profile().name << "</text>\n";
+      << " where resolved, else CPU), platform " << xmlEscape(p.profile().name) << "</text>\n";
     std::map<uint64_t, std::string> notesOfFrame;
     p.forEachNote([&](const FrameProfiler::Note& n) {
         std::string& t = notesOfFrame[n.frame];
@@ -351,7 +369,8 @@ std::string profileChartSvg(const FrameProfiler& p) {
         const double ly = top + 16.0 * legend++;
         o << "<rect x=\"" << left + plotW + 10 << "\" y=\"" << ly + 20
           << "\" width=\"10\" height=\"10\" fill=\"" << kColors[i % 10] << "\"/><text x=\""
-          << left + plotW + 24 << "\" y=\"" << ly + 29 << "\">" << p.scopes()[i].name << "</text>\n";
+          << left + plotW + 24 << "\" y=\"" << ly + 29 << "\">" << xmlEscape(p.scopes()[i].name)
+          << "</text>\n";
     }
     o << "</svg>\n";
     return o.str();

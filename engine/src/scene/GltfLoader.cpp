@@ -1,6 +1,7 @@
 // glTF 2.0 through tinygltf, validated on the way in: the file's references and accessor ranges
 // (GltfValidation.cpp), then index ranges and finite positions here, because tinygltf checks none of
 // them, and a bad file must be an error, not a crash or a garbage frame.
+#include "GltfJsonTypes.h"
 #include "GltfValidation.h"
 
 #include "engine/scene/BuiltinScenes.h"
@@ -531,6 +532,7 @@ Scene readGltfFile(const std::string& path) {
     const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
                            : loader.LoadASCIIFromFile(&model, &err, &warn, path);
     if (!ok) throw SceneError(path, "not a valid glTF 2.0 file: " + trimmed(err.empty() ? warn : err));
+    checkGltfJsonTypes(path, binary);
     validateGltf(path, model);
     // Image failures are warnings in tinygltf; they are reported per texture below.
     Scene scene = GltfReader(path, model).read();

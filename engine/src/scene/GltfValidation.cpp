@@ -7,6 +7,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -238,6 +239,10 @@ void GltfValidator::checkLights() const {
         requireUnitRange(who, "color", l.color);
         if (!(l.intensity >= 0.0) || !std::isfinite(l.intensity))
             fail(who + "intensity " + number(l.intensity) + " must be 0 or more");
+        // The renderer holds it as a float: beyond that it would be infinite, and the lit pixels NaN.
+        if (!std::isfinite(float(l.intensity)))
+            fail(who + "intensity " + number(l.intensity) + " is too large (at most " +
+                 number(double(std::numeric_limits<float>::max())) + ")");
         // tinygltf reads a range that is not given (no limit) as 0.
         if (l.range != 0.0 && (!(l.range > 0.0) || !std::isfinite(l.range)))
             fail(who + "range " + number(l.range) + " must be greater than 0");
@@ -245,9 +250,9 @@ void GltfValidator::checkLights() const {
         const double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
         if (!(outer > 0.0 && outer <= kPi / 2.0 + kAngleSlack))
             fail(who + "outerConeAngle " + number(outer) + " must be in (0, pi/2]");
-        if (!(inner >= 0.0 && inner <= outer))
+        if (!(inner >= 0.0 && inner < outer))
             fail(who + "innerConeAngle " + number(inner) + " must be in [0, outerConeAngle " + number(outer) +
-                 "]");
+                 ")");
     }
 }
 
