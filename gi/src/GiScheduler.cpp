@@ -269,12 +269,16 @@ void GiBudgetScheduler::judge(uint64_t frame, double ms, uint64_t bytes, const G
             take(frame, step, ms, bytes, budget);
         } else if (!floorReported_) {
             floorReported_ = true;
+            // The RSM stops above minRsmSize where the VPL grid's side would no longer divide it.
+            KnobText rsm(GiKnob::RsmSize, load_.rsmSize);
+            if (load_.rsmSize / 2 >= limits_.minRsmSize)
+                std::snprintf(rsm.text.data(), rsm.text.size(), "rsm %u, as gi.vpl_count %u allows",
+                              load_.rsmSize, load_.vplGridSide * load_.vplGridSide);
             if (GiChange* c = addChange(GiKnob::None, 0, 0, false))
                 writeText(*c, "GI %.2f ms > %.2f ms budget with every knob at its floor (%s, %s, %s, %s, %s)",
                           ms, budget.ms,
                           KnobText(GiKnob::CoarseUpdateInterval, load_.coarseUpdateInterval).c_str(),
-                          KnobText(GiKnob::Iterations, load_.iterations).c_str(),
-                          KnobText(GiKnob::RsmSize, load_.rsmSize).c_str(),
+                          KnobText(GiKnob::Iterations, load_.iterations).c_str(), rsm.c_str(),
                           KnobText(GiKnob::Resolution, load_.resolutionDivisor).c_str(),
                           KnobText(GiKnob::Bounces, load_.bounces).c_str());
         }

@@ -247,6 +247,30 @@ TEST_CASE("gi budget: fixed changes nothing and reports the overage once") {
         contains(run.log[0].change.text(), "ms > 3.30 ms budget (gi.budget_policy=fixed: nothing changed)"));
 }
 
+// The RSM is halved only while the VPL grid's side divides it (gi.vpl_count's rule): with 65536
+// VPLs a 256 RSM is as small as it gets, and the floor's note said "rsm 256" as if that were 64.
+TEST_CASE("gi budget: an RSM held by gi.vpl_count says so in the floor's note") {
+    Run run;
+    const test::ConsoleGiCost cost = test::x360Cascades(run.configured);
+    REQUIRE(run.configured.rsmSize == 256);
+    run.configured.vplGridSide = 256;
+    const uint64_t bytes = cost.bytes(run.configured);
+    const GiSchedule& s = run.frames(400, GiBudget{0.001, bytes}, [&](const GiLoad& l, uint64_t f) {
+        return std::pair(cost.frameMs(l, f), bytes);
+    });
+    CHECK(s.load.rsmSize == 256);
+    CHECK(s.load.iterations == run.scheduler.limits().minIterations);
+    bool floorNoted = false;
+    for (const Logged& l : run.log) {
+        CHECK(l.change.knob != GiKnob::RsmSize);
+        if (contains(l.change.text(), "every knob at its floor")) {
+            floorNoted = true;
+            CHECK(contains(l.change.text(), "rsm 256, as gi.vpl_count 65536 allows"));
+        }
+    }
+    CHECK(floorNoted);
+}
+
 TEST_CASE("gi budget: a loose budget gets every step back, in reverse order, and then stays") {
     Run run;
     const test::ConsoleGiCost cost = test::x360Cascades(run.configured);
