@@ -451,3 +451,30 @@ TEST_CASE(
     CHECK(r.output.substr(second, 8) != "  frame ");
     CHECK(r.output.find("gi: the device allocated") == std::string::npos);
 }
+
+// --set and the shorthand flags are one list, applied in the order given: the flags used to be
+// applied after every --set, whatever the order, and a flag given twice was a parse error.
+TEST_CASE("cli: --set and the shorthand flags apply in the order given, the later winning") {
+    // The screenshot's size, from its PNG header (IHDR: width and height, big-endian, at 16).
+    const auto shotSize = [](const std::string& args) {
+        const std::string shot = "/tmp/lpv_cli_order/shot.png";
+        std::filesystem::remove(shot);
+        const Result r = runGame("--headless --backend null --frames 1 --screenshot " + shot + " " + args);
+        INFO(r.output);
+        REQUIRE(r.exitCode == 0);
+        unsigned char head[24] = {};
+        FILE* f = std::fopen(shot.c_str(), "rb");
+        REQUIRE(f != nullptr);
+        REQUIRE(std::fread(head, 1, sizeof(head), f) == sizeof(head));
+        std::fclose(f);
+        const auto be = [&](int at) {
+            return (uint32_t(head[at]) << 24) | (uint32_t(head[at + 1]) << 16) |
+                   (uint32_t(head[at + 2]) << 8) | uint32_t(head[at + 3]);
+        };
+        return std::pair(be(16), be(20));
+    };
+    CHECK(shotSize("--width 140 --height 40 --set render.width=130") == std::pair(130u, 40u));
+    CHECK(shotSize("--set render.width=130 --width 140 --height 40") == std::pair(140u, 40u));
+    CHECK(shotSize("--width 140 --width 150 --height 40") == std::pair(150u, 40u));
+    CHECK(shotSize("--set render.width=120 render.height=60 --height 50") == std::pair(120u, 50u));
+}
