@@ -39,6 +39,7 @@
 #include "gi/ReflectiveShadowMap.h"
 #include "gi/SpotLightRsms.h"
 #include "platforms/Clock.h"
+#include "platforms/Platform.h"
 #include "rhi/Device.h"
 #include "rhi/Error.h"
 
@@ -684,7 +685,8 @@ int main(int argc, char** argv) {
         // platform here are the benchmark's own options, not settings.
         std::fprintf(stderr,
                      "error: %s\nlpv_bench --set takes the settings its frames part reads (gi.*, and the "
-                     "renderer's render.*); the frame is 1280x720 on the backends of --backends and the "
+                     "renderer's render.* but for the frame size, backend and window settings, which are "
+                     "the game's): the frame is 1280x720 on the backends of --backends and the "
                      "scenes of --scenes, on the pc profile\n",
                      message.c_str());
         return 2;
@@ -692,6 +694,21 @@ int main(int argc, char** argv) {
     const auto want = [&](const char* part) {
         return std::find(partList.begin(), partList.end(), part) != partList.end();
     };
+    // The folder is made before any part runs: a run of minutes should not end in a write error.
+    if (!outDir.empty()) {
+        if (!want("frames")) {
+            std::fprintf(stderr,
+                         "error: --out: only the frames part writes files, and --parts leaves it out\n");
+            return 2;
+        }
+        try {
+            platforms::Platform::createDirectories(outDir);
+            platforms::Platform::checkWritable(outDir + "/.lpv_bench_check");
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "error: --out: %s\n", e.what());
+            return 2;
+        }
+    }
     int failures = 0;
     if (want("propagation")) {
         std::printf(

@@ -15,8 +15,8 @@ struct Result {
     std::string output;
 };
 
-Result runGame(const std::string& args, const std::string& env = "") {
-    const std::string command = env + " " LPV_GAME_EXE " " + args + " 2>&1";
+Result runProgram(const std::string& exe, const std::string& args, const std::string& env) {
+    const std::string command = env + " " + exe + " " + args + " 2>&1";
     Result r;
     FILE* pipe = popen(command.c_str(), "r");
     REQUIRE(pipe != nullptr);
@@ -26,6 +26,10 @@ Result runGame(const std::string& args, const std::string& env = "") {
     const int status = pclose(pipe);
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
+}
+
+Result runGame(const std::string& args, const std::string& env = "") {
+    return runProgram(LPV_GAME_EXE, args, env);
 }
 
 } // namespace
@@ -477,4 +481,19 @@ TEST_CASE("cli: --set and the shorthand flags apply in the order given, the late
     CHECK(shotSize("--set render.width=130 --width 140 --height 40") == std::pair(140u, 40u));
     CHECK(shotSize("--width 140 --width 150 --height 40") == std::pair(150u, 40u));
     CHECK(shotSize("--set render.width=120 render.height=60 --height 50") == std::pair(120u, 50u));
+}
+
+// The benchmark checks its output folder before it renders for minutes, and says when no part
+// it runs writes there.
+TEST_CASE("cli: lpv_bench refuses an --out it cannot write, or that nothing would use, before it runs") {
+    const auto bench = [](const std::string& args) { return runProgram(LPV_BENCH_EXE, args, ""); };
+    const Result unwritable = bench("--parts=frames --backends=vulkan --out=/proc/lpv_bench_out");
+    INFO(unwritable.output);
+    CHECK(unwritable.exitCode == 2);
+    CHECK(contains(unwritable.output, "error: --out: "));
+    CHECK(!contains(unwritable.output, "## Frames")); // nothing ran
+    const Result unused = bench("--parts=console --out=/tmp/lpv_bench_unused_out");
+    INFO(unused.output);
+    CHECK(unused.exitCode == 2);
+    CHECK(contains(unused.output, "only the frames part writes files"));
 }
