@@ -355,15 +355,20 @@ TEST_CASE("scenes: a blended material and a map on a second texture set are name
                         R"(, "alphaMode": "BLEND", "normalTexture": {"index": 0, "texCoord": 1})", false}));
     const auto [s, warnings] = loadWithWarnings(path);
     CHECK(s.materials.size() == 1);
-    bool blend = false, texCoord = false;
+    bool blend = false, texCoord = false, noTexCoords = false;
     for (const auto& w : warnings) {
-        blend = blend || w == path + ": material 'paint': alphaMode BLEND is drawn as OPAQUE";
+        // The quad has no texture coordinates at all: its maps are read at one texel.
+        noTexCoords =
+            noTexCoords || w == path + ": mesh 0 'quad' primitive 0: material 0 has texture maps but "
+                                       "the primitive has no TEXCOORD_0; each map is read at its first texel";
+        blend = blend || w == path + ": material 0 'paint': alphaMode BLEND is drawn as OPAQUE";
         texCoord =
             texCoord ||
-            w == path + ": material 'paint': normalTexture names TEXCOORD_1; it is read through TEXCOORD_0";
+            w == path + ": material 0 'paint': normalTexture names TEXCOORD_1; it is read through TEXCOORD_0";
     }
     CHECK_MESSAGE(blend, "no warning for the blended material");
     CHECK_MESSAGE(texCoord, "no warning for the second texture set");
+    CHECK_MESSAGE(noTexCoords, "no warning for maps on a primitive without texture coordinates");
 }
 
 TEST_CASE("scenes: a file that does not exist") {

@@ -61,7 +61,8 @@ private:
     std::vector<glm::vec<N, float>> readFloats(int accessorIndex, const char* what,
                                                bool integers = false) const;
     std::vector<uint32_t> readIndices(int accessorIndex) const;
-    int32_t texture(int gltfTexture, bool srgb, const std::string& materialName);
+    // `material`: how warnings name the material that uses it ("material 2 'brick'").
+    int32_t texture(int gltfTexture, bool srgb, const std::string& material);
     void readMaterials();
     void readMeshes();
     void visitTree(int root);
@@ -161,7 +162,7 @@ std::vector<uint32_t> GltfReader::readIndices(int accessorIndex) const {
     return out;
 }
 
-int32_t GltfReader::texture(int gltfTexture, bool srgb, const std::string& materialName) {
+int32_t GltfReader::texture(int gltfTexture, bool srgb, const std::string& material) {
     if (gltfTexture < 0) return -1;
     const auto key = std::make_pair(gltfTexture, srgb);
     if (auto it = textures_.find(key); it != textures_.end()) return it->second;
@@ -171,13 +172,12 @@ int32_t GltfReader::texture(int gltfTexture, bool srgb, const std::string& mater
     if (!image || image->image.empty() || image->width <= 0 || image->height <= 0 ||
         image->image.size() < size_t(image->width) * size_t(image->height) * size_t(image->component)) {
         log::warn(path_ + ": texture " + std::to_string(gltfTexture) + " (" +
-                  (image ? image->uri : "no image") + ") could not be loaded; material '" + materialName +
-                  "' uses its flat factor instead");
+                  (image ? image->uri : "no image") + ") could not be loaded; " + material +
+                  " uses its flat factor instead");
     } else if (image->bits != 8 || (image->component != 3 && image->component != 4)) {
         log::warn(path_ + ": texture " + std::to_string(gltfTexture) + " has " +
                   std::to_string(image->component) + " components of " + std::to_string(image->bits) +
-                  " bits; only 8-bit RGB(A) is used, material '" + materialName +
-                  "' uses its flat factor instead");
+                  " bits; only 8-bit RGB(A) is used, " + material + " uses its flat factor instead");
     } else {
         TextureImage t;
         t.name = image->name.empty() ? image->uri : image->name;
@@ -198,7 +198,11 @@ int32_t GltfReader::texture(int gltfTexture, bool srgb, const std::string& mater
 }
 
 void GltfReader::readMaterials() {
-    for (const tinygltf::Material& m : model_.materials) {
+    for (size_t mi = 0; mi < model_.materials.size(); ++mi) {
+        const tinygltf::Material& m = model_.materials[mi];
+        // Named by index, and by name where it has one (many exporters leave it empty).
+        const std::string material =
+            "material " + std::to_string(mi) + (m.name.empty() ? "" : " '" + m.name + "'");
         Material out;
         out.name = m.name;
         const auto& pbr = m.pbrMetallicRoughness;
@@ -207,14 +211,14 @@ void GltfReader::readMaterials() {
                                       pbr.baseColorFactor[3]);
         out.metallic = float(pbr.metallicFactor);
         out.roughness = float(pbr.roughnessFactor);
-        out.baseColorTexture = texture(pbr.baseColorTexture.index, true, m.name);
-        out.metallicRoughnessTexture = texture(pbr.metallicRoughnessTexture.index, false, m.name);
-        out.normalTexture = texture(m.normalTexture.index, false, m.name);
-        out.emissiveTexture = texture(m.emissiveTexture.index, true, m.name);
+        out.baseColorTexture = texture(pbr.baseColorTexture.index, true, material);
+        out.metallicRoughnessTexture = texture(pbr.metallicRoughnessTexture.index, false, material);
+        out.normalTexture = texture(m.normalTexture.index, false, material);
+        out.emissiveTexture = texture(m.emissiveTexture.index, true, material);
         // What the renderer does otherwise is said, not dropped unnoticed. SSAO darkens the indirect
         // light instead of an occlusion map; every surface is drawn opaque; every map is read
         // through the first set of texture coordinates, the only one the vertices keep.
-        const std::string who = path_ + ": material '" + m.name + "': ";
+        const std::string who = path_ + ": " + material + ": ";
         if (m.occlusionTexture.index >= 0)
             log::warn(who + "occlusionTexture is not used (screen-space ambient occlusion stands in for it)");
         if (!m.alphaMode.empty() && m.alphaMode != "OPAQUE")
@@ -273,6 +277,16 @@ void GltfReader::readMeshes() {
                 fail(where + ": TEXCOORD_0 count differs from POSITION count");
             if (!tangents.empty() && tangents.size() != positions.size())
                 fail(where + ": TANGENT count differs from POSITION count");
+            if (uvs.empty() && prim.material >= 0) {
+                const tinygltf::Material& m = model_.materials[size_t(prim.material)];
+                if (m.pbrMetallicRoughness.baseColorTexture.index >= 0 ||
+                    m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 ||
+                    m.normalTexture.index >= 0 || m.emissiveTexture.index >= 0)
+                    log::warn(
+                        path_ + ": " + where + ": material " + std::to_string(prim.material) +
+                        " has texture maps but the primitive has no TEXCOORD_0; each map is read at its "
+                        "first texel");
+            }
 
             std::vector<uint32_t> indices;
             if (prim.indices >= 0)
