@@ -457,7 +457,9 @@ TEST_CASE("glTF errors: an optional property of the wrong type is refused by nam
          "material 0: normalTexture.scale is \"2\", expected a number"},
         {"yfovstr.gltf",
          [](json& g) {
-             addCamera(g, R"({"type": "perspective", "perspective": {"yfov": 1, "znear": 0.1, "aspectRatio": "1"}})");
+             addCamera(
+                 g,
+                 R"({"type": "perspective", "perspective": {"yfov": 1, "znear": 0.1, "aspectRatio": "1"}})");
          },
          "camera 0: perspective.aspectRatio is \"1\", expected a number"},
     });
@@ -476,4 +478,17 @@ TEST_CASE("glTF errors: an optional property of the wrong type is refused by nam
     std::ofstream(glb, std::ios::binary) << "glTF" << u32(2) << u32(uint32_t(20 + chunk.size()))
                                          << u32(uint32_t(chunk.size())) << "JSON" << chunk;
     CHECK(gltfErrorOf(glb) == glb + ": node 0: scale is [1,\"1\",1], expected an array of 3 numbers");
+}
+
+// tinygltf quotes the buffer's whole data URI when it cannot decode it: megabytes of base64 in one
+// error line. The message keeps its start.
+TEST_CASE("glTF errors: a data URI quoted in an error is cut short") {
+    json g = triangle();
+    g["buffers"][0]["byteLength"] = g["buffers"][0]["byteLength"].get<int>() + 4000;
+    std::string uri = g["buffers"][0]["uri"];
+    const std::string error = gltfErrorOf("bytelength.gltf", g);
+    INFO(error);
+    CHECK(error.find("Failed to decode 'uri'") != std::string::npos);
+    CHECK(error.find(uri.substr(0, 48) + "... (" + std::to_string(uri.size()) + " characters)") !=
+          std::string::npos);
 }

@@ -31,11 +31,26 @@ namespace {
 
 const char* const kSupportedExtensions[] = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
 
+// tinygltf's message on one line, and a data URI it quotes (megabytes of base64) cut short.
 std::string trimmed(std::string s) {
     while (!s.empty() && (s.back() == '\n' || s.back() == ' '))
         s.pop_back();
     for (char& c : s)
         if (c == '\n') c = ';';
+    constexpr size_t kShown = 48;
+    for (size_t at = s.find("data:"); at != std::string::npos; at = s.find("data:", at + 1)) {
+        size_t end = at;
+        while (end < s.size() && s[end] != ' ' && s[end] != '\'' && s[end] != '"' && s[end] != ';')
+            ++end;
+        // The media type ends at the first ';' ("data:application/octet-stream;base64,...").
+        if (end < s.size() && s[end] == ';' && s.compare(end, 8, ";base64,") == 0) {
+            end += 8;
+            while (end < s.size() && s[end] != ' ' && s[end] != '\'' && s[end] != '"' && s[end] != ';')
+                ++end;
+        }
+        if (end - at > kShown)
+            s.replace(at + kShown, end - at - kShown, "... (" + std::to_string(end - at) + " characters)");
+    }
     return s;
 }
 
