@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -42,48 +41,45 @@ int main(int argc, char** argv) {
     CLI::App app{"LPV Engine sample game: dynamic global illumination with light propagation volumes"};
     game::GameOptions opt;
     std::string helpConfig;
-    // --set and the shorthands that stand for it are read in the order given, so the later one
-    // wins, as between two --set (CLI11 would run their callbacks in the order they are declared
-    // here). A shorthand names the setting it sets; a flag, its assignment too.
-    struct SettingOption {
-        CLI::Option* option;
-        const char* key;        // null for --set, whose values are whole assignments
-        const char* assignment; // a flag's fixed assignment
+    // --set and the shorthands that stand for it take effect in the order given, the later one
+    // winning, as between two --set: each occurrence's callback runs as it is parsed
+    // (trigger_on_parse; after parsing, CLI11 would run them in the order they are declared here).
+    const auto shorthand = [&](const char* flag, const char* key, const char* description) {
+        app.add_option_function<std::string>(
+               flag,
+               [&opt, flag, key](const std::string& v) {
+                   opt.overrides.emplace_back(flag, std::string(key) + "=" + v);
+               },
+               description)
+            ->trigger_on_parse();
     };
-    std::vector<SettingOption> settingOptions;
-    const auto setting = [&](const char* flag, const char* key, const char* description) {
-        CLI::Option* o = app.add_option(std::string(flag))
-                             ->description(description)
-                             ->type_name("TEXT")
-                             ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-                             ->expected(1);
-        settingOptions.push_back({o, key, nullptr});
-    };
-    const auto settingFlag = [&](const char* flag, const char* assignment, const char* description) {
-        settingOptions.push_back(
-            {app.add_flag(std::string(flag))->description(description), nullptr, assignment});
+    const auto shorthandFlag = [&](const char* flag, const char* assignment, const char* description) {
+        // Runs for a true value only: --validation=false asks for nothing.
+        app.add_flag_callback(
+               flag, [&opt, flag, assignment] { opt.overrides.emplace_back(flag, assignment); }, description)
+            ->trigger_on_parse();
     };
     app.add_option("--config", opt.configFiles, "TOML config file(s), applied in order");
-    settingOptions.push_back(
-        {app.add_option(std::string("--set"))
-             ->description("Override a setting: --set render.exposure=1.5 (after the config files)")
-             ->type_name("TEXT")
-             ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-             ->expected(1, CLI::detail::expected_max_vector_size)
-             ->allow_extra_args(), // --set a=1 b=2, as a vector option takes
-         nullptr, nullptr});
+    app.add_option_function<std::vector<std::string>>(
+           "--set",
+           [&](const std::vector<std::string>& v) {
+               for (const std::string& a : v)
+                   opt.overrides.emplace_back("--set", a);
+           },
+           "Override a setting: --set render.exposure=1.5 (after the config files)")
+        ->trigger_on_parse();
     app.add_option("--scene", opt.scene, "Built-in scene (cornell, atrium, lights) or a .gltf/.glb path")
         ->capture_default_str();
-    setting("--backend", "render.backend",
-            "Graphics backend: auto, gl, vulkan, null (= --set render.backend=...)");
-    setting("--gl-platform", "render.gl_platform", "Headless GL context: egl or osmesa");
-    settingFlag("--no-fallback", "render.allow_fallback=false",
-                "Fail instead of falling back to the other backend (needs a named --backend)");
-    settingFlag("--validation", "render.validation=true", "Vulkan validation layer / GL debug output");
-    setting("--width", "render.width", "Frame width");
-    setting("--height", "render.height", "Frame height");
-    setting("--platform", "platform.profile",
-            "Budget profile: x360, ps3, pc or a file (= --set platform.profile=...)");
+    shorthand("--backend", "render.backend",
+              "Graphics backend: auto, gl, vulkan, null (= --set render.backend=...)");
+    shorthand("--gl-platform", "render.gl_platform", "Headless GL context: egl or osmesa");
+    shorthandFlag("--no-fallback", "render.allow_fallback=false",
+                  "Fail instead of falling back to the other backend (needs a named --backend)");
+    shorthandFlag("--validation", "render.validation=true", "Vulkan validation layer / GL debug output");
+    shorthand("--width", "render.width", "Frame width");
+    shorthand("--height", "render.height", "Frame height");
+    shorthand("--platform", "platform.profile",
+              "Budget profile: x360, ps3, pc or a file (= --set platform.profile=...)");
     app.add_flag("--headless", opt.headless, "Never open a window");
     app.add_option("--frames", opt.frames,
                    "Frames to render, 1 or more (default: 1 headless, until closed in a window)");
@@ -114,20 +110,6 @@ int main(int argc, char** argv) {
         reportMisspeltOptions(app);
         std::fputs("Run with --help for more information.\n", stderr);
         return 2;
-    }
-    // One result per occurrence (and per value of --set), in the order parse_order() lists them.
-    std::map<const CLI::Option*, size_t> taken;
-    for (const CLI::Option* o : app.parse_order()) {
-        const auto it = std::find_if(settingOptions.begin(), settingOptions.end(),
-                                     [&](const SettingOption& s) { return s.option == o; });
-        if (it == settingOptions.end()) continue;
-        const size_t k = taken[o]++;
-        const std::string flag = "--" + o->get_lnames().front();
-        if (it->assignment)
-            opt.overrides.emplace_back(flag, it->assignment);
-        else if (k < o->results().size())
-            opt.overrides.emplace_back(flag, it->key ? std::string(it->key) + "=" + o->results()[k]
-                                                     : o->results()[k]);
     }
     // 0 is not "until closed": a window runs until closed when --frames is not given.
     if (app.count("--frames") && opt.frames < 1) {

@@ -9,10 +9,13 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <map>
 #include <stdexcept>
+#include <type_traits>
 
 namespace lpv::platforms {
 
@@ -32,11 +35,13 @@ template <typename T> Field positive(T PlatformProfile::*member) {
     return {[member](const toml::node& n, PlatformProfile& p) {
                 if (!n.is_number()) return false;
                 const double v = *n.value<double>();
-                if (!(v > 0) || T(v) <= T(0)) return false;
+                // Within the field's type, and whole where it counts (a size, bytes).
+                if (!(v > 0) || v > double(std::numeric_limits<T>::max())) return false;
+                if (std::is_integral_v<T> && std::floor(v) != v) return false;
                 p.*member = T(v);
                 return true;
             },
-            "a positive number"};
+            std::is_integral_v<T> ? "a positive integer" : "a positive number"};
 }
 
 Field throughput(double Throughput::*member) {

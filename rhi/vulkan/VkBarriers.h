@@ -36,7 +36,7 @@ public:
 
 private:
     VkCommandBuffer cmd_;
-    std::array<VkImageMemoryBarrier2, 32> images_{};
+    std::array<VkImageMemoryBarrier2, 32> images_; // the first imageCount_ are set, each when added
     uint32_t imageCount_ = 0;
     bool memory_ = false;
 };

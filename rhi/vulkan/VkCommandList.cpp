@@ -374,7 +374,8 @@ void VulkanCommandList::clearTexture(TextureHandle texture, const std::array<flo
     requirePass(false, "clearTexture");
     VulkanTexture& t = device_.textures.get(texture);
     // A storage image (home GENERAL) is cleared where it is: every earlier command was followed by
-    // a full barrier already (the RHI's rule), so only the clear's writes need one.
+    // a barrier from all commands to all commands, which orders it before the clear, and by a
+    // memory barrier for what it wrote (CommandList.h's rule), so only the clear's writes need one.
     const VkImageLayout layout =
         t.home == VK_IMAGE_LAYOUT_GENERAL ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
     transition(cmd_, t, 0, t.desc.mipLevels, layout);

@@ -435,6 +435,8 @@ TEST_CASE("glTF errors: an orthographic camera warns that it is drawn in perspec
 // tinygltf skips an optional property of the wrong type and the object keeps its default: a light
 // with "intensity": "5" lit the scene as with 1, with no word.
 TEST_CASE("glTF errors: an optional property of the wrong type is refused by name") {
+    const std::string kInteger =
+        "expected an integer written without a fraction (tinygltf drops 1.0 as it drops \"1\")";
     checkErrors({
         {"intensitystr.gltf", [](json& g) { addLight(g, R"({"type": "point", "intensity": "5"})"); },
          "light 0: intensity is \"5\", expected a number"},
@@ -444,8 +446,7 @@ TEST_CASE("glTF errors: an optional property of the wrong type is refused by nam
          "light 0: spot.outerConeAngle is \"1\", expected a number"},
         {"translationstr.gltf", [](json& g) { g["nodes"][0]["translation"] = "1 2 3"; },
          "node 0: translation is \"1 2 3\", expected an array of 3 numbers"},
-        {"meshfloat.gltf", [](json& g) { g["nodes"][0]["mesh"] = 0.5; },
-         "node 0: mesh is 0.5, expected an integer"},
+        {"meshfloat.gltf", [](json& g) { g["nodes"][0]["mesh"] = 0.5; }, "node 0: mesh is 0.5, " + kInteger},
         {"basecolorstr.gltf",
          [](json& g) {
              g["materials"] =
@@ -455,6 +456,10 @@ TEST_CASE("glTF errors: an optional property of the wrong type is refused by nam
         {"normalscale.gltf",
          [](json& g) { g["materials"] = json::parse(R"([{"normalTexture": {"index": 0, "scale": "2"}}])"); },
          "material 0: normalTexture.scale is \"2\", expected a number"},
+        {"indicesfloat.gltf", [](json& g) { g["meshes"][0]["primitives"][0]["indices"] = 1.0; },
+         "mesh 0 'tri' primitive 0: indices is 1.0, " + kInteger},
+        {"offsetfloat.gltf", [](json& g) { g["accessors"][0]["byteOffset"] = 0.0; },
+         "accessor 0: byteOffset is 0.0, " + kInteger},
         {"yfovstr.gltf",
          [](json& g) {
              addCamera(
@@ -467,7 +472,7 @@ TEST_CASE("glTF errors: an optional property of the wrong type is refused by nam
     json whole = triangle();
     whole["nodes"][0]["mesh"] = 0.0;
     CHECK(gltfErrorOf("meshwhole.gltf", whole) ==
-          pathOf("meshwhole.gltf") + ": node 0: mesh is 0.0, expected an integer");
+          pathOf("meshwhole.gltf") + ": node 0: mesh is 0.0, " + kInteger);
     // The same types in a binary glTF's JSON chunk.
     json wrong = triangle();
     wrong["nodes"][0]["scale"] = json::array({1, "1", 1});

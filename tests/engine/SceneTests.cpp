@@ -359,7 +359,7 @@ TEST_CASE("scenes: a blended material and a map on a second texture set are name
     for (const auto& w : warnings) {
         // The quad has no texture coordinates at all: its maps are read at one texel.
         noTexCoords =
-            noTexCoords || w == path + ": mesh 0 'quad' primitive 0: material 0 has texture maps but "
+            noTexCoords || w == path + ": mesh 0 'quad' primitive 0: material 0 'paint' has texture maps but "
                                        "the primitive has no TEXCOORD_0; each map is read at its first texel";
         blend = blend || w == path + ": material 0 'paint': alphaMode BLEND is drawn as OPAQUE";
         texCoord =

@@ -70,6 +70,10 @@ void FrameProfiler::beginFrame(rhi::CommandList& cmd) {
     r.gpuResolved = false;
     r.checked = false;
     r.sampleCount = 0;
+    // What the frame starts with, until endFrame() takes what it ended with (a trace written
+    // mid-frame shows this frame's, not an older frame's of the same slot).
+    r.memoryTotal = device_.allocations().totalBytes();
+    r.memoryGi = device_.allocations().bytesIn("gi");
     r.check = {};
     current_ = &r;
     // Notes made since the last frame ended belong to this one.

@@ -71,13 +71,20 @@ constexpr Property kLight[] = {{"name", Kind::String},      {"type", Kind::Strin
                                {"color", Kind::Numbers, 3}, {"intensity", Kind::Number},
                                {"range", Kind::Number},     {"spot", Kind::Object, 0, kSpot}};
 constexpr Property kScene[] = {{"name", Kind::String}, {"nodes", Kind::Integers}};
+constexpr Property kPrimitive[] = {
+    {"indices", Kind::Integer}, {"material", Kind::Integer}, {"mode", Kind::Integer}};
+constexpr Property kAccessor[] = {
+    {"bufferView", Kind::Integer}, {"byteOffset", Kind::Integer}, {"normalized", Kind::Boolean}};
+constexpr Property kBufferView[] = {
+    {"byteOffset", Kind::Integer}, {"byteStride", Kind::Integer}, {"target", Kind::Integer}};
+constexpr Property kTexture[] = {{"source", Kind::Integer}, {"sampler", Kind::Integer}};
 
 std::string expected(const Property& p) {
     switch (p.kind) {
     case Kind::Number:
         return "a number";
     case Kind::Integer:
-        return "an integer";
+        return "an integer written without a fraction (tinygltf drops 1.0 as it drops \"1\")";
     case Kind::String:
         return "a string";
     case Kind::Boolean:
@@ -85,7 +92,7 @@ std::string expected(const Property& p) {
     case Kind::Numbers:
         return p.count ? "an array of " + std::to_string(p.count) + " numbers" : "an array of numbers";
     case Kind::Integers:
-        return "an array of integers";
+        return "an array of integers written without a fraction";
     case Kind::Object:
         return "an object";
     }
@@ -161,14 +168,17 @@ void checkArray(const std::string& path, const json& parent, const char* key, co
 
 std::string jsonText(const std::string& path, bool binary) {
     std::ifstream file(path, std::ios::binary);
-    std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-    if (!binary) return bytes;
+    if (!binary) return std::string((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
     // GLB: a 12-byte header, then the JSON chunk's length and type, then the JSON (tinygltf has
-    // checked this layout already).
+    // checked this layout already). Only that chunk is read, not the binary one after it.
+    char head[20] = {};
+    if (!file.read(head, sizeof(head))) return "{}";
     uint32_t length = 0;
-    if (bytes.size() < 20) return "{}";
-    std::memcpy(&length, bytes.data() + 12, 4);
-    return bytes.substr(20, std::min<size_t>(length, bytes.size() - 20));
+    std::memcpy(&length, head + 12, 4);
+    std::string text(length, '\0');
+    file.read(text.data(), std::streamsize(length));
+    text.resize(size_t(file.gcount()));
+    return text;
 }
 
 } // namespace
@@ -180,8 +190,15 @@ void checkGltfJsonTypes(const std::string& path, bool binary) {
     checkArray(path, gltf, "materials", "material", kMaterial);
     checkArray(path, gltf, "cameras", "camera", kCamera);
     checkArray(path, gltf, "scenes", "scene", kScene);
+    checkArray(path, gltf, "accessors", "accessor", kAccessor);
+    checkArray(path, gltf, "bufferViews", "bufferView", kBufferView);
+    checkArray(path, gltf, "textures", "texture", kTexture);
+    checkArray(path, gltf, "meshes", "mesh", {}, [&](const json& mesh, const std::string& who) {
+        checkArray(path, mesh, "primitives", (who + " primitive").c_str(), kPrimitive);
+    });
     if (const auto scene = gltf.find("scene"); scene != gltf.end() && !isInteger(*scene))
-        throw SceneError(path, "scene is " + shown(*scene) + ", expected an integer");
+        throw SceneError(path,
+                         "scene is " + shown(*scene) + ", expected " + expected({"scene", Kind::Integer}));
     const json* lights = nullptr;
     if (const auto e = gltf.find("extensions"); e != gltf.end() && e->is_object())
         if (const auto k = e->find("KHR_lights_punctual"); k != e->end() && k->is_object()) lights = &*k;

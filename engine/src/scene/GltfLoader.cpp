@@ -299,6 +299,7 @@ void GltfReader::readMeshes() {
                     m.normalTexture.index >= 0 || m.emissiveTexture.index >= 0)
                     log::warn(
                         path_ + ": " + where + ": material " + std::to_string(prim.material) +
+                        (m.name.empty() ? "" : " '" + m.name + "'") +
                         " has texture maps but the primitive has no TEXCOORD_0; each map is read at its "
                         "first texel");
             }

@@ -240,7 +240,7 @@ void GltfValidator::checkLights() const {
         if (!(l.intensity >= 0.0) || !std::isfinite(l.intensity))
             fail(who + "intensity " + number(l.intensity) + " must be 0 or more");
         // The renderer holds it as a float: beyond that it would be infinite, and the lit pixels NaN.
-        if (!std::isfinite(float(l.intensity)))
+        if (l.intensity > double(std::numeric_limits<float>::max()))
             fail(who + "intensity " + number(l.intensity) + " is too large (at most " +
                  number(double(std::numeric_limits<float>::max())) + ")");
         // tinygltf reads a range that is not given (no limit) as 0.

@@ -2,9 +2,11 @@
 // VkCommandBuffer, the GL backend replays the same commands on its context at submit.
 //
 // Barriers are the RHI's job, not the caller's: every texture has a home state derived from its
-// usage, render passes and transfers move it out and back, and writes from compute or from a
-// pass that stores to images are made visible to every later command. The rule is conservative
-// (like glMemoryBarrier(ALL)) but correct, and it keeps the validation layer silent.
+// usage, render passes and transfers move it out and back (a storage image stays in its one state:
+// Vulkan's GENERAL), and every command is followed by a barrier that makes its writes visible to
+// every later command and orders it before them (what lets a storage image skip the moves). The
+// rule is conservative (like glMemoryBarrier(ALL)) but correct, and it keeps the validation layer
+// silent.
 #pragma once
 
 #include "rhi/Handle.h"
