@@ -276,6 +276,18 @@ int runGame(const GameOptions& opt) {
     // Every output that can be written is, and the summary is printed, whatever failed.
     std::vector<std::string> failures;
     if (!opt.screenshot.empty()) {
+        // Said, not left for the user to find in the file.
+        if (!device->caps().drawsPixels)
+            log::warn("game: the '" + std::string(rhi::backendName(device->backend())) +
+                      "' backend draws nothing: " + opt.screenshot + " is black");
+        // The volume slice and the VPLs are drawn over the tone-mapped frame, which a .exr or .pfm
+        // (the HDR frame before tone mapping) does not hold.
+        const engine::SettingDecl* giView = engine::SettingRegistry::global().find("gi.debug_view");
+        const std::string view = giView ? std::get<std::string>(config.value(*giView)) : "";
+        if ((view == "volume_slice" || view == "vpls") &&
+            engine::imageFormatOf(opt.screenshot) != engine::ImageFormat::Png)
+            log::warn("game: gi.debug_view=" + view + " is drawn over the tone-mapped frame: " +
+                      opt.screenshot + " (HDR, before tone mapping) does not show it; a .png does");
         try {
             engine::writeScreenshot(*device, renderer, opt.screenshot);
             log::info("game: wrote " + opt.screenshot + " (backend '" +

@@ -42,13 +42,22 @@ void main() {
         vec3 ndc = clip.xyz / clip.w;
         vec2 suv = ndc.xy * 0.5 + 0.5;
         if (any(lessThan(suv, vec2(0.0))) || any(greaterThan(suv, vec2(1.0)))) continue;
+        // The surface seen through the pixel the sample falls in, at that pixel's centre: its
+        // depth belongs there, and put at the sample's own uv it would lie off the surface by up to
+        // half a pixel's depth step (at a grazing angle, far more than a small radius).
+        vec2 depthSize = vec2(textureSize(depthTexture, 0));
+        suv = (floor(suv * depthSize) + 0.5) / depthSize;
         float sceneDepth = textureLod(depthTexture, suv, 0.0).r;
         vec3 scenePos = worldFromDepth(suv, sceneDepth);
         float sampleDist = length(s - frame.cameraPosition.xyz);
         float sceneDist = length(scenePos - frame.cameraPosition.xyz);
-        // Occluded when the visible surface is in front of the sample, within the radius.
+        // Occluded when the visible surface is in front of the sample, within the radius, and
+        // rises above the point's tangent plane. Without the last test a flat floor seen at a
+        // grazing angle occluded itself once the radius was below a pixel's depth step there (at
+        // 0.01 m about half the samples compared against the neighbouring pixel's depth).
         float rangeCheck = smoothstep(0.0, 1.0, radius / max(abs(length(scenePos - p)), 1e-4));
-        occlusion += (sceneDist < sampleDist - 0.02 * radius ? 1.0 : 0.0) * rangeCheck;
+        float above = dot(scenePos - p, n);
+        occlusion += (sceneDist < sampleDist - 0.02 * radius && above > 0.02 * radius ? 1.0 : 0.0) * rangeCheck;
     }
     float ao = 1.0 - frame.params.z * occlusion / float(kSamples);
     outAo = vec4(clamp(ao, 0.0, 1.0));

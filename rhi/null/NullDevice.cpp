@@ -77,6 +77,7 @@ public:
         caps_.deviceName = "null device";
         caps_.driverName = "none";
         caps_.timestampSource = TimestampSource::Simulated;
+        caps_.drawsPixels = false;
         caps_.maxTimestampsPerFrame = config.maxTimestampsPerFrame;
         timestamps_.resize(config.framesInFlight + 1);
         for (FrameTimestamps& t : timestamps_)

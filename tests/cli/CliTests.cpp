@@ -497,3 +497,23 @@ TEST_CASE("cli: lpv_bench refuses an --out it cannot write, or that nothing woul
     CHECK(unused.exitCode == 2);
     CHECK(contains(unused.output, "only the frames part writes files"));
 }
+
+// Two screenshots that would hold less than asked, said in the log: the null backend's (black),
+// and an HDR one of a GI debug view drawn over the tone-mapped frame.
+TEST_CASE("cli: a screenshot that cannot show what was asked says so") {
+    const Result black =
+        runGame("--headless --backend null --width 64 --height 48 --screenshot /tmp/lpv_cli_shots/n.png");
+    INFO(black.output);
+    CHECK(black.exitCode == 0);
+    CHECK(contains(black.output,
+                   "[warning] game: the 'null' backend draws nothing: /tmp/lpv_cli_shots/n.png is black"));
+    const Result hdr = runGame("--headless --backend null --width 64 --height 48 --set gi.enabled=true "
+                               "--set gi.debug_view=vpls --screenshot /tmp/lpv_cli_shots/v.pfm");
+    INFO(hdr.output);
+    CHECK(hdr.exitCode == 0);
+    CHECK(contains(hdr.output,
+                   "gi.debug_view=vpls is drawn over the tone-mapped frame: /tmp/lpv_cli_shots/v.pfm"));
+    const Result png = runGame("--headless --backend null --width 64 --height 48 --set gi.enabled=true "
+                               "--set gi.debug_view=vpls --screenshot /tmp/lpv_cli_shots/v.png");
+    CHECK(!contains(png.output, "is drawn over the tone-mapped frame"));
+}

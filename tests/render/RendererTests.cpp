@@ -101,6 +101,27 @@ TEST_CASE("render: SSAO darkens a corner") {
     }
 }
 
+// A radius below a pixel's depth step: the sample's own uv paired with the depth of its pixel's
+// centre put the surface off itself, and floors and walls seen at a grazing angle read about 0.53.
+TEST_CASE("render: a small SSAO radius leaves open floor and walls unoccluded") {
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            const CornellFrame f =
+                renderCornell(*device, {"render.debug_view=ssao", "render.ssao_radius=0.01"});
+            uint32_t fx = 0, fy = 0, wx = 0, wy = 0;
+            REQUIRE(f.pixelOf({0.0f, 0.0f, 2.3f}, fx, fy));  // open floor near the front
+            REQUIRE(f.pixelOf({-2.7f, 1.5f, 1.0f}, wx, wy)); // the red wall, seen at a grazing angle
+            const float floor = f.hdr.at(fx, fy).x, wall = f.hdr.at(wx, wy).x;
+            MESSAGE(backend.name << ": ambient occlusion at radius 0.01: floor " << floor << ", wall "
+                                 << wall);
+            CHECK(floor > 0.95f);
+            CHECK(wall > 0.95f);
+            device.expectSilent();
+        }
+    }
+}
+
 TEST_CASE("render: the Cornell box is the same image on GL and Vulkan") {
     CornellFrame gl, vk;
     {

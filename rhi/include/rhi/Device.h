@@ -37,6 +37,9 @@ struct Caps {
     uint32_t max2DTextureSize = 0;
     uint32_t maxColorTargets = 0;
     bool presentation = false; // a window surface is attached and endFrame() presents
+    // False on the null device, which records commands and draws nothing: what it reads back is
+    // zeros, so a screenshot from it is black.
+    bool drawsPixels = true;
     // How many compute workgroups the device runs at once, where that is small enough to plan
     // for: a CPU rasterizer (lavapipe, llvmpipe) runs one per host thread, so kernels there want
     // few, long-running workgroups. 0 on GPUs: many, size the dispatch for occupancy.
