@@ -34,6 +34,7 @@
 #include "gi/GiWork.h"
 #include "gi/GlossyReflections.h"
 #include "gi/LightPropagationVolume.h"
+#include "gi/LpvSettings.h"
 #include "gi/LpvVolumes.h"
 #include "gi/PointLightInjection.h"
 #include "gi/ReflectiveShadowMap.h"
@@ -673,9 +674,14 @@ int main(int argc, char** argv) {
     if (const std::optional<int> exit = parseCommandLine(app, argc, argv)) return *exit;
     // A wrong key or value fails before any device starts, naming the setting.
     try {
+        // As benchFrames sets them, so that what the settings refuse together (gi.bounces=3 with
+        // gi.occlusion=false) fails here too, not after a device started.
         engine::Config check;
+        for (const char* own : {"gi.enabled=true", "gi.grid_size=32", "gi.iterations=8", "gi.bounces=2"})
+            check.applyOverride(own);
         for (const std::string& o : overrides)
             check.applyOverride(o);
+        (void)gi::readLpvSettings(check);
     } catch (const engine::ConfigError& e) {
         std::string message = e.what();
         // The game's hint; lpv_bench has no --help-config.
@@ -683,6 +689,10 @@ int main(int argc, char** argv) {
             message.erase(hint);
         // The game's --help-config lists the game's settings; the frame size, backends, scenes and
         // platform here are the benchmark's own options, not settings.
+        if (message.find("unknown setting") == std::string::npos) {
+            std::fprintf(stderr, "error: %s\n", message.c_str());
+            return 2;
+        }
         std::fprintf(stderr,
                      "error: %s\nlpv_bench --set takes the settings its frames part reads (gi.*, and the "
                      "renderer's render.* but for the frame size, backend and window settings, which are "

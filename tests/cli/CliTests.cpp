@@ -485,7 +485,8 @@ TEST_CASE("cli: --set and the shorthand flags apply in the order given, the late
 
 // The benchmark checks its output folder before it renders for minutes, and says when no part
 // it runs writes there.
-TEST_CASE("cli: lpv_bench refuses an --out it cannot write, or that nothing would use, before it runs") {
+TEST_CASE("cli: lpv_bench refuses an --out it cannot write or nothing would use, and settings the GI refuses "
+          "together, before it runs") {
     const auto bench = [](const std::string& args) { return runProgram(LPV_BENCH_EXE, args, ""); };
     const Result unwritable = bench("--parts=frames --backends=vulkan --out=/proc/lpv_bench_out");
     INFO(unwritable.output);
@@ -496,6 +497,13 @@ TEST_CASE("cli: lpv_bench refuses an --out it cannot write, or that nothing woul
     INFO(unused.output);
     CHECK(unused.exitCode == 2);
     CHECK(contains(unused.output, "only the frames part writes files"));
+    // Settings the GI refuses together fail before a device starts too, as they do in the game.
+    const Result together =
+        bench("--parts=frames --backends=vulkan --set gi.bounces=3 --set gi.occlusion=false");
+    INFO(together.output);
+    CHECK(together.exitCode == 2);
+    CHECK(contains(together.output, "'gi.bounces' = 3: expected 1 while gi.occlusion is false"));
+    CHECK(!contains(together.output, "## Frames"));
 }
 
 // Two screenshots that would hold less than asked, said in the log: the null backend's (black),
