@@ -14,11 +14,18 @@ float hash(vec2 p) { return fract(sin(dot(p, vec2(12.9898, 78.233))) * 43758.545
 
 void main() {
     float depth = textureLod(depthTexture, vUv, 0.0).r;
+    vec3 p = worldFromDepth(vUv, depth);
+    // How much the distance to this surface changes within half a pixel (taken before any pixel
+    // returns: derivatives need the whole quad). A sample's surface is read at the nearest pixel's
+    // centre but placed at the sample's own position, so it can be that far off: where the radius
+    // was below a pixel's step (a floor seen at a grazing angle, radius 0.01 m) the floor occluded
+    // itself (0.53). Per pixel, not per sample: the per-sample forms cost 15-45% of the pass.
+    float distance = length(p - frame.cameraPosition.xyz);
+    float pixelStep = 0.5 * (abs(dFdx(distance)) + abs(dFdy(distance)));
     if (depth >= 1.0 || frame.counts.y == 0) {
         outAo = vec4(1.0);
         return;
     }
-    vec3 p = worldFromDepth(vUv, depth);
     vec3 n = normalize(textureLod(normalTexture, vUv, 0.0).xyz);
     vec3 helper = abs(n.y) < 0.99 ? vec3(0, 1, 0) : vec3(1, 0, 0);
     float angle = hash(floor(gl_FragCoord.xy)) * 6.2831853;
@@ -42,22 +49,14 @@ void main() {
         vec3 ndc = clip.xyz / clip.w;
         vec2 suv = ndc.xy * 0.5 + 0.5;
         if (any(lessThan(suv, vec2(0.0))) || any(greaterThan(suv, vec2(1.0)))) continue;
-        // The surface seen through the pixel the sample falls in, at that pixel's centre: its
-        // depth belongs there, and put at the sample's own uv it would lie off the surface by up to
-        // half a pixel's depth step (at a grazing angle, far more than a small radius).
-        vec2 depthSize = vec2(textureSize(depthTexture, 0));
-        suv = (floor(suv * depthSize) + 0.5) / depthSize;
         float sceneDepth = textureLod(depthTexture, suv, 0.0).r;
         vec3 scenePos = worldFromDepth(suv, sceneDepth);
         float sampleDist = length(s - frame.cameraPosition.xyz);
         float sceneDist = length(scenePos - frame.cameraPosition.xyz);
-        // Occluded when the visible surface is in front of the sample, within the radius, and
-        // rises above the point's tangent plane. Without the last test a flat floor seen at a
-        // grazing angle occluded itself once the radius was below a pixel's depth step there (at
-        // 0.01 m about half the samples compared against the neighbouring pixel's depth).
+        // Occluded when the visible surface is in front of the sample, within the radius, by more
+        // than a pixel's step.
         float rangeCheck = smoothstep(0.0, 1.0, radius / max(abs(length(scenePos - p)), 1e-4));
-        float above = dot(scenePos - p, n);
-        occlusion += (sceneDist < sampleDist - 0.02 * radius && above > 0.02 * radius ? 1.0 : 0.0) * rangeCheck;
+        occlusion += (sceneDist < sampleDist - max(0.02 * radius, pixelStep) ? 1.0 : 0.0) * rangeCheck;
     }
     float ao = 1.0 - frame.params.z * occlusion / float(kSamples);
     outAo = vec4(clamp(ao, 0.0, 1.0));
