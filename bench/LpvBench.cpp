@@ -248,17 +248,23 @@ void benchAnalyticLights(const BenchBackend& b, int runs) {
 // `outDir` (may be empty): where the run's profiler outputs (trace.json, frames.svg, summaries) and
 // its last frame with GI on and with GI off go, as <scene>-<backend>-*. `overrides` (--set) come
 // after the benchmark's own settings.
+// The frames part's settings for a scene: the benchmark's own (named as lpv_bench's in errors),
+// then --set's.
+engine::Config frameSettings(const std::string& sceneName, const std::vector<std::string>& overrides) {
+    engine::Config config;
+    for (const char* own : {"gi.enabled=true", "gi.grid_size=32", "gi.iterations=8", "gi.bounces=2"})
+        config.applyOverride(own, "lpv_bench's frames part");
+    config.applyOverride(sceneName == "atrium" ? "gi.cell_size=1.0" : "gi.cell_size=0.2",
+                         "lpv_bench's frames part");
+    for (const std::string& o : overrides)
+        config.applyOverride(o);
+    return config;
+}
+
 void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames, const std::string& outDir,
                  const std::vector<std::string>& overrides) {
     auto device = makeDevice(b);
-    engine::Config config;
-    config.applyOverride("gi.enabled=true");
-    config.applyOverride("gi.grid_size=32");
-    config.applyOverride("gi.iterations=8");
-    config.applyOverride("gi.bounces=2");
-    config.applyOverride(sceneName == "atrium" ? "gi.cell_size=1.0" : "gi.cell_size=0.2");
-    for (const std::string& o : overrides)
-        config.applyOverride(o);
+    engine::Config config = frameSettings(sceneName, overrides);
     const engine::Scene scene = engine::buildBuiltinScene(sceneName);
     const uint32_t w = 1280, h = 720;
     engine::Renderer renderer(*device, w, h);
@@ -674,14 +680,15 @@ int main(int argc, char** argv) {
     if (const std::optional<int> exit = parseCommandLine(app, argc, argv)) return *exit;
     // A wrong key or value fails before any device starts, naming the setting.
     try {
-        // As benchFrames sets them, so that what the settings refuse together (gi.bounces=3 with
-        // gi.occlusion=false) fails here too, not after a device started.
+        // As the frames part sets them, so that what the settings refuse together (gi.bounces=3
+        // with gi.occlusion=false) fails here too, not after a device started; --set is the frames
+        // part's alone, so without it the values are only checked one by one.
+        const bool framesPart = std::find(partList.begin(), partList.end(), "frames") != partList.end();
+        for (const std::string& scene : framesPart ? scenes : std::vector<std::string>{})
+            (void)gi::readLpvSettings(frameSettings(scene, overrides));
         engine::Config check;
-        for (const char* own : {"gi.enabled=true", "gi.grid_size=32", "gi.iterations=8", "gi.bounces=2"})
-            check.applyOverride(own);
         for (const std::string& o : overrides)
             check.applyOverride(o);
-        (void)gi::readLpvSettings(check);
     } catch (const engine::ConfigError& e) {
         std::string message = e.what();
         // The game's hint; lpv_bench has no --help-config.

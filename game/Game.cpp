@@ -282,12 +282,14 @@ int runGame(const GameOptions& opt) {
                       "' backend draws nothing: " + opt.screenshot + " is black");
         // The volume slice and the VPLs are drawn over the tone-mapped frame, which a .exr or .pfm
         // (the HDR frame before tone mapping) does not hold.
-        const engine::SettingDecl* giView = engine::SettingRegistry::global().find("gi.debug_view");
-        const std::string view = giView ? std::get<std::string>(config.value(*giView)) : "";
-        if ((view == "volume_slice" || view == "vpls") &&
+        const gi::GiDebugView view = lpv.settings().debugView;
+        if (lpv.settings().enabled &&
+            (view == gi::GiDebugView::VolumeSlice || view == gi::GiDebugView::Vpls) &&
             engine::imageFormatOf(opt.screenshot) != engine::ImageFormat::Png)
-            log::warn("game: gi.debug_view=" + view + " is drawn over the tone-mapped frame: " +
-                      opt.screenshot + " (HDR, before tone mapping) does not show it; a .png does");
+            log::warn(std::string("game: gi.debug_view=") +
+                      (view == gi::GiDebugView::Vpls ? "vpls" : "volume_slice") +
+                      " is drawn over the tone-mapped frame: " + opt.screenshot +
+                      " (HDR, before tone mapping) does not show it; a .png does");
         try {
             engine::writeScreenshot(*device, renderer, opt.screenshot);
             log::info("game: wrote " + opt.screenshot + " (backend '" +

@@ -523,5 +523,14 @@ TEST_CASE("cli: a screenshot that cannot show what was asked says so") {
                    "gi.debug_view=vpls is drawn over the tone-mapped frame: /tmp/lpv_cli_shots/v.pfm"));
     const Result png = runGame("--headless --backend null --width 64 --height 48 --set gi.enabled=true "
                                "--set gi.debug_view=vpls --screenshot /tmp/lpv_cli_shots/v.png");
+    INFO(png.output);
+    CHECK(png.exitCode == 0);
+    CHECK(contains(png.output, "game: wrote /tmp/lpv_cli_shots/v.png"));
     CHECK(!contains(png.output, "is drawn over the tone-mapped frame"));
+    // With GI off nothing is drawn over the frame.
+    const Result off = runGame("--headless --backend null --width 64 --height 48 --set gi.debug_view=vpls "
+                               "--screenshot /tmp/lpv_cli_shots/off.pfm");
+    INFO(off.output);
+    CHECK(off.exitCode == 0);
+    CHECK(!contains(off.output, "is drawn over the tone-mapped frame"));
 }
