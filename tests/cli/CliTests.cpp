@@ -363,7 +363,7 @@ TEST_CASE("cli: a refused console change is undone once and the frames go on") {
 TEST_CASE("cli: a refused console change undoes the view gi.debug_view moved") {
     const Result r = runGame("--headless --backend null --width 64 --height 48 --frames 200000 "
                              "--set gi.enabled=true --set gi.grid_size=16",
-                             "printf 'gi.debug_view=indirect\ngi.debug_slice=20\n' |");
+                             "printf 'gi.debug_view=indirect\\ngi.debug_slice=20\\n' |");
     INFO(r.output);
     REQUIRE(r.exitCode == 0);
     REQUIRE(contains(r.output, "GI change refused"));

@@ -144,7 +144,7 @@ public:
         bool gpuResolved = false;
         bool checked = false; // budget check done (GPU results in, lost, or CPU-only)
         uint32_t sampleCount = 0;
-        std::vector<Sample> samples; // capacity maxScopesPerFrame, sized at construction
+        std::vector<Sample> samples;            // capacity maxScopesPerFrame, sized at construction
         uint64_t memoryTotal = 0, memoryGi = 0; // held at endFrame()
         FrameBudgetCheck check;
     };
