@@ -2,6 +2,8 @@
 // exits 2 (CLI11's own codes are 100 and more), with the reason.
 #pragma once
 
+#include "engine/config/EmptyOptionValue.h"
+
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -11,6 +13,11 @@ namespace lpv::bench {
 
 // Empty when the benchmark should run; else the code to exit with (0 after --help).
 inline std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv) {
+    if (const auto empty = engine::findEmptyOptionValue({argv + 1, argv + argc})) {
+        std::fprintf(stderr, "error: %s: expected a value after '='\nRun with --help for more information.\n",
+                     empty->c_str());
+        return 2;
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) { // --help

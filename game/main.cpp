@@ -3,6 +3,7 @@
 #include "Game.h"
 
 #include "engine/config/Config.h"
+#include "engine/config/EmptyOptionValue.h"
 #include "engine/config/Setting.h"
 #include "engine/config/SettingsHelp.h"
 #include "engine/scene/SceneLoading.h"
@@ -20,14 +21,23 @@ using namespace lpv;
 
 namespace {
 
-// The "did you mean" that a misspelt setting gets, for a misspelt option.
+// The "did you mean" that a misspelt setting gets, for a misspelt option; any other argument
+// left over is named as unexpected.
 void reportMisspeltOptions(const CLI::App& app) {
     std::vector<std::string> options;
     for (const CLI::Option* option : app.get_options())
         for (const std::string& name : option->get_lnames())
             options.push_back("--" + name);
+    bool optionsEnded = false; // after `--` an argument is not an option, and the game takes none
     for (const std::string& arg : app.remaining()) {
-        if (!arg.starts_with("--")) continue;
+        if (arg == "--" && !optionsEnded) {
+            optionsEnded = true;
+            continue;
+        }
+        if (optionsEnded || !arg.starts_with("--")) {
+            std::fprintf(stderr, "error: unexpected argument '%s'\n", arg.c_str());
+            continue;
+        }
         const std::string flag = arg.substr(0, arg.find('='));
         const std::string suggestion = engine::nearestName(flag, options);
         const std::string hint = suggestion.empty() ? "" : " (did you mean '" + suggestion + "'?)";
@@ -94,19 +104,20 @@ int main(int argc, char** argv) {
     app.add_option("--help-config", helpConfig,
                    "List every setting and exit: as text, or as a Markdown table with 'markdown'")
         ->expected(0, 1);
+    if (const auto empty = engine::findEmptyOptionValue({argv + 1, argv + argc})) {
+        std::fprintf(stderr, "error: %s: expected a value after '='\nRun with --help for more information.\n",
+                     empty->c_str());
+        return 2;
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) { // --help
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        // A bad command line is bad input (exit 2), whatever CLI11's own code for it. Unknown
-        // options are named once, with a hint, by reportMisspeltOptions.
-        const std::vector<std::string> rest = app.remaining(); // a copy: one vector to walk
-        const bool onlyUnknownOptions = dynamic_cast<const CLI::ExtrasError*>(&e) != nullptr &&
-                                        std::all_of(rest.begin(), rest.end(), [](const std::string& arg) {
-                                            return arg.starts_with("--");
-                                        });
-        if (!onlyUnknownOptions) std::fprintf(stderr, "error: %s\n", e.what());
+        // A bad command line is bad input (exit 2), whatever CLI11's own code for it. Arguments
+        // left over are named once each by reportMisspeltOptions, an unknown option with a hint.
+        if (dynamic_cast<const CLI::ExtrasError*>(&e) == nullptr)
+            std::fprintf(stderr, "error: %s\n", e.what());
         reportMisspeltOptions(app);
         std::fputs("Run with --help for more information.\n", stderr);
         return 2;

@@ -264,6 +264,31 @@ TEST_CASE("cli: a bad command line exits 2 with CLI11's message, and a misspelt 
     }
 }
 
+// CLI11 gives an option written `--name=` the next argument as its value: `--profile-out=
+// --frames=1` wrote the profile into a folder named "--frames=1", and `lpv_rhi_bench --backends=
+// --runs=1` called --runs=1 a backend.
+TEST_CASE("cli: an option with nothing after '=' is refused, not given the next argument") {
+    const Result game =
+        runGame("--headless --backend null --width 160 --height 90 --profile-out= --frames=1");
+    INFO(game.output);
+    CHECK(game.exitCode == 2);
+    CHECK(contains(game.output, "error: --profile-out=: expected a value after '='"));
+    CHECK(!contains(game.output, "running on backend"));
+    const Result bench = runProgram(LPV_BENCH_EXE, "--backends= --parts=console", "");
+    INFO(bench.output);
+    CHECK(bench.exitCode == 2);
+    CHECK(contains(bench.output, "error: --backends=: expected a value after '='"));
+    // After `--` nothing is an option (and the game takes no arguments there, which CLI11 refuses).
+    const Result ended = runGame(kTinyRun + "-- --x=");
+    INFO(ended.output);
+    CHECK(ended.exitCode == 2);
+    CHECK(contains(ended.output, "error: unexpected argument '--x='"));
+    CHECK(!contains(ended.output, "expected a value after '='"));
+    const Result stray = runGame(kTinyRun + "stray");
+    CHECK(stray.exitCode == 2);
+    CHECK(contains(stray.output, "error: unexpected argument 'stray'"));
+}
+
 TEST_CASE("cli: --frames takes a positive number") {
     // 0 and negative counts used to fall back to the default: in a window, forever.
     for (const char* frames : {"0", "-1"}) {
