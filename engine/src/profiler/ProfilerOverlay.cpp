@@ -5,6 +5,7 @@
 #include "engine/profiler/FrameProfiler.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace lpv::engine {
 
@@ -25,7 +26,14 @@ ProfilerOverlay::~ProfilerOverlay() {
 void ProfilerOverlay::draw(rhi::CommandList& cmd, const FrameProfiler& profiler, rhi::TextureHandle output) {
     const rhi::TextureDesc& desc = device_.desc(output);
     uniforms_.viewport = glm::vec4(float(desc.width), float(desc.height), 0, 0);
-    const float x0 = 12.0f, y0 = 12.0f, barHeight = 10.0f, gap = 3.0f;
+    // Rows of 13 pixels shrink to fit the target's height (a 640x360 window holds the GI's 30-odd
+    // passes at 10 pixels a row), down to 3; passes that would still run off the bottom are left out.
+    const float x0 = 12.0f, y0 = 12.0f, maxRow = 13.0f, minRow = 3.0f;
+    const float available = float(desc.height) - 2.0f * y0;
+    uint32_t passes = uint32_t(std::min<size_t>(profiler.scopes().size(), kMaxRects - 3));
+    const float row = std::clamp(available / float(passes + 1), minRow, maxRow);
+    passes = std::min(passes, uint32_t(std::max(available / row - 1.0f, 0.0f)));
+    const float barHeight = std::round(row * 10.0f / 13.0f), gap = row - barHeight;
     const float budgetWidth = std::min(400.0f, float(desc.width) * 0.4f); // pixels for the whole frame budget
     const float msToPixels = budgetWidth / float(profiler.profile().frameBudgetMs);
     const bool over = profiler.lastBudgetCheck().frameOverBudget || profiler.lastBudgetCheck().giOverBudget;
@@ -37,7 +45,6 @@ void ProfilerOverlay::draw(rhi::CommandList& cmd, const FrameProfiler& profiler,
             ++n;
         }
     };
-    const uint32_t passes = uint32_t(std::min<size_t>(profiler.scopes().size(), kMaxRects - 3));
     rect({x0 - 4, y0 - 4, budgetWidth * 1.5f + 8, float(passes + 1) * (barHeight + gap) + 8},
          {0, 0, 0, 0.55f});
     // Whole frame, then one bar per pass (children indented by depth).

@@ -1,6 +1,7 @@
 // The in-window profiler overlay: one bar per pass (GPU median where timed, else CPU), scaled so
 // the frame budget spans a fixed width and drawn with the budget line; a bar turns red when the
-// frame is over budget. Drawn over the tone-mapped output with alpha blending; no text.
+// frame is over budget. Drawn over the tone-mapped output with alpha blending; no text. Rows
+// shrink to fit the output's height, and passes that still would not fit are left out.
 #pragma once
 
 #include "rhi/Device.h"
