@@ -124,6 +124,25 @@ TEST_CASE("config: malformed TOML names the file and line") {
           "/nonexistent/game.toml: cannot read the config file: No such file or directory");
 }
 
+// toml++ put an invalid byte at the start of a line on the line before it.
+TEST_CASE("config: invalid UTF-8 is reported on its own line") {
+    Config c;
+    for (const char* bad : {"\xff", "\xc0\xaf", "\xed\xa0\x80", "\xf4\x90\x80\x80", "\xe2\x82"}) {
+        CAPTURE(std::string(bad));
+        const std::string atStart = errorOf(
+            [&] { c.loadString(std::string("[cfgtest]\nenabled = true\n") + bad + " = 3\n", "utf8.toml"); });
+        CHECK(atStart.find("utf8.toml:3: malformed TOML") == 0);
+        const std::string inComment = errorOf([&] {
+            c.loadString(std::string("[cfgtest]\nenabled = true # ") + bad + "\ngrid_size = 20\n",
+                         "utf8.toml");
+        });
+        CHECK(inComment.find("utf8.toml:2: malformed TOML") == 0);
+    }
+    // Valid multi-byte text is not an error where TOML allows it.
+    CHECK_NOTHROW(
+        c.loadString("[cfgtest]\nname = \"caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x99\x82\"\n", "utf8.toml"));
+}
+
 TEST_CASE(
     "config: a path that opens but cannot be read is an error with the OS's reason, not an empty file") {
     const std::string dir = "/tmp/lpv_cfgtest_dir.toml";

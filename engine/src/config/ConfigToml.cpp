@@ -7,6 +7,7 @@
 
 #include <toml++/toml.h>
 
+#include <cstdint>
 #include <cstring>
 
 namespace lpv::engine {
@@ -116,6 +117,42 @@ void walk(Config& config, const toml::table& table, const std::string& prefix, c
     }
 }
 
+// The line of the first byte that does not begin or continue a well-formed UTF-8 sequence (RFC
+// 3629: no overlong forms, no surrogates, nothing past U+10FFFF), or 0 if the text is valid.
+// toml++ reports an invalid byte at a line's start on the line before it.
+int lineOfInvalidUtf8(std::string_view text) {
+    int line = 1;
+    for (size_t i = 0; i < text.size();) {
+        const auto byte = [&](size_t k) { return k < text.size() ? uint8_t(text[k]) : uint8_t(0); };
+        const uint8_t b = byte(i);
+        if (b == '\n') ++line;
+        if (b < 0x80) {
+            ++i;
+            continue;
+        }
+        // The sequence's length, and the range its second byte must fall in.
+        size_t length = 0;
+        uint8_t low = 0x80, high = 0xBF;
+        if (b >= 0xC2 && b <= 0xDF)
+            length = 2;
+        else if (b >= 0xE0 && b <= 0xEF) {
+            length = 3;
+            if (b == 0xE0) low = 0xA0;
+            if (b == 0xED) high = 0x9F;
+        } else if (b >= 0xF0 && b <= 0xF4) {
+            length = 4;
+            if (b == 0xF0) low = 0x90;
+            if (b == 0xF4) high = 0x8F;
+        } else
+            return line;
+        if (byte(i + 1) < low || byte(i + 1) > high) return line;
+        for (size_t k = 2; k < length; ++k)
+            if (byte(i + k) < 0x80 || byte(i + k) > 0xBF) return line;
+        i += length;
+    }
+    return 0;
+}
+
 } // namespace
 
 void Config::loadString(std::string_view text, const std::string& sourceName) {
@@ -123,7 +160,9 @@ void Config::loadString(std::string_view text, const std::string& sourceName) {
     try {
         table = toml::parse(text, sourceName);
     } catch (const toml::parse_error& e) {
-        throw ConfigError(sourceName, int(e.source().begin.line),
+        const int badUtf8 =
+            e.description().find("utf-8") != std::string_view::npos ? lineOfInvalidUtf8(text) : 0;
+        throw ConfigError(sourceName, badUtf8 ? badUtf8 : int(e.source().begin.line),
                           "malformed TOML: " + std::string(e.description()));
     }
     walk(*this, table, "", sourceName);
