@@ -191,7 +191,12 @@ int runGame(const GameOptions& opt) {
         const uint64_t now = platforms::nowNanoseconds();
         const float dt = float(now - last) / 1e9f;
         last = now;
-        if (platform->quitRequested()) break;
+        if (platform->quitRequested()) {
+            if (const char* signal = platform->quitSignalName())
+                log::info(std::string("game: ") + signal + " after " + std::to_string(frame) +
+                          " frames: ending the run and writing its outputs (send it again to stop at once)");
+            break;
+        }
         if (platform->keyPressed(GLFW_KEY_F1)) cycle(config, "render.debug_view");
         if (platform->keyPressed(GLFW_KEY_F2)) cycle(config, "gi.debug_view");
         if (platform->keyPressed(GLFW_KEY_G)) toggle(config, "gi.enabled");

@@ -6,6 +6,7 @@
 #include <GLFW/glfw3.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
@@ -15,6 +16,18 @@
 #include <unistd.h>
 
 namespace lpv::platforms {
+namespace {
+
+// The signal that asked to quit, 0 until one did. The handler only records it and puts the
+// default action back, so a second Ctrl+C stops a run that does not come to an end.
+volatile std::sig_atomic_t quitSignal = 0;
+
+extern "C" void recordQuitSignal(int signal) {
+    quitSignal = signal;
+    std::signal(signal, SIG_DFL);
+}
+
+} // namespace
 
 std::unique_ptr<Platform> Platform::create(bool wantWindow, const WindowDesc& desc) {
     std::unique_ptr<Window> window;
@@ -25,16 +38,27 @@ std::unique_ptr<Platform> Platform::create(bool wantWindow, const WindowDesc& de
 }
 
 Platform::Platform(std::unique_ptr<Window> window, const WindowDesc& desc)
-    : window_(std::move(window)), desc_(desc) {}
+    : window_(std::move(window)), desc_(desc) {
+    quitSignal = 0;
+    std::signal(SIGINT, recordQuitSignal);
+    std::signal(SIGTERM, recordQuitSignal);
+}
 
-Platform::~Platform() = default;
+Platform::~Platform() {
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+}
 
 void Platform::pollEvents(double waitSeconds) {
     if (window_) window_->pollEvents(waitSeconds);
 }
 
 bool Platform::quitRequested() const {
-    return window_ && (window_->shouldClose() || window_->keyPressed(GLFW_KEY_ESCAPE));
+    return quitSignal != 0 || (window_ && (window_->shouldClose() || window_->keyPressed(GLFW_KEY_ESCAPE)));
+}
+
+const char* Platform::quitSignalName() const {
+    return quitSignal == SIGINT ? "SIGINT" : quitSignal == SIGTERM ? "SIGTERM" : nullptr;
 }
 
 bool Platform::keyDown(int key) const {

@@ -1,7 +1,9 @@
 // The platform the game runs on, behind one interface: headless (the GPU context comes from EGL
 // surfaceless or OSMesa, see GlContext.h; Vulkan needs nothing) or windowed (GLFW on X11). Events,
-// input, the clock and file access look the same on both; headless simply has no input and never
-// asks to quit. The game asks for a platform and does not branch on which one it got.
+// input, the clock and file access look the same on both; headless simply has no input. Either
+// asks to quit on SIGINT (Ctrl+C) or SIGTERM, once: the platform catches the first of them for the
+// game to end its run and write its outputs; a second one ends the process as it would have.
+// The game asks for a platform and does not branch on which one it got.
 #pragma once
 
 #include "platforms/Window.h"
@@ -28,7 +30,9 @@ public:
 
     // See Window::pollEvents; headless never waits.
     void pollEvents(double waitSeconds = 0.0);
+    // The window closed, Esc, or a SIGINT or SIGTERM (then quitSignalName() names it).
     bool quitRequested() const;
+    const char* quitSignalName() const; // null when no signal asked to quit
     bool keyDown(int key) const;
     bool keyPressed(int key) const;
     void cursorDelta(double& dx, double& dy) const;
