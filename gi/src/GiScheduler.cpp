@@ -7,6 +7,7 @@
 #include "platforms/PlatformProfile.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdarg>
 #include <cstdio>
 
@@ -20,6 +21,11 @@ const engine::EnumSetting<GiBudgetPolicy> kBudgetPolicy{
     "GI over the platform budget: fixed only reports it; adapt updates coarse cascades less often, then "
     "lowers iterations, then the RSM size, then gi.resolution, then gi.bounces"};
 
+// Decimals for a time in a note: 2, or 4 below 0.1 ms (a tiny budget read "0.00 ms").
+int digits(double ms) {
+    return ms != 0 && ms < 0.1 ? 4 : 2;
+}
+
 double mib(uint64_t bytes) {
     return double(bytes) / (1024.0 * 1024.0);
 }
@@ -31,32 +37,34 @@ __attribute__((format(printf, 2, 3))) void writeText(GiChange& change, const cha
     va_end(args);
 }
 
-// What a knob at a value reads as in the report: "coarse cascades every 2 frames", "rsm 128".
+// A knob's value as its setting takes it: "half" for gi.resolution's lookup every 2 pixels.
+struct KnobValue {
+    std::array<char, 24> text{};
+    KnobValue(GiKnob knob, uint32_t value) {
+        if (knob == GiKnob::Resolution)
+            std::snprintf(text.data(), text.size(), "%s",
+                          value <= 1   ? "full"
+                          : value == 2 ? "half"
+                          : value == 4 ? "quarter"
+                                       : "?");
+        else
+            std::snprintf(text.data(), text.size(), "%u", value);
+    }
+    const char* c_str() const { return text.data(); }
+};
+
+// What a knob at a value reads as in the report: the setting that pins it, "gi.rsm_size=128".
 struct KnobText {
-    std::array<char, 48> text{};
+    std::array<char, 64> text{};
     KnobText(GiKnob knob, uint32_t value) {
-        switch (knob) {
-        case GiKnob::CoarseUpdateInterval:
-            if (value == 1)
-                std::snprintf(text.data(), text.size(), "coarse cascades every frame");
-            else
-                std::snprintf(text.data(), text.size(), "coarse cascades every %u frames", value);
-            break;
-        case GiKnob::Iterations:
-            std::snprintf(text.data(), text.size(), "iterations %u", value);
-            break;
-        case GiKnob::RsmSize:
-            std::snprintf(text.data(), text.size(), "rsm %u", value);
-            break;
-        case GiKnob::Resolution:
-            std::snprintf(text.data(), text.size(), "lookup every %u pixels per axis", value);
-            break;
-        case GiKnob::Bounces:
-            std::snprintf(text.data(), text.size(), "bounces %u", value);
-            break;
-        case GiKnob::None:
-            break;
-        }
+        const char* setting = knob == GiKnob::CoarseUpdateInterval ? "gi.coarse_update_interval"
+                              : knob == GiKnob::Iterations         ? "gi.iterations"
+                              : knob == GiKnob::RsmSize            ? "gi.rsm_size"
+                              : knob == GiKnob::Resolution         ? "gi.resolution"
+                              : knob == GiKnob::Bounces            ? "gi.bounces"
+                                                                   : "";
+        if (*setting)
+            std::snprintf(text.data(), text.size(), "%s=%s", setting, KnobValue(knob, value).c_str());
     }
     const char* c_str() const { return text.data(); }
 };
@@ -168,11 +176,15 @@ const GiSchedule& GiBudgetScheduler::schedule(uint64_t frame, const std::optiona
     } else if (cost && cost->frame >= loadSince_ && (!lastMeasured_ || cost->frame > *lastMeasured_)) {
         lastMeasured_ = cost->frame;
         // A cycle is judged by its worst frame: the one that updates the most coarse cascades.
-        cyclePeakMs_ = std::max(cyclePeakMs_, cost->ms);
+        if (cycleFrames_ == 0 || cost->ms > cyclePeakMs_) {
+            cyclePeakMs_ = cost->ms;
+            cyclePeakFrame_ = cost->frame;
+        }
         cyclePeakBytes_ = std::max(cyclePeakBytes_, cost->bytes);
         if (++cycleFrames_ >= cycleLength()) {
             const double ms = cyclePeakMs_;
             const uint64_t bytes = cyclePeakBytes_;
+            judgedFrame_ = cyclePeakFrame_;
             cyclePeakMs_ = 0;
             cyclePeakBytes_ = 0;
             cycleFrames_ = 0;
@@ -272,15 +284,18 @@ void GiBudgetScheduler::judge(uint64_t frame, double ms, uint64_t bytes, const G
             // The RSM stops above minRsmSize where the VPL grid's side would no longer divide it.
             KnobText rsm(GiKnob::RsmSize, load_.rsmSize);
             if (load_.rsmSize / 2 >= limits_.minRsmSize)
-                std::snprintf(rsm.text.data(), rsm.text.size(), "rsm %u, as gi.vpl_count %u allows",
+                std::snprintf(rsm.text.data(), rsm.text.size(), "gi.rsm_size=%u, as gi.vpl_count=%u allows",
                               load_.rsmSize, load_.vplGridSide * load_.vplGridSide);
             if (GiChange* c = addChange(GiKnob::None, 0, 0, false))
-                writeText(*c, "GI %.2f ms > %.2f ms budget with every knob at its floor (%s, %s, %s, %s, %s)",
-                          ms, budget.ms,
-                          KnobText(GiKnob::CoarseUpdateInterval, load_.coarseUpdateInterval).c_str(),
-                          KnobText(GiKnob::Iterations, load_.iterations).c_str(), rsm.c_str(),
-                          KnobText(GiKnob::Resolution, load_.resolutionDivisor).c_str(),
-                          KnobText(GiKnob::Bounces, load_.bounces).c_str());
+                writeText(
+                    *c,
+                    "frame %llu's GI %.*f ms > %.*f ms budget with every knob at its floor (%s, %s, %s, "
+                    "%s, %s)",
+                    (unsigned long long)judgedFrame_, digits(ms), ms, digits(budget.ms), budget.ms,
+                    KnobText(GiKnob::CoarseUpdateInterval, load_.coarseUpdateInterval).c_str(),
+                    KnobText(GiKnob::Iterations, load_.iterations).c_str(), rsm.c_str(),
+                    KnobText(GiKnob::Resolution, load_.resolutionDivisor).c_str(),
+                    KnobText(GiKnob::Bounces, load_.bounces).c_str());
         }
         return;
     }
@@ -314,11 +329,13 @@ void GiBudgetScheduler::reportStates(bool reportTime, bool timeOver, bool memory
         timeOverReported_ = timeOver;
         if (GiChange* c = addChange(GiKnob::None, 0, 0, false)) {
             if (timeOver)
-                writeText(*c, "GI %.2f ms > %.2f ms budget (gi.budget_policy=fixed: nothing changed)", ms,
-                          budget.ms);
+                writeText(
+                    *c, "frame %llu's GI %.*f ms > %.*f ms budget (gi.budget_policy=fixed: nothing changed)",
+                    (unsigned long long)judgedFrame_, digits(ms), ms, digits(budget.ms), budget.ms);
             else
-                writeText(*c, "GI %.2f ms within the %.2f ms budget for %u frames", ms, budget.ms,
-                          timeWithinFrames_);
+                writeText(*c, "GI within the %.*f ms budget for %u frames (frame %llu's %.*f ms)",
+                          digits(budget.ms), budget.ms, timeWithinFrames_, (unsigned long long)judgedFrame_,
+                          digits(ms), ms);
         }
     }
     const bool memoryEnded = memoryOverReported_ && memoryWithinFrames_ >= limits_.restoreAfterFrames;
@@ -399,11 +416,13 @@ void GiBudgetScheduler::take(uint64_t frame, Step step, double ms, uint64_t byte
     setLoad(frame, next);
     if (GiChange* c = addChange(step.knob, step.from, step.to, false)) {
         if (step.forMemory)
-            writeText(*c, "%s (was %u): GI memory %.2f MiB > %.2f MiB budget",
-                      KnobText(step.knob, step.to).c_str(), step.from, mib(bytes), mib(budget.bytes));
+            writeText(*c, "%s (was %s): GI memory %.2f MiB > %.2f MiB budget",
+                      KnobText(step.knob, step.to).c_str(), KnobValue(step.knob, step.from).c_str(),
+                      mib(bytes), mib(budget.bytes));
         else
-            writeText(*c, "%s (was %u): GI %.2f ms > %.2f ms budget", KnobText(step.knob, step.to).c_str(),
-                      step.from, ms, budget.ms);
+            writeText(*c, "%s (was %s): frame %llu's GI %.*f ms > %.*f ms budget",
+                      KnobText(step.knob, step.to).c_str(), KnobValue(step.knob, step.from).c_str(),
+                      (unsigned long long)judgedFrame_, digits(ms), ms, digits(budget.ms), budget.ms);
     }
 }
 
@@ -414,10 +433,12 @@ void GiBudgetScheduler::giveBack(uint64_t frame, double ms, double expectedMs, c
     setKnob(next, step.knob, step.from);
     setLoad(frame, next);
     if (GiChange* c = addChange(step.knob, step.to, step.from, true))
-        writeText(
-            *c, "restored %s (was %u): GI %.2f ms < %.0f%% of %.2f ms budget for %u frames, %.2f ms expected",
-            KnobText(step.knob, step.from).c_str(), step.to, ms, limits_.restoreBelow * 100.0, budget.ms,
-            calmFrames, expectedMs);
+        writeText(*c,
+                  "restored %s (was %s): GI under %.0f%% of the %.*f ms budget for %u frames (frame %llu's "
+                  "%.*f ms), %.*f ms expected",
+                  KnobText(step.knob, step.from).c_str(), KnobValue(step.knob, step.to).c_str(),
+                  limits_.restoreBelow * 100.0, digits(budget.ms), budget.ms, calmFrames,
+                  (unsigned long long)judgedFrame_, digits(ms), ms, digits(expectedMs), expectedMs);
 }
 
 } // namespace lpv::gi

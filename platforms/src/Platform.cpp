@@ -9,6 +9,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
@@ -18,13 +19,25 @@
 namespace lpv::platforms {
 namespace {
 
-// The signal that asked to quit, 0 until one did. The handler only records it and puts the
-// default action back, so a second Ctrl+C stops a run that does not come to an end.
+// The signal that asked to quit, 0 until one did, and when (monotonic seconds).
 volatile std::sig_atomic_t quitSignal = 0;
+volatile std::sig_atomic_t quitSignalSecond = 0;
 
+// Records the first signal. A second one about a second or more later ends the process as the
+// signal would have, for a run that does not come to an end; one sooner is the same request
+// delivered twice (`timeout` signals its child and then its process group). Only
+// async-signal-safe calls here: clock_gettime, signal, raise.
 extern "C" void recordQuitSignal(int signal) {
-    quitSignal = signal;
-    std::signal(signal, SIG_DFL);
+    timespec now{};
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    const auto halfSeconds = std::sig_atomic_t(now.tv_sec * 2 + now.tv_nsec / 500'000'000);
+    if (quitSignal == 0) {
+        quitSignal = signal;
+        quitSignalSecond = halfSeconds;
+    } else if (halfSeconds - quitSignalSecond >= 2) {
+        std::signal(signal, SIG_DFL);
+        std::raise(signal);
+    }
 }
 
 } // namespace

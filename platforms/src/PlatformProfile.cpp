@@ -62,12 +62,30 @@ Field text(std::string PlatformProfile::*member) {
             "a string"};
 }
 
+// A name the log and the report show the profile by: an empty one would show nothing.
+Field nonEmptyText(std::string PlatformProfile::*member) {
+    return {[member](const toml::node& n, PlatformProfile& p) {
+                if (!n.is_string() || n.value<std::string>()->empty()) return false;
+                p.*member = *n.value<std::string>();
+                return true;
+            },
+            "a non-empty string"};
+}
+
 const std::map<std::string, Field>& fields() {
     static const std::map<std::string, Field> f = {
-        {"name", text(&PlatformProfile::name)},
+        {"name", nonEmptyText(&PlatformProfile::name)},
         {"description", text(&PlatformProfile::description)},
         {"frame.target_ms", positive(&PlatformProfile::frameBudgetMs)},
         {"gi.budget_ms", positive(&PlatformProfile::giBudgetMs)},
+        {"gi.time",
+         {[](const toml::node& n, PlatformProfile& p) {
+              const auto v = n.value<std::string>();
+              if (!n.is_string() || (*v != "predicted" && *v != "measured")) return false;
+              p.giTimePredicted = *v == "predicted";
+              return true;
+          },
+          "\"predicted\" (from the [throughput] figures) or \"measured\" (on this device)"}},
         {"gi.memory_budget_bytes", positive(&PlatformProfile::giMemoryBudgetBytes)},
         {"gi.max_volume_size", positive(&PlatformProfile::maxVolumeSize)},
         {"gi.sh_formats",

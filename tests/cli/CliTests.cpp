@@ -560,21 +560,21 @@ TEST_CASE("cli: a screenshot that cannot show what was asked says so") {
     CHECK(!contains(off.output, "is drawn over the tone-mapped frame"));
 }
 
-// Ctrl+C (or a SIGTERM) ended the process where it stood: no profile and no screenshot.
+// Ctrl+C (or a SIGTERM) ended the process where it stood: no profile and no screenshot. `timeout`
+// signals the game and then its own process group, so the game gets the signal twice at once.
 TEST_CASE("cli: SIGINT and SIGTERM end the run and its outputs are written") {
-    for (const char* signal : {"INT", "TERM"}) {
+    for (const std::string signal : {"INT", "TERM"}) {
         CAPTURE(signal);
-        const std::string dir = std::string("/tmp/lpv_cli_signal_") + signal;
+        const std::string dir = "/tmp/lpv_cli_signal_" + signal;
         std::filesystem::remove_all(dir);
-        const Result r =
-            runProgram(std::string("timeout --preserve-status -s ") + signal + " 2 " + LPV_GAME_EXE,
-                       "--headless --backend null --width 64 --height 48 --frames 1000000000 "
-                       "--profile-out " +
-                           dir + "/profile --screenshot " + dir + "/shot.png",
-                       "");
+        const Result r = runProgram("timeout --preserve-status -s " + signal + " 2 " + LPV_GAME_EXE,
+                                    "--headless --backend null --width 64 --height 48 --frames 1000000000 "
+                                    "--profile-out " +
+                                        dir + "/profile --screenshot " + dir + "/shot.png",
+                                    "");
         INFO(r.output);
         CHECK(r.exitCode == 0);
-        CHECK(contains(r.output, std::string("game: SIG") + signal + " after "));
+        CHECK(contains(r.output, "game: SIG" + signal + " after "));
         CHECK(std::filesystem::file_size(dir + "/profile/summary.md") > 0);
         CHECK(std::filesystem::file_size(dir + "/profile/trace.json") > 0);
         CHECK(std::filesystem::file_size(dir + "/shot.png") > 0);

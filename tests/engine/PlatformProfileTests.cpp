@@ -47,6 +47,7 @@ description = "d"
 target_ms = 33.3
 [gi]
 budget_ms = 3.3
+time = "predicted"
 memory_budget_bytes = 1024
 sh_formats = ["rgba8"]
 max_volume_size = 64
@@ -64,7 +65,7 @@ texture_blocks_alu = false
     CHECK(platforms::parsePlatformProfile(good, "t.toml").giMemoryBudgetBytes == 1024);
     std::string unknown = good + "[extra]\nrops = 8\n";
     CHECK(errorOf([&] { platforms::parsePlatformProfile(unknown, "t.toml"); }) ==
-          "t.toml:21: unknown platform profile key 'extra.rops'");
+          "t.toml:22: unknown platform profile key 'extra.rops'");
     std::string wrong = good;
     wrong.replace(wrong.find("budget_ms = 3.3"), 15, "budget_ms = \"x\"");
     CHECK(errorOf([&] { platforms::parsePlatformProfile(wrong, "t.toml"); }) ==
@@ -84,11 +85,29 @@ texture_blocks_alu = false
           "directory");
     // Empty tables name no keys, but an unknown one is still refused; so is a table for a key.
     CHECK_THROWS_WITH_AS(platforms::parsePlatformProfile(good + "\n[extra]\n", "t.toml"),
-                         "t.toml:21: unknown platform profile table 'extra'", std::runtime_error);
+                         "t.toml:22: unknown platform profile table 'extra'", std::runtime_error);
     std::string tableForKey = good;
     tableForKey.replace(tableForKey.find("description = \"d\""), 17, "description = {}");
     CHECK(errorOf([&] { platforms::parsePlatformProfile(tableForKey, "t.toml"); }) ==
           "t.toml:2: 'description': expected a string");
+    // The name is what the log and the report show the profile by.
+    std::string unnamed = good;
+    unnamed.replace(0, 10, "name = \"\"");
+    CHECK(errorOf([&] { platforms::parsePlatformProfile(unnamed, "t.toml"); }) ==
+          "t.toml:1: 'name': expected a non-empty string");
+    // What the GI time budget holds: the time predicted from [throughput], or the measured time.
+    CHECK(platforms::parsePlatformProfile(good, "t.toml").giTimePredicted);
+    std::string measured = good;
+    measured.replace(measured.find("\"predicted\""), 11, "\"measured\"");
+    CHECK_FALSE(platforms::parsePlatformProfile(measured, "t.toml").giTimePredicted);
+    std::string guessed = good;
+    guessed.replace(guessed.find("\"predicted\""), 11, "\"guessed\"");
+    CHECK(errorOf([&] { platforms::parsePlatformProfile(guessed, "t.toml"); }) ==
+          "t.toml:7: 'gi.time': expected \"predicted\" (from the [throughput] figures) or \"measured\" (on this "
+          "device)");
+    CHECK(platforms::loadPlatformProfile("x360").giTimePredicted);
+    CHECK(platforms::loadPlatformProfile("ps3").giTimePredicted);
+    CHECK_FALSE(platforms::loadPlatformProfile("pc").giTimePredicted);
 }
 
 TEST_CASE("platform profiles: a path that cannot be read says so, with the OS's reason") {

@@ -190,6 +190,85 @@ TEST_CASE("profiler: on a console profile a GI pass predicted over the GI budget
     CHECK(profileTraceJson(pc).find("gi_predicted_ms") == std::string::npos);
 }
 
+// Two GI passes each within the budget, together over it: every row said ok while the header
+// counted every frame over budget. And a custom profile's [throughput] was read, then ignored: the
+// prediction used the built-in x360's, and only a profile named x360 or ps3 was held to it.
+TEST_CASE("profiler: the GI total is held to the budget, on the active profile's own throughput") {
+    platforms::PlatformProfile slow = platforms::loadPlatformProfile("x360");
+    slow.name = "slow";
+    slow.throughput.aluGflops /= 10; // the same work takes 10x as long
+    slow.giBudgetMs = 12.0;
+    for (const bool predicted : {true, false}) {
+        CAPTURE(predicted);
+        slow.giTimePredicted = predicted;
+        auto device = nullDevice();
+        FrameProfiler profiler(*device, slow);
+        for (int i = 0; i < 6; ++i) {
+            rhi::CommandList& cmd = device->beginFrame();
+            profiler.beginFrame(cmd);
+            for (const char* name : {"gi", "gi.rebuild"}) { // 0.3 ms each on Xbox 360: 3 ms here
+                auto s = profiler.scope(name, &cmd);
+                WorkCounts w;
+                w.aluOps = 72'000'000;
+                profiler.setWork(w);
+            }
+            profiler.endFrame(cmd);
+            device->endFrame();
+        }
+        profiler.collectPending();
+        const FrameBudgetCheck& check = profiler.lastBudgetCheck();
+        CHECK(check.giPredictedX360Ms == doctest::Approx(0.6));
+        CHECK(check.giPredictedMs == doctest::Approx(6.0));
+        CHECK(check.giBudgetedMs == doctest::Approx(predicted ? 6.0 : check.giMs));
+        CHECK_FALSE(check.giPredictedOverBudget); // 6 of 12 ms
+        const std::string md = profileSummaryMarkdown(profiler);
+        INFO(md);
+        CHECK((md.find("(predicted slow: 25.0%)") != std::string::npos) == predicted);
+        const std::string csv = profileSummaryCsv(profiler);
+        CHECK(csv.find(predicted ? "gi,6,0.0" : "gi,6,") != std::string::npos);
+        CHECK(csv.find(predicted ? ",6.0000,12.0000,50.00,predicted slow\n" : ",measured\n") !=
+              std::string::npos);
+        // Each pass 40% of a 7.5 ms budget, together 80%; at 4.5 ms each is 67%, together 133%.
+        for (const double budget : {7.5, 4.5}) {
+            CAPTURE(budget);
+            slow.giBudgetMs = budget;
+            auto d = nullDevice();
+            FrameProfiler p(*d, slow);
+            for (int i = 0; i < 6; ++i) {
+                rhi::CommandList& cmd = d->beginFrame();
+                p.beginFrame(cmd);
+                for (const char* name : {"gi", "gi.rebuild"}) {
+                    auto s = p.scope(name, &cmd);
+                    WorkCounts w;
+                    w.aluOps = 72'000'000;
+                    p.setWork(w);
+                }
+                p.endFrame(cmd);
+                d->endFrame();
+            }
+            p.collectPending();
+            const std::string report = profileSummaryMarkdown(p);
+            const size_t total = report.find("| **GI total**");
+            REQUIRE(total != std::string::npos);
+            const std::string line = report.substr(total, report.find('\n', total) - total);
+            INFO(line);
+            const size_t gi = report.find("| gi |");
+            REQUIRE(gi != std::string::npos);
+            CHECK(report.substr(gi, report.find('\n', gi) - gi).find("| ok |") != std::string::npos);
+            CHECK((line.find("**OVER**") != std::string::npos) == (predicted && budget == 4.5));
+            CHECK((p.framesOverGiBudget() > 0) == (predicted && budget == 4.5));
+            CHECK(profileSummaryText(p).find(
+                      predicted ? "the predicted slow time the GI budget holds): median 6.00 ms"
+                                : "the measured time the GI budget holds)") != std::string::npos);
+        }
+        slow.giBudgetMs = 12.0;
+    }
+    // A tiny budget is printed with the digits it needs, not as "0.00 ms".
+    auto device = nullDevice();
+    FrameProfiler tiny(*device, tinyProfile(0.001, 0.0005));
+    CHECK(profileSummaryText(tiny).find("frame budget 0.0010 ms, GI 0.0005 ms") != std::string::npos);
+}
+
 TEST_CASE("profiler: a frame's memory counter includes what the frame made") {
     // The renderer makes its targets and the GI its volumes lazily, inside their first frame.
     auto device = nullDevice();
@@ -283,6 +362,29 @@ TEST_CASE("profiler: passes over their budget are flagged in the summary") {
     };
     CHECK(rowOf("gi/propagate").find("**OVER**") != std::string::npos);
     CHECK(rowOf("render/gbuffer").find("**OVER**") != std::string::npos);
+}
+
+// A run longer than the trace's frames lost its early notes (adapt's steps) from the trace and the
+// chart, though the summaries kept them.
+TEST_CASE("profiler: notes of frames before the trace's are kept in the trace and counted in the chart") {
+    auto device = nullDevice();
+    ProfilerOptions options;
+    options.traceFrames = 8;
+    FrameProfiler profiler(*device, tinyProfile(100, 100), options);
+    profiler.note("GI budget changes", "an early step");
+    for (int i = 0; i < 20; ++i)
+        frame(*device, profiler, 1, 1);
+    profiler.collectPending();
+    const auto trace = nlohmann::json::parse(profileTraceJson(profiler));
+    int early = 0;
+    for (const auto& e : trace["traceEvents"])
+        if (e.value("name", "") == "an early step") {
+            ++early;
+            CHECK(e["args"]["before_trace"] == true);
+            CHECK(e["ts"].get<double>() == 0.0);
+        }
+    CHECK(early == 1);
+    CHECK(profileChartSvg(profiler).find("notes on 1 earlier frames: summary.md") != std::string::npos);
 }
 
 TEST_CASE("profiler: notes belong to their frame and reach every report") {

@@ -212,19 +212,22 @@ TEST_CASE("gi budget: adapt brings 3 cascades under the x360 budget in the docum
     for (const Logged& l : run.log) {
         INFO(l.change.text());
         const std::string_view t = l.change.text();
-        if (l.change.knob == GiKnob::CoarseUpdateInterval)
-            CHECK(contains(t, "coarse cascades every " + std::to_string(l.change.to) + " frames (was " +
-                                  std::to_string(l.change.from) + ")"));
-        if (l.change.knob == GiKnob::Iterations)
-            CHECK(contains(t, "iterations " + std::to_string(l.change.to) + " (was " +
-                                  std::to_string(l.change.from)));
-        if (l.change.knob == GiKnob::RsmSize)
-            CHECK(
-                contains(t, "rsm " + std::to_string(l.change.to) + " (was " + std::to_string(l.change.from)));
-        if (l.change.knob == GiKnob::Resolution)
-            CHECK(contains(t, "lookup every " + std::to_string(l.change.to) + " pixels per axis (was " +
-                                  std::to_string(l.change.from)));
-        if (l.change.knob == GiKnob::Bounces) CHECK(contains(t, "bounces 1 (was 2)"));
+        // Named by the setting that would pin it, with the value it had.
+        const auto value = [&](uint32_t v) {
+            return l.change.knob != GiKnob::Resolution ? std::to_string(v)
+                   : v == 1                            ? std::string("full")
+                   : v == 2                            ? std::string("half")
+                                                       : std::string("quarter");
+        };
+        const char* setting = l.change.knob == GiKnob::CoarseUpdateInterval ? "gi.coarse_update_interval"
+                              : l.change.knob == GiKnob::Iterations         ? "gi.iterations"
+                              : l.change.knob == GiKnob::RsmSize            ? "gi.rsm_size"
+                              : l.change.knob == GiKnob::Resolution         ? "gi.resolution"
+                                                                            : "gi.bounces";
+        if (l.change.knob != GiKnob::None)
+            CHECK(contains(t, std::string(setting) + "=" + value(l.change.to) + " (was " +
+                                  value(l.change.from) + "): frame "));
+        if (l.change.knob == GiKnob::Bounces) CHECK(contains(t, "gi.bounces=1 (was 2)"));
         CHECK(contains(t, "ms budget"));
     }
 }
@@ -265,7 +268,8 @@ TEST_CASE("gi budget: an RSM held by gi.vpl_count says so in the floor's note") 
         CHECK(l.change.knob != GiKnob::RsmSize);
         if (contains(l.change.text(), "every knob at its floor")) {
             floorNoted = true;
-            CHECK(contains(l.change.text(), "rsm 256, as gi.vpl_count 65536 allows"));
+            CHECK(contains(l.change.text(), "gi.rsm_size=256, as gi.vpl_count=65536 allows"));
+            CHECK(contains(l.change.text(), " ms > 0.0010 ms budget")); // a tiny budget read "0.00 ms"
         }
     }
     CHECK(floorNoted);
@@ -370,7 +374,7 @@ TEST_CASE("gi budget: memory over budget lowers the RSM, then says no knob frees
     REQUIRE(steps.size() >= 2);
     // The RSM halvings come first, for memory, and say so.
     CHECK(steps[0].change.knob == GiKnob::RsmSize);
-    CHECK(contains(steps[0].change.text(), "rsm 128 (was 256): GI memory"));
+    CHECK(contains(steps[0].change.text(), "gi.rsm_size=128 (was 256): GI memory"));
     CHECK(steps[1].change.knob == GiKnob::RsmSize);
     int reports = 0;
     for (const Logged& l : run.log)

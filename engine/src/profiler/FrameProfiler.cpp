@@ -141,7 +141,8 @@ FrameProfiler::ScopePrediction FrameProfiler::predicted(size_t scope) const {
             sampled = last->samples[k].scope == scope;
     if (!sampled) {
         const WorkCounts work = inclusiveWork(scope);
-        return {predictCost(work, x360_.throughput), predictCost(work, ps3_.throughput)};
+        return {predictCost(work, x360_.throughput), predictCost(work, ps3_.throughput),
+                predictCost(work, profile_.throughput)};
     }
     ScopePrediction out;
     double largest = -1.0;
@@ -153,12 +154,15 @@ FrameProfiler::ScopePrediction FrameProfiler::predicted(size_t scope) const {
         if (!under) continue;
         const CostPrediction x360 = predictCost(sample.work, x360_.throughput);
         const CostPrediction ps3 = predictCost(sample.work, ps3_.throughput);
+        const CostPrediction active = predictCost(sample.work, profile_.throughput);
         out.x360.ms += x360.ms;
         out.ps3.ms += ps3.ms;
+        out.active.ms += active.ms;
         if (x360.ms > largest) {
             largest = x360.ms;
             out.x360.bottleneck = x360.bottleneck;
             out.ps3.bottleneck = ps3.bottleneck;
+            out.active.bottleneck = active.bottleneck;
         }
     }
     return out;
@@ -289,17 +293,16 @@ void FrameProfiler::finishCheck(FrameRecord& r) {
         if (s.work.empty()) continue;
         c.giPredictedX360Ms += predictCost(s.work, x360_.throughput).ms;
         c.giPredictedPs3Ms += predictCost(s.work, ps3_.throughput).ms;
+        c.giPredictedMs += predictCost(s.work, profile_.throughput).ms;
     }
     c.frameOverBudget = c.frameMs > profile_.frameBudgetMs;
     c.giOverBudget = c.giMs > profile_.giBudgetMs;
-    const double predicted = profile_.name == "ps3"    ? c.giPredictedPs3Ms
-                             : profile_.name == "x360" ? c.giPredictedX360Ms
-                                                       : 0.0;
-    c.giPredictedOverBudget = predicted > profile_.giBudgetMs;
-    c.giBudgetedMs = profile_.name == "ps3" || profile_.name == "x360" ? predicted : c.giMs;
+    c.giPredictedOverBudget = profile_.giTimePredicted && c.giPredictedMs > profile_.giBudgetMs;
+    c.giBudgetedMs = profile_.giTimePredicted ? c.giPredictedMs : c.giMs;
     lastCheck_ = c;
     ++framesChecked_;
     if (c.frameOverBudget || c.giOverBudget || c.giPredictedOverBudget) ++framesOverBudget_;
+    if (c.giOverBudget || c.giPredictedOverBudget) ++framesOverGiBudget_;
 }
 
 } // namespace lpv::engine

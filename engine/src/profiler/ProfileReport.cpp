@@ -5,6 +5,7 @@
 #include "platforms/Platform.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <map>
@@ -53,31 +54,98 @@ std::string gpuSourceName(const FrameProfiler& p) {
 struct Row {
     const ScopeInfo* scope;
     SampleStats cpu, gpu;
-    CostPrediction x360, ps3;
+    CostPrediction x360, ps3, active;
+    bool gi;                        // a GI pass: its shares of the GI budget count
     double shareOfFrame, shareOfGi; // percent of the profile's budgets, on the GPU median when timed
-    // On the x360 and ps3 profiles, whose GI check also holds the predicted console time to the GI
-    // budget: a GI pass's prediction for that console, in percent of the budget; else 0.
+    // On a profile whose GI check also holds the predicted time to the GI budget ([gi] time =
+    // "predicted": x360, ps3): a GI pass's prediction on that profile's throughput, in percent of
+    // the budget; else 0.
     double predictedShareOfGi;
 };
 
-// The console whose predicted time the GI check holds to the budget: "x360", "ps3", or empty.
-std::string_view predictedConsole(const FrameProfiler& p) {
-    const std::string& name = p.profile().name;
-    return name == "x360" || name == "ps3" ? std::string_view(name) : std::string_view();
+// The profile whose predicted time the GI check holds to the budget ("x360", "ps3", a custom
+// profile's name), or empty when GI is held to its measured time.
+std::string_view predictedProfile(const FrameProfiler& p) {
+    return p.profile().giTimePredicted ? std::string_view(p.profile().name) : std::string_view();
+}
+
+// Every GI pass together (the top-level "gi" scopes: gi and gi.rebuild), as the budget check
+// adds them, over the checked frames still recorded: the figure the GI budget is held to.
+struct GiTotal {
+    uint32_t frames = 0;
+    double measuredMedian = 0, predictedMedian = 0, x360Median = 0, ps3Median = 0, budgetedMedian = 0;
+    double budgetedLast = 0;
+    double shareOfGi = 0; // budgetedMedian in percent of the GI budget
+};
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+GiTotal giTotal(const FrameProfiler& p) {
+    std::vector<double> measured, predicted, x360, ps3, budgeted;
+    GiTotal t;
+    p.forEachFrame([&](const FrameProfiler::FrameRecord& r) {
+        if (!r.checked) return;
+        measured.push_back(r.check.giMs);
+        predicted.push_back(r.check.giPredictedMs);
+        x360.push_back(r.check.giPredictedX360Ms);
+        ps3.push_back(r.check.giPredictedPs3Ms);
+        budgeted.push_back(r.check.giBudgetedMs);
+        t.budgetedLast = r.check.giBudgetedMs;
+    });
+    t.frames = uint32_t(measured.size());
+    t.measuredMedian = median(measured);
+    t.predictedMedian = median(predicted);
+    t.x360Median = median(x360);
+    t.ps3Median = median(ps3);
+    t.budgetedMedian = median(budgeted);
+    t.shareOfGi = p.profile().giBudgetMs > 0 ? 100.0 * t.budgetedMedian / p.profile().giBudgetMs : 0;
+    return t;
+}
+
+// "measured" or "predicted x360": what the GI budget holds.
+std::string giTimeKind(const FrameProfiler& p) {
+    return p.profile().giTimePredicted ? "predicted " + p.profile().name : "measured";
+}
+
+// Milliseconds with the digits a small budget needs (0.001 ms is not "0.00").
+std::string ms(double v) {
+    return fixed(v, v != 0 && std::fabs(v) < 0.1 ? 4 : 2) + " ms";
+}
+
+// The GI budget's figure: every GI pass, as the check adds them, over the checked frames.
+std::string giTotalLine(const FrameProfiler& p) {
+    const GiTotal t = giTotal(p);
+    if (!t.frames) return "GI total: no frame checked yet";
+    return "GI total (every GI pass, the " + giTimeKind(p) + " time the GI budget holds): median " +
+           ms(t.budgetedMedian) + " of the " + ms(p.profile().giBudgetMs) + " budget (" +
+           fixed(t.shareOfGi, 1) + "%), last checked frame " + ms(t.budgetedLast) +
+           (p.profile().giTimePredicted ? "; measured median " + ms(t.measuredMedian) : "");
 }
 
 std::vector<Row> rows(const FrameProfiler& p) {
     std::vector<Row> out;
     for (const ScopeInfo& s : p.scopes()) {
         const FrameProfiler::ScopePrediction predicted = p.predicted(size_t(&s - p.scopes().data()));
-        Row r{&s, s.cpuMs.stats(), s.gpuMs.stats(), predicted.x360, predicted.ps3, 0, 0, 0};
+        Row r{&s,
+              s.cpuMs.stats(),
+              s.gpuMs.stats(),
+              predicted.x360,
+              predicted.ps3,
+              predicted.active,
+              s.path.starts_with("gi"),
+              0,
+              0,
+              0};
         const double t = r.gpu.count ? r.gpu.median : r.cpu.median;
         r.shareOfFrame = p.profile().frameBudgetMs > 0 ? 100.0 * t / p.profile().frameBudgetMs : 0;
         r.shareOfGi =
             s.path.starts_with("gi") && p.profile().giBudgetMs > 0 ? 100.0 * t / p.profile().giBudgetMs : 0;
-        if (r.shareOfGi > 0 && !predictedConsole(p).empty())
-            r.predictedShareOfGi =
-                100.0 * (predictedConsole(p) == "x360" ? r.x360.ms : r.ps3.ms) / p.profile().giBudgetMs;
+        if (r.gi && p.profile().giBudgetMs > 0 && p.profile().giTimePredicted)
+            r.predictedShareOfGi = 100.0 * r.active.ms / p.profile().giBudgetMs;
         out.push_back(r);
     }
     // Depth-first order of the scope tree, so children follow their parent.
@@ -139,26 +207,34 @@ std::string markdownCell(std::string_view s) {
 std::string profileSummaryText(const FrameProfiler& p) {
     std::ostringstream o;
     const auto& prof = p.profile();
-    o << "Frame profile: platform " << prof.name << " (frame budget " << fixed(prof.frameBudgetMs, 2)
-      << " ms, GI " << fixed(prof.giBudgetMs, 2) << " ms, GI memory " << mib(prof.giMemoryBudgetBytes)
-      << ")\n";
+    o << "Frame profile: platform " << prof.name << " (frame budget " << ms(prof.frameBudgetMs) << ", GI "
+      << ms(prof.giBudgetMs) << ", GI memory " << mib(prof.giMemoryBudgetBytes) << ")\n";
     o << "GPU timing source: " << gpuSourceName(p) << "; frames checked " << p.framesChecked()
-      << ", over budget " << p.framesOverBudget() << "\n";
+      << ", over budget " << p.framesOverBudget() << " (over the GI budget: " << p.framesOverGiBudget()
+      << ")\n";
     const SampleStats fc = p.frameCpuMs(), fg = p.frameGpuMs();
     o << "frame: cpu median " << fixed(fc.median) << " ms (p95 " << fixed(fc.p95) << ")";
     if (fg.count) o << ", gpu median " << fixed(fg.median) << " ms (p95 " << fixed(fg.p95) << ")";
-    o << "\n\n";
+    o << "\n" << giTotalLine(p) << "\n\n";
+    // The GI columns give each GI pass's share of the GI budget: measured, and on a profile that
+    // holds GI to its predicted time, predicted too (either over 100% makes the pass OVER).
+    const std::string predictedColumn =
+        predictedProfile(p).empty() ? "" : std::string(predictedProfile(p)) + " GI %";
     char line[512];
-    std::snprintf(line, sizeof(line), "%-28s %9s %9s %9s %9s %9s %9s %8s %8s %s\n", "pass", "cpu med",
-                  "gpu last", "gpu med", "gpu p95", "gpu max", "x360 ms", "ps3 ms", "frame %", "budget");
+    std::snprintf(line, sizeof(line), "%-28s %9s %9s %9s %9s %9s %9s %8s %8s %8s %10s %s\n", "pass",
+                  "cpu med", "gpu last", "gpu med", "gpu p95", "gpu max", "x360 ms", "ps3 ms", "frame %",
+                  "GI %", predictedColumn.c_str(), "budget");
     o << line;
+    const auto percent = [](double v, bool shown) { return shown ? fixed(v, 1) + "%" : std::string("-"); };
     for (const Row& r : rows(p)) {
         const std::string name = std::string(2 * r.scope->depth, ' ') + r.scope->name;
-        std::snprintf(line, sizeof(line), "%-28s %9.3f %9s %9s %9s %9s %9.3f %8.3f %7.1f%% %s\n",
+        std::snprintf(line, sizeof(line), "%-28s %9.3f %9s %9s %9s %9s %9.3f %8.3f %7.1f%% %8s %10s %s\n",
                       name.c_str(), r.cpu.median, r.gpu.count ? fixed(r.gpu.last).c_str() : "-",
                       r.gpu.count ? fixed(r.gpu.median).c_str() : "-",
                       r.gpu.count ? fixed(r.gpu.p95).c_str() : "-",
                       r.gpu.count ? fixed(r.gpu.max).c_str() : "-", r.x360.ms, r.ps3.ms, r.shareOfFrame,
+                      percent(r.shareOfGi, r.gi).c_str(),
+                      percent(r.predictedShareOfGi, r.gi && p.profile().giTimePredicted).c_str(),
                       overBudget(r) ? "OVER" : "ok");
         o << line;
     }
@@ -167,6 +243,9 @@ std::string profileSummaryText(const FrameProfiler& p) {
         o << "  " << category << ": " << mib(usage.currentBytes) << " / " << mib(usage.peakBytes) << "\n";
     o << "  GI total: " << mib(giMemory(p)) << " of " << mib(prof.giMemoryBudgetBytes) << " budget"
       << (giMemory(p) > prof.giMemoryBudgetBytes ? " (OVER BUDGET)" : "") << "\n";
+    o << "  all: " << mib(p.allocations().totalBytes()) << " (peak " << mib(p.allocations().peakTotalBytes())
+      << ") of the platform's " << mib(prof.gpuMemoryBytes) << " of GPU memory"
+      << (p.allocations().peakTotalBytes() > prof.gpuMemoryBytes ? " (OVER)" : "") << "\n";
     for (const auto& [topic, notes] : notesByTopic(p)) {
         o << "\n" << topic << ":\n";
         for (const auto* n : notes)
@@ -179,10 +258,12 @@ std::string profileSummaryText(const FrameProfiler& p) {
 std::string profileSummaryMarkdown(const FrameProfiler& p) {
     std::ostringstream o;
     const auto& prof = p.profile();
-    o << "# Frame profile\n\nPlatform `" << prof.name << "`: frame budget " << fixed(prof.frameBudgetMs, 2)
-      << " ms, GI budget " << fixed(prof.giBudgetMs, 2) << " ms, GI memory budget "
-      << mib(prof.giMemoryBudgetBytes) << ".\nGPU timing source: `" << gpuSourceName(p)
-      << "`. Frames checked: " << p.framesChecked() << ", over budget: " << p.framesOverBudget() << ".\n\n";
+    o << "# Frame profile\n\nPlatform `" << prof.name << "`: frame budget " << ms(prof.frameBudgetMs)
+      << ", GI budget " << ms(prof.giBudgetMs) << ", GI memory budget " << mib(prof.giMemoryBudgetBytes)
+      << ".\nGPU timing source: `" << gpuSourceName(p) << "`. Frames checked: " << p.framesChecked()
+      << ", over budget: " << p.framesOverBudget() << " (over the GI budget: " << p.framesOverGiBudget()
+      << ").\n"
+      << giTotalLine(p) << "\n\n";
     o << "| pass | timing | cpu median ms | gpu last | gpu mean | gpu median | gpu p95 | gpu max | predicted "
          "x360 ms | "
          "predicted ps3 ms | bottleneck (x360) | share of frame | share of GI budget | budget |\n";
@@ -196,10 +277,25 @@ std::string profileSummaryMarkdown(const FrameProfiler& p) {
         else
             o << "- | - | - | - | - | ";
         o << fixed(r.x360.ms) << " | " << fixed(r.ps3.ms) << " | " << r.x360.bottleneck << " | "
-          << fixed(r.shareOfFrame, 1) << "% | " << (r.shareOfGi > 0 ? fixed(r.shareOfGi, 1) + "%" : "-");
-        if (r.predictedShareOfGi > 0)
-            o << " (predicted " << predictedConsole(p) << ": " << fixed(r.predictedShareOfGi, 1) << "%)";
+          << fixed(r.shareOfFrame, 1) << "% | " << (r.gi ? fixed(r.shareOfGi, 1) + "%" : "-");
+        if (r.gi && p.profile().giTimePredicted)
+            o << " (predicted " << predictedProfile(p) << ": " << fixed(r.predictedShareOfGi, 1) << "%)";
         o << " | " << (overBudget(r) ? "**OVER**" : "ok") << " |\n";
+    }
+    // The GI budget holds every GI pass together, gi.rebuild included: the row the check reads.
+    const GiTotal t = giTotal(p);
+    if (t.frames) {
+        const double measuredShare =
+            p.profile().giBudgetMs > 0 ? 100.0 * t.measuredMedian / p.profile().giBudgetMs : 0;
+        o << "| **GI total** (every GI pass, per checked frame) | budget check | - | - | - | "
+          << fixed(t.measuredMedian) << " | - | - | " << fixed(t.x360Median) << " | " << fixed(t.ps3Median)
+          << " | - | "
+          << fixed(p.profile().frameBudgetMs > 0 ? 100.0 * t.measuredMedian / p.profile().frameBudgetMs : 0,
+                   1)
+          << "% | " << fixed(measuredShare, 1) << "%";
+        if (p.profile().giTimePredicted)
+            o << " (predicted " << predictedProfile(p) << ": " << fixed(t.shareOfGi, 1) << "%)";
+        o << " | " << (measuredShare > 100.0 || t.shareOfGi > 100.0 ? "**OVER**" : "ok") << " |\n";
     }
     o << "\n## Memory\n\n| category | current | peak | resources |\n|---|---|---|---|\n";
     for (const auto& [category, usage] : p.allocations().categories())
@@ -207,6 +303,10 @@ std::string profileSummaryMarkdown(const FrameProfiler& p) {
           << usage.count << " |\n";
     o << "\nGI memory: " << mib(giMemory(p)) << " of " << mib(prof.giMemoryBudgetBytes)
       << (giMemory(p) > prof.giMemoryBudgetBytes ? " (**over budget**)" : "") << ".\n";
+    o << "All memory: " << mib(p.allocations().totalBytes()) << " (peak "
+      << mib(p.allocations().peakTotalBytes()) << ") of the platform's " << mib(prof.gpuMemoryBytes)
+      << " of GPU memory" << (p.allocations().peakTotalBytes() > prof.gpuMemoryBytes ? " (**over**)" : "")
+      << ".\n";
     for (const auto& [topic, notes] : notesByTopic(p)) {
         o << "\n## " << topic << "\n\n| frame | note |\n|---|---|\n";
         for (const auto* n : notes)
@@ -227,6 +327,12 @@ std::string profileSummaryCsv(const FrameProfiler& p) {
           << fixed(r.x360.ms, 4) << "," << fixed(r.ps3.ms, 4) << "," << fixed(r.shareOfFrame, 2) << ","
           << fixed(r.shareOfGi, 2) << "," << fixed(r.predictedShareOfGi, 2) << "\n";
     }
+    const GiTotal t = giTotal(p);
+    o << "\ngi_total,checked_frames,measured_median_ms,predicted_median_ms,predicted_x360_median_ms,"
+         "predicted_ps3_median_ms,budgeted_median_ms,gi_budget_ms,share_of_gi_pct,time_held\n";
+    o << "gi," << t.frames << "," << fixed(t.measuredMedian, 4) << "," << fixed(t.predictedMedian, 4) << ","
+      << fixed(t.x360Median, 4) << "," << fixed(t.ps3Median, 4) << "," << fixed(t.budgetedMedian, 4) << ","
+      << fixed(p.profile().giBudgetMs, 4) << "," << fixed(t.shareOfGi, 2) << "," << giTimeKind(p) << "\n";
     o << "\ncategory,current_bytes,peak_bytes,resources\n";
     for (const auto& [category, usage] : p.allocations().categories())
         o << category << "," << usage.currentBytes << "," << usage.peakBytes << "," << usage.count << "\n";
@@ -283,18 +389,19 @@ std::string profileTraceJson(const FrameProfiler& p) {
               << ",\"gi_ms\":" << fixed(r.check.giMs)
               << ",\"gi_budget_ms\":" << fixed(p.profile().giBudgetMs);
             // On a console profile the GI check holds the predicted time to the budget too.
-            if (!predictedConsole(p).empty()) o << ",\"gi_predicted_ms\":" << fixed(r.check.giBudgetedMs);
+            if (!predictedProfile(p).empty()) o << ",\"gi_predicted_ms\":" << fixed(r.check.giBudgetedMs);
             o << "}}";
         }
     });
     // Notes as global instant events (a vertical line across the tracks), the text as the name.
     p.forEachNote([&](const FrameProfiler::Note& n) {
-        if (n.cpuTime < origin) return; // its frame is no longer in the trace
+        // A note whose frame is older than the trace's frames goes at the trace's start, marked so.
+        const bool before = n.cpuTime < origin;
         o << ",\n{\"name\":\"" << jsonEscape(std::string(n.text())) << "\",\"cat\":\""
           << jsonEscape(std::string(n.topic()))
           << "\",\"ph\":\"i\",\"s\":\"g\",\"pid\":1,\"tid\":1,\"ts\":" << us(n.cpuTime)
           << ",\"args\":{\"frame\":" << n.frame << ",\"topic\":\"" << jsonEscape(std::string(n.topic()))
-          << "\"}}";
+          << "\"" << (before ? ",\"before_trace\":true" : "") << "}}";
     });
     o << "\n]}\n";
     return o.str();
@@ -362,7 +469,13 @@ std::string profileChartSvg(const FrameProfiler& p) {
           << fixed(v, 1) << "</text>\n";
     }
     o << "<text x=\"" << left << "\" y=\"" << height - 10 << "\">frames (" << frames.size()
-      << "); red marks: over budget; blue marks: notes (hover); ms on the left axis</text>\n";
+      << "); red marks: over budget; blue marks: notes (hover); ms on the left axis";
+    // The chart holds the last traceFrames frames; notes of frames before them are still counted.
+    const uint64_t firstShown = frames.empty() ? UINT64_MAX : frames.front()->frame;
+    const size_t earlier = size_t(std::count_if(notesOfFrame.begin(), notesOfFrame.end(),
+                                                [&](const auto& n) { return n.first < firstShown; }));
+    if (earlier) o << "; notes on " << earlier << " earlier frames: summary.md";
+    o << "</text>\n";
     int legend = 0;
     for (size_t i = 0; i < p.scopes().size(); ++i) {
         if (p.scopes()[i].depth != 0) continue;

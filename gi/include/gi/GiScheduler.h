@@ -101,7 +101,7 @@ std::optional<GiFrameCost> giFrameCost(const engine::FrameProfiler& profiler);
 
 enum class GiKnob { None, CoarseUpdateInterval, Iterations, RsmSize, Resolution, Bounces };
 
-inline constexpr size_t kGiChangeTextBytes = 192;
+inline constexpr size_t kGiChangeTextBytes = 256;
 
 // One line of the schedule's report: a knob changed (from -> to) or, with GiKnob::None, a state
 // worth saying (over budget under fixed, memory that no knob can lower, nothing left to lower).
@@ -202,6 +202,8 @@ private:
     bool rsmLowersMemory_ = true;
 
     double cyclePeakMs_ = 0;
+    uint64_t cyclePeakFrame_ = 0; // the frame cyclePeakMs_ was measured on
+    uint64_t judgedFrame_ = 0;    // the judged cycle's peak frame, which the notes name
     uint64_t cyclePeakBytes_ = 0;
     uint32_t cycleFrames_ = 0;
     uint32_t overCycles_ = 0;

@@ -27,6 +27,10 @@ struct PlatformProfile {
     std::string source; // the file it came from (built-in name or path)
     double frameBudgetMs = 0;
     double giBudgetMs = 0;
+    // What the GI time budget holds: the time this profile's throughput predicts for the GI
+    // passes' work ([gi] time = "predicted", the consoles, whose GPU this machine is not), or the
+    // time measured on this device ("measured").
+    bool giTimePredicted = false;
     uint64_t giMemoryBudgetBytes = 0;
     uint64_t gpuMemoryBytes = 0;
     uint32_t maxVolumeSize = 0;

@@ -51,11 +51,15 @@ struct FrameBudgetCheck {
     double frameMs = 0; // GPU frame time when resolved, else CPU
     double giMs = 0;    // sum of the top-level "gi" scopes
     double giPredictedX360Ms = 0, giPredictedPs3Ms = 0;
-    // The GI time the budget is held to: predicted on the x360 and ps3 profiles, else giMs.
+    // The GI passes' work predicted on the active profile's own throughput (the x360 or ps3
+    // figures on those profiles, a custom file's on its own).
+    double giPredictedMs = 0;
+    // The GI time the budget is held to: giPredictedMs on a profile whose [gi] time is
+    // "predicted" (x360, ps3), else the measured giMs.
     double giBudgetedMs = 0;
     bool frameOverBudget = false;
     bool giOverBudget = false;
-    bool giPredictedOverBudget = false; // console profiles: predicted ms against the GI budget
+    bool giPredictedOverBudget = false; // "predicted" profiles: giPredictedMs against the GI budget
 };
 
 class FrameProfiler {
@@ -113,6 +117,7 @@ public:
     // ran out of sample slots before the scope), the scope's inclusive work predicted as one.
     struct ScopePrediction {
         CostPrediction x360, ps3;
+        CostPrediction active; // on the active profile's throughput
     };
     ScopePrediction predicted(size_t scope) const;
     const platforms::PlatformProfile& profile() const { return profile_; }
@@ -125,6 +130,8 @@ public:
     // Budget check of the newest frame whose GPU results are in (or CPU-only frames).
     const FrameBudgetCheck& lastBudgetCheck() const { return lastCheck_; }
     uint64_t framesOverBudget() const { return framesOverBudget_; }
+    // Of those, the frames over the GI time budget (the time the profile holds GI to).
+    uint64_t framesOverGiBudget() const { return framesOverGiBudget_; }
     uint64_t framesChecked() const { return framesChecked_; }
     uint64_t gpuResultsLost() const { return gpuLost_; }
     uint32_t openScopes() const { return uint32_t(stack_.size()); }
@@ -149,7 +156,7 @@ public:
         FrameBudgetCheck check;
     };
     struct Note {
-        static constexpr size_t kTopicBytes = 32, kTextBytes = 192;
+        static constexpr size_t kTopicBytes = 32, kTextBytes = 256;
         uint64_t frame = 0;
         uint64_t cpuTime = 0; // when it was noted (the frame's start for notes made before it)
         std::array<char, kTopicBytes> topicBuffer{};
@@ -206,7 +213,7 @@ private:
     uint64_t pendingLost_ = 0;  // notes that found the ring full of pending ones
     SampleWindow frameCpu_, frameGpu_;
     FrameBudgetCheck lastCheck_;
-    uint64_t framesOverBudget_ = 0, framesChecked_ = 0, gpuLost_ = 0;
+    uint64_t framesOverBudget_ = 0, framesOverGiBudget_ = 0, framesChecked_ = 0, gpuLost_ = 0;
 };
 
 } // namespace lpv::engine
