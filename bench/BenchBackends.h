@@ -45,9 +45,13 @@ inline void addBackendsOption(CLI::App& app, std::vector<BenchBackend>& chosen) 
            "--backends",
            [&chosen](const std::vector<std::string>& picked) {
                chosen.clear();
-               for (const std::string& n : picked)
+               for (const std::string& n : picked) {
+                   // Twice would measure it twice, in rows that look like two backends' figures.
+                   for (const BenchBackend& b : chosen)
+                       if (b.name == n) throw CLI::ValidationError("--backends", n + " is named twice");
                    for (const BenchBackend& b : allBenchBackends())
                        if (b.name == n) chosen.push_back(b);
+               }
            },
            "Backends to measure, comma-separated (default: all)")
         ->delimiter(',')

@@ -204,8 +204,15 @@ int runGame(const GameOptions& opt) {
             // Enter alone, or a comment (as in a config file): nothing to change, nothing to say.
             const size_t first = line.find_first_not_of(" \t\r");
             if (first == std::string::npos || line[first] == '#') continue;
+            // A comment after the setting too, from a '#' after white space (a value may hold '#').
+            std::string setting = line;
+            for (size_t k = first + 1; k < setting.size(); ++k)
+                if (setting[k] == '#' && (setting[k - 1] == ' ' || setting[k - 1] == '\t')) {
+                    setting.erase(setting.find_last_not_of(" \t", k - 1) + 1);
+                    break;
+                }
             try {
-                config.stage(line, "console");
+                config.stage(setting, "console");
             } catch (const engine::ConfigError& e) {
                 log::error(e.what());
             }

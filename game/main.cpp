@@ -79,7 +79,8 @@ int main(int argc, char** argv) {
            "Override a setting: --set render.exposure=1.5 (after the config files)")
         ->trigger_on_parse();
     app.add_option("--scene", opt.scene, "Built-in scene (cornell, atrium, lights) or a .gltf/.glb path")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     shorthand("--backend", "render.backend",
               "Graphics backend: auto, gl, vulkan, null (= --set render.backend=...)");
     shorthand("--gl-platform", "render.gl_platform", "Headless GL context: egl or osmesa");
@@ -92,12 +93,14 @@ int main(int argc, char** argv) {
               "Budget profile: x360, ps3, pc or a file (= --set platform.profile=...)");
     app.add_flag("--headless", opt.headless, "Never open a window");
     app.add_option("--frames", opt.frames,
-                   "Frames to render, 1 or more (default: 1 headless, until closed in a window)");
+                   "Frames to render, 1 or more (default: 1 headless, until closed in a window)")
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     // Given twice (./lpv.sh run passes its own, then the caller's), the last one wins.
     app.add_option("--screenshot", opt.screenshot,
                    "Write the last frame: .png (sRGB) or .exr/.pfm (linear HDR); the last one given wins")
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-    app.add_option("--camera-path", opt.cameraPath, "Scripted camera over the frames: orbit or flythrough");
+    app.add_option("--camera-path", opt.cameraPath, "Scripted camera over the frames: orbit or flythrough")
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     app.add_option("--profile-out", opt.profileOut,
                    "Write the profiler's trace, summary and chart into this folder; the last one given wins")
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);

@@ -375,3 +375,18 @@ TEST_CASE("scenes: a file that does not exist") {
     CHECK(gltfErrorOf("/nonexistent/scene.gltf") ==
           "/nonexistent/scene.gltf: cannot open the file: No such file or directory");
 }
+
+// A misspelt built-in scene read as a missing file, with no word of the built-in names.
+TEST_CASE("scenes: a scene name that is neither built in nor a file lists the built-in ones") {
+    const auto errorOf = [](const std::string& name) {
+        try {
+            (void)loadScene(name);
+        } catch (const SceneError& e) {
+            return std::string(e.what());
+        }
+        return std::string("(no error)");
+    };
+    CHECK(errorOf("cornel") ==
+          "cornel: neither a built-in scene (cornell, atrium, lights) nor a file: No such file or directory");
+    CHECK(errorOf("") == "'': neither a built-in scene (cornell, atrium, lights) nor a file");
+}

@@ -585,6 +585,16 @@ Scene loadGltf(const std::string& path) {
 
 Scene loadScene(std::string_view nameOrPath, float detail) {
     if (isBuiltinScene(nameOrPath)) return buildBuiltinScene(nameOrPath, detail);
+    // A name that is neither (a misspelt "cornel", an empty one) would read as a missing file.
+    std::error_code error;
+    if (nameOrPath.empty() || !std::filesystem::exists(std::filesystem::path(nameOrPath), error)) {
+        std::string names;
+        for (const std::string& n : builtinSceneNames())
+            names += (names.empty() ? "" : ", ") + n;
+        throw SceneError(nameOrPath.empty() ? std::string("''") : std::string(nameOrPath),
+                         "neither a built-in scene (" + names + ") nor a file" +
+                             (nameOrPath.empty() ? "" : ": No such file or directory"));
+    }
     return loadGltf(std::string(nameOrPath));
 }
 
