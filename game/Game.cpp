@@ -194,7 +194,7 @@ int runGame(const GameOptions& opt) {
         if (platform->quitRequested()) {
             if (const char* signal = platform->quitSignalName())
                 log::info(std::string("game: ") + signal + " after " + std::to_string(frame) +
-                          " frames: ending the run and writing its outputs (send it again to stop at once)");
+                          " frames: ending the run and writing its outputs (a second one stops it at once)");
             break;
         }
         if (platform->keyPressed(GLFW_KEY_F1)) cycle(config, "render.debug_view");

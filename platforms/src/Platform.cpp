@@ -5,6 +5,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include <atomic>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -19,25 +20,43 @@
 namespace lpv::platforms {
 namespace {
 
-// The signal that asked to quit, 0 until one did, and when (monotonic seconds).
-volatile std::sig_atomic_t quitSignal = 0;
-volatile std::sig_atomic_t quitSignalSecond = 0;
+// The signal that asked to quit, 0 until one did, and when (monotonic nanoseconds; 0 until
+// stored). Lock-free atomics: a handler may run on any of the process's threads.
+std::atomic<int> quitSignal{0};
+std::atomic<int64_t> quitSignalNs{0};
+static_assert(std::atomic<int>::is_always_lock_free && std::atomic<int64_t>::is_always_lock_free);
 
-// Records the first signal. A second one about a second or more later ends the process as the
-// signal would have, for a run that does not come to an end; one sooner is the same request
-// delivered twice (`timeout` signals its child and then its process group). Only
-// async-signal-safe calls here: clock_gettime, signal, raise.
+// The actions the platform replaced, put back when it goes.
+struct sigaction previousInt {
+}, previousTerm{};
+
+// Records the first signal. A second one 0.3 s or more later ends the process as the signal would
+// have, for a run that does not come to an end; one sooner is the same request delivered twice
+// (`timeout` signals its child and then its process group). Only async-signal-safe calls here:
+// clock_gettime, signal, raise, lock-free atomics.
 extern "C" void recordQuitSignal(int signal) {
     timespec now{};
     clock_gettime(CLOCK_MONOTONIC, &now);
-    const auto halfSeconds = std::sig_atomic_t(now.tv_sec * 2 + now.tv_nsec / 500'000'000);
-    if (quitSignal == 0) {
-        quitSignal = signal;
-        quitSignalSecond = halfSeconds;
-    } else if (halfSeconds - quitSignalSecond >= 2) {
+    const int64_t ns = int64_t(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
+    int none = 0;
+    if (quitSignal.compare_exchange_strong(none, signal)) {
+        quitSignalNs.store(ns);
+        return;
+    }
+    const int64_t first = quitSignalNs.load();
+    if (first != 0 && ns - first >= 300'000'000) {
         std::signal(signal, SIG_DFL);
         std::raise(signal);
     }
+}
+
+// Catches `signal`, even where the process started ignoring it (a background job of a script
+// ignores SIGINT): Ctrl+C in the game's own terminal is what it is for, and `timeout -s INT` too.
+void catchQuitSignal(int signal, struct sigaction& previous) {
+    struct sigaction action {};
+    action.sa_handler = recordQuitSignal;
+    sigemptyset(&action.sa_mask);
+    sigaction(signal, &action, &previous);
 }
 
 } // namespace
@@ -53,13 +72,14 @@ std::unique_ptr<Platform> Platform::create(bool wantWindow, const WindowDesc& de
 Platform::Platform(std::unique_ptr<Window> window, const WindowDesc& desc)
     : window_(std::move(window)), desc_(desc) {
     quitSignal = 0;
-    std::signal(SIGINT, recordQuitSignal);
-    std::signal(SIGTERM, recordQuitSignal);
+    quitSignalNs = 0;
+    catchQuitSignal(SIGINT, previousInt);
+    catchQuitSignal(SIGTERM, previousTerm);
 }
 
 Platform::~Platform() {
-    std::signal(SIGINT, SIG_DFL);
-    std::signal(SIGTERM, SIG_DFL);
+    sigaction(SIGINT, &previousInt, nullptr);
+    sigaction(SIGTERM, &previousTerm, nullptr);
 }
 
 void Platform::pollEvents(double waitSeconds) {

@@ -538,10 +538,12 @@ TEST_CASE("cli: --set and the shorthand flags apply in the order given, the late
     // --scene, --frames and --camera-path given twice take the last too (they were a parse error).
     const Result twice =
         runGame("--headless --backend null --width 64 --height 48 --scene atrium --scene cornell "
-                "--frames 1 --frames 2 --camera-path flythrough --camera-path orbit");
+                "--frames 1 --frames 2 --camera-path flythrough --camera-path orbit --profile-out "
+                "/tmp/lpv_cli_twice");
     INFO(twice.output);
     CHECK(twice.exitCode == 0);
     CHECK(contains(twice.output, "scene 'cornell'"));
+    CHECK(contains(twice.output, "frames checked 2,"));
 }
 
 // The benchmark checks its output folder before it renders for minutes, and says when no part
@@ -603,7 +605,7 @@ TEST_CASE("cli: SIGINT and SIGTERM end the run and its outputs are written") {
         CAPTURE(signal);
         const std::string dir = "/tmp/lpv_cli_signal_" + signal;
         std::filesystem::remove_all(dir);
-        const Result r = runProgram("timeout --preserve-status -s " + signal + " 2 " + LPV_GAME_EXE,
+        const Result r = runProgram("timeout --preserve-status -k 60 -s " + signal + " 3 " + LPV_GAME_EXE,
                                     "--headless --backend null --width 64 --height 48 --frames 1000000000 "
                                     "--profile-out " +
                                         dir + "/profile --screenshot " + dir + "/shot.png",

@@ -226,7 +226,7 @@ TEST_CASE("profiler: the GI total is held to the budget, on the active profile's
         CHECK((md.find("(predicted slow: 25.0%)") != std::string::npos) == predicted);
         const std::string csv = profileSummaryCsv(profiler);
         CHECK(csv.find(predicted ? "gi,6,0.0" : "gi,6,") != std::string::npos);
-        CHECK(csv.find(predicted ? ",6.0000,12.0000,50.00,predicted slow\n" : ",measured\n") !=
+        CHECK(csv.find(predicted ? ",6.0000,12.0000,50.00,\"predicted slow\"\n" : ",\"measured\"\n") !=
               std::string::npos);
         // Each pass 40% of a 7.5 ms budget, together 80%; at 4.5 ms each is 67%, together 133%.
         for (const double budget : {7.5, 4.5}) {

@@ -131,7 +131,7 @@ TEST_CASE("gi budget report: the profiler's report names each change, its frame 
             found = true;
             CHECK(std::fabs(r.check.giBudgetedMs - ms) <= 0.0051); // printed with 2 decimals
         });
-        CHECK((found || judged < 30)); // the trace keeps the recent frames
+        CHECK(found); // the trace keeps 1200 frames, these 150 among them
     }
 
     // Each note is in the profiler under its frame ...

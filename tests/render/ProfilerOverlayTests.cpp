@@ -48,7 +48,7 @@ TEST_CASE("render: the profiler overlay's rows fit the window's height") {
                 device->endFrame();
             }
             engine::ProfilerOverlay overlay(*device);
-            for (const uint32_t height : {360u, 120u, 40u}) {
+            for (const uint32_t height : {360u, 156u, 120u, 40u}) {
                 CAPTURE(height);
                 const rhi::TextureHandle target = device->createTexture(
                     {rhi::TextureKind::Tex2D, rhi::Format::RGBA8Srgb, 320, height, 1, 1,

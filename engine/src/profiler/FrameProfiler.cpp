@@ -194,7 +194,7 @@ void FrameProfiler::note(std::string_view topic, std::string_view text, uint64_t
     ++noted_;
     writeNote(n, topic, text);
     n.frame = frame;
-    n.cpuTime = 0; // a frame no longer recorded: the trace leaves the note out, as its frame
+    n.cpuTime = 0; // a frame no longer recorded: the trace puts the note at its start (before_trace)
     forEachFrame([&](const FrameRecord& r) {
         if (r.frame == frame) n.cpuTime = r.cpuEnd;
     });

@@ -166,7 +166,7 @@ uint64_t giMemory(const FrameProfiler& p) {
 }
 
 // A pass is over budget when its median alone exceeds the frame budget, or, for GI passes, the
-// GI budget, or on a console profile when its predicted console time does.
+// GI budget, or on a profile whose GI time is predicted when its predicted time does.
 bool overBudget(const Row& r) {
     return r.shareOfFrame > 100.0 || r.shareOfGi > 100.0 || r.predictedShareOfGi > 100.0;
 }
@@ -279,7 +279,8 @@ std::string profileSummaryMarkdown(const FrameProfiler& p) {
         o << fixed(r.x360.ms) << " | " << fixed(r.ps3.ms) << " | " << r.x360.bottleneck << " | "
           << fixed(r.shareOfFrame, 1) << "% | " << (r.gi ? fixed(r.shareOfGi, 1) + "%" : "-");
         if (r.gi && p.profile().giTimePredicted)
-            o << " (predicted " << predictedProfile(p) << ": " << fixed(r.predictedShareOfGi, 1) << "%)";
+            o << " (predicted " << markdownCell(predictedProfile(p)) << ": " << fixed(r.predictedShareOfGi, 1)
+              << "%)";
         o << " | " << (overBudget(r) ? "**OVER**" : "ok") << " |\n";
     }
     // The GI budget holds every GI pass together, gi.rebuild included: the row the check reads.
@@ -294,7 +295,7 @@ std::string profileSummaryMarkdown(const FrameProfiler& p) {
                    1)
           << "% | " << fixed(measuredShare, 1) << "%";
         if (p.profile().giTimePredicted)
-            o << " (predicted " << predictedProfile(p) << ": " << fixed(t.shareOfGi, 1) << "%)";
+            o << " (predicted " << markdownCell(predictedProfile(p)) << ": " << fixed(t.shareOfGi, 1) << "%)";
         o << " | " << (measuredShare > 100.0 || t.shareOfGi > 100.0 ? "**OVER**" : "ok") << " |\n";
     }
     o << "\n## Memory\n\n| category | current | peak | resources |\n|---|---|---|---|\n";
@@ -332,7 +333,8 @@ std::string profileSummaryCsv(const FrameProfiler& p) {
          "predicted_ps3_median_ms,budgeted_median_ms,gi_budget_ms,share_of_gi_pct,time_held\n";
     o << "gi," << t.frames << "," << fixed(t.measuredMedian, 4) << "," << fixed(t.predictedMedian, 4) << ","
       << fixed(t.x360Median, 4) << "," << fixed(t.ps3Median, 4) << "," << fixed(t.budgetedMedian, 4) << ","
-      << fixed(p.profile().giBudgetMs, 4) << "," << fixed(t.shareOfGi, 2) << "," << giTimeKind(p) << "\n";
+      << fixed(p.profile().giBudgetMs, 4) << "," << fixed(t.shareOfGi, 2) << "," << csvQuote(giTimeKind(p))
+      << "\n";
     o << "\ncategory,current_bytes,peak_bytes,resources\n";
     for (const auto& [category, usage] : p.allocations().categories())
         o << category << "," << usage.currentBytes << "," << usage.peakBytes << "," << usage.count << "\n";
@@ -388,7 +390,7 @@ std::string profileTraceJson(const FrameProfiler& p) {
               << ",\"frame_budget_ms\":" << fixed(p.profile().frameBudgetMs)
               << ",\"gi_ms\":" << fixed(r.check.giMs)
               << ",\"gi_budget_ms\":" << fixed(p.profile().giBudgetMs);
-            // On a console profile the GI check holds the predicted time to the budget too.
+            // On a profile whose GI time is predicted the check holds that time to the budget too.
             if (!predictedProfile(p).empty()) o << ",\"gi_predicted_ms\":" << fixed(r.check.giBudgetedMs);
             o << "}}";
         }

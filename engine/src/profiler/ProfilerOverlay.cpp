@@ -31,12 +31,15 @@ void ProfilerOverlay::draw(rhi::CommandList& cmd, const FrameProfiler& profiler,
     const float x0 = 12.0f, y0 = 12.0f, maxRow = 13.0f, minRow = 3.0f;
     const float available = float(desc.height) - 2.0f * y0;
     uint32_t passes = uint32_t(std::min<size_t>(profiler.scopes().size(), kMaxRects - 3));
-    const float row = std::clamp(available / float(passes + 1), minRow, maxRow);
-    passes = std::min(passes, uint32_t(std::max(available / row - 1.0f, 0.0f)));
+    // Whole pixels a row, so bars keep a gap; the fit is counted in whole rows too (a float
+    // quotient of 41.99999 rows left the last pass out).
+    const float row = std::clamp(std::floor(available / float(passes + 1)), minRow, maxRow);
+    passes = std::min(passes, uint32_t(std::max(std::floor(available / row + 1e-3f) - 1.0f, 0.0f)));
     const float barHeight = std::round(row * 10.0f / 13.0f), gap = row - barHeight;
     const float budgetWidth = std::min(400.0f, float(desc.width) * 0.4f); // pixels for the whole frame budget
     const float msToPixels = budgetWidth / float(profiler.profile().frameBudgetMs);
-    const bool over = profiler.lastBudgetCheck().frameOverBudget || profiler.lastBudgetCheck().giOverBudget;
+    const FrameBudgetCheck& check = profiler.lastBudgetCheck();
+    const bool over = check.frameOverBudget || check.giOverBudget || check.giPredictedOverBudget;
     uint32_t n = 0;
     const auto rect = [&](glm::vec4 r, glm::vec4 c) {
         if (n < kMaxRects) {

@@ -587,7 +587,9 @@ Scene loadScene(std::string_view nameOrPath, float detail) {
     if (isBuiltinScene(nameOrPath)) return buildBuiltinScene(nameOrPath, detail);
     // A name that is neither (a misspelt "cornel", an empty one) would read as a missing file.
     std::error_code error;
-    if (nameOrPath.empty() || !std::filesystem::exists(std::filesystem::path(nameOrPath), error)) {
+    // Only where the path is known not to exist: another reason (no permission) is loadGltf's to name.
+    if (nameOrPath.empty() ||
+        (!std::filesystem::exists(std::filesystem::path(nameOrPath), error) && !error)) {
         std::string names;
         for (const std::string& n : builtinSceneNames())
             names += (names.empty() ? "" : ", ") + n;

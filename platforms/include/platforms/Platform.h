@@ -1,8 +1,9 @@
 // The platform the game runs on, behind one interface: headless (the GPU context comes from EGL
 // surfaceless or OSMesa, see GlContext.h; Vulkan needs nothing) or windowed (GLFW on X11). Events,
 // input, the clock and file access look the same on both; headless simply has no input. Either
-// asks to quit on SIGINT (Ctrl+C) or SIGTERM, once: the platform catches the first of them for the
-// game to end its run and write its outputs; a second one ends the process as it would have.
+// asks to quit on SIGINT (Ctrl+C) or SIGTERM: the platform catches the first of them for the game
+// to end its run and write its outputs; a second one 0.3 s or more later ends the process as it
+// would have.
 // The game asks for a platform and does not branch on which one it got.
 #pragma once
 
