@@ -678,6 +678,27 @@ int main(int argc, char** argv) {
                    "Override a setting in the frames part, after the benchmark's own: --set "
                    "gi.glossy_max_roughness=0.6 (repeatable)");
     if (const std::optional<int> exit = parseCommandLine(app, argc, argv)) return *exit;
+    // Settings the frames part sets itself. gi.enabled=false gave a black "GI on" screenshot under
+    // a GI heading; gi.debug_view=indirect is the game's shortcut that moves render.debug_view,
+    // which the benchmark's renderer does not follow.
+    for (const std::string& o : overrides) {
+        const std::string key = o.substr(0, o.find('='));
+        const std::string value = o.find('=') == std::string::npos ? "" : o.substr(o.find('=') + 1);
+        if (key == "gi.enabled") {
+            std::fprintf(stderr,
+                         "error: --set %s: the frames part runs every frame with GI on, and once "
+                         "more with it off for the screenshot beside it; leave gi.enabled out\n",
+                         o.c_str());
+            return 2;
+        }
+        if (key == "gi.debug_view" && value == "indirect") {
+            std::fprintf(stderr,
+                         "error: --set %s: in lpv_bench set render.debug_view=indirect for the "
+                         "indirect light alone (the game's gi.debug_view=indirect sets it for you)\n",
+                         o.c_str());
+            return 2;
+        }
+    }
     // A wrong key or value fails before any device starts, naming the setting.
     try {
         // As the frames part sets them, so that what the settings refuse together (gi.bounces=3

@@ -567,6 +567,13 @@ TEST_CASE("cli: lpv_bench refuses an --out it cannot write or nothing would use,
     CHECK(together.exitCode == 2);
     CHECK(contains(together.output, "'gi.bounces' = 3: expected 1 while gi.occlusion is false"));
     CHECK(!contains(together.output, "## Frames"));
+    // The frames part turns GI on and off itself; gi.debug_view=indirect is the game's shortcut.
+    const Result off = bench("--parts=frames --backends=vulkan --set gi.enabled=false");
+    CHECK(off.exitCode == 2);
+    CHECK(contains(off.output, "leave gi.enabled out"));
+    const Result view = bench("--parts=frames --backends=vulkan --set gi.debug_view=indirect");
+    CHECK(view.exitCode == 2);
+    CHECK(contains(view.output, "set render.debug_view=indirect"));
 }
 
 // Two screenshots that would hold less than asked, said in the log: the null backend's (black),
