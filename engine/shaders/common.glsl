@@ -9,7 +9,7 @@ layout(binding = 0, std140) uniform Frame {
     mat4 sunViewProjection;  // shadow map space: xy in [-1, 1], depth in [0, 1]
     vec4 cameraPosition;     // xyz
     vec4 sunDirection;       // xyz: direction the light travels; w: shadow bias (depth units)
-    vec4 sunRadiance;        // rgb: irradiance on a surface facing the sun
+    vec4 sunRadiance;        // rgb: irradiance on a surface facing the sun; w: shadow normal offset (m)
     vec4 ambient;            // rgb: constant indirect irradiance when no GI fills the indirect target
     vec4 viewport;           // width, height, 1/width, 1/height
     vec4 params;             // x: exposure, y: ssao radius (m), z: ssao strength, w: debug view

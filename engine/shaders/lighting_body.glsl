@@ -102,8 +102,9 @@ IndirectLight indirectAt(vec3 p, vec3 n) {
 }
 
 float sunShadow(vec3 p, vec3 n) {
-    // Offset along the normal against acne on slopes; the pipeline bias handles the rest.
-    vec4 s = frame.sunViewProjection * vec4(p + n * 0.02, 1.0);
+    // Offset along the normal against acne on slopes (scaled down in tiny scenes); the pipeline
+    // bias handles the rest.
+    vec4 s = frame.sunViewProjection * vec4(p + n * frame.sunRadiance.w, 1.0);
     vec3 c = s.xyz / s.w;
     vec2 uv = c.xy * 0.5 + 0.5;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || c.z > 1.0) return 1.0;

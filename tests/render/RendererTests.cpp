@@ -3,9 +3,12 @@
 
 #include "../support/TestDevice.h"
 
+#include "engine/scene/BuiltinScenes.h"
+
 #include <doctest/doctest.h>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/matrix.hpp>
 
 #include <cmath>
@@ -78,6 +81,44 @@ TEST_CASE("render: a floor point in a box's shadow is darker than a lit floor po
             REQUIRE_MESSAGE(shadowed >= 0.0f, "no visible floor point in a box's shadow found");
             MESSAGE(backend.name << ": lit floor " << lit << ", shadowed floor " << shadowed);
             CHECK(shadowed < 0.5f * lit);
+            device.expectSilent();
+        }
+    }
+}
+
+// The sun shadow's offset along the normal was 2 cm whatever the scene's size: a room at a
+// thousandth of the scale came out sunlit inside.
+TEST_CASE("render: the sun's shadows hold at a thousandth of the scale") {
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            // The share of pixels the shadow view shows in the sun's shadow.
+            const auto shadowedShare = [&](float scale) {
+                engine::Scene scene = engine::buildCornellBox();
+                const glm::mat4 s = glm::scale(glm::mat4(1.0f), glm::vec3(scale));
+                for (engine::Instance& instance : scene.instances)
+                    instance.transform = s * instance.transform;
+                for (engine::Light& light : scene.lights) {
+                    light.position *= scale;
+                    light.range *= scale;
+                }
+                REQUIRE(scene.camera);
+                scene.camera->position *= scale;
+                scene.camera->nearPlane *= scale;
+                scene.camera->farPlane *= scale;
+                scene.updateBounds();
+                const CornellFrame f = renderSceneFrame(
+                    *device, scene, {"render.debug_view=shadow", "render.ssao=false"}, {}, 160, 120);
+                uint32_t shadowed = 0;
+                for (const glm::vec4& t : f.hdr.texels)
+                    shadowed += t.x < 0.5f ? 1u : 0u;
+                return double(shadowed) / double(f.hdr.texels.size());
+            };
+            const double full = shadowedShare(1.0f), tiny = shadowedShare(1e-3f);
+            MESSAGE(backend.name << ": in the sun's shadow " << full << " of the pixels at full scale, "
+                                 << tiny << " at 1e-3");
+            CHECK(full > 0.5);
+            CHECK(std::fabs(tiny - full) < 0.02);
             device.expectSilent();
         }
     }

@@ -362,7 +362,10 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
     frame_.sunViewProjection = sunProj * sunView;
     frame_.cameraPosition = glm::vec4(camera.position, 1.0f);
     frame_.sunDirection = glm::vec4(dir, 0.0005f);
-    frame_.sunRadiance = glm::vec4(sun_.radiance, 0.0f);
+    // The sun shadow's offset along the normal (metres): 2 cm, or 4 of the map's texels where a
+    // scene is so small that 2 cm would carry a point through its walls (a room at 1e-3 scale was
+    // lit inside).
+    frame_.sunRadiance = glm::vec4(sun_.radiance, std::min(0.02f, 4.0f * 2.0f * radius / float(shadowSize_)));
     frame_.ambient = glm::vec4(ambient, 0.0f);
     frame_.viewport = glm::vec4(float(width_), float(height_), 1.0f / float(width_), 1.0f / float(height_));
     frame_.params = glm::vec4(float(config.get(kExposure)), float(config.get(kSsaoRadius)),
