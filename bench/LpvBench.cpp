@@ -322,8 +322,9 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
         const std::string stem = outDir + "/" + sceneName + "-" + b.name;
         engine::writeProfileOutputs(profiler, stem + "-profile");
         engine::writeScreenshot(*device, renderer, stem + "-gi-on.png");
-        // The same last frame without GI (the renderer's ambient constant instead).
-        const engine::Camera cam = cameraAt(1.0f);
+        // The same last frame without GI (the renderer's ambient constant instead), from the
+        // same camera (a run of one frame is at the path's start).
+        const engine::Camera cam = cameraAt(frames > 1 ? 1.0f : 0.0f);
         const engine::CameraMatrices m = engine::cameraMatrices(cam, float(w) / float(h));
         rhi::CommandList& cmd = device->beginFrame();
         renderer.render(cmd, m, config, nullptr, nullptr); // no indirect provider: GI off
