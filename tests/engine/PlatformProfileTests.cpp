@@ -103,7 +103,8 @@ texture_blocks_alu = false
     std::string guessed = good;
     guessed.replace(guessed.find("\"predicted\""), 11, "\"guessed\"");
     CHECK(errorOf([&] { platforms::parsePlatformProfile(guessed, "t.toml"); }) ==
-          "t.toml:7: 'gi.time': expected \"predicted\" (from the [throughput] figures) or \"measured\" (on this "
+          "t.toml:7: 'gi.time': expected \"predicted\" (from the [throughput] figures) or \"measured\" (on "
+          "this "
           "device)");
     CHECK(platforms::loadPlatformProfile("x360").giTimePredicted);
     CHECK(platforms::loadPlatformProfile("ps3").giTimePredicted);

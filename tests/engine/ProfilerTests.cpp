@@ -190,6 +190,23 @@ TEST_CASE("profiler: on a console profile a GI pass predicted over the GI budget
     CHECK(profileTraceJson(pc).find("gi_predicted_ms") == std::string::npos);
 }
 
+// 6 frames of two top-level GI passes, gi and gi.rebuild, each 0.3 ms of ALU work on Xbox 360.
+static void twoGiPassFrames(rhi::Device& device, FrameProfiler& profiler) {
+    for (int i = 0; i < 6; ++i) {
+        rhi::CommandList& cmd = device.beginFrame();
+        profiler.beginFrame(cmd);
+        for (const char* name : {"gi", "gi.rebuild"}) {
+            auto s = profiler.scope(name, &cmd);
+            WorkCounts w;
+            w.aluOps = 72'000'000;
+            profiler.setWork(w);
+        }
+        profiler.endFrame(cmd);
+        device.endFrame();
+    }
+    profiler.collectPending();
+}
+
 // Two GI passes each within the budget, together over it: every row said ok while the header
 // counted every frame over budget. And a custom profile's [throughput] was read, then ignored: the
 // prediction used the built-in x360's, and only a profile named x360 or ps3 was held to it.
@@ -203,19 +220,7 @@ TEST_CASE("profiler: the GI total is held to the budget, on the active profile's
         slow.giTimePredicted = predicted;
         auto device = nullDevice();
         FrameProfiler profiler(*device, slow);
-        for (int i = 0; i < 6; ++i) {
-            rhi::CommandList& cmd = device->beginFrame();
-            profiler.beginFrame(cmd);
-            for (const char* name : {"gi", "gi.rebuild"}) { // 0.3 ms each on Xbox 360: 3 ms here
-                auto s = profiler.scope(name, &cmd);
-                WorkCounts w;
-                w.aluOps = 72'000'000;
-                profiler.setWork(w);
-            }
-            profiler.endFrame(cmd);
-            device->endFrame();
-        }
-        profiler.collectPending();
+        twoGiPassFrames(*device, profiler);
         const FrameBudgetCheck& check = profiler.lastBudgetCheck();
         CHECK(check.giPredictedX360Ms == doctest::Approx(0.6));
         CHECK(check.giPredictedMs == doctest::Approx(6.0));
@@ -234,19 +239,7 @@ TEST_CASE("profiler: the GI total is held to the budget, on the active profile's
             slow.giBudgetMs = budget;
             auto d = nullDevice();
             FrameProfiler p(*d, slow);
-            for (int i = 0; i < 6; ++i) {
-                rhi::CommandList& cmd = d->beginFrame();
-                p.beginFrame(cmd);
-                for (const char* name : {"gi", "gi.rebuild"}) {
-                    auto s = p.scope(name, &cmd);
-                    WorkCounts w;
-                    w.aluOps = 72'000'000;
-                    p.setWork(w);
-                }
-                p.endFrame(cmd);
-                d->endFrame();
-            }
-            p.collectPending();
+            twoGiPassFrames(*d, p);
             const std::string report = profileSummaryMarkdown(p);
             const size_t total = report.find("| **GI total**");
             REQUIRE(total != std::string::npos);
