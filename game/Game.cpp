@@ -26,6 +26,7 @@
 #include <GLFW/glfw3.h>
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -133,6 +134,14 @@ int runGame(const GameOptions& opt) {
     log::info("game: scene '" + scene.name + "': " + std::to_string(scene.triangleCount()) + " triangles, " +
               std::to_string(scene.instances.size()) + " instances, " + std::to_string(scene.lights.size()) +
               " lights (" + std::to_string((platforms::nowNanoseconds() - t0) / 1000000) + " ms)");
+    // What the scene leaves to the engine's defaults, said rather than assumed.
+    if (std::none_of(scene.lights.begin(), scene.lights.end(),
+                     [](const engine::Light& l) { return l.type == engine::LightType::Directional; }))
+        log::info("game: scene '" + scene.name +
+                  "' has no directional light: the renderer's default sun lights it (a directional light of "
+                  "intensity 0 turns it off)");
+    if (!scene.camera)
+        log::info("game: scene '" + scene.name + "' has no camera: a default one looks at its bounds");
 
     const std::unique_ptr<platforms::Platform> platform =
         platforms::Platform::create(!opt.headless, platforms::WindowDesc{width, height, "LPV Engine"});
