@@ -13,11 +13,7 @@ namespace lpv::bench {
 
 // Empty when the benchmark should run; else the code to exit with (0 after --help).
 inline std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv) {
-    if (const auto empty = engine::findEmptyOptionValue({argv + 1, argv + argc})) {
-        std::fprintf(stderr, "error: %s: expected a value after '='\nRun with --help for more information.\n",
-                     empty->c_str());
-        return 2;
-    }
+    if (engine::refuseEmptyOptionValue(argc, argv)) return 2;
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) { // --help

@@ -107,11 +107,7 @@ int main(int argc, char** argv) {
     app.add_option("--help-config", helpConfig,
                    "List every setting and exit: as text, or as a Markdown table with 'markdown'")
         ->expected(0, 1);
-    if (const auto empty = engine::findEmptyOptionValue({argv + 1, argv + argc})) {
-        std::fprintf(stderr, "error: %s: expected a value after '='\nRun with --help for more information.\n",
-                     empty->c_str());
-        return 2;
-    }
+    if (engine::refuseEmptyOptionValue(argc, argv)) return 2;
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) { // --help

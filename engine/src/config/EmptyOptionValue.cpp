@@ -1,5 +1,6 @@
 #include "engine/config/EmptyOptionValue.h"
 
+#include <cstdio>
 #include <string_view>
 
 namespace lpv::engine {
@@ -12,6 +13,14 @@ std::optional<std::string> findEmptyOptionValue(std::span<char* const> args) {
             return std::string(a);
     }
     return std::nullopt;
+}
+
+bool refuseEmptyOptionValue(int argc, char** argv) {
+    const auto empty = findEmptyOptionValue({argv + 1, argv + argc});
+    if (empty)
+        std::fprintf(stderr, "error: %s: expected a value after '='\nRun with --help for more information.\n",
+                     empty->c_str());
+    return empty.has_value();
 }
 
 } // namespace lpv::engine

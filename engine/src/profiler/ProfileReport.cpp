@@ -78,30 +78,26 @@ struct GiTotal {
     double shareOfGi = 0; // budgetedMedian in percent of the GI budget
 };
 
-double median(std::vector<double> v) {
-    if (v.empty()) return 0;
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
 GiTotal giTotal(const FrameProfiler& p) {
-    std::vector<double> measured, predicted, x360, ps3, budgeted;
     GiTotal t;
+    p.forEachFrame([&](const FrameProfiler::FrameRecord& r) { t.frames += r.checked ? 1 : 0; });
+    if (!t.frames) return t;
+    // The profiler's own windowed statistics, sized to hold every checked frame.
+    SampleWindow measured(t.frames), predicted(t.frames), x360(t.frames), ps3(t.frames), budgeted(t.frames);
     p.forEachFrame([&](const FrameProfiler::FrameRecord& r) {
         if (!r.checked) return;
-        measured.push_back(r.check.giMs);
-        predicted.push_back(r.check.giPredictedMs);
-        x360.push_back(r.check.giPredictedX360Ms);
-        ps3.push_back(r.check.giPredictedPs3Ms);
-        budgeted.push_back(r.check.giBudgetedMs);
-        t.budgetedLast = r.check.giBudgetedMs;
+        measured.add(r.check.giMs);
+        predicted.add(r.check.giPredictedMs);
+        x360.add(r.check.giPredictedX360Ms);
+        ps3.add(r.check.giPredictedPs3Ms);
+        budgeted.add(r.check.giBudgetedMs);
     });
-    t.frames = uint32_t(measured.size());
-    t.measuredMedian = median(measured);
-    t.predictedMedian = median(predicted);
-    t.x360Median = median(x360);
-    t.ps3Median = median(ps3);
-    t.budgetedMedian = median(budgeted);
+    t.measuredMedian = measured.stats().median;
+    t.predictedMedian = predicted.stats().median;
+    t.x360Median = x360.stats().median;
+    t.ps3Median = ps3.stats().median;
+    t.budgetedMedian = budgeted.stats().median;
+    t.budgetedLast = budgeted.stats().last;
     t.shareOfGi = p.profile().giBudgetMs > 0 ? 100.0 * t.budgetedMedian / p.profile().giBudgetMs : 0;
     return t;
 }

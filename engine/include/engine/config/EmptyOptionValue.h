@@ -12,4 +12,8 @@ namespace lpv::engine {
 // The first argument of the form `--name=` (before a `--` that ends the options), if any.
 std::optional<std::string> findEmptyOptionValue(std::span<char* const> args);
 
+// The same check for a program's argv: prints the error (with the --help hint) to stderr and
+// returns true when it finds one; the caller exits 2.
+bool refuseEmptyOptionValue(int argc, char** argv);
+
 } // namespace lpv::engine
