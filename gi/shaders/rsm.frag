@@ -5,6 +5,7 @@
 // area is fixed by the fit to the volume, so the weight does not depend on the RSM or volume size
 // (Kaplanyan 2009).
 #include "rsm_diffuse.glsl"
+#include "rsm_light_facing.glsl"
 layout(binding = 0, std140) uniform Rsm {
     mat4 lightViewProjection;
     vec4 lightDirection;
@@ -21,8 +22,11 @@ layout(location = 1) out vec4 outFlux;
 
 void main() {
     vec3 n = normalize(vNormal);
-    // Two-sided: the side the light sees.
-    if (dot(n, rsm.lightDirection.xyz) > 0.0) n = -n;
+    // Two-sided: the side the light sees; where a face turned toward it lies in the same plane,
+    // that face.
+    bool facesLight = dot(n, rsm.lightDirection.xyz) <= 0.0;
+    writeLightFacingDepth(facesLight);
+    if (!facesLight) n = -n;
     vec3 base = draw.baseColor.rgb;
     if (draw.material.w > 0.5) base *= texture(baseColorTexture, vUv).rgb;
     vec4 material = draw.material; // metallic as the G-buffer has it: the factor times the map's B

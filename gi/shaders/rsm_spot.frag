@@ -8,6 +8,7 @@
 // same reflected power carry the same flux. A texel of a perspective map subtends the axis texel's
 // solid angle times cos^3 of its angle off the axis.
 #include "rsm_diffuse.glsl"
+#include "rsm_light_facing.glsl"
 layout(binding = 0, std140) uniform SpotRsm {
     mat4 lightViewProjection;
     vec4 lightPosition;
@@ -30,8 +31,11 @@ void main() {
     float d2 = max(dot(toSurface, toSurface), 1e-8);
     vec3 w = toSurface * inversesqrt(d2);
     vec3 n = normalize(vNormal);
-    // Two-sided: the side the light sees.
-    if (dot(n, w) > 0.0) n = -n;
+    // Two-sided: the side the light sees; where a face turned toward it lies in the same plane,
+    // that face.
+    bool facesLight = dot(n, w) <= 0.0;
+    writeLightFacingDepth(facesLight);
+    if (!facesLight) n = -n;
     float cosAxis = max(dot(w, rsm.spotDirection.xyz), 0.0);
     float q = d2 * rsm.lightPosition.w;  // (d / range)^2
     float window = clamp(1.0 - q * q, 0.0, 1.0);

@@ -137,3 +137,56 @@ TEST_CASE("gi: an RSM texel reflects the diffuse share glTF's fresnel mix leaves
         }
     }
 }
+
+// Two faces back to back in one plane (a slab laid flat on a floor, its underside on the floor's
+// top): the light sees the face turned toward it, whichever is drawn first, so its texels carry
+// that face's albedo and normal (gi/shaders/rsm_light_facing.glsl). The face turned away is drawn
+// first: with equal depths the depth test would otherwise keep it.
+TEST_CASE("gi: an RSM keeps the face turned to the light where two faces lie back to back") {
+    engine::Scene scene;
+    scene.name = "back to back";
+    scene.materials = {{"red underside", {0.8f, 0.1f, 0.1f, 1.0f}},
+                       {"white floor", {0.8f, 0.8f, 0.8f, 1.0f}}};
+    engine::MeshBuilder builder(scene);
+    builder.begin("underside", 0);
+    builder.quad({-4.0f, 0.0f, -4.0f}, {8.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 8.0f}, 3, 5); // faces -y
+    builder.finish();
+    builder.begin("floor", 1);
+    builder.quad({-5.0f, 0.0f, 5.0f}, {10.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -10.0f}); // faces +y
+    builder.finish();
+    scene.updateBounds();
+    const gi::VolumeGrid grid{{-4.0f, -4.0f, -4.0f}, 0.25f, 32};
+    const glm::vec3 sun = glm::normalize(glm::vec3(0.35f, -1.0f, 0.2f)); // travels
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            const engine::SpecularAlbedoTexture specularAlbedo(*device);
+            Image flux, normal;
+            {
+                const engine::GpuScene gpuScene(*device, scene);
+                gi::ReflectiveShadowMap rsm(*device, 128);
+                rsm.fit(grid, sun);
+                rhi::CommandList& cmd = device->beginFrame();
+                rsm.render(cmd, gpuScene, specularAlbedo.texture(), sun, glm::vec3(1.0f));
+                device->endFrame();
+                device->waitIdle();
+                flux = readImage(*device, rsm.flux());
+                normal = readImage(*device, rsm.normal());
+            }
+            uint32_t covered = 0, white = 0, upward = 0;
+            for (size_t i = 0; i < flux.texels.size(); ++i) {
+                if (normal.texels[i].w < 0.5f) continue; // no surface
+                ++covered;
+                // The white floor reflects as much green as red; the red underside an eighth.
+                if (flux.texels[i].g > 0.9f * flux.texels[i].r) ++white;
+                if (normal.texels[i].y > 0.99f) ++upward;
+            }
+            MESSAGE(backend.name << ": " << covered << " texels, " << white << " white, " << upward
+                                 << " facing up");
+            REQUIRE(covered > 1000);
+            CHECK(white == covered);
+            CHECK(upward == covered);
+            device.expectSilent();
+        }
+    }
+}
