@@ -140,8 +140,9 @@ TEST_CASE("gi: an RSM texel reflects the diffuse share glTF's fresnel mix leaves
 
 // Two faces back to back in one plane (a slab laid flat on a floor, its underside on the floor's
 // top): the light sees the face turned toward it, whichever is drawn first, so its texels carry
-// that face's albedo and normal (gi/shaders/rsm_light_facing.glsl). The face turned away is drawn
-// first: with equal depths the depth test would otherwise keep it.
+// that face's albedo (gi/shaders/rsm_light_facing.glsl), in the sun's orthographic RSM and a spot
+// light's perspective one. The face turned away is drawn first: with equal depths the depth test
+// would otherwise keep it.
 TEST_CASE("gi: an RSM keeps the face turned to the light where two faces lie back to back") {
     engine::Scene scene;
     scene.name = "back to back";
@@ -157,36 +158,51 @@ TEST_CASE("gi: an RSM keeps the face turned to the light where two faces lie bac
     scene.updateBounds();
     const gi::VolumeGrid grid{{-4.0f, -4.0f, -4.0f}, 0.25f, 32};
     const glm::vec3 sun = glm::normalize(glm::vec3(0.35f, -1.0f, 0.2f)); // travels
+    engine::Light spot;
+    spot.type = engine::LightType::Spot;
+    spot.position = {0.7f, 4.0f, -0.4f};
+    spot.direction = glm::normalize(glm::vec3(-0.2f, -1.0f, 0.1f));
+    spot.intensity = 50.0f;
+    spot.outerConeAngle = 0.6f;
     for (const auto& backend : selectedBackends()) {
-        SUBCASE(backend.name.c_str()) {
-            TestDevice device(backend);
-            const engine::SpecularAlbedoTexture specularAlbedo(*device);
-            Image flux, normal;
-            {
-                const engine::GpuScene gpuScene(*device, scene);
-                gi::ReflectiveShadowMap rsm(*device, 128);
-                rsm.fit(grid, sun);
-                rhi::CommandList& cmd = device->beginFrame();
-                rsm.render(cmd, gpuScene, specularAlbedo.texture(), sun, glm::vec3(1.0f));
-                device->endFrame();
-                device->waitIdle();
-                flux = readImage(*device, rsm.flux());
-                normal = readImage(*device, rsm.normal());
+        for (const gi::RsmLight light : {gi::RsmLight::Sun, gi::RsmLight::Spot}) {
+            const char* lightName = light == gi::RsmLight::Sun ? "sun" : "spot";
+            SUBCASE((backend.name + " " + lightName).c_str()) {
+                TestDevice device(backend);
+                const engine::SpecularAlbedoTexture specularAlbedo(*device);
+                Image flux, normal;
+                {
+                    const engine::GpuScene gpuScene(*device, scene);
+                    gi::ReflectiveShadowMap rsm(*device, 128, light);
+                    rhi::CommandList& cmd = device->beginFrame();
+                    if (light == gi::RsmLight::Sun) {
+                        rsm.fit(grid, sun);
+                        rsm.render(cmd, gpuScene, specularAlbedo.texture(), sun, glm::vec3(1.0f));
+                    } else {
+                        rsm.renderSpot(cmd, gpuScene, specularAlbedo.texture(), spot, 20.0f);
+                    }
+                    device->endFrame();
+                    device->waitIdle();
+                    flux = readImage(*device, rsm.flux());
+                    normal = readImage(*device, rsm.normal());
+                }
+                uint32_t covered = 0, white = 0, upward = 0;
+                for (size_t i = 0; i < flux.texels.size(); ++i) {
+                    if (normal.texels[i].w < 0.5f || flux.texels[i].r <= 0.0f) continue; // nothing lit
+                    ++covered;
+                    // The white floor reflects as much green as red; the red underside an eighth.
+                    if (flux.texels[i].g > 0.9f * flux.texels[i].r) ++white;
+                    // Either face's normal is turned to the light (two-sided), so this checks that
+                    // flip, not which face won.
+                    if (normal.texels[i].y > 0.99f) ++upward;
+                }
+                MESSAGE(backend.name << " " << std::string(lightName) << ": " << covered << " lit texels, "
+                                     << white << " white, " << upward << " facing up");
+                REQUIRE(covered > 1000);
+                CHECK(white == covered);
+                CHECK(upward == covered);
+                device.expectSilent();
             }
-            uint32_t covered = 0, white = 0, upward = 0;
-            for (size_t i = 0; i < flux.texels.size(); ++i) {
-                if (normal.texels[i].w < 0.5f) continue; // no surface
-                ++covered;
-                // The white floor reflects as much green as red; the red underside an eighth.
-                if (flux.texels[i].g > 0.9f * flux.texels[i].r) ++white;
-                if (normal.texels[i].y > 0.99f) ++upward;
-            }
-            MESSAGE(backend.name << ": " << covered << " texels, " << white << " white, " << upward
-                                 << " facing up");
-            REQUIRE(covered > 1000);
-            CHECK(white == covered);
-            CHECK(upward == covered);
-            device.expectSilent();
         }
     }
 }
