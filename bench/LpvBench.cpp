@@ -441,8 +441,10 @@ void consolePrediction() {
     s.vplCount = 1024;
     s.iterations = 6;
     s.shFormat = gi::ShFormat::Rgba8;
-    // The calibration counts the diffuse lookup the published times measured: no glossy lobes.
+    // The calibration counts the diffuse lookup the published times measured: no glossy lobes, and
+    // no geometry volume (none of its passes is counted), so no faces in the lookup either.
     s.glossy = false;
+    s.occlusion = false;
     const uint64_t pixels = 1280 * 720;
     const auto x360 = platforms::loadPlatformProfile("x360"), ps3 = platforms::loadPlatformProfile("ps3");
     double sx = 0, sp = 0;

@@ -18,6 +18,9 @@
 // Variants (gi/CMakeLists.txt): CASCADES n chooses per texel among n cascades with branches;
 // CASCADE c with BLEND 0 or 1 is one cascade class's draw (gi/CascadeClasses.h): every texel it
 // shades belongs to cascade c, inside its band (BLEND 0) or in it (BLEND 1, faded into c + 1).
+//
+// Thin walls: with gi.occlusion a cascade's filter does not read across the faces its geometry
+// volume blocks (keptInside).
 #include "lpv_cascades.glsl"
 #include "rebuild_normal.glsl"
 #include "specular_albedo.glsl"
@@ -27,7 +30,8 @@ layout(binding = 0, std140) uniform Lookup {
     mat4 invViewProjection;
     vec4 gridOrigin[4]; // per cascade: xyz corner of cell 0, w: cell size
     ivec4 grid;         // x: cells per axis, y: volumes are rgba8-encoded, z: damping on
-    vec4 encode;        // x: gi.rgba8_range (a radiance: cascadeRange), y: blend band (fraction of the half-extent)
+    vec4 encode;        // x: gi.rgba8_range (a radiance: cascadeRange), y: blend band (fraction of the half-extent),
+                        // z, bit c: cascade c's faceTransmittance volume is bound and built (gi.occlusion)
     vec4 intensity;     // x: gi.intensity (already applied at injection), y: damping strength,
                         // z: 1 the glossy lobe's mean direction, 0 the cosine lobe (gi.glossy off)
     ivec4 pixels;       // x: resolution divisor, yz: G-buffer size, w: 0 (see main)
@@ -57,6 +61,47 @@ CascadeSample lightAt(int c, vec3 p, LookupLobes lobes) {
     return CascadeSample(max(s.irradiance, vec3(0.0)) / area, max(s.glossy, vec3(0.0)) / area);
 }
 
+// Each cascade's face transmittance (GeometryVolume; unused cascades bound to the coarsest).
+layout(binding = 17) uniform sampler3D faceTransmittance0;
+layout(binding = 18) uniform sampler3D faceTransmittance1;
+layout(binding = 19) uniform sampler3D faceTransmittance2;
+layout(binding = 20) uniform sampler3D faceTransmittance3;
+
+// Cascade c's (a constant in every call) face transmittances of cell `cell`.
+vec3 facesAt(int c, ivec3 cell) {
+    if (c == 0) return texelFetch(faceTransmittance0, cell, 0).xyz;
+    if (c == 1) return texelFetch(faceTransmittance1, cell, 0).xyz;
+    if (c == 2) return texelFetch(faceTransmittance2, cell, 0).xyz;
+    return texelFetch(faceTransmittance3, cell, 0).xyz;
+}
+
+// Where to sample cascade c for point p so that its trilinear filter does not read across
+// the faces the geometry volume blocks. A wall thinner than a cell stands between two cell
+// centres, and the cell beyond it holds the light of the wall's far side (injected half a cell out
+// from that side): a plain lookup on the near side mixed it in (in the Cornell box sealed with a
+// lid and a front wall, the room read 48% of the open room's indirect light, 87% without damping;
+// 9% and 29% with this: tests/gi/ThinWallLookupGpuTests.cpp). Per axis, the filter's share of the neighbour across from the cell p lies
+// in is scaled by the transmittance of the face between them, and the hardware filter then fetches
+// at the point those shares give: 3 more point fetches, not 8 per volume, and one lookup, not a
+// lookup per branch on a CPU rasterizer.
+vec3 keptInside(int c, vec3 p) {
+    vec3 uvw = uvwIn(c, p);
+    int n = lookup.grid.x;
+    vec3 t = uvw * float(n) - 0.5;
+    vec3 base = floor(t);
+    vec3 f = t - base;
+    ivec3 home = ivec3(base) + ivec3(greaterThanEqual(f, vec3(0.5)));
+    for (int a = 0; a < 3; ++a) {
+        // The face between home and the other cell of the filter along a: home's lower face when
+        // that cell is below it, else the upper cell's lower face.
+        ivec3 upper = home;
+        if (f[a] < 0.5) upper[a] += 1;
+        float open = facesAt(c, clamp(upper, ivec3(0), ivec3(n - 1)))[a];
+        f[a] = f[a] < 0.5 ? f[a] * open : 1.0 - (1.0 - f[a]) * open;
+    }
+    return lookup.gridOrigin[c].xyz + (base + f + 0.5) * lookup.gridOrigin[c].w;
+}
+
 // Cascade c's irradiance alone at point p, for the damping's sample behind the surface.
 vec3 irradianceAt(int c, vec3 p, vec4 cosine) {
     vec3 uvw = uvwIn(c, p);
@@ -68,7 +113,9 @@ vec3 irradianceAt(int c, vec3 p, vec4 cosine) {
 // Cascade c's light at surface point p: half a cell out along n, damped.
 CascadeSample surfaceLight(int c, vec3 p, vec3 n, LookupLobes lobes) {
     float cell = lookup.gridOrigin[c].w;
-    CascadeSample front = lightAt(c, p + 0.5 * cell * n, lobes);
+    vec3 q = p + 0.5 * cell * n;
+    if (((int(lookup.encode.z) >> c) & 1) != 0) q = keptInside(c, q);
+    CascadeSample front = lightAt(c, q, lobes);
     if (lookup.grid.z != 0) {
         vec3 behind = irradianceAt(c, p - 0.5 * cell * n, lobes.irradiance);
         float f = dot(front.irradiance, vec3(0.2126, 0.7152, 0.0722));

@@ -6,6 +6,7 @@
 #include <glm/vec4.hpp>
 
 #include <algorithm>
+#include <string>
 
 namespace lpv::gi {
 namespace {
@@ -23,13 +24,13 @@ struct InjectUniforms {
 
 } // namespace
 
-GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepAlbedo)
+GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepAlbedo, uint32_t faceSlots)
     : device_(device), lpvSize_(lpvSize), layered_(device.caps().vertexShaderLayer) {
     using namespace rhi;
     const uint32_t g = lpvSize + 1;
     // Coverage and albedo sums are rendered into (one layered draw, or one per slice), the per-cell results
     // are written by compute; all are sampled by later passes and read back by the tests.
-    const auto volume = [&](Format format, uint32_t size, uint32_t writeUsage, const char* name) {
+    const auto volume = [&](Format format, uint32_t size, uint32_t writeUsage, const std::string& name) {
         return device.createTexture({TextureKind::Tex3D, format, size, size, size, 1,
                                      writeUsage | kTextureSampled | kTextureTransfer, name, "gi.gv"});
     };
@@ -37,7 +38,10 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepA
     // blending into a unorm target saturates there by itself.
     coverage_ = volume(Format::RGBA8Unorm, g, kTextureColorTarget, "gv coverage");
     cameraCoverage_ = volume(Format::RGBA8Unorm, g, kTextureColorTarget, "gv camera coverage");
-    faces_ = volume(Format::RGBA8Unorm, lpvSize, kTextureStorage, "gv face transmittance");
+    for (uint32_t slot = 0; slot < std::max(faceSlots, 1u); ++slot)
+        faces_.push_back(volume(Format::RGBA8Unorm, lpvSize, kTextureStorage,
+                                slot == 0 ? std::string("gv face transmittance")
+                                          : "gv face transmittance " + std::to_string(slot)));
     if (keepAlbedo) {
         albedoSum_ = volume(Format::RGBA16F, g, kTextureColorTarget, "gv albedo sum");
         albedo_ = volume(Format::RGBA8Unorm, lpvSize, kTextureStorage, "gv surfel albedo");
@@ -78,7 +82,8 @@ GeometryVolume::~GeometryVolume() {
     device_.waitIdle();
     device_.destroy(coverage_);
     device_.destroy(cameraCoverage_);
-    device_.destroy(faces_);
+    for (rhi::TextureHandle t : faces_)
+        device_.destroy(t);
     if (albedoSum_) device_.destroy(albedoSum_);
     if (albedo_) device_.destroy(albedo_);
     device_.destroy(vplPipeline_);
@@ -95,8 +100,10 @@ uint32_t GeometryVolume::cameraSampleCount(uint32_t width, uint32_t height) cons
     return cols * rows;
 }
 
-void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const GeometrySources& src) {
+void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const GeometrySources& src,
+                           uint32_t slot) {
     using namespace rhi;
+    lastSlot_ = std::min(slot, uint32_t(faces_.size()) - 1);
     cmd.clearTexture(coverage_, {0, 0, 0, 0});
     cmd.clearTexture(cameraCoverage_, {0, 0, 0, 0});
     if (albedoSum_) cmd.clearTexture(albedoSum_, {0, 0, 0, 0});
@@ -160,7 +167,7 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
     cmd.bindPipeline(facesPipeline_);
     cmd.pushUniforms(0, &faceGrid, sizeof(faceGrid));
     cmd.bindTexture(1, coverage_, pointSampler_);
-    cmd.bindStorageImage(2, faces_);
+    cmd.bindStorageImage(2, faces_[lastSlot_]);
     cmd.bindTexture(3, cameraCoverage_, pointSampler_);
     if (albedo_) {
         cmd.bindTexture(4, albedoSum_, pointSampler_);

@@ -59,7 +59,8 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
     if (s.occlusion) {
         out.push_back({"geometry volume coverage, light surfels", "gi.gv", gvCells * 4});
         out.push_back({"geometry volume coverage, camera surfels", "gi.gv", gvCells * 4});
-        out.push_back({"face transmittance", "gi.gv", cells * 4});
+        // One per cascade with gi.lookup_occlusion: the lookup reads each cascade's.
+        out.push_back({"face transmittance", "gi.gv", cells * 4 * s.faceVolumes()});
     }
     if (s.bounces > 1) { // needs occlusion (readLpvSettings)
         out.push_back({"geometry volume albedo sum", "gi.gv", gvCells * 8});

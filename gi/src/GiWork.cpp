@@ -182,11 +182,14 @@ WorkCounts lookupWork(const LpvSettings& s, uint64_t pixels) {
     // runs both).
     const uint64_t cascades = s.cascades < 2 ? s.cascades : 2;
     const uint64_t lobes = s.glossy ? 1 : 0;
-    w.texelsRead = pixels * (2 + 3 * lobes + 3 * 2 * lookups * cascades);
+    // With occlusion, the 3 face transmittances that keep a cascade's filter from reading across
+    // walls (lpv_lookup.glsl, keptInside): the finest cascade's, or with gi.lookup_occlusion every one's.
+    const uint64_t faces = s.occlusion ? 3 * (s.lookupOcclusion ? cascades : 1) : 0;
+    w.texelsRead = pixels * (2 + 3 * lobes + 3 * 2 * lookups * cascades + faces);
     // Two targets: the irradiance and the glossy radiance.
     w.texelsWritten = 2 * pixels;
     // The glossy lobes (3 channels' mean directions) and their 3 more dot products per fetch.
-    w.aluOps = pixels * (30 + 30 * lobes + 37 * lookups * cascades);
+    w.aluOps = pixels * (30 + 30 * lobes + 37 * lookups * cascades + 8 * faces);
     w.bytesMoved = pixels * (4 + 8 + 4 * lobes + 8 + 8);
     w.primitives = 1;
     return w;

@@ -161,7 +161,9 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     cascades_[0].result = volumes_->accumulated();
     for (uint32_t c = 1; c < s.cascades; ++c)
         cascades_[c].result = volumes_->createResult("lpv cascade " + std::to_string(c));
-    if (s.occlusion) geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize, s.bounces > 1);
+    facesValid_ = 0;
+    if (s.occlusion)
+        geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize, s.bounces > 1, s.faceVolumes());
     if (s.bounces > 1) bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_);
     pointLights_ = std::make_unique<PointLightInjection>(device_, s);
     spotRsms_ = std::make_unique<SpotLightRsms>(device_, s);
@@ -188,10 +190,13 @@ void LightPropagationVolume::replaceUpdateResources(const LpvSettings& s) {
     madeWith_ = s;
     if ((s.bounces > 1) != (bounces_ != nullptr)) {
         // The geometry volume keeps surfel albedo for the bounces only; it is built anew for every
-        // cascade update, so nothing of it is kept either.
+        // cascade update, and only the faces of each cascade's last update are kept, for the lookup:
+        // a cascade has none again until its next update (facesValid_).
         geometry_.reset();
         bounces_.reset();
-        if (s.occlusion) geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize, s.bounces > 1);
+        facesValid_ = 0;
+        if (s.occlusion)
+            geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize, s.bounces > 1, s.faceVolumes());
         if (s.bounces > 1) bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_);
     }
 }
@@ -293,6 +298,7 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
     // was off still applies when it comes back on.
     const bool resized = !made_ || s.vplCount != madeWith_.vplCount || !volumes_->matches(s) ||
                          s.occlusion != (geometry_ != nullptr) || s.cascades != madeWith_.cascades ||
+                         s.lookupOcclusion != madeWith_.lookupOcclusion ||
                          s.lightRsms != madeWith_.lightRsms || s.pointLightRsms != madeWith_.pointLightRsms;
     // What adapt turns (gi/GiScheduler.h) needs no cascade made again: the results stay (a kept
     // cascade shows its old bounce count until its next update), so the frame after a step runs the
@@ -459,7 +465,13 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             uint64_t lightSurfels = 0;
             for (const PointLightSurfels& l : src.pointLights)
                 lightSurfels += l.count;
-            geometry_->build(cmd, grid, src);
+            // Cascade c's faces go to its own slot, or to the one slot all share (the finest builds
+            // last, so the lookup reads its faces there).
+            const uint32_t slot = std::min(c, geometry_->faceSlots() - 1);
+            geometry_->build(cmd, grid, src, slot);
+            for (uint32_t k = slot; k < cascades_.size(); ++k)
+                if (std::min(k, geometry_->faceSlots() - 1) == slot) facesValid_ &= ~(1u << k);
+            facesValid_ |= 1u << c;
             work(occlusionWork(settings_,
                                src.depth ? geometry_->cameraSampleCount(gbuffer.width, gbuffer.height) : 0,
                                volumeDraw(), lightSurfels));
@@ -542,7 +554,9 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         u.grid = glm::ivec4(int(grid_.size), volumes_->encoded() ? 1 : 0, settings_.damping ? 1 : 0,
                             int(cascades_.size()));
         // gi.rgba8_range, a radiance: the shader takes each cascade's range from its cell size.
-        u.encode = glm::vec4(settings_.rgba8Range, blendBand, 0, 0);
+        // z, bit c: cascade c's lookup keeps to the faces its geometry volume leaves open (its
+        // faces are built: a coarse cascade skipped since the volume was remade has none yet).
+        u.encode = glm::vec4(settings_.rgba8Range, blendBand, geometry_ ? float(facesValid_) : 0.0f, 0);
         // z: the glossy lobe's mean direction (gi.glossy), or the cosine lobe around n.
         u.intensity = glm::vec4(settings_.intensity, 1.0f, settings_.glossy ? 1.0f : 0.0f, 0);
         // w = 0: the first column of the camera matrix, read at an index lavapipe cannot fold.
@@ -568,6 +582,13 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                              linearSampler_);
             cmd.bindTexture(15, gbuffer.albedo, pointSampler_);
             cmd.bindTexture(16, renderer_->specularAlbedoTexture(), linearSampler_);
+            // Without occlusion the bindings are unread; any 3D texture fills them.
+            for (uint32_t c = 0; c < 4; ++c) {
+                const uint32_t slot = std::min(
+                    {c, uint32_t(cascades_.size()) - 1, geometry_ ? geometry_->faceSlots() - 1 : 0u});
+                cmd.bindTexture(17 + c, geometry_ ? geometry_->faceTransmittance(slot) : volumes[0][0],
+                                pointSampler_);
+            }
         };
         if (!classified) {
             cmd.bindPipeline(lookupPipelines_[cascades_.size() - 1]);

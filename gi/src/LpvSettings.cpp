@@ -55,6 +55,14 @@ const engine::BoolSetting kDamping{"gi.damping", true,
 const engine::BoolSetting kOcclusion{
     "gi.occlusion", true,
     "Geometry volume from the RSM and camera depth attenuates propagation (stops leaks through walls)"};
+// Off by default: the coarse cascades' geometry volumes have no camera surfels, and where the
+// light's surfels leave a wall's faces partly open (a wall the sun grazes) the lookup reads through
+// some cells and not others, which shows as cell-sized blotches (the Cornell box's back wall).
+const engine::BoolSetting kLookupOcclusion{
+    "gi.lookup_occlusion", false,
+    "With gi.occlusion, the coarse cascades' lookups also keep to the faces their geometry volumes leave "
+    "open (the finest cascade's always does), so light beyond a wall thinner than a cell is not read "
+    "through it; a face volume per cascade (4 bytes a cell); blotchy where those volumes have holes"};
 const engine::BoolSetting kGlossy{
     "gi.glossy", true,
     "Glossy reflections: a few cells marched along the reflected view ray through the LPV (by roughness)"};
@@ -127,6 +135,7 @@ LpvSettings readLpvSettings(const engine::Config& config) {
     s.rgba8Range = float(config.get(kRgba8Range));
     s.damping = config.get(kDamping);
     s.occlusion = config.get(kOcclusion);
+    s.lookupOcclusion = config.get(kLookupOcclusion);
     s.glossy = config.get(kGlossy);
     s.glossyMaxRoughness = float(config.get(kGlossyMaxRoughness));
     s.bounces = uint32_t(config.get(kBounces));

@@ -79,6 +79,24 @@ glm::vec4 sampleVolume(const Image& v, glm::vec3 uvw) {
     return sum;
 }
 
+// lpv_lookup.glsl's keptInside, in volume coordinates: per axis, the filter's share of the cell
+// across from the one uvw lies in, scaled by the transmittance of the face between them.
+glm::vec3 keptInside(const Image& faces, glm::vec3 uvw) {
+    const int n = int(faces.width);
+    const glm::vec3 t = uvw * float(n) - 0.5f;
+    const glm::vec3 base = glm::floor(t);
+    glm::vec3 f = t - base;
+    const glm::ivec3 home = glm::ivec3(base) + glm::ivec3(glm::greaterThanEqual(f, glm::vec3(0.5f)));
+    for (int a = 0; a < 3; ++a) {
+        glm::ivec3 upper = home;
+        if (f[a] < 0.5f) upper[a] += 1;
+        upper = glm::clamp(upper, glm::ivec3(0), glm::ivec3(n - 1));
+        const float open = faces.at(uint32_t(upper.x), uint32_t(upper.y), uint32_t(upper.z))[a];
+        f[a] = f[a] < 0.5f ? f[a] * open : 1.0f - (1.0f - f[a]) * open;
+    }
+    return (base + f + 0.5f) / float(n);
+}
+
 // The GGX lobe as glossy_lobes.glsl evaluates it: per channel of F0 the basis at the lobe's mean
 // light direction (the table's directions, x along n and y along the mirror direction's part
 // across n; the light travels along the negated direction), and the march's direction, the mean
@@ -169,7 +187,9 @@ LookedUp referenceLookup(const CornellFrame& f, glm::vec3 p, glm::vec3 n, glm::v
     const MeanLobes glossyLobes = meanLobes(n, v, s, f0);
     const auto inCascade = [&](size_t c) {
         const gi::VolumeGrid& g = f.cascadeGrids[c];
-        const glm::vec3 uvw = (p + 0.5f * g.cellSize * n - g.origin) / (g.cellSize * float(g.size));
+        glm::vec3 uvw = (p + 0.5f * g.cellSize * n - g.origin) / (g.cellSize * float(g.size));
+        if (c < f.cascadeFaces.size() && f.cascadeFaces[c].width > 0)
+            uvw = keptInside(f.cascadeFaces[c], uvw);
         LookedUp r;
         if (glm::any(glm::lessThan(uvw, glm::vec3(0.0f))) || glm::any(glm::greaterThan(uvw, glm::vec3(1.0f))))
             return r;

@@ -6,6 +6,7 @@
 #include "engine/config/Config.h"
 #include "engine/render/SpecularAlbedo.h"
 #include "engine/scene/BuiltinScenes.h"
+#include "gi/GeometryVolume.h"
 #include "gi/LightPropagationVolume.h"
 #include "platforms/PlatformProfile.h"
 
@@ -130,6 +131,10 @@ CornellFrame renderSceneFrame(rhi::Device& device, engine::Scene scene,
                 for (uint32_t ch = 0; ch < 3; ++ch)
                     v[ch] = readImage(device, lpv.cascadeResult(c)[ch]);
                 f.cascadeVolumes.push_back(std::move(v));
+                const gi::GeometryVolume* geometry = lpv.geometry();
+                const bool ownFaces = geometry && (c == 0 || geometry->faceSlots() == lpv.cascadeCount());
+                f.cascadeFaces.push_back(ownFaces ? readImage(device, geometry->faceTransmittance(c))
+                                                  : Image{});
             }
     }
     return f;

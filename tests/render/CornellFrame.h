@@ -38,6 +38,9 @@ struct CornellFrame {
     // With GI on: every cascade's placement and result volumes (R, G, B; RGBA16F unless encoded).
     std::vector<gi::VolumeGrid> cascadeGrids;
     std::vector<std::array<Image, 3>> cascadeVolumes;
+    // With gi.occlusion: per cascade, the face transmittance its lookup keeps to (lpv_lookup.glsl's
+    // keptInside), or an empty image where its lookup filters plainly (gi.lookup_occlusion=false).
+    std::vector<Image> cascadeFaces;
 
     // The pixel a world point lands on; false when off screen or hidden behind other geometry.
     bool pixelOf(glm::vec3 world, uint32_t& x, uint32_t& y) const;

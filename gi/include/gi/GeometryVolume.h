@@ -13,6 +13,7 @@
 
 #include <array>
 #include <span>
+#include <vector>
 
 namespace lpv::gi {
 
@@ -54,17 +55,23 @@ public:
     // keepAlbedo: also gather the surfels' albedo (surfelAlbedo()), which only multiple bounces
     // read (gi.bounces > 1); it costs 8 bytes per GV cell and 4 per LPV cell (GiBudget.cpp), more
     // than the console setup's budget has left.
-    GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepAlbedo);
+    // faceSlots: how many face transmittance volumes it keeps, one per cascade (build()'s slot),
+    // so that the lookup can read every cascade's after all were built.
+    GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepAlbedo, uint32_t faceSlots = 1);
     ~GeometryVolume();
     GeometryVolume(const GeometryVolume&) = delete;
     GeometryVolume& operator=(const GeometryVolume&) = delete;
 
     // Clears and refills the volume for `grid` (the LPV's placement), then computes the face
-    // transmittance.
-    void build(rhi::CommandList& cmd, const VolumeGrid& grid, const GeometrySources& sources);
+    // transmittance into face slot `slot`.
+    void build(rhi::CommandList& cmd, const VolumeGrid& grid, const GeometrySources& sources,
+               uint32_t slot = 0);
 
-    // Per LPV cell: transmittance of its -x, -y, -z faces (RGBA8, xyz).
-    rhi::TextureHandle faceTransmittance() const { return faces_; }
+    // Per LPV cell: transmittance of its -x, -y, -z faces (RGBA8, xyz), of the last build()
+    // (propagation and bounces read it), or of a slot's (the lookup, for each cascade).
+    rhi::TextureHandle faceTransmittance() const { return faces_[lastSlot_]; }
+    rhi::TextureHandle faceTransmittance(uint32_t slot) const { return faces_.at(slot); }
+    uint32_t faceSlots() const { return uint32_t(faces_.size()); }
     // Per GV cell (lpvSize + 1 per axis): projected coverage along x, y, z from the light's
     // surfels and from the camera's (RGBA8 each).
     rhi::TextureHandle lightCoverage() const { return coverage_; }
@@ -78,7 +85,9 @@ private:
     rhi::Device& device_;
     uint32_t lpvSize_;
     bool layered_; // surfels in one layered draw (rhi Caps::vertexShaderLayer)
-    rhi::TextureHandle coverage_, cameraCoverage_, faces_;
+    rhi::TextureHandle coverage_, cameraCoverage_;
+    std::vector<rhi::TextureHandle> faces_;
+    uint32_t lastSlot_ = 0;
     // Per GV cell: rgb sum of surfel albedos, a: surfel count (RGBA16F, additive).
     rhi::TextureHandle albedoSum_, albedo_;
     rhi::GraphicsPipelineHandle vplPipeline_, pointLightPipeline_;

@@ -133,6 +133,7 @@ private:
     bool allocationCheckDue_ = false; // warnIfAllocatedOverBudget after the next lookup
     float clippingReported_ = 0.0f;   // the peak last reported (reportRgba8Clipping), 0: none
     uint32_t cascadesValid_ = 0;      // bit c: cascade c's result holds a solution
+    uint32_t facesValid_ = 0;         // bit c: the geometry volume holds cascade c's faces (lookup)
     bool deferredBounces_ = false;
     // update()'s configuration last accepted, and the scheduler as it was before a changed one
     // (put back when the budget check refuses the change).

@@ -34,7 +34,9 @@ struct LpvSettings {
     float rgba8Range = 12.0f;
     bool damping = true;
     bool occlusion = true; // geometry volume attenuates propagation
-    bool glossy = true;    // glossy reflections marched through the volume
+    // With occlusion: the coarse cascades' lookups keep to their open faces too (the finest's always).
+    bool lookupOcclusion = false;
+    bool glossy = true; // glossy reflections marched through the volume
     // Surfaces this rough or rougher get no glossy march (lpv_glossy.glsl's glossyFade).
     float glossyMaxRoughness = 1.0f;
     uint32_t bounces = 1; // light reflected off the geometry volume's surfels (needs occlusion)
@@ -51,6 +53,9 @@ struct LpvSettings {
     // lighting pass rebuilds the rest (engine::IndirectLighting::resolutionDivisor).
     uint32_t resolutionDivisor = 2;
 
+    // Face transmittance volumes the geometry volume keeps (GeometryVolume's face slots): one per
+    // cascade when every cascade's lookup reads its own, else the one the finest cascade builds last.
+    uint32_t faceVolumes() const { return occlusion ? (lookupOcclusion ? cascades : 1) : 0; }
     // Side of the VPL grid the RSM is clustered into (sqrt of vplCount).
     uint32_t vplGridSide() const;
     // VPL slots of the sun's RSM: each of the vplCount blocks has kVplsPerCluster.
