@@ -7,6 +7,7 @@
 #include "gi/GiBudget.h"
 #include "gi/GiWork.h"
 #include "platforms/Log.h"
+#include "rhi/Error.h"
 
 #include <cmath>
 #include <glm/common.hpp>
@@ -20,6 +21,9 @@
 
 namespace lpv::gi {
 namespace {
+
+// lpv_lookup.glsl's highest texture binding (faceTransmittance3) plus one.
+constexpr uint32_t kLookupTextureBindings = 21;
 
 struct ClusterUniforms {
     glm::mat4 invLightViewProjection;
@@ -68,6 +72,15 @@ VolumeGrid placeVolume(const LpvSettings& s, glm::vec3 cameraPosition, glm::vec3
 LightPropagationVolume::LightPropagationVolume(rhi::Device& device, platforms::PlatformProfile profile)
     : device_(device), profile_(std::move(profile)), glossy_(device) {
     using namespace rhi;
+    // lpv_lookup.glsl samples the G-buffer, every cascade's volumes and faces and the lobes' tables
+    // in one fragment shader, at bindings up to kLookupTextureBindings - 1: said here, not as a
+    // driver's failure to build the pipeline.
+    if (device.caps().fragmentTextureBindings < kLookupTextureBindings)
+        throw rhi::Error("GI: the indirect light's lookup binds textures up to binding " +
+                         std::to_string(kLookupTextureBindings - 1) +
+                         " in one fragment shader, and this device (" + device.caps().deviceName +
+                         ") allows " + std::to_string(device.caps().fragmentTextureBindings) +
+                         " (OpenGL's GL_MAX_TEXTURE_IMAGE_UNITS, Vulkan's per-stage samplers)");
     clusterPipeline_ = device.createPipeline(ComputePipelineDesc{&shaders::vpl_cluster_comp, "vpl cluster"});
     GraphicsPipelineDesc lookup;
     lookup.vertex = &engine::shaders::fullscreen_vert;

@@ -90,6 +90,7 @@ public:
         caps_.maskedBranches = config.maskedBranches.value_or(false);
         caps_.shaderStencilExport = true; // it runs no shader, so any may export
         caps_.storageImageBindings = configuredStorageImageBindings(32, config.storageImageBindings);
+        caps_.fragmentTextureBindings = std::min(32u, config.fragmentTextureBindings.value_or(32u));
     }
 
     BackendKind backend() const override { return BackendKind::Null; }

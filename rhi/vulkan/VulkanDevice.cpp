@@ -60,6 +60,9 @@ VulkanDevice::VulkanDevice(const DeviceConfig& config) : config_(config) {
         caps_.shaderStencilExport = ctx_->shaderStencilExport;
         caps_.storageImageBindings = configuredStorageImageBindings(limits.maxPerStageDescriptorStorageImages,
                                                                     config.storageImageBindings);
+        caps_.fragmentTextureBindings =
+            std::min({limits.maxPerStageDescriptorSamplers, limits.maxPerStageDescriptorSampledImages,
+                      config.fragmentTextureBindings.value_or(UINT32_MAX)});
 
         timestamps_.create(*ctx_, timestamps, config.framesInFlight + 1, config.maxTimestampsPerFrame);
         createFrames();

@@ -59,6 +59,9 @@ struct DeviceConfig {
     // Set: report at most this many storage image bindings (Caps::storageImageBindings), so the
     // callers' paths for OpenGL's minimum of 8 run, and are compared, on any device.
     std::optional<uint32_t> storageImageBindings;
+    // Set: report at most this many fragment texture bindings (Caps::fragmentTextureBindings), so
+    // what a caller does on a device with fewer can be run on any device.
+    std::optional<uint32_t> fragmentTextureBindings;
 };
 
 // Throws BackendUnavailable when no allowed backend starts.

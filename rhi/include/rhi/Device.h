@@ -61,6 +61,10 @@ struct Caps {
     // image uniforms (8 on NVIDIA's driver, the spec's minimum; 32 on Mesa), Vulkan's per-stage
     // storage images, at most the 32 bindings the command lists track.
     uint32_t storageImageBindings = kPortableStorageImageBindings;
+    // Sampled textures a fragment shader may bind, at bindings below this: OpenGL's texture units
+    // (GL_MAX_TEXTURE_IMAGE_UNITS, 16 at the spec's minimum, 32 on Mesa and NVIDIA), Vulkan's
+    // per-stage samplers and sampled images.
+    uint32_t fragmentTextureBindings = 16;
 };
 
 class Device {
