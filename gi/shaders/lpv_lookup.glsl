@@ -30,8 +30,9 @@ layout(binding = 0, std140) uniform Lookup {
     mat4 invViewProjection;
     vec4 gridOrigin[4]; // per cascade: xyz corner of cell 0, w: cell size
     ivec4 grid;         // x: cells per axis, y: volumes are rgba8-encoded, z: damping on
-    vec4 encode;        // x: gi.rgba8_range (a radiance: cascadeRange), y: blend band (fraction of the half-extent),
-                        // z, bit c: cascade c's faceTransmittance volume is bound and built (gi.occlusion)
+    vec4 encode;        // x: gi.rgba8_range (a radiance: cascadeRange), y: blend band (fraction
+                        // of the half-extent), z, bit c: cascade c's faceTransmittance is bound
+                        // and built (gi.occlusion)
     vec4 intensity;     // x: gi.intensity (already applied at injection), y: damping strength,
                         // z: 1 the glossy lobe's mean direction, 0 the cosine lobe (gi.glossy off)
     ivec4 pixels;       // x: resolution divisor, yz: G-buffer size, w: 0 (see main)
@@ -61,7 +62,8 @@ CascadeSample lightAt(int c, vec3 p, LookupLobes lobes) {
     return CascadeSample(max(s.irradiance, vec3(0.0)) / area, max(s.glossy, vec3(0.0)) / area);
 }
 
-// Each cascade's face transmittance (GeometryVolume; unused cascades bound to the coarsest).
+// Each cascade's face transmittance (GeometryVolume). Bindings without one of their own (a cascade
+// that does not exist, or all but the finest's without gi.lookup_occlusion) hold another's, unread.
 layout(binding = 17) uniform sampler3D faceTransmittance0;
 layout(binding = 18) uniform sampler3D faceTransmittance1;
 layout(binding = 19) uniform sampler3D faceTransmittance2;
@@ -78,12 +80,12 @@ vec3 facesAt(int c, ivec3 cell) {
 // Where to sample cascade c for point p so that its trilinear filter does not read across
 // the faces the geometry volume blocks. A wall thinner than a cell stands between two cell
 // centres, and the cell beyond it holds the light of the wall's far side (injected half a cell out
-// from that side): a plain lookup on the near side mixed it in (in the Cornell box sealed with a
-// lid and a front wall, the room read 48% of the open room's indirect light, 87% without damping;
-// 9% and 29% with this: tests/gi/ThinWallLookupGpuTests.cpp). Per axis, the filter's share of the neighbour across from the cell p lies
-// in is scaled by the transmittance of the face between them, and the hardware filter then fetches
-// at the point those shares give: 3 more point fetches, not 8 per volume, and one lookup, not a
-// lookup per branch on a CPU rasterizer.
+// from that side): a plain lookup on the near side mixed it in (measured in
+// tests/gi/ThinWallLookupGpuTests.cpp). Per axis, the filter's share of the neighbour across from
+// the cell p lies in is scaled by the transmittance of the face between them, and the hardware
+// filter then fetches at the point those shares give: 3 more point fetches, not 8 per volume, and
+// one lookup, not a lookup per branch on a CPU rasterizer. A diagonal neighbour is cut by the faces
+// on the home cell's row and column only (the path through the other corner is not looked at).
 vec3 keptInside(int c, vec3 p) {
     vec3 uvw = uvwIn(c, p);
     int n = lookup.grid.x;
@@ -115,6 +117,8 @@ CascadeSample surfaceLight(int c, vec3 p, vec3 n, LookupLobes lobes) {
     float cell = lookup.gridOrigin[c].w;
     vec3 q = p + 0.5 * cell * n;
     if (((int(lookup.encode.z) >> c) & 1) != 0) q = keptInside(c, q);
+    // The damping's sample behind the surface stays a plain lookup: it is there to see the light
+    // beyond the surface.
     CascadeSample front = lightAt(c, q, lobes);
     if (lookup.grid.z != 0) {
         vec3 behind = irradianceAt(c, p - 0.5 * cell * n, lobes.irradiance);

@@ -6,6 +6,7 @@
 #include <glm/vec4.hpp>
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 
 namespace lpv::gi {
@@ -38,7 +39,8 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepA
     // blending into a unorm target saturates there by itself.
     coverage_ = volume(Format::RGBA8Unorm, g, kTextureColorTarget, "gv coverage");
     cameraCoverage_ = volume(Format::RGBA8Unorm, g, kTextureColorTarget, "gv camera coverage");
-    for (uint32_t slot = 0; slot < std::max(faceSlots, 1u); ++slot)
+    if (faceSlots == 0) throw std::invalid_argument("GeometryVolume: faceSlots must be at least 1");
+    for (uint32_t slot = 0; slot < faceSlots; ++slot)
         faces_.push_back(volume(Format::RGBA8Unorm, lpvSize, kTextureStorage,
                                 slot == 0 ? std::string("gv face transmittance")
                                           : "gv face transmittance " + std::to_string(slot)));

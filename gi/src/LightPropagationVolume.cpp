@@ -480,11 +480,9 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                 lightSurfels += l.count;
             // Cascade c's faces go to its own slot, or to the one slot all share (the finest builds
             // last, so the lookup reads its faces there).
-            const uint32_t slot = std::min(c, geometry_->faceSlots() - 1);
-            geometry_->build(cmd, grid, src, slot);
-            for (uint32_t k = slot; k < cascades_.size(); ++k)
-                if (std::min(k, geometry_->faceSlots() - 1) == slot) facesValid_ &= ~(1u << k);
-            facesValid_ |= 1u << c;
+            const bool shared = geometry_->faceSlots() == 1;
+            geometry_->build(cmd, grid, src, shared ? 0 : c);
+            facesValid_ = (shared ? 0u : facesValid_) | (1u << c);
             work(occlusionWork(settings_,
                                src.depth ? geometry_->cameraSampleCount(gbuffer.width, gbuffer.height) : 0,
                                volumeDraw(), lightSurfels));

@@ -83,8 +83,10 @@ GlDevice::GlDevice(const DeviceConfig& config, std::unique_ptr<platforms::GlCont
         uint32_t(std::min({glInteger(gl_, GL_MAX_IMAGE_UNITS), glInteger(gl_, GL_MAX_COMPUTE_IMAGE_UNIFORMS),
                            glInteger(gl_, GL_MAX_FRAGMENT_IMAGE_UNIFORMS)})),
         config.storageImageBindings);
-    caps_.fragmentTextureBindings = std::min(glInteger(gl_, GL_MAX_TEXTURE_IMAGE_UNITS),
-                                             config.fragmentTextureBindings.value_or(UINT32_MAX));
+    // Capped at the bindings the command lists track, as storageImageBindings.
+    caps_.fragmentTextureBindings =
+        std::min({glInteger(gl_, GL_MAX_TEXTURE_IMAGE_UNITS),
+                  config.fragmentTextureBindings.value_or(kMaxBindings), kMaxBindings});
 
     const uint64_t region = std::max(config.uniformRingBytes, 256u);
     uniformRing_.create(gl_, region, config.framesInFlight);

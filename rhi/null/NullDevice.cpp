@@ -90,7 +90,8 @@ public:
         caps_.maskedBranches = config.maskedBranches.value_or(false);
         caps_.shaderStencilExport = true; // it runs no shader, so any may export
         caps_.storageImageBindings = configuredStorageImageBindings(32, config.storageImageBindings);
-        caps_.fragmentTextureBindings = std::min(32u, config.fragmentTextureBindings.value_or(32u));
+        caps_.fragmentTextureBindings =
+            std::min(kMaxBindings, config.fragmentTextureBindings.value_or(kMaxBindings));
     }
 
     BackendKind backend() const override { return BackendKind::Null; }

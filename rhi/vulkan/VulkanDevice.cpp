@@ -62,7 +62,7 @@ VulkanDevice::VulkanDevice(const DeviceConfig& config) : config_(config) {
                                                                     config.storageImageBindings);
         caps_.fragmentTextureBindings =
             std::min({limits.maxPerStageDescriptorSamplers, limits.maxPerStageDescriptorSampledImages,
-                      config.fragmentTextureBindings.value_or(UINT32_MAX)});
+                      config.fragmentTextureBindings.value_or(kMaxBindings), kMaxBindings});
 
         timestamps_.create(*ctx_, timestamps, config.framesInFlight + 1, config.maxTimestampsPerFrame);
         createFrames();

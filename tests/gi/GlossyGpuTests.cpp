@@ -391,7 +391,9 @@ TEST_CASE("gi: surfaces the glossy march skips reflect the volume at their lobe'
     };
     const Case cases[] = {{1.0f, 1.0f, "gi.glossy_max_roughness=1"},
                           {0.5f, 0.0f, "gi.glossy_max_roughness=0.4"},
-                          {0.3f, 1.0f, "gi.glossy=false"}};
+                          {0.3f, 1.0f, "gi.glossy=false"},
+                          // Every cascade's lookup kept to its open faces (the reference mirrors it).
+                          {1.0f, 1.0f, "gi.lookup_occlusion=true"}};
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
             TestDevice device(backend);

@@ -6,7 +6,6 @@
 #include "engine/config/Config.h"
 #include "engine/render/SpecularAlbedo.h"
 #include "engine/scene/BuiltinScenes.h"
-#include "gi/GeometryVolume.h"
 #include "gi/LightPropagationVolume.h"
 #include "platforms/PlatformProfile.h"
 
@@ -131,10 +130,8 @@ CornellFrame renderSceneFrame(rhi::Device& device, engine::Scene scene,
                 for (uint32_t ch = 0; ch < 3; ++ch)
                     v[ch] = readImage(device, lpv.cascadeResult(c)[ch]);
                 f.cascadeVolumes.push_back(std::move(v));
-                const gi::GeometryVolume* geometry = lpv.geometry();
-                const bool ownFaces = geometry && (c == 0 || geometry->faceSlots() == lpv.cascadeCount());
-                f.cascadeFaces.push_back(ownFaces ? readImage(device, geometry->faceTransmittance(c))
-                                                  : Image{});
+                const rhi::TextureHandle faces = lpv.lookupFaces(c);
+                f.cascadeFaces.push_back(faces ? readImage(device, faces) : Image{});
             }
     }
     return f;

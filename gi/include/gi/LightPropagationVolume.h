@@ -24,6 +24,7 @@
 #include "gi/SpotLightRsms.h"
 #include "platforms/PlatformProfile.h"
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <vector>
@@ -86,6 +87,14 @@ public:
     const LpvVolumes* volumes() const { return volumes_.get(); }
     const ReflectiveShadowMap* rsm() const { return rsm_.get(); }
     const GeometryVolume* geometry() const { return geometry_.get(); }
+    // The face transmittance cascade c's lookup keeps to (lpv_lookup.glsl, keptInside), or none
+    // where it filters plainly (no gi.occlusion, a coarse cascade without gi.lookup_occlusion, or
+    // faces not built yet).
+    rhi::TextureHandle lookupFaces(uint32_t c) const {
+        const bool kept = geometry_ && c < 32 && (facesValid_ & (1u << c)) != 0;
+        return kept ? geometry_->faceTransmittance(std::min(c, geometry_->faceSlots() - 1))
+                    : rhi::TextureHandle{};
+    }
     const PointLightInjection* pointLights() const { return pointLights_.get(); }
     const SpotLightRsms* spotLightRsms() const { return spotRsms_.get(); }
     rhi::BufferHandle vplBuffer() const { return vpls_; }
