@@ -77,19 +77,22 @@ vec3 facesAt(int c, ivec3 cell) {
     return texelFetch(faceTransmittance3, cell, 0).xyz;
 }
 
-// Where to sample cascade c for point p so that its trilinear filter does not read across
-// the faces the geometry volume blocks. A wall thinner than a cell stands between two cell
-// centres, and the cell beyond it holds the light of the wall's far side (injected half a cell out
-// from that side): a plain lookup on the near side mixed it in (measured in
-// tests/gi/ThinWallLookupGpuTests.cpp). Per axis, the filter's share of the neighbour across from
-// the cell p lies in is scaled by the transmittance of the face between them, and the hardware
+// Where to sample cascade c for point q (half a cell out from surface point p) so that its
+// trilinear filter does not read across the faces the geometry volume blocks. A wall thinner than
+// a cell stands between two cell centres, and the cell beyond it holds the light of the wall's far
+// side (injected half a cell out from that side): a plain lookup on the near side mixed it in
+// (measured in tests/gi/ThinWallLookupGpuTests.cpp). Per axis, the filter's share of the neighbour
+// across from the cell q lies in is scaled by the transmittance of the face between them, and the hardware
 // filter then fetches at the point those shares give: 3 more point fetches, not 8 per volume, and
 // one lookup, not a lookup per branch on a CPU rasterizer. A diagonal neighbour is cut by the faces
 // on the home cell's row and column only (the path through the other corner is not looked at).
-vec3 keptInside(int c, vec3 p) {
-    vec3 uvw = uvwIn(c, p);
+vec3 keptInside(int c, vec3 q, vec3 p) {
+    vec4 origin = lookup.gridOrigin[c];
     int n = lookup.grid.x;
-    vec3 t = uvw * float(n) - 0.5;
+    // Cell coordinates: cell centres at whole numbers.
+    vec3 t = (q - origin.xyz) / origin.w - 0.5;
+    vec3 pt = (p - origin.xyz) / origin.w - 0.5;
+    vec3 camera = (lookup.cameraPosition.xyz - origin.xyz) / origin.w - 0.5;
     vec3 base = floor(t);
     vec3 f = t - base;
     ivec3 home = ivec3(base) + ivec3(greaterThanEqual(f, vec3(0.5)));
@@ -99,9 +102,24 @@ vec3 keptInside(int c, vec3 p) {
         ivec3 upper = home;
         if (f[a] < 0.5) upper[a] += 1;
         float open = facesAt(c, clamp(upper, ivec3(0), ivec3(n - 1)))[a];
-        f[a] = f[a] < 0.5 ? f[a] * open : 1.0 - (1.0 - f[a]) * open;
+        // Which side of that face to keep to: the one q lies on, unless the camera's ray to the
+        // surface point crossed the face's plane within a cell of q, beside the point. Then the
+        // face blocks nothing there (the camera sees the point through it): a wall snapped to a
+        // face up to half a cell from where it stands, and the few centimetres between put the
+        // points of the walls meeting it on its far side, where the light of the wall's outside
+        // showed as a bright line along the corner.
+        float plane = base[a] + 0.5;
+        bool upperHome = f[a] >= 0.5;
+        bool cameraAbove = camera[a] >= plane;
+        if (upperHome != cameraAbove && (pt[a] >= plane) == upperHome && open < 1.0) {
+            vec3 crossing = mix(camera, pt, (plane - camera[a]) / (pt[a] - camera[a]));
+            vec3 away = abs(crossing - t);
+            away[a] = 0.0;
+            if (max(away.x, max(away.y, away.z)) <= 1.0) upperHome = cameraAbove;
+        }
+        f[a] = upperHome ? 1.0 - (1.0 - f[a]) * open : f[a] * open;
     }
-    return lookup.gridOrigin[c].xyz + (base + f + 0.5) * lookup.gridOrigin[c].w;
+    return origin.xyz + (base + f + 0.5) * origin.w;
 }
 
 // Cascade c's irradiance alone at point p, for the damping's sample behind the surface.
@@ -116,7 +134,7 @@ vec3 irradianceAt(int c, vec3 p, vec4 cosine) {
 CascadeSample surfaceLight(int c, vec3 p, vec3 n, LookupLobes lobes) {
     float cell = lookup.gridOrigin[c].w;
     vec3 q = p + 0.5 * cell * n;
-    if (((int(lookup.encode.z) >> c) & 1) != 0) q = keptInside(c, q);
+    if (((int(lookup.encode.z) >> c) & 1) != 0) q = keptInside(c, q, p);
     // The damping's sample behind the surface stays a plain lookup: it is there to see the light
     // beyond the surface.
     CascadeSample front = lightAt(c, q, lobes);

@@ -188,8 +188,9 @@ WorkCounts lookupWork(const LpvSettings& s, uint64_t pixels) {
     w.texelsRead = pixels * (2 + 3 * lobes + 3 * 2 * lookups * cascades + faces);
     // Two targets: the irradiance and the glossy radiance.
     w.texelsWritten = 2 * pixels;
-    // The glossy lobes (3 channels' mean directions) and their 3 more dot products per fetch.
-    w.aluOps = pixels * (30 + 30 * lobes + 37 * lookups * cascades + 8 * faces);
+    // The glossy lobes (3 channels' mean directions) and their 3 more dot products per fetch; per
+    // face, its share of the filter and the camera's side of it (where the view ray crossed it).
+    w.aluOps = pixels * (30 + 30 * lobes + 37 * lookups * cascades + 20 * faces);
     w.bytesMoved = pixels * (4 + 8 + 4 * lobes + 8 + 8);
     w.primitives = 1;
     return w;

@@ -79,11 +79,12 @@ glm::vec4 sampleVolume(const Image& v, glm::vec3 uvw) {
     return sum;
 }
 
-// lpv_lookup.glsl's keptInside, in volume coordinates: per axis, the filter's share of the cell
-// across from the one uvw lies in, scaled by the transmittance of the face between them.
-glm::vec3 keptInside(const Image& faces, glm::vec3 uvw) {
+// lpv_lookup.glsl's keptInside, in cell coordinates (cell centres at whole numbers) of q, the
+// surface point p and the camera: per axis, the filter's share of the cell across from the one q
+// lies in, scaled by the transmittance of the face between them, unless the camera's ray to p
+// crossed that face's plane within a cell of q: then the camera's side of it.
+glm::vec3 keptInside(const Image& faces, glm::vec3 t, glm::vec3 p, glm::vec3 camera) {
     const int n = int(faces.width);
-    const glm::vec3 t = uvw * float(n) - 0.5f;
     const glm::vec3 base = glm::floor(t);
     glm::vec3 f = t - base;
     const glm::ivec3 home = glm::ivec3(base) + glm::ivec3(glm::greaterThanEqual(f, glm::vec3(0.5f)));
@@ -92,9 +93,18 @@ glm::vec3 keptInside(const Image& faces, glm::vec3 uvw) {
         if (f[a] < 0.5f) upper[a] += 1;
         upper = glm::clamp(upper, glm::ivec3(0), glm::ivec3(n - 1));
         const float open = faces.at(uint32_t(upper.x), uint32_t(upper.y), uint32_t(upper.z))[a];
-        f[a] = f[a] < 0.5f ? f[a] * open : 1.0f - (1.0f - f[a]) * open;
+        const float plane = base[a] + 0.5f;
+        bool upperHome = f[a] >= 0.5f;
+        const bool cameraAbove = camera[a] >= plane;
+        if (upperHome != cameraAbove && (p[a] >= plane) == upperHome && open < 1.0f) {
+            const glm::vec3 crossing = glm::mix(camera, p, (plane - camera[a]) / (p[a] - camera[a]));
+            glm::vec3 away = glm::abs(crossing - t);
+            away[a] = 0.0f;
+            if (std::max({away.x, away.y, away.z}) <= 1.0f) upperHome = cameraAbove;
+        }
+        f[a] = upperHome ? 1.0f - (1.0f - f[a]) * open : f[a] * open;
     }
-    return (base + f + 0.5f) / float(n);
+    return base + f + 0.5f;
 }
 
 // The GGX lobe as glossy_lobes.glsl evaluates it: per channel of F0 the basis at the lobe's mean
@@ -188,8 +198,12 @@ LookedUp referenceLookup(const CornellFrame& f, glm::vec3 p, glm::vec3 n, glm::v
     const auto inCascade = [&](size_t c) {
         const gi::VolumeGrid& g = f.cascadeGrids[c];
         glm::vec3 uvw = (p + 0.5f * g.cellSize * n - g.origin) / (g.cellSize * float(g.size));
-        if (c < f.cascadeFaces.size() && f.cascadeFaces[c].width > 0)
-            uvw = keptInside(f.cascadeFaces[c], uvw);
+        if (c < f.cascadeFaces.size() && f.cascadeFaces[c].width > 0) {
+            const auto cells = [&](glm::vec3 w) { return (w - g.origin) / g.cellSize - 0.5f; };
+            uvw = keptInside(f.cascadeFaces[c], cells(p + 0.5f * g.cellSize * n), cells(p),
+                             cells(f.camera.position)) /
+                  float(g.size);
+        }
         LookedUp r;
         if (glm::any(glm::lessThan(uvw, glm::vec3(0.0f))) || glm::any(glm::greaterThan(uvw, glm::vec3(1.0f))))
             return r;
