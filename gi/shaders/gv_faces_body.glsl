@@ -16,6 +16,13 @@ layout(binding = 4) uniform sampler3D albedoSum;
 layout(binding = 5, rgba8) uniform writeonly image3D surfelAlbedo;
 #endif
 
+// Component `axis` of the light's coverage of GV cell c, at most 1; 0 outside the volume.
+float light(ivec3 c, int axis) {
+    int n = params.grid.x + 1;
+    bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
+    return inside ? min(texelFetch(lightCoverage, c, 0)[axis], 1.0) : 0.0;
+}
+
 // Component `axis` of the camera's coverage of GV cell c; 0 outside the volume.
 float camera(ivec3 c, int axis) {
     int n = params.grid.x + 1;
@@ -25,31 +32,33 @@ float camera(ivec3 c, int axis) {
 
 // The blocking of the lower face along `axis` of LPV cell c: the mean coverage along `axis` of the
 // four GV cells at its corners (c + u i + v j, i, j in 0..1; u, v span the face). A corner's
-// coverage is the light's estimate, or the camera's where that sees more. The camera's is closed
-// over one-cell holes: a corner whose two neighbours in the face's plane (along u, or along v)
-// both are covered counts as covered too. The camera misses a wall's cells where another object's
-// silhouette just hides them, and which ones changes as the camera moves (the Cornell box's back
-// wall behind the short box's top): light then leaked through the hole, or not, from one frame to
-// the next. The corners' neighbours overlap: the 12 cells of a 4 x 4 patch of the plane less its
-// corners are fetched once.
+// coverage is the light's estimate, or the camera's where that sees more. Each is closed over
+// one-cell holes: a corner whose two neighbours in the face's plane (along u, or along v) both are
+// covered counts as covered too (as much as the lesser of them). The camera misses a wall's cells
+// where another object's silhouette just hides them, and which ones changes as the camera moves
+// (the Cornell box's back wall behind the short box's top): light then leaked through the hole,
+// or not, from one frame to the next. The light's surfels cover a wall it grazes patchily (a VPL
+// lands in one cell with its whole block's area, stretched by 1 / cos): the Cornell box's back
+// wall, lit at cos 0.22 from outside, let a quarter to half of the outside's light through its
+// cells in the coarse cascades, unevenly, which the room showed as cell-sized blotches. The
+// corners' neighbours overlap: the 12 cells of a 4 x 4 patch of the plane less its corners are
+// fetched once for each.
 float faceBlocking(ivec3 c, int axis, ivec3 u, ivec3 v) {
     float sum = 0.0;
-    if (params.grid.y == 0) {
-        for (int k = 0; k < 4; ++k)
-            sum += min(texelFetch(lightCoverage, c + u * (k & 1) + v * (k >> 1), 0)[axis], 1.0);
-        return sum * 0.25;
-    }
-    // seen[i + 1][j + 1]: the camera's coverage at c + u i + v j, i, j in -1..2 (corners unused).
-    float seen[4][4];
+    // seen[i + 1][j + 1], lit[i + 1][j + 1]: the camera's and the light's coverage at c + u i + v j,
+    // i, j in -1..2 (corners unused).
+    float seen[4][4], lit[4][4];
     for (int i = -1; i <= 2; ++i)
         for (int j = -1; j <= 2; ++j) {
             bool corner = (i == -1 || i == 2) && (j == -1 || j == 2);
-            seen[i + 1][j + 1] = corner ? 0.0 : camera(c + u * i + v * j, axis);
+            ivec3 at = c + u * i + v * j;
+            seen[i + 1][j + 1] = corner || params.grid.y == 0 ? 0.0 : camera(at, axis);
+            lit[i + 1][j + 1] = corner ? 0.0 : light(at, axis);
         }
     for (int k = 0; k < 4; ++k) {
         int i = (k & 1) + 1, j = (k >> 1) + 1;
         float closed = max(seen[i][j], max(min(seen[i - 1][j], seen[i + 1][j]), min(seen[i][j - 1], seen[i][j + 1])));
-        float l = min(texelFetch(lightCoverage, c + u * (k & 1) + v * (k >> 1), 0)[axis], 1.0);
+        float l = max(lit[i][j], max(min(lit[i - 1][j], lit[i + 1][j]), min(lit[i][j - 1], lit[i][j + 1])));
         sum += max(l, closed);
     }
     return sum * 0.25;

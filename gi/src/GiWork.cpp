@@ -154,17 +154,17 @@ WorkCounts occlusionWork(const LpvSettings& s, uint64_t cameraSamples, VolumeDra
     // Every surfel is submitted once, or once per slice (camera points fetch their sample's depth,
     // normal and albedo, and all but the sample's own a neighbour's depth and normal, each time);
     // one slice keeps it.
-    // Then per LPV cell 12 coverage values of the light's, and with camera surfels the camera's
-    // closed over holes (a 4 x 4 patch less its corners per face: 36 fetches), and one store.
-    const uint64_t faceFetches = cameraSamples > 0 ? 12 + 36 : 12;
+    // Then per LPV cell the light's coverage closed over holes (a 4 x 4 patch less its corners per
+    // face: 36 fetches), with camera surfels the camera's too, and one store.
+    const uint64_t faceFetches = cameraSamples > 0 ? 36 + 36 : 36;
     w.primitives = surfels * slices;
-    w.aluOps = w.primitives * 25 + cameraPoints * 20 * slices + cells * (cameraSamples > 0 ? 60 : 20);
+    w.aluOps = w.primitives * 25 + cameraPoints * 20 * slices + cells * (cameraSamples > 0 ? 100 : 60);
     w.pixelsShaded = surfels;
     constexpr uint64_t points = GeometryVolume::kCameraPointsPerSample;
     w.texelsRead = cameraSamples * (3 * points + 2 * (points - 1)) * slices + cells * faceFetches;
     w.texelsWritten = surfels + cells;
-    // The camera patches' fetches overlap from cell to cell: its volume (RGBA8) comes from memory
-    // about twice.
+    // The patches' fetches overlap from cell to cell: the camera's volume (RGBA8) comes from
+    // memory about twice, the light's as often as its 12 corner fetches did.
     w.bytesMoved = w.primitives * 48 + surfels * 16 + cells * (12 * 8 + (cameraSamples > 0 ? 8 : 0) + 4);
     w.cells = cells;
     return w;
