@@ -55,14 +55,15 @@ const engine::BoolSetting kDamping{"gi.damping", true,
 const engine::BoolSetting kOcclusion{
     "gi.occlusion", true,
     "Geometry volume from the RSM and camera depth attenuates propagation (stops leaks through walls)"};
-// Off by default: the coarse cascades' geometry volumes have no camera surfels, and where the
-// light's surfels leave a wall's faces partly open (a wall the sun grazes) the lookup reads through
-// some cells and not others, which shows as cell-sized blotches (the Cornell box's back wall).
+// On by default since the light's coverage is closed over one-cell holes (gv_faces_body.glsl):
+// before, where the light's surfels left a wall's faces partly open (a wall the sun grazes), the
+// lookup read through some cells and not others, and the Cornell box's back wall showed cell-sized
+// blotches. The console preset turns it off: its face volumes would take the plan past 3 MiB.
 const engine::BoolSetting kLookupOcclusion{
-    "gi.lookup_occlusion", false,
+    "gi.lookup_occlusion", true,
     "With gi.occlusion, the coarse cascades' lookups also keep to the faces their geometry volumes leave "
     "open (the finest cascade's always does), so light beyond a wall thinner than a cell is not read "
-    "through it; a face volume per cascade (4 bytes a cell); blotchy where those volumes have holes"};
+    "through it; a face volume per cascade (4 bytes a cell)"};
 const engine::BoolSetting kGlossy{
     "gi.glossy", true,
     "Glossy reflections: a few cells marched along the reflected view ray through the LPV (by roughness)"};
