@@ -35,7 +35,7 @@ struct LpvSettings {
     bool damping = true;
     bool occlusion = true; // geometry volume attenuates propagation
     // With occlusion: the coarse cascades' lookups keep to their open faces too (the finest's always).
-    bool lookupOcclusion = false;
+    bool lookupOcclusion = true;
     bool glossy = true; // glossy reflections marched through the volume
     // Surfaces this rough or rougher get no glossy march (lpv_glossy.glsl's glossyFade).
     float glossyMaxRoughness = 1.0f;
