@@ -648,7 +648,7 @@ TEST_CASE("cli: a second SIGINT stops the game at once") {
         << "log=" << dir << "/game.log\n"
         << game << " > $log 2>&1 &\n"
         << "pid=$!\n"
-        << "(sleep 60; kill -KILL $pid 2>/dev/null) &\n"
+        << "(sleep 60; kill -KILL $pid 2>/dev/null) >/dev/null 2>&1 &\n"
         << "watchdog=$!\n"
         << "n=0\n"
         << "until grep -q 'running on backend' $log || [ $n -ge 600 ]; do sleep 0.05; n=$((n+1)); done\n"
