@@ -515,12 +515,19 @@ void consolePrediction() {
         double(gi::LpvSettings{}.rsmLodTexels));
     const uint64_t floorPixels =
         uint64_t(1280 / limits.maxResolutionDivisor) * (720 / limits.maxResolutionDivisor);
+    // A coarse cascade's geometry volume: the light's surfels, and with gi.coarse_camera_occlusion
+    // the camera's areas.
+    const auto coarseOcclusion = [](const gi::LpvSettings& settings) {
+        engine::WorkCounts w = gi::occlusionWork(settings, 0);
+        if (settings.cameraAreas()) w += gi::cameraAreasWork(settings, 160u * 90u);
+        return w;
+    };
     const Pass passes[] = {
         {"rsm (per cascade)", gi::rsmWork(c, rsmTriangles), gi::rsmWork(f, floorRsmTriangles), 3, 2},
         {"vpl (per cascade)", gi::vplClusterWork(c), gi::vplClusterWork(f), 3, 2},
         {"occlusion, finest (camera surfels)", gi::occlusionWork(c, 160u * 90u),
          gi::occlusionWork(f, 160u * 90u), 1, 1},
-        {"occlusion, coarse cascade", gi::occlusionWork(c, 0), gi::occlusionWork(f, 0), 2, 1},
+        {"occlusion, coarse cascade (camera areas)", coarseOcclusion(c), coarseOcclusion(f), 2, 1},
         {"inject (per cascade)", gi::injectWork(c), gi::injectWork(f), 3, 2},
         {"propagate (per cascade)", gi::propagateWork(c), gi::propagateWork(f), 3, 2},
         {"bounces (finest cascade, gi.bounce_cascades=1)", gi::bounceWork(c), gi::bounceWork(f),
@@ -559,8 +566,7 @@ void consolePrediction() {
         const double light = ms(gi::rsmWork(f, floorRsmTriangles)) + ms(gi::vplClusterWork(f));
         const double fine = light + ms(gi::occlusionWork(f, 160u * 90u)) + ms(gi::injectWork(f)) +
                             ms(gi::propagateWork(f)) + ms(gi::bounceWork(f));
-        const double coarseVolume =
-            ms(gi::occlusionWork(f, 0)) + ms(gi::injectWork(f)) + ms(gi::propagateWork(f));
+        const double coarseVolume = ms(coarseOcclusion(f)) + ms(gi::injectWork(f)) + ms(gi::propagateWork(f));
         atFloor[p] = fine + std::max(light, coarseVolume) + ms(gi::lookupWork(f, floorPixels)) +
                      ms(gi::glossyWork(floorPixels)) + ms(engine::indirectRebuildWork(pixels));
     }

@@ -8,7 +8,14 @@ layout(binding = 0, std140) uniform Faces {
 } params;
 layout(binding = 1) uniform sampler3D lightCoverage;
 layout(binding = 2, rgba8) uniform writeonly image3D transmittance;
+#ifdef CAMERA_AREAS
+// A coarse cascade's: the areas the camera's samples saw (gv_camera_areas.comp).
+#include "gv_camera_areas.glsl"
+layout(binding = 3) uniform usampler3D cameraAreas;
+#else
+// The finest cascade's: the largest |n| of the surfaces its samples saw (gv_camera_body.glsl).
 layout(binding = 3) uniform sampler3D cameraCoverage;
+#endif
 #ifdef KEEP_ALBEDO
 // Multiple bounces: per GV cell the sum of its surfels' albedos (rgb) and their count (a); per
 // LPV cell the mean over its eight corners.
@@ -23,11 +30,15 @@ float light(ivec3 c, int axis) {
     return inside ? min(texelFetch(lightCoverage, c, 0)[axis], 1.0) : 0.0;
 }
 
-// Component `axis` of the camera's coverage of GV cell c; 0 outside the volume.
+// Component `axis` of the camera's coverage of GV cell c, at most 1; 0 outside the volume.
 float camera(ivec3 c, int axis) {
     int n = params.grid.x + 1;
     bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
+#ifdef CAMERA_AREAS
+    return inside ? min(float(texelFetch(cameraAreas, ivec3(3 * c.x + axis, c.y, c.z), 0).r) / kAreaUnit, 1.0) : 0.0;
+#else
     return inside ? texelFetch(cameraCoverage, c, 0)[axis] : 0.0;
+#endif
 }
 
 // The blocking of the lower face along `axis` of LPV cell c: the mean coverage along `axis` of the
@@ -52,12 +63,21 @@ float faceBlocking(ivec3 c, int axis, ivec3 u, ivec3 v) {
         for (int j = -1; j <= 2; ++j) {
             bool corner = (i == -1 || i == 2) && (j == -1 || j == 2);
             ivec3 at = c + u * i + v * j;
-            seen[i + 1][j + 1] = corner || params.grid.y == 0 ? 0.0 : camera(at, axis);
+#ifdef CAMERA_AREAS
+            // Summed areas leave no holes between samples to close: only the face's own corners.
+            bool unused = i < 0 || i > 1 || j < 0 || j > 1;
+#else
+            bool unused = corner;
+#endif
+            seen[i + 1][j + 1] = unused || params.grid.y == 0 ? 0.0 : camera(at, axis);
             lit[i + 1][j + 1] = corner ? 0.0 : light(at, axis);
         }
     for (int k = 0; k < 4; ++k) {
         int i = (k & 1) + 1, j = (k >> 1) + 1;
         float closed = max(seen[i][j], max(min(seen[i - 1][j], seen[i + 1][j]), min(seen[i][j - 1], seen[i][j + 1])));
+#ifdef CAMERA_AREAS
+        closed = seen[i][j];
+#endif
         float l = max(lit[i][j], max(min(lit[i - 1][j], lit[i + 1][j]), min(lit[i][j - 1], lit[i][j + 1])));
         sum += max(l, closed);
     }

@@ -25,7 +25,8 @@ struct InjectUniforms {
 
 } // namespace
 
-GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepAlbedo, uint32_t faceSlots)
+GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepAlbedo, uint32_t faceSlots,
+                               bool cameraAreas)
     : device_(device), lpvSize_(lpvSize), layered_(device.caps().vertexShaderLayer) {
     using namespace rhi;
     const uint32_t g = lpvSize + 1;
@@ -77,6 +78,16 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepA
     }
     facesPipeline_ = device.createPipeline(ComputePipelineDesc{
         keepAlbedo ? &shaders::gv_faces_albedo_comp : &shaders::gv_faces_coverage_comp, "gv faces"});
+    if (cameraAreas) {
+        cameraAreas_ = device.createTexture({TextureKind::Tex3D, Format::R32UI, 3 * g, g, g, 1,
+                                             kTextureStorage | kTextureSampled | kTextureTransfer,
+                                             "gv camera areas", "gi.gv"});
+        cameraAreasPipeline_ =
+            device.createPipeline(ComputePipelineDesc{&shaders::gv_camera_areas_comp, "gv camera areas"});
+        facesAreasPipeline_ = device.createPipeline(ComputePipelineDesc{
+            keepAlbedo ? &shaders::gv_faces_areas_albedo_comp : &shaders::gv_faces_areas_coverage_comp,
+            "gv faces (camera areas)"});
+    }
     pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
 }
 
@@ -93,6 +104,11 @@ GeometryVolume::~GeometryVolume() {
     for (rhi::GraphicsPipelineHandle p : cameraPipelines_)
         device_.destroy(p);
     device_.destroy(facesPipeline_);
+    if (cameraAreas_) {
+        device_.destroy(cameraAreas_);
+        device_.destroy(cameraAreasPipeline_);
+        device_.destroy(facesAreasPipeline_);
+    }
     device_.destroy(pointSampler_);
 }
 
@@ -105,6 +121,9 @@ uint32_t GeometryVolume::cameraSampleCount(uint32_t width, uint32_t height) cons
 void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const GeometrySources& src,
                            uint32_t slot) {
     using namespace rhi;
+    const bool areas = src.depth && src.cameraAreas;
+    if (areas && !cameraAreas_)
+        throw std::invalid_argument("GeometryVolume: camera areas asked of a volume made without them");
     lastSlot_ = std::min(slot, uint32_t(faces_.size()) - 1);
     cmd.clearTexture(coverage_, {0, 0, 0, 0});
     cmd.clearTexture(cameraCoverage_, {0, 0, 0, 0});
@@ -120,6 +139,16 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
     if (src.depth) {
         const TextureDesc& d = device_.desc(src.depth);
         cameraSamples = cameraSampleCount(d.width, d.height);
+    }
+    if (areas) {
+        cmd.clearTexture(cameraAreas_, {0, 0, 0, 0});
+        u.grid = glm::ivec4(int(g), 0, int(src.vplCount), int(kCameraSamplesPerRow));
+        cmd.bindPipeline(cameraAreasPipeline_);
+        cmd.pushUniforms(0, &u, sizeof(u));
+        cmd.bindTexture(1, src.depth, pointSampler_);
+        cmd.bindTexture(2, src.normal, pointSampler_);
+        cmd.bindStorageImage(3, cameraAreas_);
+        cmd.dispatch((cameraSamples + 63) / 64);
     }
     // As the radiance injection: one layered draw per surfel set, or every set once per slice.
     const uint32_t passes = layered_ ? 1 : g;
@@ -154,7 +183,7 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
         // The samples, then their 2 half-way points, then their 4 footprint edges (gv_camera_body.glsl).
         constexpr uint32_t kPointsOfKind[3] = {1, 2, 4};
         static_assert(kPointsOfKind[0] + kPointsOfKind[1] + kPointsOfKind[2] == kCameraPointsPerSample);
-        for (size_t kind = 0; kind < 3 && cameraSamples > 0; ++kind) {
+        for (size_t kind = 0; kind < 3 && cameraSamples > 0 && !areas; ++kind) {
             cmd.bindPipeline(cameraPipelines_[kind]);
             cmd.pushUniforms(0, &u, sizeof(u));
             cmd.bindTexture(1, src.depth, pointSampler_);
@@ -166,11 +195,11 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
     }
     // y: camera surfels drawn (only then is the camera's coverage closed over holes).
     const glm::ivec4 faceGrid(int(lpvSize_), cameraSamples > 0 ? 1 : 0, 0, 0);
-    cmd.bindPipeline(facesPipeline_);
+    cmd.bindPipeline(areas ? facesAreasPipeline_ : facesPipeline_);
     cmd.pushUniforms(0, &faceGrid, sizeof(faceGrid));
     cmd.bindTexture(1, coverage_, pointSampler_);
     cmd.bindStorageImage(2, faces_[lastSlot_]);
-    cmd.bindTexture(3, cameraCoverage_, pointSampler_);
+    cmd.bindTexture(3, areas ? cameraAreas_ : cameraCoverage_, pointSampler_);
     if (albedo_) {
         cmd.bindTexture(4, albedoSum_, pointSampler_);
         cmd.bindStorageImage(5, albedo_);

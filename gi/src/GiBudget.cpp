@@ -61,6 +61,8 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
         out.push_back({"geometry volume coverage, camera surfels", "gi.gv", gvCells * 4});
         // One per cascade with gi.lookup_occlusion: the lookup reads each cascade's.
         out.push_back({"face transmittance", "gi.gv", cells * 4 * s.faceVolumes()});
+        // gi.coarse_camera_occlusion: the coarse cascades' camera areas, 3 x R32UI a GV cell.
+        if (s.cameraAreas()) out.push_back({"geometry volume coverage, camera areas", "gi.gv", gvCells * 12});
     }
     if (s.bounces > 1) { // needs occlusion (readLpvSettings)
         out.push_back({"geometry volume albedo sum", "gi.gv", gvCells * 8});

@@ -170,6 +170,21 @@ WorkCounts occlusionWork(const LpvSettings& s, uint64_t cameraSamples, VolumeDra
     return w;
 }
 
+WorkCounts cameraAreasWork(const LpvSettings& s, uint64_t cameraSamples) {
+    const uint64_t gvCells = uint64_t(s.gridSize + 1) * (s.gridSize + 1) * (s.gridSize + 1);
+    const uint64_t cells = uint64_t(s.gridSize) * s.gridSize * s.gridSize;
+    WorkCounts w;
+    // Per sample its own and its four neighbours' depth and normal; unprojecting them, the
+    // crease solves toward the neighbours, the footprint's box and its split (about 500 ALU); up
+    // to 2 x 2 cells x 3 axes atomic adds (all counted). The areas' volume is cleared first
+    // (3 texels a GV cell), and the faces pass reads the areas at each face's 4 corners.
+    w.texelsRead = cameraSamples * 10 + cells * 12;
+    w.aluOps = cameraSamples * 500 + cells * 12;
+    w.texelsWritten = cameraSamples * 12 + gvCells * 3;
+    w.bytesMoved = cameraSamples * (10 * 8 + 12 * 8) + gvCells * 12 + cells * 12 * 4;
+    return w;
+}
+
 WorkCounts lookupWork(const LpvSettings& s, uint64_t pixels) {
     WorkCounts w;
     w.pixelsShaded = pixels;

@@ -176,7 +176,8 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
         cascades_[c].result = volumes_->createResult("lpv cascade " + std::to_string(c));
     facesValid_ = 0;
     if (s.occlusion)
-        geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize, s.bounces > 1, s.faceVolumes());
+        geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize, s.bounces > 1, s.faceVolumes(),
+                                                     s.cameraAreas());
     if (s.bounces > 1) bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_);
     pointLights_ = std::make_unique<PointLightInjection>(device_, s);
     spotRsms_ = std::make_unique<SpotLightRsms>(device_, s);
@@ -209,7 +210,8 @@ void LightPropagationVolume::replaceUpdateResources(const LpvSettings& s) {
         bounces_.reset();
         facesValid_ = 0;
         if (s.occlusion)
-            geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize, s.bounces > 1, s.faceVolumes());
+            geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize, s.bounces > 1, s.faceVolumes(),
+                                                         s.cameraAreas());
         if (s.bounces > 1) bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_);
     }
 }
@@ -312,6 +314,7 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
     const bool resized = !made_ || s.vplCount != madeWith_.vplCount || !volumes_->matches(s) ||
                          s.occlusion != (geometry_ != nullptr) || s.cascades != madeWith_.cascades ||
                          s.lookupOcclusion != madeWith_.lookupOcclusion ||
+                         s.coarseCameraOcclusion != madeWith_.coarseCameraOcclusion ||
                          s.lightRsms != madeWith_.lightRsms || s.pointLightRsms != madeWith_.pointLightRsms;
     // What adapt turns (gi/GiScheduler.h) needs no cascade made again: the results stay (a kept
     // cascade shows its old bounce count until its next update), so the frame after a step runs the
@@ -461,14 +464,15 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             src.vplArea = cascade.vplArea;
             src.lightDirection = cascade.lightDirection;
             src.whiteTexelFlux = cascade.whiteTexelFlux;
-            // Camera surfels in the finest cascade only: there a G-buffer sample is small next to
-            // a cell and the coverage is stable as the camera moves; in a coarse cell one sample
-            // of a small or partly seen surface would mark the whole cell, and whether one lands
-            // there changes with every camera move.
-            if (c == 0) {
+            // Camera surfels: in the finest cascade a G-buffer sample is small next to a cell and
+            // marks it; in a coarse cell one sample of a small or partly seen surface would mark
+            // the whole cell, and whether one lands there changes with every camera move, so a
+            // coarse cascade's samples add the area they stand for (gi.coarse_camera_occlusion).
+            if (c == 0 || settings_.cameraAreas()) {
                 src.depth = gbuffer.depth;
                 src.normal = gbuffer.normal;
                 src.albedo = gbuffer.albedo;
+                src.cameraAreas = c > 0;
             }
             src.invViewProjection = camera.invViewProjection;
             src.cameraPosition = camera.position;
@@ -483,9 +487,12 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             const bool shared = geometry_->faceSlots() == 1;
             geometry_->build(cmd, grid, src, shared ? 0 : c);
             facesValid_ = (shared ? 0u : facesValid_) | (1u << c);
-            work(occlusionWork(settings_,
-                               src.depth ? geometry_->cameraSampleCount(gbuffer.width, gbuffer.height) : 0,
-                               volumeDraw(), lightSurfels));
+            const uint64_t cameraSamples =
+                src.depth ? geometry_->cameraSampleCount(gbuffer.width, gbuffer.height) : 0;
+            engine::WorkCounts occlusion =
+                occlusionWork(settings_, src.cameraAreas ? 0 : cameraSamples, volumeDraw(), lightSurfels);
+            if (src.cameraAreas) occlusion += cameraAreasWork(settings_, cameraSamples);
+            work(occlusion);
         }
         {
             auto s = scope("inject");

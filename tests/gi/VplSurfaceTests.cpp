@@ -1,6 +1,7 @@
 // Where the GI's inputs sit, on each backend: VPLs on the surfaces the light sees (a block of RSM
 // texels across a depth edge clusters into one VPL per surface, not one in mid air), the camera's
-// geometry-volume coverage steady when the camera moves by a fraction of a cell, and the atrium's
+// geometry-volume coverage steady when the camera moves by a fraction of a cell, a coarse
+// cascade's camera areas adding up to the surface the camera sees, and the atrium's
 // indirect light at the default VPL count close to one VPL per RSM texel.
 #include "../render/CornellFrame.h"
 #include "../support/TestDevice.h"
@@ -161,6 +162,58 @@ TEST_CASE(
             // alternated); filled between neighbours and to their footprints' edges, 216.
             CHECK(changed * 20 < covered);
             CHECK(facesChanged * 200 < faceCount);
+            device.expectSilent();
+        }
+    }
+}
+
+TEST_CASE("gi: a coarse cascade's camera samples add up to the area of the wall they see") {
+    // A 2 m x 1.5 m wall 3 m in front of the camera, facing it, nothing else in view: cascade 1
+    // (0.5 m cells) is the last coarse cascade built, so its areas are the volume's after a frame.
+    engine::Scene scene;
+    scene.name = "wall";
+    scene.materials = {{"white", {0.8f, 0.8f, 0.8f, 1.0f}}};
+    engine::MeshBuilder b(scene);
+    b.begin("wall", 0);
+    b.box({-1.0f, 0.5f, -3.1f}, {1.0f, 2.0f, -3.0f});
+    b.finish();
+    engine::Camera camera;
+    camera.position = {0.0f, 1.25f, 0.0f};
+    camera.forward = {0.0f, 0.0f, -1.0f};
+    scene.camera = camera;
+    scene.updateBounds();
+    const std::vector<std::string> settings = {"gi.enabled=true", "gi.cell_size=0.25", "gi.cascades=3",
+                                               "render.ssao=false"};
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            std::vector<uint32_t> areas;
+            float cell = 0.0f;
+            oneFrame(*device, scene, settings, glm::vec3(0.0f), glm::vec3(0.3f, -1.0f, -0.2f),
+                     [&](const engine::Renderer&, const gi::LightPropagationVolume& lpv) {
+                         REQUIRE(lpv.geometry());
+                         const rhi::TextureHandle t = lpv.geometry()->cameraAreas();
+                         REQUIRE(t);
+                         const rhi::TextureDesc& d = device->desc(t);
+                         areas.resize(size_t(d.width) * d.height * d.depthOrLayers);
+                         device->readTexture(t, 0, areas.data(), areas.size() * 4);
+                         cell = lpv.cascadeGrid(1).cellSize;
+                     });
+            REQUIRE(cell == doctest::Approx(0.5f));
+            // Texel (3 g.x + axis, g.y, g.z), fixed point of 2^20 a cell face (gv_camera_areas.glsl).
+            double sum[3] = {};
+            for (size_t i = 0; i < areas.size(); ++i)
+                sum[i % 3] += double(areas[i]) / 1048576.0 * cell * cell;
+            MESSAGE(backend.name << ": camera areas along x, y, z: " << sum[0] << ", " << sum[1] << ", "
+                                 << sum[2] << " m^2 (the wall: 3 m^2)");
+            // Each sample reaches half way to its neighbours, and as far past the last sample on the
+            // wall, whose edge lies somewhere in that last sample's spacing: at 160 samples a row a
+            // sample is 2.9 cm on the wall, so the sum is the wall's area within half of that along
+            // its 7 m of edge, 0.1 m^2. Measured 2.992 on every backend.
+            CHECK(sum[2] >= 2.9);
+            CHECK(sum[2] <= 3.1);
+            CHECK(sum[0] < 1e-3);
+            CHECK(sum[1] < 1e-3);
             device.expectSilent();
         }
     }

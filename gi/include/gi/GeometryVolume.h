@@ -42,6 +42,10 @@ struct GeometrySources {
     glm::vec3 cameraPosition{0.0f};
     // Spot and point lights with an RSM: their surfels block too (coverage only, no albedo).
     std::span<const PointLightSurfels> pointLights;
+    // With depth, for a coarse cascade: each camera sample adds the area of surface it stands for
+    // (gv_camera_areas.comp) instead of marking its cell as holding a surface, as the finest
+    // cascade's do (gv_camera_body.glsl). Needs a volume made with cameraAreas.
+    bool cameraAreas = false;
 };
 
 class GeometryVolume {
@@ -57,7 +61,10 @@ public:
     // than the console setup's budget has left.
     // faceSlots: how many face transmittance volumes it keeps, one per cascade (build()'s slot),
     // so that the lookup can read every cascade's after all were built.
-    GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepAlbedo, uint32_t faceSlots = 1);
+    // cameraAreas: keep the volume the coarse cascades' camera samples add their areas into
+    // (GeometrySources::cameraAreas; 12 bytes per GV cell).
+    GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepAlbedo, uint32_t faceSlots = 1,
+                   bool cameraAreas = false);
     ~GeometryVolume();
     GeometryVolume(const GeometryVolume&) = delete;
     GeometryVolume& operator=(const GeometryVolume&) = delete;
@@ -76,6 +83,9 @@ public:
     // surfels and from the camera's (RGBA8 each).
     rhi::TextureHandle lightCoverage() const { return coverage_; }
     rhi::TextureHandle cameraCoverage() const { return cameraCoverage_; }
+    // Per GV cell g and axis a, texel (3 g.x + a, g.y, g.z): a coarse cascade's camera coverage
+    // along a (R32UI, fixed point: gv_camera_areas.glsl). None unless made with cameraAreas.
+    rhi::TextureHandle cameraAreas() const { return cameraAreas_; }
     // Per LPV cell: the mean albedo of the surfels at its corners (RGBA8, rgb; a: 1 where any),
     // what multiple bounces reflect with. None unless made with keepAlbedo.
     rhi::TextureHandle surfelAlbedo() const { return albedo_; }
@@ -94,6 +104,9 @@ private:
     // By kind of camera point: the samples, the half-way points, the footprint edges.
     std::array<rhi::GraphicsPipelineHandle, 3> cameraPipelines_{};
     rhi::ComputePipelineHandle facesPipeline_;
+    // With cameraAreas: the volume, the pass that fills it, and the faces pass that reads it.
+    rhi::TextureHandle cameraAreas_;
+    rhi::ComputePipelineHandle cameraAreasPipeline_, facesAreasPipeline_;
     rhi::SamplerHandle pointSampler_;
 };
 

@@ -36,6 +36,10 @@ engine::WorkCounts gatherPropagationWork(const LpvSettings& s);
 // `lightRsmSurfels`: VPLs of spot and point lights' RSMs drawn as surfels too.
 engine::WorkCounts occlusionWork(const LpvSettings& s, uint64_t cameraSamples,
                                  VolumeDraw draw = VolumeDraw::Layered, uint64_t lightRsmSurfels = 0);
+// A coarse cascade's camera surfels (gi.coarse_camera_occlusion), on top of occlusionWork(s, 0):
+// the pass that measures each sample's footprint and adds its area (gv_camera_areas.comp), and
+// the faces pass's reads of those areas.
+engine::WorkCounts cameraAreasWork(const LpvSettings& s, uint64_t cameraSamples);
 engine::WorkCounts lookupWork(const LpvSettings& s, uint64_t pixels);
 
 } // namespace lpv::gi

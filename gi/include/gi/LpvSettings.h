@@ -36,6 +36,11 @@ struct LpvSettings {
     bool occlusion = true; // geometry volume attenuates propagation
     // With occlusion: the coarse cascades' lookups keep to their open faces too (the finest's always).
     bool lookupOcclusion = true;
+    // With occlusion: the coarse cascades' geometry volumes take the camera's samples too, as the
+    // areas of surface they stand for (the finest's always takes them, as marks).
+    bool coarseCameraOcclusion = true;
+    // Whether the geometry volume keeps the coarse cascades' camera areas.
+    bool cameraAreas() const { return occlusion && coarseCameraOcclusion && cascades > 1; }
     bool glossy = true; // glossy reflections marched through the volume
     // Surfaces this rough or rougher get no glossy march (lpv_glossy.glsl's glossyFade).
     float glossyMaxRoughness = 1.0f;
