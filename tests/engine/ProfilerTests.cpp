@@ -207,6 +207,31 @@ static void twoGiPassFrames(rhi::Device& device, FrameProfiler& profiler) {
     profiler.collectPending();
 }
 
+// gi.rebuild runs inside render.lighting's pass: its own row has no time of its own, and said "cpu"
+// as if it had been timed there.
+TEST_CASE("profiler: a pass measured inside another's time names that pass as its timing") {
+    auto device = nullDevice();
+    FrameProfiler profiler(*device, tinyProfile(100, 100));
+    for (int i = 0; i < 3; ++i) {
+        rhi::CommandList& cmd = device->beginFrame();
+        profiler.beginFrame(cmd);
+        { auto s = profiler.scope("render.lighting", &cmd); }
+        {
+            auto s = profiler.scope("gi.rebuild");
+            profiler.setTimedIn("render.lighting");
+        }
+        profiler.endFrame(cmd);
+        device->endFrame();
+    }
+    profiler.collectPending();
+    const std::string md = profileSummaryMarkdown(profiler), csv = profileSummaryCsv(profiler);
+    INFO(md);
+    CHECK(md.find("| gi.rebuild | in render.lighting |") != std::string::npos);
+    CHECK(csv.find("gi.rebuild,0,in render.lighting,") != std::string::npos);
+    CHECK(md.find("| render.lighting | in ") == std::string::npos);
+    CHECK_THROWS_AS(profiler.setTimedIn("render.lighting"), std::logic_error); // no scope open
+}
+
 // Two GI passes each within the budget, together over it: every row said ok while the header
 // counted every frame over budget. And a custom profile's [throughput] was read, then ignored: the
 // prediction used the built-in x360's, and only a profile named x360 or ps3 was held to it.

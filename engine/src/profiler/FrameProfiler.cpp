@@ -175,6 +175,12 @@ void FrameProfiler::setWork(const WorkCounts& work) {
     if (open.sample != UINT32_MAX) current_->samples[open.sample].work = work;
 }
 
+void FrameProfiler::setTimedIn(std::string_view path) {
+    if (stack_.empty()) throw std::logic_error("profiler: setTimedIn() with no open scope");
+    std::string& timedIn = scopes_[stack_.back().scope].timedIn;
+    if (timedIn != path) timedIn = path; // allocates the first frame only
+}
+
 static void writeNote(FrameProfiler::Note& n, std::string_view topic, std::string_view text) {
     const auto copy = [](std::string_view from, auto& to) {
         const size_t length = std::min(from.size(), to.size() - 1);

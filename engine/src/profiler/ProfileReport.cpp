@@ -63,6 +63,13 @@ struct Row {
     double predictedShareOfGi;
 };
 
+// A row's timing source: the GPU's, "in <scope>" for work measured inside another scope's time
+// (FrameProfiler::setTimedIn), else "cpu" (a scope timed on the CPU only).
+std::string timingOf(const FrameProfiler& p, const Row& r) {
+    if (r.gpu.count) return gpuSourceName(p);
+    return r.scope->timedIn.empty() ? std::string("cpu") : "in " + r.scope->timedIn;
+}
+
 // The profile whose predicted time the GI check holds to the budget ("x360", "ps3", a custom
 // profile's name), or empty when GI is held to its measured time.
 std::string_view predictedProfile(const FrameProfiler& p) {
@@ -265,8 +272,8 @@ std::string profileSummaryMarkdown(const FrameProfiler& p) {
          "predicted ps3 ms | bottleneck (x360) | share of frame | share of GI budget | budget |\n";
     o << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Row& r : rows(p)) {
-        o << "| " << std::string(r.scope->depth * 2, ' ') << r.scope->path << " | "
-          << (r.gpu.count ? gpuSourceName(p) : "cpu") << " | " << fixed(r.cpu.median) << " | ";
+        o << "| " << std::string(r.scope->depth * 2, ' ') << r.scope->path << " | " << timingOf(p, r) << " | "
+          << fixed(r.cpu.median) << " | ";
         if (r.gpu.count)
             o << fixed(r.gpu.last) << " | " << fixed(r.gpu.mean) << " | " << fixed(r.gpu.median) << " | "
               << fixed(r.gpu.p95) << " | " << fixed(r.gpu.max) << " | ";
@@ -318,11 +325,11 @@ std::string profileSummaryCsv(const FrameProfiler& p) {
     o << "pass,depth,timing_source,cpu_median_ms,gpu_last_ms,gpu_mean_ms,gpu_median_ms,gpu_p95_ms,gpu_max_ms,"
          "predicted_x360_ms,predicted_ps3_ms,share_of_frame_pct,share_of_gi_pct,predicted_share_of_gi_pct\n";
     for (const Row& r : rows(p)) {
-        o << r.scope->path << "," << r.scope->depth << "," << (r.gpu.count ? gpuSourceName(p) : "cpu") << ","
-          << fixed(r.cpu.median, 4) << "," << fixed(r.gpu.last, 4) << "," << fixed(r.gpu.mean, 4) << ","
-          << fixed(r.gpu.median, 4) << "," << fixed(r.gpu.p95, 4) << "," << fixed(r.gpu.max, 4) << ","
-          << fixed(r.x360.ms, 4) << "," << fixed(r.ps3.ms, 4) << "," << fixed(r.shareOfFrame, 2) << ","
-          << fixed(r.shareOfGi, 2) << "," << fixed(r.predictedShareOfGi, 2) << "\n";
+        o << r.scope->path << "," << r.scope->depth << "," << timingOf(p, r) << "," << fixed(r.cpu.median, 4)
+          << "," << fixed(r.gpu.last, 4) << "," << fixed(r.gpu.mean, 4) << "," << fixed(r.gpu.median, 4)
+          << "," << fixed(r.gpu.p95, 4) << "," << fixed(r.gpu.max, 4) << "," << fixed(r.x360.ms, 4) << ","
+          << fixed(r.ps3.ms, 4) << "," << fixed(r.shareOfFrame, 2) << "," << fixed(r.shareOfGi, 2) << ","
+          << fixed(r.predictedShareOfGi, 2) << "\n";
     }
     const GiTotal t = giTotal(p);
     o << "\ngi_total,checked_frames,measured_median_ms,predicted_median_ms,predicted_x360_median_ms,"

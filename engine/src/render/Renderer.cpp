@@ -515,6 +515,7 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         // where the predicted console GI time and the budget scheduler see it.
         auto s = scope("gi.rebuild", false);
         work(indirectRebuildWork(pixels));
+        if (profiler) profiler->setTimedIn("render.lighting");
     }
     {
         auto s = scope("render.tonemap");

@@ -44,6 +44,9 @@ struct ScopeInfo {
     SampleWindow gpuMs;
     WorkCounts work; // of the last frame that ran it
     uint64_t lastFrame = 0;
+    // A scope not timed on its own whose GPU work runs inside another scope (setTimedIn()): the
+    // report names that scope where it would give a timing source.
+    std::string timedIn;
 };
 
 struct FrameBudgetCheck {
@@ -97,6 +100,9 @@ public:
     [[nodiscard]] Scope scope(std::string_view name, rhi::CommandList* gpu = nullptr);
     // Work counts of the innermost open scope in this frame (replaces earlier counts of this frame).
     void setWork(const WorkCounts& work);
+    // The innermost open scope's GPU work is recorded inside scope `path` (such as gi.rebuild, run
+    // by render.lighting's pass), so its time is measured there, not in a row of its own.
+    void setTimedIn(std::string_view path);
     // A short line about this frame for the report, such as what a scheduler changed and why
     // (topic "GI budget changes"). Between endFrame() and beginFrame() it goes to the next frame.
     // Copied into fixed-size storage: long texts are cut, the oldest notes give way.
