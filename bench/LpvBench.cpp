@@ -481,7 +481,7 @@ void consolePrediction() {
 
     // The frames part's settings at console formats, every feature of this engine that runs: 3 cascades of
     // 32^3, 8 iterations, 2 bounces (in the finest cascade, gi.bounce_cascades' default), occlusion (camera
-    // surfels in the finest cascade: 160 x 90 samples), RGBA8,
+    // surfels, 160 x 90 samples: marks in the finest cascade, areas in the coarse ones), RGBA8,
     // RSM 128^2, a 100k-triangle scene. Every cascade every frame, and as gi.budget_policy=adapt's
     // first step runs it (coarse cascades every 2 frames: the busiest frame updates one of them).
     gi::LpvSettings c = s;
@@ -527,7 +527,8 @@ void consolePrediction() {
         {"vpl (per cascade)", gi::vplClusterWork(c), gi::vplClusterWork(f), 3, 2},
         {"occlusion, finest (camera surfels)", gi::occlusionWork(c, 160u * 90u),
          gi::occlusionWork(f, 160u * 90u), 1, 1},
-        {"occlusion, coarse cascade (camera areas)", coarseOcclusion(c), coarseOcclusion(f), 2, 1},
+        {"occlusion, coarse cascade (with gi.coarse_camera_occlusion, its camera areas)", coarseOcclusion(c),
+         coarseOcclusion(f), 2, 1},
         {"inject (per cascade)", gi::injectWork(c), gi::injectWork(f), 3, 2},
         {"propagate (per cascade)", gi::propagateWork(c), gi::propagateWork(f), 3, 2},
         {"bounces (finest cascade, gi.bounce_cascades=1)", gi::bounceWork(c), gi::bounceWork(f),

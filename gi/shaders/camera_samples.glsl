@@ -1,5 +1,5 @@
 // The camera's G-buffer samples that fill the geometry volume (gv_camera_body.glsl,
-// gv_camera_footprints.comp): a regular grid of cols x rows over the depth buffer. Needs
+// gv_camera_areas.comp): a regular grid of cols x rows over the depth buffer. Needs
 // gv_common.glsl's uniforms and gbufferDepth, gbufferNormal declared first.
 #ifndef LPV_CAMERA_SAMPLES_GLSL
 #define LPV_CAMERA_SAMPLES_GLSL

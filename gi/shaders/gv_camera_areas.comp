@@ -62,8 +62,9 @@ float footprintReach(CameraSample s, vec2 uv, ivec2 index, ivec2 side, int cols,
         if (f0 != f1 && t > 0.0 && t < 1.0) {
             vec3 dir = da + t * (db - da);
             vec3 edge = gv.camera.xyz + dir * (hs / dot(dir, s.n));
-            // Only a real crease: the point found lies on q's plane too.
-            if (abs(dot(edge - q.p, q.n)) <= 0.05 * length(q.p - s.p) + 1e-4) return t * step;
+            // Only a real crease, where the two surfaces meet between the samples: the planes of
+            // an occluder's edge and of the wall beyond it meet too, but away from both samples.
+            if (length(edge - s.p) + length(edge - q.p) <= 2.0 * length(q.p - s.p)) return t * step;
         }
     }
     return 0.5 * step;

@@ -1,5 +1,6 @@
-// Geometry volume from the camera's view: a regular grid of G-buffer samples, each marking its
-// cell as holding a surface of its orientation (gv_inject_body.glsl says why not its area). Catches
+// Geometry volume from the camera's view, in the finest cascade: a regular grid of G-buffer
+// samples, each marking its cell as holding a surface of its orientation (gv_inject_body.glsl says
+// why not its area; the coarse cascades' samples add their areas, gv_camera_areas.comp). Catches
 // what the light does not see: walls in shadow, surfaces facing away from it.
 #include "gv_common.glsl"
 

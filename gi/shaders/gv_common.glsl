@@ -2,7 +2,8 @@
 //
 // The geometry volume (GV) holds, per cell, how much surface it contains as seen along each axis:
 // from the light's surfels (sum of area x |n.x|, |n.y|, |n.z|) / cell area, and from the
-// camera's, the largest |n| of a surface seen there. Its cells are centred on the LPV's cell corners
+// camera's, the largest |n| of a surface seen there (the finest cascade) or the sum of the areas
+// its samples stand for (the coarse ones, gv_camera_areas.comp). Its cells are centred on the LPV's cell corners
 // (offset half a cell), so the four around a face of an LPV cell say how much of that face is
 // covered. We keep this projected coverage instead of the papers' SH L1 blocking lobe because
 // propagation only ever asks along an axis, and an L1 lobe cannot hold a two-sided surface: the

@@ -35,7 +35,8 @@ float camera(ivec3 c, int axis) {
     int n = params.grid.x + 1;
     bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
 #ifdef CAMERA_AREAS
-    return inside ? min(float(texelFetch(cameraAreas, ivec3(3 * c.x + axis, c.y, c.z), 0).r) / kAreaUnit, 1.0) : 0.0;
+    if (!inside) return 0.0;
+    return min(float(texelFetch(cameraAreas, ivec3(3 * c.x + axis, c.y, c.z), 0).r) / kAreaUnit, 1.0);
 #else
     return inside ? texelFetch(cameraCoverage, c, 0)[axis] : 0.0;
 #endif

@@ -126,7 +126,7 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
         throw std::invalid_argument("GeometryVolume: camera areas asked of a volume made without them");
     lastSlot_ = std::min(slot, uint32_t(faces_.size()) - 1);
     cmd.clearTexture(coverage_, {0, 0, 0, 0});
-    cmd.clearTexture(cameraCoverage_, {0, 0, 0, 0});
+    if (!areas) cmd.clearTexture(cameraCoverage_, {0, 0, 0, 0}); // with areas nothing reads it
     if (albedoSum_) cmd.clearTexture(albedoSum_, {0, 0, 0, 0});
     const uint32_t g = lpvSize_ + 1;
     InjectUniforms u;

@@ -68,7 +68,7 @@ const engine::BoolSetting kLookupOcclusion{
 // whole made every small object block it, and whether a sample landed in it changed with every
 // camera move. Without it the coarse cascades block only what the light sees, and the light of a
 // wall's sunlit outside reached a room through the walls the sun does not light (the Cornell box,
-// sealed, seen from inside: 8.8% of the open box's light). The console preset turns it off.
+// sealed, seen from inside: 9.7% of the open box's light, 3.6% with them). The console preset turns it off.
 const engine::BoolSetting kCoarseCameraOcclusion{
     "gi.coarse_camera_occlusion", true,
     "With gi.occlusion, the coarse cascades' geometry volumes also take the camera's depth buffer (the "
