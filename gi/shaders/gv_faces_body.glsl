@@ -75,9 +75,10 @@ float faceBlocking(ivec3 c, int axis, ivec3 u, ivec3 v) {
         }
     for (int k = 0; k < 4; ++k) {
         int i = (k & 1) + 1, j = (k >> 1) + 1;
-        float closed = max(seen[i][j], max(min(seen[i - 1][j], seen[i + 1][j]), min(seen[i][j - 1], seen[i][j + 1])));
 #ifdef CAMERA_AREAS
-        closed = seen[i][j];
+        float closed = seen[i][j];
+#else
+        float closed = max(seen[i][j], max(min(seen[i - 1][j], seen[i + 1][j]), min(seen[i][j - 1], seen[i][j + 1])));
 #endif
         float l = max(lit[i][j], max(min(lit[i - 1][j], lit[i + 1][j]), min(lit[i][j - 1], lit[i][j + 1])));
         sum += max(l, closed);
