@@ -199,7 +199,10 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
     cmd.pushUniforms(0, &faceGrid, sizeof(faceGrid));
     cmd.bindTexture(1, coverage_, pointSampler_);
     cmd.bindStorageImage(2, faces_[lastSlot_]);
-    cmd.bindTexture(3, areas ? cameraAreas_ : cameraCoverage_, pointSampler_);
+    if (areas)
+        cmd.bindStorageImage(3, cameraAreas_);
+    else
+        cmd.bindTexture(3, cameraCoverage_, pointSampler_);
     if (albedo_) {
         cmd.bindTexture(4, albedoSum_, pointSampler_);
         cmd.bindStorageImage(5, albedo_);
