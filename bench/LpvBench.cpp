@@ -29,6 +29,7 @@
 #include "engine/render/Renderer.h"
 #include "engine/render/SpecularAlbedoTexture.h"
 #include "engine/scene/BuiltinScenes.h"
+#include "gi/GeometryVolume.h"
 #include "gi/GiBudget.h"
 #include "gi/GiScheduler.h"
 #include "gi/GiWork.h"
@@ -517,16 +518,17 @@ void consolePrediction() {
         uint64_t(1280 / limits.maxResolutionDivisor) * (720 / limits.maxResolutionDivisor);
     // A coarse cascade's geometry volume: the light's surfels, and with gi.coarse_camera_occlusion
     // the camera's areas.
-    const auto coarseOcclusion = [](const gi::LpvSettings& settings) {
+    const uint64_t cameraSamples = gi::GeometryVolume::cameraSampleCount(1280, 720);
+    const auto coarseOcclusion = [&](const gi::LpvSettings& settings) {
         engine::WorkCounts w = gi::occlusionWork(settings, 0);
-        if (settings.cameraAreas()) w += gi::cameraAreasWork(settings, 160u * 90u);
+        if (settings.cameraAreas()) w += gi::cameraAreasWork(settings, cameraSamples);
         return w;
     };
     const Pass passes[] = {
         {"rsm (per cascade)", gi::rsmWork(c, rsmTriangles), gi::rsmWork(f, floorRsmTriangles), 3, 2},
         {"vpl (per cascade)", gi::vplClusterWork(c), gi::vplClusterWork(f), 3, 2},
-        {"occlusion, finest (camera surfels)", gi::occlusionWork(c, 160u * 90u),
-         gi::occlusionWork(f, 160u * 90u), 1, 1},
+        {"occlusion, finest (camera surfels)", gi::occlusionWork(c, cameraSamples),
+         gi::occlusionWork(f, cameraSamples), 1, 1},
         {"occlusion, coarse cascade (with gi.coarse_camera_occlusion, its camera areas)", coarseOcclusion(c),
          coarseOcclusion(f), 2, 1},
         {"inject (per cascade)", gi::injectWork(c), gi::injectWork(f), 3, 2},
@@ -565,7 +567,7 @@ void consolePrediction() {
         const platforms::Throughput& t = p == 0 ? x360.throughput : ps3.throughput;
         const auto ms = [&](const engine::WorkCounts& w) { return engine::predictCost(w, t).ms; };
         const double light = ms(gi::rsmWork(f, floorRsmTriangles)) + ms(gi::vplClusterWork(f));
-        const double fine = light + ms(gi::occlusionWork(f, 160u * 90u)) + ms(gi::injectWork(f)) +
+        const double fine = light + ms(gi::occlusionWork(f, cameraSamples)) + ms(gi::injectWork(f)) +
                             ms(gi::propagateWork(f)) + ms(gi::bounceWork(f));
         const double coarseVolume = ms(coarseOcclusion(f)) + ms(gi::injectWork(f)) + ms(gi::propagateWork(f));
         atFloor[p] = fine + std::max(light, coarseVolume) + ms(gi::lookupWork(f, floorPixels)) +

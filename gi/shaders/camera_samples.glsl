@@ -1,4 +1,4 @@
-// The camera's G-buffer samples that fill the geometry volume (gv_camera_body.glsl,
+// The camera's G-buffer samples that fill the geometry volume (gv_camera_marks.comp,
 // gv_camera_areas.comp): a regular grid of cols x rows over the depth buffer. Needs
 // gv_common.glsl's uniforms and gbufferDepth, gbufferNormal declared first.
 #ifndef LPV_CAMERA_SAMPLES_GLSL

@@ -26,13 +26,18 @@ layout(binding = 0, std140) uniform GeometryInject {
     vec4 lightAxis;
 } gv;
 
-// Where a surfel lands: the GV cell whose centre (an LPV corner) is nearest, as a point position
-// and (LAYERED) the slice it picks; without LAYERED, only if it is in the slice being drawn. Else
-// a position outside the clip volume.
+// The GV cell a surfel at p lands in: the one whose centre (an LPV corner) is nearest.
+ivec3 surfelCell(vec3 p) { return ivec3(floor((p - gv.gridOrigin.xyz) / gv.gridOrigin.w + 0.5)); }
+
+bool insideVolume(ivec3 c) { return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(gv.grid.x))); }
+
+// Where a surfel drawn as a point lands: its cell (surfelCell) as a point position and (LAYERED)
+// the slice it picks; without LAYERED, only if it is in the slice being drawn. Else a position
+// outside the clip volume.
 vec4 surfelPosition(vec3 p) {
-    ivec3 c = ivec3(floor((p - gv.gridOrigin.xyz) / gv.gridOrigin.w + 0.5));
+    ivec3 c = surfelCell(p);
     int n = gv.grid.x;
-    bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
+    bool inside = insideVolume(c);
 #ifdef LAYERED
     gl_Layer = clamp(c.z, 0, n - 1);
 #else

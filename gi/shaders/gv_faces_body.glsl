@@ -8,15 +8,17 @@ layout(binding = 0, std140) uniform Faces {
 } params;
 layout(binding = 1) uniform sampler3D lightCoverage;
 layout(binding = 2, rgba8) uniform writeonly image3D transmittance;
-#ifdef CAMERA_AREAS
-// A coarse cascade's: the areas the camera's samples saw (gv_camera_areas.comp). Read as an image:
+// The camera's coverage is an r32ui volume a compute pass adds to with atomics, read as an image:
 // llvmpipe fetches an integer texture through a sampler several times slower (interleaved runs,
 // the atrium's coarse occlusion 2.7-3.0 ms so, against 4.3-5.0 through a usampler3D).
+#ifdef CAMERA_AREAS
+// A coarse cascade's: the areas the camera's samples saw (gv_camera_areas.comp).
 #include "gv_camera_areas.glsl"
 layout(binding = 3, r32ui) uniform readonly uimage3D cameraAreas;
 #else
-// The finest cascade's: the largest |n| of the surfaces its samples saw (gv_camera_body.glsl).
-layout(binding = 3) uniform sampler3D cameraCoverage;
+// The finest cascade's: the largest |n| of the surfaces its samples saw, packUnorm4x8
+// (gv_camera_marks.comp).
+layout(binding = 3, r32ui) uniform readonly uimage3D cameraMarks;
 #endif
 #ifdef KEEP_ALBEDO
 // Multiple bounces: per GV cell the sum of its surfels' albedos (rgb) and their count (a); per
@@ -40,7 +42,7 @@ float camera(ivec3 c, int axis) {
     if (!inside) return 0.0;
     return min(float(imageLoad(cameraAreas, ivec3(3 * c.x + axis, c.y, c.z)).r) / kAreaUnit, 1.0);
 #else
-    return inside ? texelFetch(cameraCoverage, c, 0)[axis] : 0.0;
+    return inside ? unpackUnorm4x8(imageLoad(cameraMarks, c).r)[axis] : 0.0;
 #endif
 }
 

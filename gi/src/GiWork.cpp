@@ -146,7 +146,9 @@ WorkCounts occlusionWork(const LpvSettings& s, uint64_t cameraSamples, VolumeDra
     const uint64_t slices = draw == VolumeDraw::Layered ? 1 : s.gridSize + 1;
     // A camera sample draws GeometryVolume::kCameraPointsPerSample points (itself, the half-way
     // points to two neighbours on its surface, the edges of its footprint), each submitted even
-    // where it is parked.
+    // where it is parked. This engine marks them with a compute pass and integer atomics
+    // (gv_camera_marks.comp), which the consoles' GPUs do not have: on them the points are drawn
+    // into blended targets, as this engine did before, and that is what is counted.
     const uint64_t cameraPoints = cameraSamples * GeometryVolume::kCameraPointsPerSample;
     const uint64_t surfels = s.vplSlots() + cameraPoints + lightRsmSurfels;
     const uint64_t cells = uint64_t(s.gridSize) * s.gridSize * s.gridSize;

@@ -17,6 +17,7 @@
 #include <doctest/doctest.h>
 
 #include <glm/geometric.hpp>
+#include <glm/packing.hpp>
 
 #include <cmath>
 #include <string>
@@ -137,7 +138,14 @@ TEST_CASE(
                 oneFrame(*device, scene, settings, offset, glm::vec3(0.0f),
                          [&](const engine::Renderer&, const gi::LightPropagationVolume& lpv) {
                              REQUIRE(lpv.geometry());
-                             coverage[k] = readImage(*device, lpv.geometry()->cameraCoverage());
+                             // Packed unorm4x8 marks, unpacked as an RGBA8 image would read.
+                             const rhi::TextureHandle t = lpv.geometry()->cameraMarks();
+                             const rhi::TextureDesc& d = device->desc(t);
+                             std::vector<uint32_t> packed(size_t(d.width) * d.height * d.depthOrLayers);
+                             device->readTexture(t, 0, packed.data(), packed.size() * 4);
+                             coverage[k].texels.clear();
+                             for (uint32_t m : packed)
+                                 coverage[k].texels.push_back(glm::unpackUnorm4x8(m));
                              faces[k] = readImage(*device, lpv.geometry()->faceTransmittance());
                              cell = lpv.cascadeGrid(0).cellSize;
                          });

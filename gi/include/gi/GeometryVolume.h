@@ -11,7 +11,6 @@
 
 #include <glm/mat4x4.hpp>
 
-#include <array>
 #include <span>
 #include <vector>
 
@@ -44,7 +43,7 @@ struct GeometrySources {
     std::span<const PointLightSurfels> pointLights;
     // With depth, for a coarse cascade: each camera sample adds the area of surface it stands for
     // (gv_camera_areas.comp) instead of marking its cell as holding a surface, as the finest
-    // cascade's do (gv_camera_body.glsl). Needs a volume made with cameraAreas.
+    // cascade's do (gv_camera_marks.comp). Needs a volume made with cameraAreas.
     bool cameraAreas = false;
 };
 
@@ -52,8 +51,9 @@ class GeometryVolume {
 public:
     // Camera samples per row of the depth buffer (rows follow its aspect).
     static constexpr uint32_t kCameraSamplesPerRow = 160;
-    // Points each camera sample draws (gv_camera_body.glsl): itself, the point half way to each of
-    // two neighbours on its surface, and the edges of its footprint toward the four neighbours.
+    // Points each camera sample marks in the finest cascade (gv_camera_marks.comp): itself, the point
+    // half way to each of two neighbours on its surface, and the edges of its footprint toward the
+    // four neighbours.
     static constexpr uint32_t kCameraPointsPerSample = 7;
 
     // keepAlbedo: also gather the surfels' albedo (surfelAlbedo()), which only multiple bounces
@@ -80,30 +80,32 @@ public:
     rhi::TextureHandle faceTransmittance(uint32_t slot) const { return faces_.at(slot); }
     uint32_t faceSlots() const { return uint32_t(faces_.size()); }
     // Per GV cell (lpvSize + 1 per axis): projected coverage along x, y, z from the light's
-    // surfels and from the camera's (RGBA8 each).
+    // surfels (RGBA8), and the finest cascade's camera marks: per axis the largest |n| its samples
+    // saw there (R32UI, packUnorm4x8 of x, y, z and 1 where any, as glm::unpackUnorm4x8 reads it).
     rhi::TextureHandle lightCoverage() const { return coverage_; }
-    rhi::TextureHandle cameraCoverage() const { return cameraCoverage_; }
+    rhi::TextureHandle cameraMarks() const { return cameraMarks_; }
     // Per GV cell g and axis a, texel (3 g.x + a, g.y, g.z): a coarse cascade's camera coverage
     // along a (R32UI, fixed point: gv_camera_areas.glsl). None unless made with cameraAreas.
     rhi::TextureHandle cameraAreas() const { return cameraAreas_; }
     // Per LPV cell: the mean albedo of the surfels at its corners (RGBA8, rgb; a: 1 where any),
     // what multiple bounces reflect with. None unless made with keepAlbedo.
     rhi::TextureHandle surfelAlbedo() const { return albedo_; }
-    uint32_t cameraSampleCount(uint32_t width, uint32_t height) const;
+    // The camera samples a depth buffer of width x height gives (kCameraSamplesPerRow a row).
+    static uint32_t cameraSampleCount(uint32_t width, uint32_t height);
 
 private:
     rhi::Device& device_;
     uint32_t lpvSize_;
-    bool layered_; // surfels in one layered draw (rhi Caps::vertexShaderLayer)
-    rhi::TextureHandle coverage_, cameraCoverage_;
+    bool layered_; // points in one layered draw (rhi Caps::vertexShaderLayer)
+    rhi::TextureHandle coverage_, cameraMarks_;
     std::vector<rhi::TextureHandle> faces_;
     uint32_t lastSlot_ = 0;
     // Per GV cell: rgb sum of surfel albedos, a: surfel count (RGBA16F, additive).
     rhi::TextureHandle albedoSum_, albedo_;
     rhi::GraphicsPipelineHandle vplPipeline_, pointLightPipeline_;
-    // By kind of camera point: the samples, the half-way points, the footprint edges.
-    std::array<rhi::GraphicsPipelineHandle, 3> cameraPipelines_{};
-    rhi::ComputePipelineHandle facesPipeline_;
+    // With keepAlbedo: the camera samples' albedo, one point each (gv_camera_albedo_body.glsl).
+    rhi::GraphicsPipelineHandle cameraAlbedoPipeline_;
+    rhi::ComputePipelineHandle cameraMarksPipeline_, facesPipeline_;
     // With cameraAreas: the volume, the pass that fills it, and the faces pass that reads it.
     rhi::TextureHandle cameraAreas_;
     rhi::ComputePipelineHandle cameraAreasPipeline_, facesAreasPipeline_;
