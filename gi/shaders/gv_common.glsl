@@ -29,7 +29,9 @@ layout(binding = 0, std140) uniform GeometryInject {
 // The GV cell a surfel at p lands in: the one whose centre (an LPV corner) is nearest.
 ivec3 surfelCell(vec3 p) { return ivec3(floor((p - gv.gridOrigin.xyz) / gv.gridOrigin.w + 0.5)); }
 
-bool insideVolume(ivec3 c) { return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(gv.grid.x))); }
+bool insideVolume(ivec3 c) {
+    return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(gv.grid.x)));
+}
 
 // Where a surfel drawn as a point lands: its cell (surfelCell) as a point position and (LAYERED)
 // the slice it picks; without LAYERED, only if it is in the slice being drawn. Else a position
