@@ -3,10 +3,10 @@
 // (gv_inject_body.glsl); the faces pass turns them into each LPV cell's mean. The coverage the
 // samples mark (up to 7 points each) is a compute pass, gv_camera_marks.comp; the albedo stays a
 // draw because additive blending sums the half floats in the order the points were submitted,
-// which keeps the volumes the same from run to run, where atomics on floats would not, and integer
-// sums would take 16 bytes a cell, more than the console preset's 3 MiB has room for. Only the
-// samples themselves add: a cell marked only by the points between samples takes its LPV cells'
-// albedo from their other corners.
+// which keeps the volumes the same from run to run, where atomics on floats would not, and a 32-bit
+// integer sum per channel and count would take 16 bytes a cell, more than the console preset's 3 MiB
+// has room for. Only the samples themselves add: a cell marked only by the points between samples
+// takes its LPV cells' albedo from their other corners.
 #include "gv_common.glsl"
 
 layout(binding = 1) uniform sampler2D gbufferDepth;
