@@ -6,7 +6,7 @@
 // screen makes them, so summing them would make the coverage change whenever the camera moves; the
 // coarse cascades' samples add the areas they stand for instead, gv_camera_areas.comp). Catches
 // what the light does not see: walls in shadow, surfaces facing away from it. (The albedo multiple
-// bounces reflect with is drawn at the samples, gv_camera_albedo_body.glsl.)
+// bounces reflect with is summed at the samples, gv_albedo_sums_body.glsl.)
 //
 // A sample marks GeometryVolume::kCameraPointsPerSample points: itself; the point half way to its
 // right and to its lower neighbour when that lies on its surface more than half a cell away; and

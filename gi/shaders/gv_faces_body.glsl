@@ -21,9 +21,10 @@ layout(binding = 3, r32ui) uniform readonly uimage3D cameraAreas;
 layout(binding = 3, r32ui) uniform readonly uimage3D cameraMarks;
 #endif
 #ifdef KEEP_ALBEDO
-// Multiple bounces: per GV cell the sum of its surfels' albedos (rgb) and their count (a); per
-// LPV cell the mean over its eight corners.
-layout(binding = 4) uniform sampler3D albedoSum;
+// Multiple bounces: per GV cell its surfels' mean albedo in fixed point and their count
+// (gv_albedo_sums_body.glsl); per LPV cell the mean over the surfels at its eight corners.
+#include "gv_albedo_sums.glsl"
+layout(binding = 4, r32ui) uniform readonly uimage3D albedoSums;
 layout(binding = 5, rgba8) uniform writeonly image3D surfelAlbedo;
 #endif
 
@@ -98,9 +99,19 @@ void main() {
     float bx = faceBlocking(c, 0, Y, Z), by = faceBlocking(c, 1, X, Z), bz = faceBlocking(c, 2, X, Y);
     imageStore(transmittance, c, vec4(clamp(vec3(1.0) - vec3(bx, by, bz), 0.0, 1.0), 1.0));
 #ifdef KEEP_ALBEDO
-    vec4 albedo = vec4(0.0);
-    for (int corner = 0; corner < 8; ++corner)
-        albedo += texelFetch(albedoSum, c + ivec3(corner & 1, (corner >> 1) & 1, corner >> 2), 0);
-    imageStore(surfelAlbedo, c, albedo.a > 0.0 ? vec4(clamp(albedo.rgb / albedo.a, 0.0, 1.0), 1.0) : vec4(0.0));
+    // Each corner's mean weighed by its count: the mean of all the corners' surfels.
+    vec3 albedo = vec3(0.0);
+    float surfels = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+        ivec3 g = c + ivec3(corner & 1, (corner >> 1) & 1, corner >> 2);
+        uint rg = imageLoad(albedoSums, ivec3(2 * g.x, g.y, g.z)).r;
+        uint countBlue = imageLoad(albedoSums, ivec3(2 * g.x + 1, g.y, g.z)).r;
+        uint count = countBlue & 0xffffu;
+        if (count == 0u) continue;
+        vec3 sums = vec3(rg & 0xffffu, rg >> 16, countBlue >> 16);
+        albedo += sums * (float(count) / float(albedoUnits(count)));
+        surfels += float(count);
+    }
+    imageStore(surfelAlbedo, c, surfels > 0.0 ? vec4(clamp(albedo / surfels, 0.0, 1.0), 1.0) : vec4(0.0));
 #endif
 }

@@ -4,9 +4,8 @@
 // edge gives each VPL its texels' share, vpl_cluster.comp) divided by the cosine to the light
 // (clamped, so grazing blocks do not explode). The sun's RSM is orthographic: every block has the same area
 // across the light. FROM_POINT, a spot's or a point light's (a perspective map): a block subtends
-// the axis block's solid angle times cos^3 off the axis, at the VPL's squared distance. Those
-// surfels add coverage but no albedo: their flux holds the light's cone and falloff, which the
-// white texel's flux (the sun's albedo reference) does not.
+// the axis block's solid angle times cos^3 off the axis, at the VPL's squared distance. (The sun's
+// VPLs' albedo, for multiple bounces, is summed by compute: gv_albedo_sums_body.glsl.)
 #include "gv_common.glsl"
 
 struct Vpl {
@@ -19,8 +18,6 @@ layout(binding = 1, std430) readonly buffer Vpls {
 };
 
 layout(location = 0) flat out vec3 vCoverage;
-layout(location = 1) flat out int vFromCamera;
-layout(location = 2) flat out vec3 vAlbedo;
 
 void main() {
     Vpl v = vpls[gl_VertexIndex];
@@ -32,15 +29,10 @@ void main() {
     float across = gv.lightPosition.w * v.normal.w * cosAxis * cosAxis * cosAxis * d2;
     float cosLight = max(abs(dot(v.normal.xyz, w)), 0.25);
     vCoverage = surfelCoverage(v.normal.xyz, across / cosLight);
-    vFromCamera = 2; // light coverage, no albedo (gv_inject_body.glsl)
 #else
     float cosLight = max(abs(dot(v.normal.xyz, gv.lightDirection.xyz)), 0.25);
     vCoverage = surfelCoverage(v.normal.xyz, gv.lightDirection.w * v.normal.w / cosLight);
-    vFromCamera = 0;
 #endif
-    // The cluster's flux over what as many white texels would reflect (flux.w: its texel count).
-    vec3 white = max(v.flux.w * gv.whiteTexelFlux.rgb, vec3(1e-20));
-    vAlbedo = clamp(v.flux.rgb / white, 0.0, 1.0);
     gl_PointSize = 1.0;
     gl_Position = v.position.w > 0.0 ? surfelPosition(v.position.xyz) : PARKED_POINT;
 }

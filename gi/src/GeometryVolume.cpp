@@ -10,9 +10,9 @@
 #include <string>
 
 namespace lpv::gi {
-namespace {
 
-struct InjectUniforms {
+// gv_common.glsl's GeometryInject.
+struct GeometryVolume::InjectUniforms {
     glm::vec4 gridOrigin;
     glm::vec4 lightDirection;
     glm::mat4 invViewProjection;
@@ -21,7 +21,14 @@ struct InjectUniforms {
     glm::vec4 whiteTexelFlux;
     glm::vec4 lightPosition;
     glm::vec4 lightAxis;
+    glm::ivec4 albedoSums;
 };
+
+namespace {
+
+// The most surfels a GV cell's albedo sums take: a count in 16 bits that leaves units of at least
+// 0x8000 an albedo of 1 (gv_albedo_sums.glsl).
+constexpr uint32_t kMaxAlbedoSurfels = 0x7fff;
 
 } // namespace
 
@@ -30,9 +37,9 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepA
     : device_(device), lpvSize_(lpvSize), layered_(device.caps().vertexShaderLayer) {
     using namespace rhi;
     const uint32_t g = lpvSize + 1;
-    // The light's coverage and the albedo sums are rendered into (one layered draw, or one per
-    // slice), the camera's marks and the per-cell results written by compute; the tests read them
-    // all back. Later passes sample what they do not read as images.
+    // The light's coverage is rendered into (one layered draw, or one per slice), the camera's
+    // marks, the albedo sums and the per-cell results written by compute; the tests read them all
+    // back. Later passes sample what they do not read as images.
     const auto volume = [&](Format format, uint32_t size, uint32_t usage, const std::string& name) {
         return device.createTexture(
             {TextureKind::Tex3D, format, size, size, size, 1, usage | kTextureTransfer, name, "gi.gv"});
@@ -48,41 +55,44 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepA
                                 slot == 0 ? std::string("gv face transmittance")
                                           : "gv face transmittance " + std::to_string(slot)));
     if (keepAlbedo) {
-        albedoSum_ = volume(Format::RGBA16F, g, kTextureColorTarget | kTextureSampled, "gv albedo sum");
+        albedoSums_ = device.createTexture({TextureKind::Tex3D, Format::R32UI, 2 * g, g, g, 1,
+                                            kTextureStorage | kTextureTransfer, "gv albedo sums", "gi.gv"});
         albedo_ = volume(Format::RGBA8Unorm, lpvSize, kTextureStorage | kTextureSampled, "gv surfel albedo");
     }
     GraphicsPipelineDesc d;
     d.vertex = layered_ ? &shaders::gv_vpl_layered_vert : &shaders::gv_vpl_slice_vert;
-    d.fragment = keepAlbedo ? &shaders::gv_inject_albedo_frag : &shaders::gv_inject_coverage_frag;
+    d.fragment = &shaders::gv_inject_frag;
     d.topology = PrimitiveTopology::PointList;
     d.colorFormats = {Format::RGBA8Unorm};
     d.blend = {BlendState::additive()};
-    if (keepAlbedo) {
-        d.colorFormats.push_back(Format::RGBA16F);
-        d.blend.push_back(BlendState::additive());
-    }
     d.debugName = "gv inject light surfels";
     vplPipeline_ = device.createPipeline(d);
     d.vertex = layered_ ? &shaders::gv_vpl_point_layered_vert : &shaders::gv_vpl_point_slice_vert;
     d.debugName = "gv inject point light surfels";
     pointLightPipeline_ = device.createPipeline(d);
-    if (keepAlbedo) {
-        d.vertex = layered_ ? &shaders::gv_camera_albedo_layered_vert : &shaders::gv_camera_albedo_slice_vert;
-        d.debugName = "gv inject camera albedo";
-        cameraAlbedoPipeline_ = device.createPipeline(d);
-    }
     cameraMarksPipeline_ =
         device.createPipeline(ComputePipelineDesc{&shaders::gv_camera_marks_comp, "gv camera marks"});
-    facesPipeline_ = device.createPipeline(ComputePipelineDesc{
-        keepAlbedo ? &shaders::gv_faces_albedo_comp : &shaders::gv_faces_coverage_comp, "gv faces"});
+    facesPipeline_ = device.createPipeline(ComputePipelineDesc{&shaders::gv_faces_coverage_comp, "gv faces"});
+    if (keepAlbedo) {
+        cameraAlbedoPipeline_ =
+            device.createPipeline(ComputePipelineDesc{&shaders::gv_albedo_camera_comp, "gv albedo (camera)"});
+        vplAlbedoPipeline_ =
+            device.createPipeline(ComputePipelineDesc{&shaders::gv_albedo_vpls_comp, "gv albedo (vpls)"});
+        cameraVplAlbedoPipeline_ = device.createPipeline(
+            ComputePipelineDesc{&shaders::gv_albedo_camera_vpls_comp, "gv albedo (camera, vpls)"});
+        facesAlbedoPipeline_ =
+            device.createPipeline(ComputePipelineDesc{&shaders::gv_faces_albedo_comp, "gv faces (albedo)"});
+    }
     if (cameraAreas) {
         cameraAreas_ = device.createTexture({TextureKind::Tex3D, Format::R32UI, 3 * g, g, g, 1,
                                              kTextureStorage | kTextureTransfer, "gv camera areas", "gi.gv"});
         cameraAreasPipeline_ =
             device.createPipeline(ComputePipelineDesc{&shaders::gv_camera_areas_comp, "gv camera areas"});
-        facesAreasPipeline_ = device.createPipeline(ComputePipelineDesc{
-            keepAlbedo ? &shaders::gv_faces_areas_albedo_comp : &shaders::gv_faces_areas_coverage_comp,
-            "gv faces (camera areas)"});
+        facesAreasPipeline_ = device.createPipeline(
+            ComputePipelineDesc{&shaders::gv_faces_areas_coverage_comp, "gv faces (camera areas)"});
+        if (keepAlbedo)
+            facesAreasAlbedoPipeline_ = device.createPipeline(
+                ComputePipelineDesc{&shaders::gv_faces_areas_albedo_comp, "gv faces (camera areas, albedo)"});
     }
     pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
 }
@@ -93,17 +103,23 @@ GeometryVolume::~GeometryVolume() {
     device_.destroy(cameraMarks_);
     for (rhi::TextureHandle t : faces_)
         device_.destroy(t);
-    if (albedoSum_) device_.destroy(albedoSum_);
-    if (albedo_) device_.destroy(albedo_);
+    if (albedoSums_) {
+        device_.destroy(albedoSums_);
+        device_.destroy(albedo_);
+        device_.destroy(cameraAlbedoPipeline_);
+        device_.destroy(vplAlbedoPipeline_);
+        device_.destroy(cameraVplAlbedoPipeline_);
+        device_.destroy(facesAlbedoPipeline_);
+    }
     device_.destroy(vplPipeline_);
     device_.destroy(pointLightPipeline_);
-    if (cameraAlbedoPipeline_) device_.destroy(cameraAlbedoPipeline_);
     device_.destroy(cameraMarksPipeline_);
     device_.destroy(facesPipeline_);
     if (cameraAreas_) {
         device_.destroy(cameraAreas_);
         device_.destroy(cameraAreasPipeline_);
         device_.destroy(facesAreasPipeline_);
+        if (facesAreasAlbedoPipeline_) device_.destroy(facesAreasAlbedoPipeline_);
     }
     device_.destroy(pointSampler_);
 }
@@ -122,14 +138,14 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
         throw std::invalid_argument("GeometryVolume: camera areas asked of a volume made without them");
     lastSlot_ = std::min(slot, uint32_t(faces_.size()) - 1);
     cmd.clearTexture(coverage_, {0, 0, 0, 0});
-    if (albedoSum_) cmd.clearTexture(albedoSum_, {0, 0, 0, 0});
     const uint32_t g = lpvSize_ + 1;
-    InjectUniforms u;
+    InjectUniforms u{};
     u.gridOrigin = glm::vec4(grid.origin, grid.cellSize);
     u.lightDirection = glm::vec4(src.lightDirection, src.vplArea);
     u.invViewProjection = src.invViewProjection;
     u.camera = glm::vec4(src.cameraPosition, 0.0f);
     u.whiteTexelFlux = glm::vec4(src.whiteTexelFlux, 0.0f);
+    u.grid = glm::ivec4(int(g), 0, int(src.vplCount), int(kCameraSamplesPerRow));
     uint32_t cameraSamples = 0;
     if (src.depth) {
         const TextureDesc& d = device_.desc(src.depth);
@@ -137,7 +153,6 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
     }
     if (areas) {
         cmd.clearTexture(cameraAreas_, {0, 0, 0, 0});
-        u.grid = glm::ivec4(int(g), 0, int(src.vplCount), int(kCameraSamplesPerRow));
         cmd.bindPipeline(cameraAreasPipeline_);
         cmd.pushUniforms(0, &u, sizeof(u));
         cmd.bindTexture(1, src.depth, pointSampler_);
@@ -149,7 +164,6 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
     if (marks) {
         // The finest cascade's: every sample marks up to kCameraPointsPerSample cells.
         cmd.clearTexture(cameraMarks_, {0, 0, 0, 0});
-        u.grid = glm::ivec4(int(g), 0, int(src.vplCount), int(kCameraSamplesPerRow));
         cmd.bindPipeline(cameraMarksPipeline_);
         cmd.pushUniforms(0, &u, sizeof(u));
         cmd.bindTexture(1, src.depth, pointSampler_);
@@ -157,19 +171,23 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
         cmd.bindStorageImage(3, cameraMarks_);
         cmd.dispatch((cameraSamples + 63) / 64);
     }
-    // The light's surfels and the samples' albedo, as the radiance injection: one layered draw per
-    // surfel set, or every set once per slice.
+    // The camera's albedo in the finest cascade only, as its marks: a coarse cascade's is the
+    // light's.
+    const bool albedo =
+        albedoSums_ && src.surfelAlbedo && addAlbedoSums(cmd, u, src, marks ? cameraSamples : 0);
+    // Asked for with no surfel to give it: none anywhere.
+    if (albedoSums_ && src.surfelAlbedo && !albedo) cmd.clearTexture(albedo_, {0, 0, 0, 0});
+    // The light's surfels, as the radiance injection: one layered draw per surfel set, or every set
+    // once per slice.
     const uint32_t passes = layered_ ? 1 : g;
     for (uint32_t slice = 0; slice < passes; ++slice) {
         RenderPassDesc pass;
         pass.colors[0] = {coverage_, 0, slice, LoadOp::Load};
-        pass.colors[1] = {albedoSum_, 0, slice, LoadOp::Load};
-        pass.colorCount = albedoSum_ ? 2 : 1;
-        for (uint32_t c = 0; c < pass.colorCount; ++c)
-            pass.colors[c].layered = layered_;
+        pass.colors[0].layered = layered_;
+        pass.colorCount = 1;
         pass.debugName = layered_ ? "gv inject" : "gv inject slice";
         cmd.beginRenderPass(pass);
-        u.grid = glm::ivec4(int(g), int(slice), int(src.vplCount), int(kCameraSamplesPerRow));
+        u.grid.y = int(slice);
         if (src.vplCount > 0) {
             cmd.bindPipeline(vplPipeline_);
             cmd.pushUniforms(0, &u, sizeof(u));
@@ -187,28 +205,52 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
             cmd.bindStorageBuffer(1, light.vpls);
             cmd.draw(light.count);
         }
-        if (marks && cameraAlbedoPipeline_) {
-            cmd.bindPipeline(cameraAlbedoPipeline_);
-            cmd.pushUniforms(0, &u, sizeof(u));
-            cmd.bindTexture(1, src.depth, pointSampler_);
-            cmd.bindTexture(2, src.normal, pointSampler_);
-            cmd.bindTexture(3, src.albedo ? src.albedo : src.normal, pointSampler_);
-            cmd.draw(cameraSamples);
-        }
         cmd.endRenderPass();
     }
     // y: camera samples taken (only then is the camera's coverage closed over holes).
     const glm::ivec4 faceGrid(int(lpvSize_), cameraSamples > 0 ? 1 : 0, 0, 0);
-    cmd.bindPipeline(areas ? facesAreasPipeline_ : facesPipeline_);
+    // Without albedo this build leaves albedo_ as it was (another cascade's, or none).
+    cmd.bindPipeline(areas ? (albedo ? facesAreasAlbedoPipeline_ : facesAreasPipeline_)
+                           : (albedo ? facesAlbedoPipeline_ : facesPipeline_));
     cmd.pushUniforms(0, &faceGrid, sizeof(faceGrid));
     cmd.bindTexture(1, coverage_, pointSampler_);
     cmd.bindStorageImage(2, faces_[lastSlot_]);
     cmd.bindStorageImage(3, areas ? cameraAreas_ : cameraMarks_);
-    if (albedo_) {
-        cmd.bindTexture(4, albedoSum_, pointSampler_);
+    if (albedo) {
+        cmd.bindStorageImage(4, albedoSums_);
         cmd.bindStorageImage(5, albedo_);
     }
     cmd.dispatch((lpvSize_ + 3) / 4, (lpvSize_ + 3) / 4, (lpvSize_ + 3) / 4);
+}
+
+bool GeometryVolume::addAlbedoSums(rhi::CommandList& cmd, const InjectUniforms& base,
+                                   const GeometrySources& src, uint32_t cameraSamples) {
+    const uint32_t vpls = src.vpls ? src.vplCount : 0;
+    const uint32_t surfels = cameraSamples + vpls;
+    if (surfels == 0) return false;
+    cmd.clearTexture(albedoSums_, {0, 0, 0, 0});
+    // Where every surfel could land in one cell and count past kMaxAlbedoSurfels, take every
+    // stride-th (the mean stays a mean).
+    const uint32_t stride = (surfels + kMaxAlbedoSurfels - 1) / kMaxAlbedoSurfels;
+    InjectUniforms u = base;
+    u.grid.z = int(vpls);
+    cmd.bindPipeline(cameraSamples == 0 ? vplAlbedoPipeline_
+                     : vpls == 0        ? cameraAlbedoPipeline_
+                                        : cameraVplAlbedoPipeline_);
+    for (int pass = 0; pass < 2; ++pass) {
+        // Pass 0 counts each cell's surfels, pass 1 adds their albedo.
+        u.albedoSums = glm::ivec4(pass, int(stride), int(cameraSamples), 0);
+        cmd.pushUniforms(0, &u, sizeof(u));
+        if (vpls > 0) cmd.bindStorageBuffer(1, src.vpls);
+        if (cameraSamples > 0) {
+            cmd.bindTexture(2, src.depth, pointSampler_);
+            cmd.bindTexture(3, src.normal, pointSampler_);
+            cmd.bindTexture(5, src.albedo ? src.albedo : src.normal, pointSampler_);
+        }
+        cmd.bindStorageImage(4, albedoSums_);
+        cmd.dispatch(((surfels + stride - 1) / stride + 63) / 64);
+    }
+    return true;
 }
 
 } // namespace lpv::gi

@@ -65,7 +65,8 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
         if (s.cameraAreas()) out.push_back({"geometry volume coverage, camera areas", "gi.gv", gvCells * 12});
     }
     if (s.bounces > 1) { // needs occlusion (readLpvSettings)
-        out.push_back({"geometry volume albedo sum", "gi.gv", gvCells * 8});
+        // Two R32UI a GV cell: a fixed-point mean albedo and a surfel count (gv_albedo_sums_body.glsl).
+        out.push_back({"geometry volume albedo sums", "gi.gv", gvCells * 8});
         out.push_back({"surfel albedo", "gi.gv", cells * 4});
         out.push_back({"bounce scratch (3 SH textures)", "gi.lpv", 3 * cells * shBytes});
     }

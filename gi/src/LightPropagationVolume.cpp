@@ -476,6 +476,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             }
             src.invViewProjection = camera.invViewProjection;
             src.cameraPosition = camera.position;
+            // The surfels' albedo only where the further bounces read it (gi.bounce_cascades).
+            src.surfelAlbedo = settings_.bouncesIn(c);
             // The spot and point lights' RSM surfels that can land in this cascade.
             std::array<PointLightSurfels, SpotLightRsms::kMaxRsms> lights;
             src.pointLights = std::span(lights.data(), spotRsms_->surfelsReaching(grid, lights));

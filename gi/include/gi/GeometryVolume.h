@@ -45,6 +45,9 @@ struct GeometrySources {
     // (gv_camera_areas.comp) instead of marking its cell as holding a surface, as the finest
     // cascade's do (gv_camera_marks.comp). Needs a volume made with cameraAreas.
     bool cameraAreas = false;
+    // With a volume made with keepAlbedo: gather the surfels' albedo (surfelAlbedo()) in this build.
+    // Only a cascade that multiple bounces reflect in reads it.
+    bool surfelAlbedo = true;
 };
 
 class GeometryVolume {
@@ -94,21 +97,30 @@ public:
     static uint32_t cameraSampleCount(uint32_t width, uint32_t height);
 
 private:
+    struct InjectUniforms;
+    // Counts, then adds, the albedo of the camera's samples (cameraSamples of them; 0: none) and the
+    // sun's VPLs into albedoSums_ (gv_albedo_sums_body.glsl). Whether any surfel was added.
+    bool addAlbedoSums(rhi::CommandList& cmd, const InjectUniforms& base, const GeometrySources& src,
+                       uint32_t cameraSamples);
+
     rhi::Device& device_;
     uint32_t lpvSize_;
     bool layered_; // points in one layered draw (rhi Caps::vertexShaderLayer)
     rhi::TextureHandle coverage_, cameraMarks_;
     std::vector<rhi::TextureHandle> faces_;
     uint32_t lastSlot_ = 0;
-    // Per GV cell: rgb sum of surfel albedos, a: surfel count (RGBA16F, additive).
-    rhi::TextureHandle albedoSum_, albedo_;
     rhi::GraphicsPipelineHandle vplPipeline_, pointLightPipeline_;
-    // With keepAlbedo: the camera samples' albedo, one point each (gv_camera_albedo_body.glsl).
-    rhi::GraphicsPipelineHandle cameraAlbedoPipeline_;
     rhi::ComputePipelineHandle cameraMarksPipeline_, facesPipeline_;
+    // With keepAlbedo: per GV cell (texels 2 g.x and 2 g.x + 1) its surfels' mean albedo in fixed
+    // point and their count (R32UI, gv_albedo_sums_body.glsl), the passes that add the camera's
+    // samples', the sun's VPLs' or both, per LPV cell the mean (albedo_), and the faces pass that
+    // also takes that mean.
+    rhi::TextureHandle albedoSums_, albedo_;
+    rhi::ComputePipelineHandle cameraAlbedoPipeline_, vplAlbedoPipeline_, cameraVplAlbedoPipeline_;
+    rhi::ComputePipelineHandle facesAlbedoPipeline_;
     // With cameraAreas: the volume, the pass that fills it, and the faces pass that reads it.
     rhi::TextureHandle cameraAreas_;
-    rhi::ComputePipelineHandle cameraAreasPipeline_, facesAreasPipeline_;
+    rhi::ComputePipelineHandle cameraAreasPipeline_, facesAreasPipeline_, facesAreasAlbedoPipeline_;
     rhi::SamplerHandle pointSampler_;
 };
 
