@@ -9,7 +9,7 @@
 // 8 bytes a cell, as the RGBA16F sums this replaces (the console preset has no room for more):
 // two R32UI texels, (2 g.x, g.y, g.z) red | green << 16 and (2 g.x + 1, g.y, g.z) count | blue << 16
 // (gv_albedo_sums.glsl). 16 bits cannot hold a cell's plain sum (the camera's samples of a near
-// wall crowd into a few cells), so the pass runs twice: gv.albedoSums.x 0 counts each cell's
+// wall crowd into a few cells), so the pass runs twice: ALBEDO_PASS 0 counts each cell's
 // surfels, 1 adds each surfel's albedo x units / count, where the units leave room for the
 // rounding (albedoUnits). A cell's sums are then its mean albedo in those units. The rounding is
 // dithered: where thousands of samples of one wall share a cell, each adds only a few units, and
@@ -92,10 +92,12 @@ void main() {
     AlbedoSurfel a = surfel(int(gl_GlobalInvocationID.x) * gv.albedoSums.y);
     if (!a.valid) return;
     ivec3 rg = ivec3(2 * a.cell.x, a.cell.y, a.cell.z), countBlue = rg + ivec3(1, 0, 0);
-    if (gv.albedoSums.x == 0) {
-        imageAtomicAdd(albedoSums, countBlue, 1u);
-        return;
-    }
+    // The pass is a variant, not a uniform: lavapipe specializes a shader on the uniforms its
+    // branches test and recompiles it when they change, which it did on each of the two dispatches
+    // (about a millisecond each).
+#if ALBEDO_PASS == 0
+    imageAtomicAdd(albedoSums, countBlue, 1u);
+#else
     // The count is final (the first pass is done) while this pass adds blue above it: read it
     // atomically all the same, as the other invocations write the word.
     uint count = imageAtomicOr(albedoSums, countBlue, 0u) & 0xffffu;
@@ -105,4 +107,5 @@ void main() {
     uvec3 add = uvec3(floor(clamp(a.albedo, 0.0, 1.0) * (float(albedoUnits(count)) / float(count)) + dither));
     imageAtomicAdd(albedoSums, rg, add.r | (add.g << 16));
     imageAtomicAdd(albedoSums, countBlue, add.b << 16);
+#endif
 }

@@ -24,9 +24,8 @@ layout(binding = 0, std140) uniform GeometryInject {
     // angle of a VPL's texel block on the RSM's axis (sr); and the axis.
     vec4 lightPosition;
     vec4 lightAxis;
-    // The albedo sums (gv_albedo_sums_body.glsl): x the pass (0 counts, 1 adds), y the stride
-    // between the surfels taken (more than 1 only where a cell could count past 16 bits), z the
-    // camera samples before the VPLs.
+    // The albedo sums (gv_albedo_sums_body.glsl): y the stride between the surfels taken (more
+    // than 1 only where a cell could count too many), z the camera samples before the VPLs.
     ivec4 albedoSums;
 } gv;
 

@@ -74,12 +74,15 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepA
         device.createPipeline(ComputePipelineDesc{&shaders::gv_camera_marks_comp, "gv camera marks"});
     facesPipeline_ = device.createPipeline(ComputePipelineDesc{&shaders::gv_faces_coverage_comp, "gv faces"});
     if (keepAlbedo) {
-        cameraAlbedoPipeline_ =
-            device.createPipeline(ComputePipelineDesc{&shaders::gv_albedo_camera_comp, "gv albedo (camera)"});
-        vplAlbedoPipeline_ =
-            device.createPipeline(ComputePipelineDesc{&shaders::gv_albedo_vpls_comp, "gv albedo (vpls)"});
-        cameraVplAlbedoPipeline_ = device.createPipeline(
-            ComputePipelineDesc{&shaders::gv_albedo_camera_vpls_comp, "gv albedo (camera, vpls)"});
+        const ShaderBinary* albedo[2][3] = {
+            {&shaders::gv_albedo_count_camera_comp, &shaders::gv_albedo_count_vpls_comp,
+             &shaders::gv_albedo_count_camera_vpls_comp},
+            {&shaders::gv_albedo_add_camera_comp, &shaders::gv_albedo_add_vpls_comp,
+             &shaders::gv_albedo_add_camera_vpls_comp}};
+        for (int pass = 0; pass < 2; ++pass)
+            for (int from = 0; from < 3; ++from)
+                albedoPipelines_[pass][from] =
+                    device.createPipeline(ComputePipelineDesc{albedo[pass][from], "gv albedo sums"});
         facesAlbedoPipeline_ =
             device.createPipeline(ComputePipelineDesc{&shaders::gv_faces_albedo_comp, "gv faces (albedo)"});
     }
@@ -106,9 +109,9 @@ GeometryVolume::~GeometryVolume() {
     if (albedoSums_) {
         device_.destroy(albedoSums_);
         device_.destroy(albedo_);
-        device_.destroy(cameraAlbedoPipeline_);
-        device_.destroy(vplAlbedoPipeline_);
-        device_.destroy(cameraVplAlbedoPipeline_);
+        for (auto& pass : albedoPipelines_)
+            for (rhi::ComputePipelineHandle p : pass)
+                device_.destroy(p);
         device_.destroy(facesAlbedoPipeline_);
     }
     device_.destroy(vplPipeline_);
@@ -234,12 +237,11 @@ bool GeometryVolume::addAlbedoSums(rhi::CommandList& cmd, const InjectUniforms& 
     const uint32_t stride = (surfels + kMaxAlbedoSurfels - 1) / kMaxAlbedoSurfels;
     InjectUniforms u = base;
     u.grid.z = int(vpls);
-    cmd.bindPipeline(cameraSamples == 0 ? vplAlbedoPipeline_
-                     : vpls == 0        ? cameraAlbedoPipeline_
-                                        : cameraVplAlbedoPipeline_);
+    const int from = cameraSamples == 0 ? 1 : vpls == 0 ? 0 : 2;
+    u.albedoSums = glm::ivec4(0, int(stride), int(cameraSamples), 0);
     for (int pass = 0; pass < 2; ++pass) {
         // Pass 0 counts each cell's surfels, pass 1 adds their albedo.
-        u.albedoSums = glm::ivec4(pass, int(stride), int(cameraSamples), 0);
+        cmd.bindPipeline(albedoPipelines_[pass][from]);
         cmd.pushUniforms(0, &u, sizeof(u));
         if (vpls > 0) cmd.bindStorageBuffer(1, src.vpls);
         if (cameraSamples > 0) {

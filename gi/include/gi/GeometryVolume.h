@@ -116,7 +116,8 @@ private:
     // samples', the sun's VPLs' or both, per LPV cell the mean (albedo_), and the faces pass that
     // also takes that mean.
     rhi::TextureHandle albedoSums_, albedo_;
-    rhi::ComputePipelineHandle cameraAlbedoPipeline_, vplAlbedoPipeline_, cameraVplAlbedoPipeline_;
+    // [pass: 0 counts, 1 adds][the camera's samples, the sun's VPLs, both]
+    rhi::ComputePipelineHandle albedoPipelines_[2][3];
     rhi::ComputePipelineHandle facesAlbedoPipeline_;
     // With cameraAreas: the volume, the pass that fills it, and the faces pass that reads it.
     rhi::TextureHandle cameraAreas_;
