@@ -105,6 +105,7 @@ uint32_t PointLightInjection::inject(rhi::CommandList& cmd, std::span<const engi
     cmd.updateBuffer(buffer, 0, staged_.data(), uint32_t(count_ * sizeof(AnalyticLight)));
     PointLightUniforms u;
     u.gridOrigin = glm::vec4(grid.origin, grid.cellSize);
+    // z: 0, the offset the shader reads the count at (point_lights_body.glsl).
     u.grid = glm::ivec4(int(volumes.gridSize()), int(count_), 0, 0);
     u.encode = glm::vec4(volumes.encodeRange(grid), 0, 0, 0);
     cmd.bindPipeline(pipeline_);
