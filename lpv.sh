@@ -24,7 +24,9 @@ run)
   ;;
 test)
   cd "$build"
-  ctest --output-on-failure --timeout 900 "$@"
+  # As many suites at once as cores: the longest (gi.gpu.vulkan, about 2 minutes) then overlaps
+  # the others (320 s of tests one at a time on a 2-core machine, about 200 s two at a time).
+  ctest --output-on-failure --timeout 900 --parallel "$(nproc)" "$@"
   ;;
 bench)
   "$build/bench/lpv_rhi_bench" "$@"

@@ -16,9 +16,9 @@
 // rounding them all the same way would shift the mean by up to half a unit each (the camera
 // against a wall, 14,400 samples in a cell: an albedo up to 0.12 off).
 //
-// Drawn as points into blended targets (one a camera sample), the camera's albedo took 3-6 ms of
-// the finest cascade's occlusion in the benchmark's atrium on llvmpipe, which shades vertices on
-// one thread.
+// Drawn as points into blended targets (one a camera sample), the camera's albedo took 3.5-4.5 ms
+// of the finest cascade's occlusion in the benchmark's atrium on lavapipe, which shades vertices on
+// one thread (docs/gi-design.md has the figures of this pass).
 #include "gv_common.glsl"
 #include "gv_albedo_sums.glsl"
 
