@@ -154,24 +154,17 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
         const TextureDesc& d = device_.desc(src.depth);
         cameraSamples = cameraSampleCount(d.width, d.height);
     }
-    if (areas) {
-        cmd.clearTexture(cameraAreas_, {0, 0, 0, 0});
-        cmd.bindPipeline(cameraAreasPipeline_);
-        cmd.pushUniforms(0, &u, sizeof(u));
-        cmd.bindTexture(1, src.depth, pointSampler_);
-        cmd.bindTexture(2, src.normal, pointSampler_);
-        cmd.bindStorageImage(3, cameraAreas_);
-        cmd.dispatch((cameraSamples + 63) / 64);
-    }
     const bool marks = cameraSamples > 0 && !areas;
-    if (marks) {
-        // The finest cascade's: every sample marks up to kCameraPointsPerSample cells.
-        cmd.clearTexture(cameraMarks_, {0, 0, 0, 0});
-        cmd.bindPipeline(cameraMarksPipeline_);
+    if (areas || marks) {
+        // A coarse cascade's samples add the areas they stand for (gv_camera_areas.comp); the
+        // finest cascade's each mark up to kCameraPointsPerSample cells (gv_camera_marks.comp).
+        const TextureHandle target = areas ? cameraAreas_ : cameraMarks_;
+        cmd.clearTexture(target, {0, 0, 0, 0});
+        cmd.bindPipeline(areas ? cameraAreasPipeline_ : cameraMarksPipeline_);
         cmd.pushUniforms(0, &u, sizeof(u));
         cmd.bindTexture(1, src.depth, pointSampler_);
         cmd.bindTexture(2, src.normal, pointSampler_);
-        cmd.bindStorageImage(3, cameraMarks_);
+        cmd.bindStorageImage(3, target);
         cmd.dispatch((cameraSamples + 63) / 64);
     }
     // The camera's albedo in the finest cascade only, as its marks: a coarse cascade's is the
