@@ -28,7 +28,8 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
 layout(binding = 1) uniform sampler2D gbufferDepth;
 layout(binding = 2) uniform sampler2D gbufferNormal;
-// Per GV cell, packUnorm4x8 of the largest |n| per axis (w: 1 where any sample marked it).
+// Per GV cell, packUnorm4x8 of the largest |n| per axis; w (the top byte) holds the cell's gaps,
+// written before (gv_gaps.comp), which a max with 0 keeps.
 layout(binding = 3, r32ui) uniform coherent uimage3D cameraMarks;
 
 #include "camera_samples.glsl"
@@ -36,7 +37,7 @@ layout(binding = 3, r32ui) uniform coherent uimage3D cameraMarks;
 void mark(vec3 p, vec3 n) {
     ivec3 c = surfelCell(p);
     if (!insideVolume(c)) return;
-    GV_ATOMIC_MAX_UNORM4X8(cameraMarks, c, vec4(abs(n), 1.0));
+    GV_ATOMIC_MAX_UNORM4X8(cameraMarks, c, vec4(abs(n), 0.0));
 }
 
 void main() {

@@ -17,7 +17,7 @@ layout(binding = 2, rgba8) uniform writeonly image3D transmittance;
 layout(binding = 3, r32ui) uniform readonly uimage3D cameraAreas;
 #else
 // The finest cascade's: the largest |n| of the surfaces its samples saw, packUnorm4x8
-// (gv_camera_marks.comp).
+// (gv_camera_marks.comp), and in the top byte its real gaps (gv_gaps.comp).
 layout(binding = 3, r32ui) uniform readonly uimage3D cameraMarks;
 #endif
 #ifdef KEEP_ALBEDO
@@ -35,17 +35,24 @@ float light(ivec3 c, int axis) {
     return inside ? min(texelFetch(lightCoverage, c, 0)[axis], 1.0) : 0.0;
 }
 
+#ifdef CAMERA_AREAS
 // Component `axis` of the camera's coverage of GV cell c, at most 1; 0 outside the volume.
 float camera(ivec3 c, int axis) {
     int n = params.grid.x + 1;
     bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
-#ifdef CAMERA_AREAS
     if (!inside) return 0.0;
     return min(float(imageLoad(cameraAreas, ivec3(3 * c.x + axis, c.y, c.z)).r) / kAreaUnit, 1.0);
-#else
-    return inside ? unpackUnorm4x8(imageLoad(cameraMarks, c).r)[axis] : 0.0;
-#endif
 }
+#else
+// GV cell c's camera mark: per axis (bytes 0-2) the largest |n| seen there, and in the top byte
+// whether the camera sees through it along each axis (bit 24 + axis, gv_gaps.comp);
+// 0 outside the volume.
+uint mark(ivec3 c) {
+    int n = params.grid.x + 1;
+    bool inside = all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)));
+    return inside ? imageLoad(cameraMarks, c).r : 0u;
+}
+#endif
 
 // The blocking of the lower face along `axis` of LPV cell c: the mean coverage along `axis` of the
 // four GV cells at its corners (c + u i + v j, i, j in 0..1; u, v span the face). A corner's
@@ -59,12 +66,17 @@ float camera(ivec3 c, int axis) {
 // wall, lit at cos 0.22 from outside, let a quarter to half of the outside's light through its
 // cells in the coarse cascades, unevenly, which the room showed as cell-sized blotches. The
 // corners' neighbours overlap: the 12 cells of a 4 x 4 patch of the plane less its corners are
-// fetched once for each.
+// fetched once for each. In the finest cascade a corner the camera sees through (gv_gaps.comp) is
+// a real gap and keeps its own coverage: a door 1.5 cells wide, whose one free cell has the door's
+// edges on both sides, was closed before.
 float faceBlocking(ivec3 c, int axis, ivec3 u, ivec3 v) {
     float sum = 0.0;
     // seen[i + 1][j + 1], lit[i + 1][j + 1]: the camera's and the light's coverage at c + u i + v j,
     // i, j in -1..2 (corners unused).
     float seen[4][4], lit[4][4];
+    // Per corner (i, j in 0..1: bit i + 2 j), whether it is a real gap along `axis` (the finest
+    // cascade's marks only).
+    uint gaps = 0u;
     for (int i = -1; i <= 2; ++i)
         for (int j = -1; j <= 2; ++j) {
             bool corner = (i == -1 || i == 2) && (j == -1 || j == 2);
@@ -72,10 +84,14 @@ float faceBlocking(ivec3 c, int axis, ivec3 u, ivec3 v) {
 #ifdef CAMERA_AREAS
             // Summed areas leave no holes between samples to close: only the face's own corners.
             bool unused = i < 0 || i > 1 || j < 0 || j > 1;
+            seen[i + 1][j + 1] = unused || params.grid.y == 0 ? 0.0 : camera(at, axis);
 #else
             bool unused = corner;
+            uint m = unused || params.grid.y == 0 ? 0u : mark(at);
+            seen[i + 1][j + 1] = unpackUnorm4x8(m)[axis];
+            bool own = i >= 0 && i <= 1 && j >= 0 && j <= 1;
+            if (own) gaps |= ((m >> (24 + axis)) & 1u) << (i + 2 * j);
 #endif
-            seen[i + 1][j + 1] = unused || params.grid.y == 0 ? 0.0 : camera(at, axis);
             lit[i + 1][j + 1] = corner ? 0.0 : light(at, axis);
         }
     for (int k = 0; k < 4; ++k) {
@@ -86,7 +102,11 @@ float faceBlocking(ivec3 c, int axis, ivec3 u, ivec3 v) {
         float closed = max(seen[i][j], max(min(seen[i - 1][j], seen[i + 1][j]), min(seen[i][j - 1], seen[i][j + 1])));
 #endif
         float l = max(lit[i][j], max(min(lit[i - 1][j], lit[i + 1][j]), min(lit[i][j - 1], lit[i][j + 1])));
-        sum += max(l, closed);
+        float blocking = max(l, closed);
+        // A real gap that closing covered: open again (an empty corner only; the top byte is 0
+        // where the camera took no samples).
+        if (max(seen[i][j], lit[i][j]) <= 0.0 && ((gaps >> k) & 1u) != 0u) blocking = 0.0;
+        sum += blocking;
     }
     return sum * 0.25;
 }

@@ -3,6 +3,7 @@
 
 #include "GiShaders.h"
 
+#include <glm/matrix.hpp>
 #include <glm/vec4.hpp>
 
 #include <algorithm>
@@ -22,6 +23,14 @@ struct GeometryVolume::InjectUniforms {
     glm::vec4 lightPosition;
     glm::vec4 lightAxis;
     glm::ivec4 albedoSums;
+};
+
+// gv_gaps.comp's Gaps.
+struct GapsUniforms {
+    glm::vec4 gridOrigin;
+    glm::ivec4 grid;
+    glm::mat4 viewProjection;
+    glm::vec4 invDepthColumn;
 };
 
 namespace {
@@ -72,6 +81,7 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepA
     pointLightPipeline_ = device.createPipeline(d);
     cameraMarksPipeline_ =
         device.createPipeline(ComputePipelineDesc{&shaders::gv_camera_marks_comp, "gv camera marks"});
+    gapsPipeline_ = device.createPipeline(ComputePipelineDesc{&shaders::gv_gaps_comp, "gv gaps"});
     facesPipeline_ = device.createPipeline(ComputePipelineDesc{&shaders::gv_faces_coverage_comp, "gv faces"});
     if (keepAlbedo) {
         const ShaderBinary* albedo[2][3] = {
@@ -117,6 +127,7 @@ GeometryVolume::~GeometryVolume() {
     device_.destroy(vplPipeline_);
     device_.destroy(pointLightPipeline_);
     device_.destroy(cameraMarksPipeline_);
+    device_.destroy(gapsPipeline_);
     device_.destroy(facesPipeline_);
     if (cameraAreas_) {
         device_.destroy(cameraAreas_);
@@ -155,11 +166,26 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
         cameraSamples = cameraSampleCount(d.width, d.height);
     }
     const bool marks = cameraSamples > 0 && !areas;
+    if (marks) {
+        // Where a hole in a wall's coverage is a real gap, asked of the camera's depth once per GV
+        // cell: each mark starts as its cell's gaps, in the top byte, with the marks' bytes clear
+        // (gv_gaps.comp; no other clear).
+        GapsUniforms gaps{};
+        gaps.gridOrigin = u.gridOrigin;
+        gaps.grid = glm::ivec4(int(g), 0, 0, 0);
+        gaps.viewProjection = glm::inverse(src.invViewProjection);
+        gaps.invDepthColumn = src.invViewProjection[2];
+        cmd.bindPipeline(gapsPipeline_);
+        cmd.pushUniforms(0, &gaps, sizeof(gaps));
+        cmd.bindTexture(1, src.depth, pointSampler_);
+        cmd.bindStorageImage(3, cameraMarks_);
+        cmd.dispatch((g + 3) / 4, (g + 3) / 4, (g + 3) / 4);
+    }
     if (areas || marks) {
         // A coarse cascade's samples add the areas they stand for (gv_camera_areas.comp); the
         // finest cascade's each mark up to kCameraPointsPerSample cells (gv_camera_marks.comp).
         const TextureHandle target = areas ? cameraAreas_ : cameraMarks_;
-        cmd.clearTexture(target, {0, 0, 0, 0});
+        if (areas) cmd.clearTexture(target, {0, 0, 0, 0});
         cmd.bindPipeline(areas ? cameraAreasPipeline_ : cameraMarksPipeline_);
         cmd.pushUniforms(0, &u, sizeof(u));
         cmd.bindTexture(1, src.depth, pointSampler_);

@@ -169,6 +169,16 @@ WorkCounts occlusionWork(const LpvSettings& s, uint64_t cameraSamples, VolumeDra
     // memory about twice, the light's as often as its 12 corner fetches did.
     w.bytesMoved = w.primitives * 48 + surfels * 16 + cells * (12 * 8 + (cameraSamples > 0 ? 8 : 0) + 4);
     w.cells = cells;
+    if (cameraSamples > 0) {
+        // The camera's marks start as the cells' real gaps (gv_gaps.comp): per GV cell its centre
+        // projected into the camera's view, a depth fetched and the hit compared with the centre
+        // (about 70 ALU), one texel written.
+        const uint64_t gvCells = uint64_t(s.gridSize + 1) * (s.gridSize + 1) * (s.gridSize + 1);
+        w.texelsRead += gvCells;
+        w.aluOps += gvCells * 70;
+        w.texelsWritten += gvCells;
+        w.bytesMoved += gvCells * (4 + 4);
+    }
     return w;
 }
 

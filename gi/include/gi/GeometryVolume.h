@@ -84,7 +84,8 @@ public:
     uint32_t faceSlots() const { return uint32_t(faces_.size()); }
     // Per GV cell (lpvSize + 1 per axis): projected coverage along x, y, z from the light's
     // surfels (RGBA8), and the finest cascade's camera marks: per axis the largest |n| its samples
-    // saw there (R32UI, packUnorm4x8 of x, y, z and 1 where any, as glm::unpackUnorm4x8 reads it).
+    // saw there (R32UI, packUnorm4x8 of x, y, z, as glm::unpackUnorm4x8 reads it; the top byte
+    // holds its real gaps, bit `axis` set where the camera sees through it, gv_gaps.comp).
     rhi::TextureHandle lightCoverage() const { return coverage_; }
     rhi::TextureHandle cameraMarks() const { return cameraMarks_; }
     // Per GV cell g and axis a, texel (3 g.x + a, g.y, g.z): a coarse cascade's camera coverage
@@ -110,7 +111,7 @@ private:
     std::vector<rhi::TextureHandle> faces_;
     uint32_t lastSlot_ = 0;
     rhi::GraphicsPipelineHandle vplPipeline_, pointLightPipeline_;
-    rhi::ComputePipelineHandle cameraMarksPipeline_, facesPipeline_;
+    rhi::ComputePipelineHandle cameraMarksPipeline_, gapsPipeline_, facesPipeline_;
     // With keepAlbedo: per GV cell (texels 2 g.x and 2 g.x + 1) its surfels' mean albedo in fixed
     // point and their count (R32UI, gv_albedo_sums_body.glsl), the passes that add the camera's
     // samples', the sun's VPLs' or both, per LPV cell the mean (albedo_), and the faces pass that
