@@ -1,10 +1,10 @@
 // A door 1.5 cells wide, on each backend: the geometry volume closes one-cell holes in a wall's
 // coverage (the camera's samples miss cells behind silhouettes, the sun's surfels cover a wall it
-// grazes patchily), and until the views were asked (gv_faces_body.glsl, seesThrough) it closed a
-// real door whose one free cell has wall on both sides too, so no light came through it. (A door
-// one cell wide is blocked anyway: the camera's samples on its edges mark the cells it spans.) The Cornell
-// box, sealed (a lid over its ceiling's opening, a front wall), with a door in the front wall onto a sunlit
-// yard, seen from inside through the door.
+// grazes patchily), and until the camera was asked where it sees through a cell (gv_gaps.comp) it
+// closed a real door whose one free cell has wall on both sides too, so no light came through it.
+// (A door one cell wide is blocked anyway: the camera's samples on its edges mark the cells it
+// spans.) The Cornell box, sealed (a lid over its ceiling's opening, a front wall), with a door in
+// the front wall onto a sunlit yard, seen from inside through the door.
 #include "../render/CornellFrame.h"
 #include "../support/TestDevice.h"
 
