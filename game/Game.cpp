@@ -209,7 +209,10 @@ int runGame(const GameOptions& opt) {
         if (platform->keyPressed(GLFW_KEY_F1)) cycle(config, "render.debug_view");
         if (platform->keyPressed(GLFW_KEY_F2)) cycle(config, "gi.debug_view");
         if (platform->keyPressed(GLFW_KEY_G)) toggle(config, "gi.enabled");
-        for (const std::string& line : console.takeLines()) {
+        // The console's lines wait for the second frame: the first checks the startup configuration,
+        // whose errors end the run, and a line that arrived before it (piped in) is a change to be
+        // refused and undone like any other, not part of what the game started with.
+        for (const std::string& line : firstFrame ? std::vector<std::string>{} : console.takeLines()) {
             // Enter alone, or a comment (as in a config file): nothing to change, nothing to say.
             const size_t first = line.find_first_not_of(" \t\r");
             if (first == std::string::npos || line[first] == '#') continue;
