@@ -630,7 +630,10 @@ TEST_CASE("cli: SIGINT and SIGTERM end the run and its outputs are written") {
 // the frame in flight, and a frame can take long. Here it is the lights hall's 148 lights lit per
 // pixel at 2560x1440 on OSMesa with llvmpipe held to 2 threads (LP_NUM_THREADS), as slow on any
 // machine: with the second signal ignored, the game ended 4.3 s after it on this 2-core machine.
-// The shell starts the game in the background, waits for its main loop, and signals it twice 0.35 s
+// The shell starts the game in the background, waits for its log to say which backend runs, and a
+// second more for the first frame to be under way (with Mesa's shader cache cold, as after
+// tests.shader_cache_reset, what the game sets up after that line took more than the 0.2 s waited
+// before, and the first signal was seen before the first frame), then signals it twice 0.35 s
 // apart; the game dies of the second signal (the shell's status 128 + 2) long before the frame
 // ends, with no outputs written. A watchdog kills the game after 60 s whatever happens.
 TEST_CASE("cli: a second SIGINT stops the game at once") {
@@ -652,7 +655,7 @@ TEST_CASE("cli: a second SIGINT stops the game at once") {
         << "watchdog=$!\n"
         << "n=0\n"
         << "until grep -q 'running on backend' $log || [ $n -ge 600 ]; do sleep 0.05; n=$((n+1)); done\n"
-        << "sleep 0.2; kill -INT $pid; sleep 0.35\n"
+        << "sleep 1; kill -INT $pid; sleep 0.35\n"
         << "start=$(date +%s%N); kill -INT $pid; wait $pid; status=$?; end=$(date +%s%N)\n"
         << "kill $watchdog 2>/dev/null\n"
         << "echo \"status $status after $(( (end - start) / 1000000 )) ms\"\n"
