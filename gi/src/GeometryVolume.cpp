@@ -3,7 +3,6 @@
 
 #include "GiShaders.h"
 
-#include <glm/matrix.hpp>
 #include <glm/vec4.hpp>
 
 #include <algorithm>
@@ -169,28 +168,28 @@ void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const 
     if (marks) {
         // Where a hole in a wall's coverage is a real gap, asked of the camera's depth once per GV
         // cell: each mark starts as its cell's gaps, in the top byte, with the marks' bytes clear
-        // (gv_gaps.comp; no other clear).
+        // (gv_gaps.comp), which is the marks' clear.
         GapsUniforms gaps{};
         gaps.gridOrigin = u.gridOrigin;
         gaps.grid = glm::ivec4(int(g), 0, 0, 0);
-        gaps.viewProjection = glm::inverse(src.invViewProjection);
+        gaps.viewProjection = src.viewProjection;
         gaps.invDepthColumn = src.invViewProjection[2];
         cmd.bindPipeline(gapsPipeline_);
         cmd.pushUniforms(0, &gaps, sizeof(gaps));
         cmd.bindTexture(1, src.depth, pointSampler_);
         cmd.bindStorageImage(3, cameraMarks_);
         cmd.dispatch((g + 3) / 4, (g + 3) / 4, (g + 3) / 4);
+    } else if (areas) {
+        cmd.clearTexture(cameraAreas_, {0, 0, 0, 0});
     }
     if (areas || marks) {
         // A coarse cascade's samples add the areas they stand for (gv_camera_areas.comp); the
         // finest cascade's each mark up to kCameraPointsPerSample cells (gv_camera_marks.comp).
-        const TextureHandle target = areas ? cameraAreas_ : cameraMarks_;
-        if (areas) cmd.clearTexture(target, {0, 0, 0, 0});
         cmd.bindPipeline(areas ? cameraAreasPipeline_ : cameraMarksPipeline_);
         cmd.pushUniforms(0, &u, sizeof(u));
         cmd.bindTexture(1, src.depth, pointSampler_);
         cmd.bindTexture(2, src.normal, pointSampler_);
-        cmd.bindStorageImage(3, target);
+        cmd.bindStorageImage(3, areas ? cameraAreas_ : cameraMarks_);
         cmd.dispatch((cameraSamples + 63) / 64);
     }
     // The camera's albedo in the finest cascade only, as its marks: a coarse cascade's is the

@@ -474,6 +474,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                 src.albedo = gbuffer.albedo;
                 src.cameraAreas = c > 0;
             }
+            src.viewProjection = camera.viewProjection;
             src.invViewProjection = camera.invViewProjection;
             src.cameraPosition = camera.position;
             // The surfels' albedo only where the further bounces read it (gi.bounce_cascades).

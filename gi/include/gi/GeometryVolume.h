@@ -37,6 +37,7 @@ struct GeometrySources {
     // The flux an RSM texel of albedo 1 reflects (sun irradiance x texel area): a VPL's albedo is
     // its flux over this times its texel count (for multiple bounces).
     glm::vec3 whiteTexelFlux{0.0f};
+    glm::mat4 viewProjection{1.0f}; // the camera's, with depth
     glm::mat4 invViewProjection{1.0f};
     glm::vec3 cameraPosition{0.0f};
     // Spot and point lights with an RSM: their surfels block too (coverage only, no albedo).
