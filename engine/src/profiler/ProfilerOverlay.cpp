@@ -1,15 +1,28 @@
-// Overlay bars from the profiler's window statistics.
+// Overlay bars and labels from the profiler's window statistics.
 #include "engine/profiler/ProfilerOverlay.h"
 
 #include "EngineShaders.h"
 #include "engine/profiler/FrameProfiler.h"
+#include "engine/profiler/OverlayText.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace lpv::engine {
+namespace {
 
-ProfilerOverlay::ProfilerOverlay(rhi::Device& device) : device_(device) {
+constexpr glm::vec4 kTextColor{0.93f, 0.93f, 0.93f, 1.0f};
+constexpr glm::vec4 kOverColor{0.9f, 0.15f, 0.1f, 0.9f};
+
+// A pass's median: GPU where timed, else CPU.
+double medianMs(const ScopeInfo& s) {
+    return s.gpuMs.count() ? s.gpuMs.stats().median : s.cpuMs.stats().median;
+}
+
+} // namespace
+
+ProfilerOverlay::ProfilerOverlay(rhi::Device& device) : device_(device), rects_(kMaxRects) {
     rhi::GraphicsPipelineDesc d;
     d.vertex = &shaders::overlay_vert;
     d.fragment = &shaders::overlay_frag;
@@ -17,61 +30,112 @@ ProfilerOverlay::ProfilerOverlay(rhi::Device& device) : device_(device) {
     d.blend = {rhi::BlendState::alpha()};
     d.debugName = "profiler overlay";
     pipeline_ = device.createPipeline(d);
+    rectsBuffer_ =
+        device.createBuffer({sizeof(OverlayRect) * kMaxRects, rhi::kBufferStorage | rhi::kBufferTransfer,
+                             rhi::MemoryAccess::GpuOnly, "profiler overlay rects", "profiler.overlay"});
 }
 
 ProfilerOverlay::~ProfilerOverlay() {
+    device_.waitIdle();
     device_.destroy(pipeline_);
+    device_.destroy(rectsBuffer_);
 }
 
-void ProfilerOverlay::draw(rhi::CommandList& cmd, const FrameProfiler& profiler, rhi::TextureHandle output) {
-    const rhi::TextureDesc& desc = device_.desc(output);
-    uniforms_.viewport = glm::vec4(float(desc.width), float(desc.height), 0, 0);
+uint32_t ProfilerOverlay::layout(const FrameProfiler& profiler, uint32_t width, uint32_t height,
+                                 std::span<OverlayRect> out) {
     // Rows of 13 pixels shrink to fit the target's height (a 640x360 window holds the GI's 30-odd
     // passes at 10 pixels a row), down to 3; passes that would still run off the bottom are left out.
     const float x0 = 12.0f, y0 = 12.0f, maxRow = 13.0f, minRow = 3.0f;
-    const float available = float(desc.height) - 2.0f * y0;
-    uint32_t passes = uint32_t(std::min<size_t>(profiler.scopes().size(), kMaxRects - 3));
+    const float available = float(height) - 2.0f * y0;
+    uint32_t passes = uint32_t(std::min<size_t>(profiler.scopes().size(), kMaxRows));
     // Whole pixels a row, so bars keep a gap; the fit is counted in whole rows too (a float
     // quotient of 41.99999 rows left the last pass out).
     const float row = std::clamp(std::floor(available / float(passes + 1)), minRow, maxRow);
     passes = std::min(passes, uint32_t(std::max(std::floor(available / row + 1e-3f) - 1.0f, 0.0f)));
     const float barHeight = std::round(row * 10.0f / 13.0f), gap = row - barHeight;
-    const float budgetWidth = std::min(400.0f, float(desc.width) * 0.4f); // pixels for the whole frame budget
+
+    // Labels: the names in a column left of the bars (indented by depth), the medians in one
+    // right of them, where a row holds a glyph and the bars keep a useful width.
+    const float indentStep = 6.0f, labelGap = 6.0f;
+    const float valueWidth = overlayTextWidth("0000.00");
+    float nameWidth = overlayTextWidth("frame");
+    for (uint32_t i = 0; i < passes; ++i) {
+        const ScopeInfo& s = profiler.scopes()[i];
+        nameWidth = std::max(nameWidth, indentStep * float(s.depth) + overlayTextWidth(s.name));
+    }
+    const float labelledBudget =
+        std::min(400.0f, (float(width) - 2.0f * x0 - nameWidth - valueWidth - 2.0f * labelGap) / 1.5f);
+    const bool labelled = row >= kOverlayTextHeight + 1.0f && labelledBudget >= 48.0f;
+    // Pixels for the whole frame budget; bars stop at 1.5 budgets.
+    const float budgetWidth = labelled ? labelledBudget : std::min(400.0f, float(width) * 0.4f);
+    const float barsX = labelled ? x0 + nameWidth + labelGap : x0;
+    const float valuesX = barsX + budgetWidth * 1.5f + labelGap;
+    const float right = labelled ? valuesX + valueWidth : barsX + budgetWidth * 1.5f;
     const float msToPixels = budgetWidth / float(profiler.profile().frameBudgetMs);
     const FrameBudgetCheck& check = profiler.lastBudgetCheck();
     const bool over = check.frameOverBudget || check.giOverBudget || check.giPredictedOverBudget;
+
     uint32_t n = 0;
     const auto rect = [&](glm::vec4 r, glm::vec4 c) {
-        if (n < kMaxRects) {
-            uniforms_.rects[n] = r;
-            uniforms_.colors[n] = c;
-            ++n;
-        }
+        if (n < out.size()) out[n++] = {r, c};
     };
-    rect({x0 - 4, y0 - 4, budgetWidth * 1.5f + 8, float(passes + 1) * (barHeight + gap) + 8},
-         {0, 0, 0, 0.55f});
-    // Whole frame, then one bar per pass (children indented by depth).
+    const auto text = [&](std::string_view s, float x, float y, glm::vec4 c) {
+        n = overlayTextRects(s, x, y, c, out, n);
+    };
+    const auto rowY = [&](uint32_t r) { return y0 + float(r) * (barHeight + gap); };
+    // Text centred on its bar, on whole pixels.
+    const auto textY = [&](uint32_t r) {
+        return std::floor(rowY(r) + (barHeight - kOverlayTextHeight) * 0.5f);
+    };
+
+    rect({x0 - 4, y0 - 4, right - x0 + 8, float(passes + 1) * (barHeight + gap) + 8}, {0, 0, 0, 0.55f});
+    // Whole frame, then one bar per pass (unlabelled, children indented by depth).
     const SampleStats frame = profiler.frameGpuMs().count ? profiler.frameGpuMs() : profiler.frameCpuMs();
-    rect({x0, y0, std::min(float(frame.median) * msToPixels, budgetWidth * 1.5f), barHeight},
-         over ? glm::vec4(0.9f, 0.15f, 0.1f, 0.9f) : glm::vec4(0.85f, 0.85f, 0.85f, 0.9f));
+    rect({barsX, rowY(0), std::min(float(frame.median) * msToPixels, budgetWidth * 1.5f), barHeight},
+         over ? kOverColor : glm::vec4(0.85f, 0.85f, 0.85f, 0.9f));
     for (uint32_t i = 0; i < passes; ++i) {
         const ScopeInfo& s = profiler.scopes()[i];
-        const SampleStats st = s.gpuMs.count() ? s.gpuMs.stats() : s.cpuMs.stats();
-        const float indent = 8.0f * float(s.depth);
+        const float indent = labelled ? 0.0f : 8.0f * float(s.depth);
         const bool gi = s.path.starts_with("gi");
-        rect({x0 + indent, y0 + float(i + 1) * (barHeight + gap),
-              std::min(float(st.median) * msToPixels, budgetWidth * 1.5f), barHeight},
+        rect({barsX + indent, rowY(i + 1), std::min(float(medianMs(s)) * msToPixels, budgetWidth * 1.5f),
+              barHeight},
              gi ? glm::vec4(0.95f, 0.6f, 0.15f, 0.9f) : glm::vec4(0.3f, 0.55f, 0.9f, 0.9f));
     }
-    // The frame budget line.
-    rect({x0 + budgetWidth, y0 - 4, 2, float(passes + 1) * (barHeight + gap) + 8}, {1, 0.2f, 0.2f, 1});
+    // The frame budget line, before the labels, which are what a full buffer leaves out.
+    rect({barsX + budgetWidth, y0 - 4, 2, float(passes + 1) * (barHeight + gap) + 8}, {1, 0.2f, 0.2f, 1});
+    if (!labelled) return n;
+    char value[32];
+    text("frame", x0, textY(0), kTextColor);
+    std::snprintf(value, sizeof(value), "%.2f", frame.median);
+    text(value, valuesX, textY(0), over ? kOverColor : kTextColor);
+    for (uint32_t i = 0; i < passes; ++i) {
+        const ScopeInfo& s = profiler.scopes()[i];
+        text(s.name, x0 + indentStep * float(s.depth), textY(i + 1), kTextColor);
+        // A pass timed inside another's scope (gi.rebuild, in render.lighting) has no time of its
+        // own to show.
+        if (s.timedIn.empty()) std::snprintf(value, sizeof(value), "%.2f", medianMs(s));
+        text(s.timedIn.empty() ? value : "-", valuesX, textY(i + 1), kTextColor);
+    }
+    return n;
+}
+
+void ProfilerOverlay::draw(rhi::CommandList& cmd, const FrameProfiler& profiler, rhi::TextureHandle output) {
+    const rhi::TextureDesc& desc = device_.desc(output);
+    const uint32_t n = layout(profiler, desc.width, desc.height, rects_);
+    // updateBuffer takes up to 64 KiB at a time (vkCmdUpdateBuffer's limit).
+    const uint64_t bytes = uint64_t(n) * sizeof(OverlayRect);
+    for (uint64_t offset = 0; offset < bytes; offset += 65536)
+        cmd.updateBuffer(rectsBuffer_, offset, reinterpret_cast<const char*>(rects_.data()) + offset,
+                         uint32_t(std::min<uint64_t>(65536, bytes - offset)));
+    const glm::vec4 viewport(float(desc.width), float(desc.height), 0, 0);
     rhi::RenderPassDesc pass;
     pass.colors[0] = {output, 0, 0, rhi::LoadOp::Load};
     pass.colorCount = 1;
     pass.debugName = "profiler overlay";
     cmd.beginRenderPass(pass);
     cmd.bindPipeline(pipeline_);
-    cmd.pushUniforms(0, &uniforms_, sizeof(uniforms_));
+    cmd.pushUniforms(0, &viewport, sizeof(viewport));
+    cmd.bindStorageBuffer(1, rectsBuffer_);
     cmd.draw(6 * n);
     cmd.endRenderPass();
 }
