@@ -73,6 +73,13 @@ std::optional<glm::vec2> find(std::span<const OverlayRect> rects, const std::str
     return std::nullopt;
 }
 
+// Four such frames, their GPU times collected.
+void profile(rhi::Device& device, FrameProfiler& profiler) {
+    for (int f = 0; f < 4; ++f)
+        frame(device, profiler);
+    profiler.collectPending();
+}
+
 std::string ms(double v) {
     char s[32];
     std::snprintf(s, sizeof(s), "%.2f", v);
@@ -84,9 +91,7 @@ std::string ms(double v) {
 TEST_CASE("profiler overlay: each row is labelled with its pass, indented by depth, and its median") {
     auto device = test::nullDevice();
     FrameProfiler profiler(*device, platforms::loadPlatformProfile("pc"));
-    for (int f = 0; f < 4; ++f)
-        frame(*device, profiler);
-    profiler.collectPending();
+    profile(*device, profiler);
     REQUIRE(profiler.scopes().size() == 5);
     // What the labels must say: the simulated medians (the timestamps' own commands add under 0.01 ms).
     const auto median = [&](size_t i) { return profiler.scopes()[i].gpuMs.stats().median; };
@@ -127,9 +132,7 @@ TEST_CASE("profiler overlay: each row is labelled with its pass, indented by dep
 TEST_CASE("profiler overlay: rows too short for text, or an output too narrow, get bars only") {
     auto device = test::nullDevice();
     FrameProfiler profiler(*device, platforms::loadPlatformProfile("pc"));
-    for (int f = 0; f < 4; ++f)
-        frame(*device, profiler);
-    profiler.collectPending();
+    profile(*device, profiler);
     std::vector<OverlayRect> rects(ProfilerOverlay::kMaxRects);
     // The backdrop, the frame's bar, a bar per pass and the budget line.
     const uint32_t bars = uint32_t(profiler.scopes().size()) + 3;

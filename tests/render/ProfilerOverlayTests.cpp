@@ -50,24 +50,31 @@ void nullProfile(rhi::Device& null, engine::FrameProfiler& profiler) {
     profiler.collectPending();
 }
 
-// The overlay of `profiler` drawn on a black 640x360 target of `backend`.
-Image drawOverlay(const BackendUnderTest& backend, const engine::FrameProfiler& profiler) {
-    TestDevice device(backend);
-    engine::ProfilerOverlay overlay(*device);
+// `overlay` drawn on a black width x height target of `device`, read back.
+Image drawOverlay(rhi::Device& device, engine::ProfilerOverlay& overlay,
+                  const engine::FrameProfiler& profiler, uint32_t width, uint32_t height) {
     const rhi::TextureHandle target =
-        device->createTexture({rhi::TextureKind::Tex2D, rhi::Format::RGBA8Srgb, 640, 360, 1, 1,
-                               rhi::kTextureColorTarget | rhi::kTextureTransfer, "overlay", "test"});
-    rhi::CommandList& cmd = device->beginFrame();
+        device.createTexture({rhi::TextureKind::Tex2D, rhi::Format::RGBA8Srgb, width, height, 1, 1,
+                              rhi::kTextureColorTarget | rhi::kTextureTransfer, "overlay", "test"});
+    rhi::CommandList& cmd = device.beginFrame();
     rhi::RenderPassDesc clear;
     clear.colors[0] = {target, 0, 0, rhi::LoadOp::Clear, {0, 0, 0, 1}};
     clear.colorCount = 1;
     cmd.beginRenderPass(clear);
     cmd.endRenderPass();
     overlay.draw(cmd, profiler, target);
-    device->endFrame();
-    device->waitIdle();
-    Image image = readImage(*device, target);
-    device->destroy(target);
+    device.endFrame();
+    device.waitIdle();
+    Image image = readImage(device, target);
+    device.destroy(target);
+    return image;
+}
+
+// The overlay of `profiler` drawn at 640x360 on `backend`.
+Image drawOverlay(const BackendUnderTest& backend, const engine::FrameProfiler& profiler) {
+    TestDevice device(backend);
+    engine::ProfilerOverlay overlay(*device);
+    Image image = drawOverlay(*device, overlay, profiler, 640, 360);
     device.expectSilent();
     return image;
 }
@@ -130,26 +137,13 @@ TEST_CASE("render: the profiler overlay's rows fit the window's height") {
             engine::ProfilerOverlay overlay(*device);
             for (const uint32_t height : {360u, 156u, 120u, 40u}) {
                 CAPTURE(height);
-                const rhi::TextureHandle target = device->createTexture(
-                    {rhi::TextureKind::Tex2D, rhi::Format::RGBA8Srgb, 320, height, 1, 1,
-                     rhi::kTextureColorTarget | rhi::kTextureTransfer, "overlay", "test"});
-                rhi::CommandList& cmd = device->beginFrame();
-                rhi::RenderPassDesc clear;
-                clear.colors[0] = {target, 0, 0, rhi::LoadOp::Clear, {0, 0, 0, 1}};
-                clear.colorCount = 1;
-                cmd.beginRenderPass(clear);
-                cmd.endRenderPass();
-                overlay.draw(cmd, profiler, target);
-                device->endFrame();
-                device->waitIdle();
-                const Image image = readImage(*device, target);
+                const Image image = drawOverlay(*device, overlay, profiler, 320, height);
                 const auto [first, last] = overlayRows(image);
                 MESSAGE(backend.name << " " << height << " rows high: overlay from row " << first << " to "
                                      << last);
                 CHECK(first == 8);                  // the backdrop, 4 pixels above the first bar
                 CHECK(last <= int(height) - 8);     // and as far from the bottom
                 CHECK(last >= int(height) * 2 / 3); // the rows use the height they have
-                device->destroy(target);
             }
             device.expectSilent();
         }
