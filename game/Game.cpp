@@ -165,6 +165,7 @@ int runGame(const GameOptions& opt) {
               std::to_string((platforms::nowNanoseconds() - t0) / 1000000) + " ms to create)" + ", " +
               platform->name() + ", platform profile '" + profile.name + "'");
 
+    t0 = platforms::nowNanoseconds();
     engine::Renderer renderer(*device, width, height);
     renderer.setScene(scene);
     engine::FrameProfiler profiler(*device, profile);
@@ -188,6 +189,10 @@ int runGame(const GameOptions& opt) {
     const engine::Camera start = defaultCamera(scene);
     FreeCamera freeCamera(start);
     Console console;
+    // What a team waits for before the first frame (the renderer's and the GI's pipelines, the
+    // scene's upload), and the line a script waits for before its signals land in a frame.
+    log::info("game: ready to render after " + std::to_string((platforms::nowNanoseconds() - t0) / 1000000) +
+              " ms of setup (renderer, profiler, GI)");
 
     // Until closed when presenting to a window, else one frame unless --frames says otherwise.
     const int frames = opt.frames > 0 ? opt.frames : (device->caps().presentation ? 0 : 1);
