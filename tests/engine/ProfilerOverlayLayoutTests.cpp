@@ -33,6 +33,9 @@ void frame(rhi::Device& device, FrameProfiler& profiler) {
     {
         auto render = profiler.scope("render", &cmd);
         work(1500);
+        // A pass first run on the third frame (as a bounce left to the next frame): its row
+        // still goes under its parent's.
+        if (profiler.scopes().size() > 2) auto late = profiler.scope("late", &cmd);
     }
     {
         auto gi = profiler.scope("gi", &cmd);
@@ -92,7 +95,8 @@ TEST_CASE("profiler overlay: each row is labelled with its pass, indented by dep
     auto device = test::nullDevice();
     FrameProfiler profiler(*device, platforms::loadPlatformProfile("pc"));
     profile(*device, profiler);
-    REQUIRE(profiler.scopes().size() == 5);
+    REQUIRE(profiler.scopes().size() == 6);
+    REQUIRE(profiler.scopes()[5].name == "late");
     // What the labels must say: the simulated medians (the timestamps' own commands add under 0.01 ms).
     const auto median = [&](size_t i) { return profiler.scopes()[i].gpuMs.stats().median; };
     CHECK(median(0) == doctest::Approx(1.5).epsilon(0.005));
@@ -109,9 +113,13 @@ TEST_CASE("profiler overlay: each row is labelled with its pass, indented by dep
     };
     const double frameMs =
         profiler.frameGpuMs().count ? profiler.frameGpuMs().median : profiler.frameCpuMs().median;
-    const std::vector<Row> rows = {{"frame", 12, ms(frameMs)},    {"render", 12, ms(median(0))},
-                                   {"gi", 12, ms(median(1))},     {"propagate", 18, ms(median(2))},
-                                   {"lookup", 18, ms(median(3))}, {"rebuild", 12, "-"}};
+    const std::vector<Row> rows = {{"frame", 12, ms(frameMs)},
+                                   {"render", 12, ms(median(0))},
+                                   {"late", 18, ms(profiler.scopes()[5].gpuMs.stats().median)},
+                                   {"gi", 12, ms(median(1))},
+                                   {"propagate", 18, ms(median(2))},
+                                   {"lookup", 18, ms(median(3))},
+                                   {"rebuild", 12, "-"}};
     float lastY = -1;
     std::optional<float> valuesX;
     for (const Row& row : rows) {
@@ -126,7 +134,14 @@ TEST_CASE("profiler overlay: each row is labelled with its pass, indented by dep
         if (!valuesX) valuesX = value->x;
         CHECK(value->x > row.x + overlayTextWidth(row.name) + 48);
     }
-    MESSAGE("640x360, 5 passes: " << rects.size() << " rectangles");
+    // Last, the GI total against the budget, as the budget check holds it ("gi" alone here: the
+    // top-level GI scopes), over the pc profile's 1.67 ms.
+    const engine::FrameBudgetCheck& check = profiler.lastBudgetCheck();
+    CHECK(check.giBudgetedMs == doctest::Approx(median(1)));
+    const auto total = find(rects, "GI " + ms(check.giBudgetedMs) + " of 1.67 ms", 12.0f);
+    REQUIRE(total);
+    CHECK(total->y > lastY);
+    MESSAGE("640x360, 6 passes: " << rects.size() << " rectangles");
 }
 
 TEST_CASE("profiler overlay: rows too short for text, or an output too narrow, get bars only") {
@@ -143,4 +158,21 @@ TEST_CASE("profiler overlay: rows too short for text, or an output too narrow, g
     std::vector<OverlayRect> few(bars + 5);
     CHECK(ProfilerOverlay::layout(profiler, 640, 360, few) == few.size());
     CHECK(few[bars - 1].rect.z == 2.0f); // the budget line, 2 pixels wide
+}
+
+// On a console profile the GI row gives the console's predicted time, which the budget holds, and
+// this device's measured one beside it.
+TEST_CASE(
+    "profiler overlay: on a console profile the GI total is the predicted time, the measured one beside it") {
+    auto device = test::nullDevice();
+    FrameProfiler profiler(*device, platforms::loadPlatformProfile("x360"));
+    profile(*device, profiler);
+    const engine::FrameBudgetCheck& check = profiler.lastBudgetCheck();
+    std::vector<OverlayRect> rects(ProfilerOverlay::kMaxRects);
+    rects.resize(ProfilerOverlay::layout(profiler, 640, 360, rects));
+    char expected[128];
+    std::snprintf(expected, sizeof(expected), "GI %.2f of 3.30 ms predicted on x360 (%.2f measured here)",
+                  check.giPredictedMs, check.giMs);
+    CAPTURE(expected);
+    CHECK(find(rects, expected, 12.0f));
 }

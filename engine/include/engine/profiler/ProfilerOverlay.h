@@ -1,9 +1,12 @@
 // The in-window profiler overlay: one bar per pass (GPU median where timed, else CPU), scaled so
 // the frame budget spans a fixed width and drawn with the budget line; the frame's bar turns red
-// when the frame is over budget. Each row is labelled with its pass (indented by depth, as the
-// printed report) and its median ms ("-" for a pass timed inside another's scope) where the rows
-// are tall enough for text and the output wide enough for the labels. Drawn over the tone-mapped output with
-// alpha blending. Rows shrink to fit the output's height, and passes that still would not fit are left out.
+// when the frame is over budget. Rows go depth first, as in the printed report. Where the rows are
+// tall enough for text and the output wide enough, each is labelled with its pass (indented by
+// depth) and its median ms ("-" for a pass timed inside another's scope), and a last row gives the
+// GI total against the GI budget as the budget check holds it (on x360 and ps3 the console's
+// predicted time, with this device's measured one beside it). Drawn over the tone-mapped output
+// with alpha blending. Rows shrink to fit the output's height, and passes that still would not fit
+// are left out.
 #pragma once
 
 #include "engine/profiler/OverlayText.h"
