@@ -314,6 +314,10 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
         profiler.frameGpuMs().count ? profiler.frameGpuMs() : profiler.frameCpuMs();
     std::printf("\nframe median %.2f ms; GI %.2f ms = %.1f%% of the frame (goal: at most 10%%)\n",
                 frame.median, giMs, frame.median > 0 ? 100.0 * giMs / frame.median : 0.0);
+    // The rule as the CryEngine 3 paper states it: GI in 10% of the frame the game targets (30 fps
+    // on the consoles, 3.3 ms), here the pc profile's 60 fps, whatever this device's own frame takes.
+    std::printf("GI %.2f ms = %.1f%% of the pc profile's %.2f ms frame target (its GI budget: %.2f ms)\n",
+                giMs, 100.0 * giMs / pc.frameBudgetMs, pc.frameBudgetMs, pc.giBudgetMs);
     std::printf("memory:");
     for (const auto& [category, usage] : device->allocations().categories())
         if (usage.currentBytes)
