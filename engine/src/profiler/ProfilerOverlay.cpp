@@ -117,11 +117,14 @@ uint32_t ProfilerOverlay::layout(const FrameProfiler& profiler, uint32_t width, 
     const SampleStats frame = profiler.frameGpuMs().count ? profiler.frameGpuMs() : profiler.frameCpuMs();
     rect({barsX, rowY(0), std::min(float(frame.median) * msToPixels, budgetWidth * 1.5f), barHeight},
          over ? kOverColor : glm::vec4(0.85f, 0.85f, 0.85f, 0.9f));
+    // Each pass's median once (a window's statistics sort its samples), for its bar and its label.
+    std::array<double, kMaxRows> medians;
     for (uint32_t i = 0; i < passes; ++i) {
         const ScopeInfo& s = profiler.scopes()[order[i]];
+        medians[i] = medianMs(s);
         const float indent = labelled ? 0.0f : 8.0f * float(s.depth);
         const bool gi = s.path.starts_with("gi");
-        rect({barsX + indent, rowY(i + 1), std::min(float(medianMs(s)) * msToPixels, budgetWidth * 1.5f),
+        rect({barsX + indent, rowY(i + 1), std::min(float(medians[i]) * msToPixels, budgetWidth * 1.5f),
               barHeight},
              gi ? glm::vec4(0.95f, 0.6f, 0.15f, 0.9f) : glm::vec4(0.3f, 0.55f, 0.9f, 0.9f));
     }
@@ -137,7 +140,7 @@ uint32_t ProfilerOverlay::layout(const FrameProfiler& profiler, uint32_t width, 
         text(s.name, x0 + indentStep * float(s.depth), textY(i + 1), kTextColor);
         // A pass timed inside another's scope (gi.rebuild, in render.lighting) has no time of its
         // own to show.
-        if (s.timedIn.empty()) std::snprintf(value, sizeof(value), "%.2f", medianMs(s));
+        if (s.timedIn.empty()) std::snprintf(value, sizeof(value), "%.2f", medians[i]);
         text(s.timedIn.empty() ? value : "-", valuesX, textY(i + 1), kTextColor);
     }
     // The GI total against the GI budget, as the budget check holds it: on a profile whose GI time
