@@ -15,7 +15,7 @@
 //
 //   lpv_bench [--backends=vulkan,gl-egl,gl-osmesa] [--runs=N] [--kernel-runs=N] [--frames=N]
 //             [--scenes=cornell,atrium] [--parts=propagation,lights,frames,profiler,console] [--out=DIR]
-//             [--set key=value ...]   (lpv_bench --help says what each does)
+//             [--config=FILE ...] [--set key=value ...]   (lpv_bench --help says what each does)
 #include "BenchBackends.h"
 #include "BenchCommandLine.h"
 #include "BenchShaders.h"
@@ -50,8 +50,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 using namespace lpv;
@@ -246,24 +248,70 @@ void benchAnalyticLights(const BenchBackend& b, int runs) {
     std::fflush(stdout);
 }
 
-// `outDir` (may be empty): where the run's profiler outputs (trace.json, frames.svg, summaries) and
-// its last frame with GI on and with GI off go, as <scene>-<backend>-*. `overrides` (--set) come
-// after the benchmark's own settings.
+// What the frames part runs with besides the scene: --config's files, then --set's assignments.
+struct FrameOverrides {
+    std::vector<std::string> files;
+    std::vector<std::string> assignments;
+};
+
 // The frames part's settings for a scene: the benchmark's own (named as lpv_bench's in errors),
-// then --set's.
-engine::Config frameSettings(const std::string& sceneName, const std::vector<std::string>& overrides) {
+// then --config's files in order (a game's config, or gi/presets/console.toml), then --set's.
+engine::Config frameSettings(const std::string& sceneName, const FrameOverrides& overrides) {
     engine::Config config;
     for (const char* own : {"gi.enabled=true", "gi.grid_size=32", "gi.iterations=8", "gi.bounces=2"})
         config.applyOverride(own, "lpv_bench's frames part");
     config.applyOverride(sceneName == "atrium" ? "gi.cell_size=1.0" : "gi.cell_size=0.2",
                          "lpv_bench's frames part");
-    for (const std::string& o : overrides)
+    for (const std::string& file : overrides.files)
+        config.loadFile(file);
+    for (const std::string& o : overrides.assignments)
         config.applyOverride(o);
     return config;
 }
 
+const engine::SettingDecl& settingNamed(const char* name) {
+    const engine::SettingDecl* decl = engine::SettingRegistry::global().find(name);
+    if (!decl) throw std::logic_error(std::string("lpv_bench: no setting ") + name);
+    return *decl;
+}
+
+// Settings the frames part cannot time as given, from whichever file or --set gave them: the empty
+// string when there is none. gi.enabled=false gave a black "GI on" screenshot under a GI heading;
+// gi.debug_view=indirect is the game's shortcut that moves render.debug_view, which the
+// benchmark's renderer does not follow.
+std::string framesRefusal(const engine::Config& config) {
+    const engine::SettingDecl& enabled = settingNamed("gi.enabled");
+    if (!std::get<bool>(config.value(enabled)))
+        return config.origin(enabled) +
+               ": gi.enabled = false: the frames part runs every frame with GI on, and once more with it off "
+               "for the screenshot beside it; leave gi.enabled out";
+    const engine::SettingDecl& view = settingNamed("gi.debug_view");
+    if (std::get<std::string>(config.value(view)) == "indirect")
+        return config.origin(view) +
+               ": gi.debug_view = indirect: in lpv_bench set render.debug_view=indirect for the indirect "
+               "light alone (the game's gi.debug_view=indirect sets it for you)";
+    return {};
+}
+
+// The settings a frames table was timed with, for its heading.
+std::string describe(const gi::LpvSettings& s) {
+    // gi.resolution's names for its divisors.
+    const char* resolution = s.resolutionDivisor == 1   ? "full"
+                             : s.resolutionDivisor == 2 ? "half"
+                                                        : "quarter";
+    std::string out = std::to_string(s.cascades) + " x " + std::to_string(s.gridSize) + "^3, " +
+                      std::to_string(s.iterations) + " iterations, " + std::to_string(s.bounces) +
+                      (s.bounces == 1 ? " bounce, " : " bounces, ") + resolution + " resolution, " +
+                      std::string(gi::shFormatName(s.shFormat)) + ", RSM " + std::to_string(s.rsmSize) + "^2";
+    if (s.coarseUpdateInterval > 1)
+        out += ", coarse cascades every " + std::to_string(s.coarseUpdateInterval) + " frames";
+    return out;
+}
+
+// `outDir` (may be empty): where the run's profiler outputs (trace.json, frames.svg, summaries) and
+// its last frame with GI on and with GI off go, as <scene>-<backend>-*.
 void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames, const std::string& outDir,
-                 const std::vector<std::string>& overrides) {
+                 const FrameOverrides& overrides) {
     auto device = makeDevice(b);
     engine::Config config = frameSettings(sceneName, overrides);
     const engine::Scene scene = engine::buildBuiltinScene(sceneName);
@@ -297,8 +345,9 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
     }
     profiler.collectPending(); // the last frames' timings
     const std::string source(rhi::timestampSourceName(profiler.gpuTimingSource()));
-    std::printf("\n### %s, %s (%llu triangles, %ux%u, GI 32^3 x 8, timing: %s)\n\n", sceneName.c_str(),
-                b.name.c_str(), (unsigned long long)scene.triangleCount(), w, h, source.c_str());
+    std::printf("\n### %s, %s (%llu triangles, %ux%u, GI %s, timing: %s)\n\n", sceneName.c_str(),
+                b.name.c_str(), (unsigned long long)scene.triangleCount(), w, h,
+                describe(gi::readLpvSettings(config)).c_str(), source.c_str());
     std::printf(
         "| pass | median ms | p95 ms | predicted x360 ms | predicted ps3 ms |\n|---|---|---|---|---|\n");
     double giMs = 0;
@@ -689,43 +738,31 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 1000000));
     std::string outDir;
     app.add_option("--out", outDir, "Folder for the frames' traces, charts and screenshots");
-    std::vector<std::string> overrides;
-    app.add_option("--set", overrides,
-                   "Override a setting in the frames part, after the benchmark's own: --set "
+    FrameOverrides overrides;
+    app.add_option(
+           "--config", overrides.files,
+           "A settings file (TOML, as the game's --config) for the frames part, after the benchmark's "
+           "own settings and before --set: --config gi/presets/console.toml (repeatable)")
+        ->check(CLI::ExistingFile);
+    app.add_option("--set", overrides.assignments,
+                   "Override a setting in the frames part, after the benchmark's own and --config's: --set "
                    "gi.glossy_max_roughness=0.6 (repeatable)");
     if (const std::optional<int> exit = parseCommandLine(app, argc, argv)) return *exit;
-    // Settings the frames part sets itself. gi.enabled=false gave a black "GI on" screenshot under
-    // a GI heading; gi.debug_view=indirect is the game's shortcut that moves render.debug_view,
-    // which the benchmark's renderer does not follow.
-    for (const std::string& o : overrides) {
-        const std::string key = o.substr(0, o.find('='));
-        const std::string value = o.find('=') == std::string::npos ? "" : o.substr(o.find('=') + 1);
-        if (key == "gi.enabled") {
-            std::fprintf(stderr,
-                         "error: --set %s: the frames part runs every frame with GI on, and once "
-                         "more with it off for the screenshot beside it; leave gi.enabled out\n",
-                         o.c_str());
-            return 2;
-        }
-        if (key == "gi.debug_view" && value == "indirect") {
-            std::fprintf(stderr,
-                         "error: --set %s: in lpv_bench set render.debug_view=indirect for the "
-                         "indirect light alone (the game's gi.debug_view=indirect sets it for you)\n",
-                         o.c_str());
-            return 2;
-        }
-    }
     // A wrong key or value fails before any device starts, naming the setting.
     try {
         // As the frames part sets them, so that what the settings refuse together (gi.bounces=3
-        // with gi.occlusion=false) fails here too, not after a device started; --set is the frames
-        // part's alone, so without it the values are only checked one by one.
+        // with gi.occlusion=false) fails here too, not after a device started; --config and --set
+        // are the frames part's alone, so without it the values are only checked one by one.
         const bool framesPart = std::find(partList.begin(), partList.end(), "frames") != partList.end();
-        for (const std::string& scene : framesPart ? scenes : std::vector<std::string>{})
-            (void)gi::readLpvSettings(frameSettings(scene, overrides));
-        engine::Config check;
-        for (const std::string& o : overrides)
-            check.applyOverride(o);
+        for (const std::string& scene : framesPart ? scenes : std::vector<std::string>{}) {
+            const engine::Config config = frameSettings(scene, overrides);
+            if (const std::string refusal = framesRefusal(config); !refusal.empty()) {
+                std::fprintf(stderr, "error: %s\n", refusal.c_str());
+                return 2;
+            }
+            (void)gi::readLpvSettings(config);
+        }
+        (void)frameSettings("", overrides);
     } catch (const engine::ConfigError& e) {
         std::string message = e.what();
         // The game's hint; lpv_bench has no --help-config.
@@ -737,12 +774,13 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "error: %s\n", message.c_str());
             return 2;
         }
-        std::fprintf(stderr,
-                     "error: %s\nlpv_bench --set takes the settings its frames part reads (gi.*, and the "
-                     "renderer's render.* but for the frame size, backend and window settings, which are "
-                     "the game's): the frame is 1280x720 on the backends of --backends and the "
-                     "scenes of --scenes, on the pc profile\n",
-                     message.c_str());
+        std::fprintf(
+            stderr,
+            "error: %s\nlpv_bench --config and --set take the settings its frames part reads (gi.*, and the "
+            "renderer's render.* but for the frame size, backend and window settings, which are "
+            "the game's): the frame is 1280x720 on the backends of --backends and the "
+            "scenes of --scenes, on the pc profile\n",
+            message.c_str());
         return 2;
     }
     const auto want = [&](const char* part) {
@@ -798,8 +836,18 @@ int main(int argc, char** argv) {
     }
     if (want("frames")) {
         std::printf("\n## Frames (GI on, %d frames, median)\n", frames);
-        for (const std::string& o : overrides)
+        for (const std::string& file : overrides.files)
+            std::printf("--config %s\n", file.c_str());
+        for (const std::string& o : overrides.assignments)
             std::printf("--set %s\n", o.c_str());
+        // The frames part hands the GI no profiler, so the scheduler has no cost to judge: it times
+        // the settings as written.
+        const engine::Config settings = frameSettings("", overrides); // the scene sets only the cell size
+        if (gi::readLpvSettings(settings).budgetPolicy == gi::GiBudgetPolicy::Adapt)
+            std::printf(
+                "gi.budget_policy = adapt (%s) changes nothing here: the frames part times the settings "
+                "as written\n",
+                settings.origin(settingNamed("gi.budget_policy")).c_str());
         for (const std::string& scene : scenes)
             for (const auto& b : backends) {
                 try {

@@ -576,6 +576,40 @@ TEST_CASE("cli: lpv_bench refuses an --out it cannot write or nothing would use,
     CHECK(contains(view.output, "set render.debug_view=indirect"));
 }
 
+// A team times its own settings file in the frames part (--config, before --set): what is wrong in
+// it names the file and line before a device starts, and the table's heading shows what was timed.
+TEST_CASE("cli: lpv_bench --config times a settings file, and names its file and line when it is wrong") {
+    const auto bench = [](const std::string& args) { return runProgram(LPV_BENCH_EXE, args, ""); };
+    const std::filesystem::path dir = "/tmp/lpv_cli_bench_config";
+    std::filesystem::create_directories(dir);
+    const auto write = [&](const std::string& name, const std::string& text) {
+        std::ofstream(dir / name) << text;
+        return (dir / name).string();
+    };
+    const Result wrongType = bench("--parts=frames --backends=vulkan --config " +
+                                   write("type.toml", "[gi]\ncascades = 2\ngrid_size = \"big\"\n"));
+    INFO(wrongType.output);
+    CHECK(wrongType.exitCode == 2);
+    CHECK(contains(wrongType.output, "type.toml:3: 'gi.grid_size' has a string value"));
+    CHECK(!contains(wrongType.output, "## Frames"));
+    const Result off =
+        bench("--parts=frames --backends=vulkan --config " + write("off.toml", "[gi]\n\nenabled = false\n"));
+    INFO(off.output);
+    CHECK(off.exitCode == 2);
+    CHECK(contains(off.output, "off.toml:3: gi.enabled = false"));
+    CHECK(contains(off.output, "leave gi.enabled out"));
+    // --set comes after the file, as in the game.
+    const Result timed = bench("--parts=frames --backends=vulkan --scenes=cornell --frames=1 --config " +
+                               std::string(LPV_CONSOLE_PRESET) + " --set gi.iterations=6");
+    INFO(timed.output);
+    CHECK(timed.exitCode == 0);
+    CHECK(contains(timed.output,
+                   "GI 3 x 24^3, 6 iterations, 2 bounces, quarter resolution, rgba8, RSM 128^2, "
+                   "coarse cascades every 2 frames"));
+    CHECK(contains(timed.output, "gi.budget_policy = adapt (" + std::string(LPV_CONSOLE_PRESET) + ":"));
+    CHECK(contains(timed.output, "of the frame (goal: at most 10%)"));
+}
+
 // Two screenshots that would hold less than asked, said in the log: the null backend's (black),
 // and an HDR one of a GI debug view drawn over the tone-mapped frame.
 TEST_CASE("cli: a screenshot that cannot show what was asked says so") {
