@@ -294,11 +294,9 @@ std::string framesRefusal(const engine::Config& config) {
 }
 
 // The settings a frames table was timed with, for its heading.
-std::string describe(const gi::LpvSettings& s) {
-    // gi.resolution's names for its divisors.
-    const char* resolution = s.resolutionDivisor == 1   ? "full"
-                             : s.resolutionDivisor == 2 ? "half"
-                                                        : "quarter";
+std::string describe(const engine::Config& config) {
+    const gi::LpvSettings s = gi::readLpvSettings(config);
+    const std::string& resolution = std::get<std::string>(config.value(settingNamed("gi.resolution")));
     std::string out = std::to_string(s.cascades) + " x " + std::to_string(s.gridSize) + "^3, " +
                       std::to_string(s.iterations) + " iterations, " + std::to_string(s.bounces) +
                       (s.bounces == 1 ? " bounce, " : " bounces, ") + resolution + " resolution, " +
@@ -346,8 +344,8 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
     profiler.collectPending(); // the last frames' timings
     const std::string source(rhi::timestampSourceName(profiler.gpuTimingSource()));
     std::printf("\n### %s, %s (%llu triangles, %ux%u, GI %s, timing: %s)\n\n", sceneName.c_str(),
-                b.name.c_str(), (unsigned long long)scene.triangleCount(), w, h,
-                describe(gi::readLpvSettings(config)).c_str(), source.c_str());
+                b.name.c_str(), (unsigned long long)scene.triangleCount(), w, h, describe(config).c_str(),
+                source.c_str());
     std::printf(
         "| pass | median ms | p95 ms | predicted x360 ms | predicted ps3 ms |\n|---|---|---|---|---|\n");
     double giMs = 0;
