@@ -241,3 +241,82 @@ TEST_CASE("config: help lists every setting with type, default, range and help")
           std::string::npos);
     CHECK(kRestart.decl().apply == Apply::Restart);
 }
+
+namespace {
+
+// "a.b.c..." with `parts` parts: "k0.k1.k2...".
+std::string dottedKey(int parts) {
+    std::string key = "k0";
+    for (int i = 1; i < parts; ++i)
+        key += ".k" + std::to_string(i % 10);
+    return key;
+}
+
+} // namespace
+
+// A key of 20,000 dotted parts (a 60 KB file) overflowed the stack in the loader's recursion; toml++
+// itself recurses on nested inline tables and arrays and in a table's destructor. Each form is refused
+// before toml++ reads it, with the file, the line and the limit.
+TEST_CASE("config: keys, table headers and inline tables nested thousands deep are refused, not a crash") {
+    for (const int parts : {20000, 100000}) {
+        INFO("parts: " << parts);
+        const std::string key = dottedKey(parts);
+        const std::string keyShown = key.substr(0, 80) + "... (" + std::to_string(key.size()) + " bytes)";
+        const std::string deep =
+            " is nested " + std::to_string(parts) + " levels deep; settings are at most ";
+        Config c;
+        const std::string dotted = errorOf([&] { c.loadString("\n" + key + " = 1\n", "deep.toml"); });
+        CHECK(dotted.starts_with("deep.toml:2: key '" + keyShown + "'" + deep));
+        const std::string header = errorOf([&] { c.loadString("[" + key + "]\nx = 1\n", "deep.toml"); });
+        CHECK(header.starts_with("deep.toml:1: key '" + keyShown + "'" + deep));
+        // "k = {k = {k = ... 1}}", a key `parts` levels deep.
+        std::string inlineTables;
+        for (int i = 0; i + 1 < parts; ++i)
+            inlineTables += "k = {";
+        inlineTables += "k = 1" + std::string(size_t(parts - 1), '}');
+        const std::string nested = errorOf([&] { c.loadString("\n\n" + inlineTables + "\n", "deep.toml"); });
+        // Refused at the first key deeper than any setting, before the rest is read.
+        CHECK(nested.starts_with("deep.toml:3: key 'k.k.k"));
+        CHECK(nested.find(" levels deep; settings are at most ") != std::string::npos);
+        // Arrays nested as deep in a value.
+        const std::string arrays =
+            "cfgtest.tint = " + std::string(size_t(parts), '[') + std::string(size_t(parts), ']') + "\n";
+        CHECK(errorOf([&] { c.loadString(arrays, "deep.toml"); }) ==
+              "deep.toml:1: the value of 'cfgtest.tint' has arrays nested more than 64 levels deep; a "
+              "setting's value is one value or one array ([x, y, z])");
+        CHECK(c.origin(kTint.decl()) == "default");
+    }
+}
+
+TEST_CASE("config: a key a few levels deeper than any setting names the depth; quoted dots are one part") {
+    Config c;
+    CHECK(
+        errorOf([&] { c.loadString("[cfgtest.grid]\nsize.x.y.z.w = 1\n", "d.toml"); })
+            .starts_with("d.toml:2: key 'cfgtest.grid.size.x.y.z.w' is nested 7 levels deep; settings are at "
+                         "most "));
+    // A little deeper than any setting is more likely a typo: the nearest name is worth more.
+    CHECK(errorOf([&] { c.loadString("cfgtest.grid.size = 1\n", "d.toml"); }) ==
+          "d.toml:1: unknown setting 'cfgtest.grid.size' (did you mean 'cfgtest.grid_size'?)");
+    // A dot inside a quoted key and in a float value counts no level.
+    c.loadString("[cfgtest]\n\"scale\" = 1.5 # a.b.c.d.e\nname = \"a.b.c.d.e.f\"\n", "q.toml");
+    CHECK(c.get(kScale) == 1.5);
+    CHECK(c.get(kName) == "a.b.c.d.e.f");
+    CHECK(errorOf([&] { c.loadString("[cfgtest]\n\"sc.ale\" = 1.5\n", "q.toml"); }) ==
+          "q.toml:2: unknown setting 'cfgtest.sc.ale' (did you mean 'cfgtest.scale'?)");
+}
+
+// A 1 MB value or key was echoed whole in the error: it is cut, and says how long it was.
+TEST_CASE("config: a very long value or key is cut short in the error") {
+    Config c;
+    const std::string value(1 << 20, 'x');
+    const std::string cut = std::string(80, 'x') + "... (1048576 bytes)";
+    CHECK(errorOf([&] { c.loadString("cfgtest.format = \"" + value + "\"\n", "long.toml"); }) ==
+          "long.toml:1: 'cfgtest.format' = " + cut + ": expected one of: rgba8, rgba16f");
+    CHECK(errorOf([&] { c.applyOverride("cfgtest.format=" + value); }) ==
+          "--set: 'cfgtest.format' = '" + cut + "': expected one of: rgba8, rgba16f");
+    CHECK(errorOf([&] { c.loadString("cfgtest." + value + " = 1\n", "long.toml"); }) ==
+          "long.toml:1: unknown setting 'cfgtest." + std::string(72, 'x') +
+              "... (1048584 bytes)' "
+              "(--help-config lists them all)");
+    CHECK(errorOf([&] { c.applyOverride(value); }) == "--set: '" + cut + "': expected key=value");
+}

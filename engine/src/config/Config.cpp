@@ -1,5 +1,6 @@
 // Setting values: validation, text parsing, layering and staged changes.
 #include "engine/config/Config.h"
+#include "engine/config/ShownText.h"
 
 #include <algorithm>
 #include <charconv>
@@ -79,7 +80,8 @@ std::string Config::validate(const SettingDecl& decl, const SettingValue& v) {
 
 void Config::set(const SettingDecl& decl, SettingValue v, const std::string& origin) {
     if (const std::string expected = validate(decl, v); !expected.empty())
-        throw ConfigError(origin, 0, "'" + decl.name + "' = " + decl.format(v) + ": expected " + expected);
+        throw ConfigError(origin, 0,
+                          "'" + decl.name + "' = " + shownText(decl.format(v)) + ": expected " + expected);
     Slot& s = slot(decl);
     s.value = std::move(v);
     s.origin = origin;
@@ -111,7 +113,7 @@ SettingValue Config::parse(const SettingDecl& decl, std::string_view raw, const 
     const std::string_view text = trim(raw);
     const auto fail = [&]() -> ConfigError {
         return ConfigError(source, line,
-                           "'" + decl.name + "' = '" + std::string(text) + "': expected " + decl.expected());
+                           "'" + decl.name + "' = '" + shownText(text) + "': expected " + decl.expected());
     };
     SettingValue v;
     switch (decl.type) {
@@ -165,7 +167,7 @@ const SettingDecl& Config::lookup(std::string_view name, const std::string& sour
     if (const SettingDecl* d = SettingRegistry::global().find(name)) return *d;
     const std::string suggestion = SettingRegistry::global().nearest(name);
     throw ConfigError(source, line,
-                      "unknown setting '" + std::string(name) + "'" +
+                      "unknown setting '" + shownText(name) + "'" +
                           (suggestion.empty() ? std::string(" (--help-config lists them all)")
                                               : " (did you mean '" + suggestion + "'?)"));
 }
@@ -173,7 +175,7 @@ const SettingDecl& Config::lookup(std::string_view name, const std::string& sour
 void Config::assign(std::string_view assignment, const std::string& source, bool staged) {
     const size_t eq = assignment.find('=');
     if (eq == std::string_view::npos)
-        throw ConfigError(source, 0, "'" + std::string(assignment) + "': expected key=value");
+        throw ConfigError(source, 0, "'" + shownText(assignment) + "': expected key=value");
     const std::string_view key = trim(assignment.substr(0, eq));
     const SettingDecl& decl = lookup(key, source, 0);
     SettingValue v = parse(decl, assignment.substr(eq + 1), source, 0);
@@ -194,7 +196,7 @@ void Config::stage(std::string_view assignment, const std::string& sourceName) {
 void Config::stage(const SettingDecl& decl, SettingValue v, const std::string& sourceName) {
     if (const std::string expected = validate(decl, v); !expected.empty())
         throw ConfigError(sourceName, 0,
-                          "'" + decl.name + "' = " + decl.format(v) + ": expected " + expected);
+                          "'" + decl.name + "' = " + shownText(decl.format(v)) + ": expected " + expected);
     pending_.push_back({&decl, std::move(v), sourceName});
 }
 

@@ -2,13 +2,16 @@
 // gi.grid_size. Every key must be a declared setting, every table a prefix of some (even an empty
 // one); every value must have the declared type.
 #include "engine/config/Config.h"
+#include "engine/config/ShownText.h"
 
 #include "platforms/Platform.h"
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <vector>
 
 namespace lpv::engine {
 namespace {
@@ -78,15 +81,184 @@ SettingValue convert(const SettingDecl& decl, const toml::node& node, const std:
     }
     if (const std::string expected = Config::validate(decl, v); !expected.empty())
         throw ConfigError(source, lineOf(node),
-                          "'" + decl.name + "' = " + decl.format(v) + ": expected " + expected);
+                          "'" + decl.name + "' = " + shownText(decl.format(v)) + ": expected " + expected);
     return v;
 }
 
-void walk(Config& config, const toml::table& table, const std::string& prefix, const std::string& source) {
+// A setting's name has at most this many more dotted parts than the deepest declared one before a
+// key is refused as nested too deep: a little deeper is a typo ("gi.grid.size" for gi.grid_size), worth
+// the nearest name, and the limit keeps the walk below and toml++'s own recursion shallow.
+constexpr size_t kDepthSlack = 2;
+// Arrays nested deeper than this in a value are refused before toml++ reads them (it recurses on
+// each); no setting's value has more than one.
+constexpr size_t kMaxArrayNesting = 64;
+
+size_t partsOf(std::string_view name) {
+    return size_t(std::count(name.begin(), name.end(), '.')) + 1;
+}
+
+struct DepthLimit {
+    size_t settings = 1; // the most parts of a declared setting's name
+    std::string example; // such a setting's name
+    size_t keys() const { return settings + kDepthSlack; }
+};
+
+DepthLimit depthLimit() {
+    DepthLimit limit;
+    if (const SettingDecl* deepest = SettingRegistry::global().deepest()) {
+        limit.settings = partsOf(deepest->name);
+        limit.example = deepest->name;
+    }
+    return limit;
+}
+
+ConfigError nestedTooDeep(const std::string& source, int line, std::string_view name, size_t depth,
+                          const DepthLimit& limit) {
+    return ConfigError(source, line,
+                       "key '" + shownText(name) + "' is nested " + std::to_string(depth) +
+                           " levels deep; settings are at most " + std::to_string(limit.settings) +
+                           " levels" + (limit.example.empty() ? "" : " ('" + limit.example + "')"));
+}
+
+// toml++ recurses on nested inline tables and arrays, and a table frees its children recursively:
+// a key of 100,000 dotted parts, or as many nested arrays, overflows the stack inside it. This
+// linear scan runs first and refuses a key nested deeper than DepthLimit::keys() (dotted parts, table
+// headers and inline tables together) and arrays nested deeper than kMaxArrayNesting, naming the line.
+// It reads just enough TOML for that: strings, comments, keys, and the brackets outside strings.
+void refuseDeepNesting(std::string_view text, const std::string& source, const DepthLimit& limit) {
+    struct Container {
+        char kind;        // '{' an inline table, '[' an array
+        size_t depth;     // the nesting of the keys inside it
+        std::string name; // the dotted name it is the value of
+    };
+    std::vector<Container> open;
+    size_t arrays = 0;     // '[' among `open`
+    size_t tableDepth = 0; // the last [table] header's parts
+    std::string tableName; // and its text
+    bool inKey = true, header = false, keyHasText = false;
+    size_t parts = 1, keyStart = 0; // the key being read
+    int line = 1, keyLine = 1;
+    size_t valueDepth = 0; // the key whose value is being read
+    std::string valueName;
+
+    const auto startKey = [&](size_t at) {
+        inKey = true;
+        header = keyHasText = false;
+        parts = 1;
+        keyStart = at;
+        keyLine = line;
+    };
+    const auto keyText = [&](size_t end) {
+        std::string_view k = text.substr(keyStart, end - keyStart);
+        while (!k.empty() && (k.front() == ' ' || k.front() == '\t' || k.front() == '['))
+            k.remove_prefix(1);
+        while (!k.empty() && (k.back() == ' ' || k.back() == '\t'))
+            k.remove_suffix(1);
+        return k;
+    };
+    // The key ends at `end` ('=' or a header's ']'): refused when too deep, else its value follows.
+    const auto endKey = [&](size_t end) {
+        const size_t base = header ? 0 : open.empty() ? tableDepth : open.back().depth;
+        const std::string& baseName = header ? std::string() : open.empty() ? tableName : open.back().name;
+        const std::string name = (baseName.empty() ? "" : baseName + ".") + std::string(keyText(end));
+        if (base + parts > limit.keys()) throw nestedTooDeep(source, keyLine, name, base + parts, limit);
+        if (header) {
+            tableDepth = parts;
+            tableName = name;
+        }
+        inKey = false;
+        valueDepth = base + parts;
+        valueName = name;
+    };
+
+    for (size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (c == '\n') {
+            ++line;
+            if (open.empty()) startKey(i + 1);
+            continue;
+        }
+        if (c == '#') { // a comment, to the end of the line
+            const size_t end = text.find('\n', i);
+            i = (end == std::string_view::npos ? text.size() : end) - 1;
+            continue;
+        }
+        if (c == '"' || c == '\'') {
+            // A string: multi-line when the quote is tripled; only basic ("") strings have escapes.
+            keyHasText = true;
+            const bool multiline = text.substr(i, 3) == std::string(3, c);
+            size_t k = i + (multiline ? 3 : 1);
+            for (; k < text.size(); ++k) {
+                if (text[k] == '\n') {
+                    if (!multiline) break; // unterminated: toml++ says so
+                    ++line;
+                } else if (c == '"' && text[k] == '\\') {
+                    if (k + 1 < text.size() && text[k + 1] == '\n') ++line;
+                    ++k;
+                } else if (text[k] == c && (!multiline || text.substr(k, 3) == std::string(3, c))) {
+                    if (multiline) k += 2;
+                    break;
+                }
+            }
+            i = std::min(k, text.size()) - (k < text.size() && text[k] == '\n' ? 1 : 0);
+            if (k >= text.size()) break;
+            continue;
+        }
+        if (inKey) {
+            if (c == '[' && !keyHasText && open.empty() && !header) {
+                header = true;
+                if (i + 1 < text.size() && text[i + 1] == '[') ++i;
+                keyStart = i + 1;
+            } else if (c == '.') {
+                ++parts;
+            } else if (c == '=' && !header) {
+                endKey(i);
+            } else if (c == ']' && header) {
+                endKey(i);
+                if (i + 1 < text.size() && text[i + 1] == ']') ++i;
+            } else if (c == '}' && !keyHasText && !open.empty() && open.back().kind == '{') {
+                open.pop_back(); // an empty inline table, or a comma before its end
+                inKey = false;
+            } else if (c != ' ' && c != '\t' && c != '\r') {
+                keyHasText = true;
+            }
+            continue;
+        }
+        if (c == '{') {
+            open.push_back({'{', valueDepth, valueName});
+            startKey(i + 1);
+        } else if (c == '[') {
+            if (++arrays > kMaxArrayNesting)
+                throw ConfigError(
+                    source, line,
+                    "the value of '" + shownText(valueName) + "' has arrays nested more than " +
+                        std::to_string(kMaxArrayNesting) +
+                        " levels deep; a setting's value is one value or one array ([x, y, z])");
+            // An array's elements are one level below its key (an inline table in one, more).
+            open.push_back({'[', valueDepth + 1, valueName});
+            valueDepth += 1;
+        } else if ((c == ']' || c == '}') && !open.empty() && open.back().kind == (c == ']' ? '[' : '{')) {
+            if (c == ']') --arrays;
+            valueDepth = open.back().depth - (c == ']' ? 1 : 0);
+            valueName = open.back().name;
+            open.pop_back();
+        } else if (c == ',' && !open.empty() && open.back().kind == '{') {
+            startKey(i + 1);
+        }
+    }
+}
+
+// The walk goes no deeper than refuseDeepNesting allows; the check here keeps it so whatever the
+// text (a table toml++ builds from something the scan does not foresee).
+// `depth`: the parts of `prefix`.
+void walk(Config& config, const toml::table& table, const std::string& prefix, size_t depth,
+          const std::string& source, const DepthLimit& limit) {
+
     const SettingRegistry& registry = SettingRegistry::global();
     for (const auto& [key, node] : table) {
         const std::string name =
             prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
+        if (depth + 1 > limit.keys()) throw nestedTooDeep(source, lineOf(node), name, depth + 1, limit);
         const SettingDecl* decl = registry.find(name);
         const toml::table* sub = node.as_table();
         if (sub && !decl) {
@@ -95,20 +267,21 @@ void walk(Config& config, const toml::table& table, const std::string& prefix, c
             if (sub->empty() && !registry.isTable(name)) {
                 const std::string suggestion = registry.nearestTable(name);
                 throw ConfigError(source, lineOf(node),
-                                  "unknown table '" + name + "'" +
+                                  "unknown table '" + shownText(name) + "'" +
                                       (suggestion.empty() ? std::string(" (--help-config lists the settings)")
                                                           : " (did you mean '" + suggestion + "'?)"));
             }
-            walk(config, *sub, name, source);
+            walk(config, *sub, name, depth + 1, source, limit);
             continue;
         }
         if (!decl && registry.isTable(name))
             throw ConfigError(source, lineOf(node),
-                              "'" + name + "' is a table of settings, got " + std::string(typeNameOf(node)));
+                              "'" + shownText(name) + "' is a table of settings, got " +
+                                  std::string(typeNameOf(node)));
         if (!decl) {
             const std::string suggestion = registry.nearest(name);
             throw ConfigError(source, lineOf(node),
-                              "unknown setting '" + name + "'" +
+                              "unknown setting '" + shownText(name) + "'" +
                                   (suggestion.empty() ? std::string(" (--help-config lists them all)")
                                                       : " (did you mean '" + suggestion + "'?)"));
         }
@@ -156,6 +329,8 @@ int lineOfInvalidUtf8(std::string_view text) {
 } // namespace
 
 void Config::loadString(std::string_view text, const std::string& sourceName) {
+    const DepthLimit limit = depthLimit();
+    refuseDeepNesting(text, sourceName, limit);
     toml::table table;
     try {
         table = toml::parse(text, sourceName);
@@ -165,7 +340,7 @@ void Config::loadString(std::string_view text, const std::string& sourceName) {
         throw ConfigError(sourceName, badUtf8 ? badUtf8 : int(e.source().begin.line),
                           "malformed TOML: " + std::string(e.description()));
     }
-    walk(*this, table, "", sourceName);
+    walk(*this, table, "", 0, sourceName, limit);
 }
 
 void Config::loadFile(const std::string& path) {

@@ -117,6 +117,10 @@ std::string closest(std::string_view name, const std::vector<std::string_view>& 
     std::string best;
     size_t bestDistance = std::max<size_t>(3, name.size() / 3) + 1; // beyond this, no suggestion
     for (const std::string_view c : candidates) {
+        // The lengths' difference is a lower bound on the distance: a 1 MB name costs nothing.
+        const size_t lengthDifference =
+            name.size() > c.size() ? name.size() - c.size() : c.size() - name.size();
+        if (lengthDifference >= bestDistance) continue;
         const size_t dist = editDistance(name, c);
         if (dist < bestDistance) {
             bestDistance = dist;
@@ -158,6 +162,19 @@ std::vector<const SettingDecl*> SettingRegistry::all() const {
     std::vector<const SettingDecl*> out(decls_.begin(), decls_.end());
     std::sort(out.begin(), out.end(), [](auto* a, auto* b) { return a->name < b->name; });
     return out;
+}
+
+const SettingDecl* SettingRegistry::deepest() const {
+    const SettingDecl* best = nullptr;
+    size_t bestParts = 0;
+    for (const SettingDecl* d : all()) {
+        const size_t parts = size_t(std::count(d->name.begin(), d->name.end(), '.')) + 1;
+        if (parts > bestParts) {
+            best = d;
+            bestParts = parts;
+        }
+    }
+    return best;
 }
 
 namespace {

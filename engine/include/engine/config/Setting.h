@@ -61,6 +61,8 @@ public:
     std::string nearestTable(std::string_view name) const;
     // Sorted by name.
     std::vector<const SettingDecl*> all() const;
+    // The setting whose name has the most dotted parts (the first by name among equals), or null.
+    const SettingDecl* deepest() const;
     size_t size() const { return decls_.size(); }
 
 private:
