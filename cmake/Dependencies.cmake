@@ -11,6 +11,7 @@ find_package(TinyGLTF REQUIRED)
 find_package(tinyexr REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(meshoptimizer REQUIRED)
+find_package(embree 3 REQUIRED)  # the path-traced reference (reference/)
 
 pkg_check_modules(EGL REQUIRED IMPORTED_TARGET egl)
 pkg_check_modules(OSMESA REQUIRED IMPORTED_TARGET osmesa)

@@ -1,0 +1,50 @@
+// The path-traced ground truth the GI is measured against (issue 44): per pixel, for the engine's
+// camera, the diffuse-indirect radiance (what render.debug_view=indirect shows), the direct diffuse
+// radiance and their sum, plus the visible surface's position and normal. Lambertian surfaces, black
+// sky, no emission or specular; next-event estimation at every vertex, cosine-weighted bounces.
+#pragma once
+
+#include "reference/DirectLighting.h"
+#include "reference/RayScene.h"
+
+#include "engine/scene/Scene.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace lpv::reference {
+
+struct TraceSettings {
+    uint32_t width = 256, height = 256;
+    uint32_t samplesPerPixel = 256;
+    uint32_t bounces = 1; // diffuse bounces in the indirect: 1 = light -> surface -> visible surface
+    uint64_t seed = 1;
+    uint32_t threads = 0;  // 0: all cores; the image does not depend on it
+    bool progress = false; // a progress line on stderr
+};
+
+// Row 0 at the top, as the engine's images; linear radiance (RGB). position, normal and hit are
+// those of the ray through each pixel's centre (hit = 0: sky, position and normal zero).
+struct TracedImage {
+    uint32_t width = 0, height = 0;
+    std::vector<glm::vec3> indirect, direct, combined, position, normal;
+    std::vector<uint8_t> hit;
+};
+
+// The scene's own lights (SceneLights).
+TracedImage trace(const engine::Scene& scene, const engine::Camera& camera, const TraceSettings& settings);
+// Any direct lighting, on a BVH the caller keeps (to render several views of one scene).
+TracedImage trace(const RayScene& scene, const DirectLighting& lights, const engine::Camera& camera,
+                  const TraceSettings& settings);
+
+// The mean indirect irradiance at `p` (light that bounced 1..bounces times before arriving) over
+// `samples` cosine-weighted paths: what trace() multiplies by albedo / pi for a visible surface.
+glm::vec3 indirectIrradiance(const RayScene& scene, const DirectLighting& lights, const SurfacePoint& p,
+                             uint32_t bounces, uint32_t samples, uint64_t seed);
+
+// The camera the game uses for a scene without one: looking at the scene's bounds from the front.
+engine::Camera defaultCamera(const engine::Scene& scene);
+
+} // namespace lpv::reference

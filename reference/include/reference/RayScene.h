@@ -1,0 +1,50 @@
+// An engine::Scene as the path tracer sees it: every instance's triangles in world space in one
+// Embree 3 BVH, with each triangle's Lambertian albedo (base colour factor x texture x (1 - metallic),
+// as the engine's lighting pass takes the diffuse part) found at the hit point.
+#pragma once
+
+#include "engine/scene/Scene.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <optional>
+
+namespace lpv::reference {
+
+// A point on a surface, seen from one side: both normals face the side the ray came from.
+struct SurfacePoint {
+    glm::vec3 position{0.0f};
+    glm::vec3 normal{0.0f, 1.0f, 0.0f};          // shading: the interpolated vertex normal
+    glm::vec3 geometricNormal{0.0f, 1.0f, 0.0f}; // the triangle's; rays leave offset along it
+    glm::vec3 albedo{0.0f};                      // linear diffuse reflectance
+    uint32_t instance = 0;                       // index into Scene::instances
+};
+
+class RayScene {
+public:
+    // Builds the BVH (Embree's robust mode; triangles are two-sided). Throws std::runtime_error if
+    // Embree fails.
+    explicit RayScene(const engine::Scene& scene);
+    ~RayScene();
+    RayScene(const RayScene&) = delete;
+    RayScene& operator=(const RayScene&) = delete;
+
+    // The nearest surface along the ray within (0, maxDistance], or nothing (the sky).
+    std::optional<SurfacePoint> intersect(glm::vec3 origin, glm::vec3 direction,
+                                          float maxDistance = std::numeric_limits<float>::infinity()) const;
+    // Whether anything lies between `from` (offset off its surface) and `distance` along the unit
+    // `direction`; the far end is shortened by the same offset so a light on a surface still counts.
+    bool occluded(const SurfacePoint& from, glm::vec3 direction,
+                  float distance = std::numeric_limits<float>::infinity()) const;
+    // Where a ray leaving `from` toward `direction`'s side of its surface starts.
+    glm::vec3 rayOrigin(const SurfacePoint& from, glm::vec3 direction) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace lpv::reference
