@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 using namespace lpv;
@@ -239,6 +240,33 @@ TEST_CASE("reference: point and spot lights follow the engine's punctualArrival,
             CHECK(lights.irradiance(at(p), rays).r == doctest::Approx(expected).epsilon(1e-5));
         }
     }
+}
+
+TEST_CASE("reference: albedo is base colour factor x sRGB texture x (1 - metallic)") {
+    engine::Scene scene = sceneWith(glm::vec3(1.0f));
+    scene.materials[0].baseColor = {0.5f, 1.0f, 0.8f, 1.0f};
+    scene.materials[0].metallic = 0.25f;
+    scene.materials[0].baseColorTexture = 0;
+    scene.textures.push_back({"texel", 1, 1, {128, 64, 255, 255}, true});
+    engine::MeshBuilder builder(scene);
+    builder.begin("floor", 0);
+    builder.quad({-1.0f, 0.0f, 1.0f}, {2.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -2.0f});
+    builder.finish();
+    const RayScene rays(scene);
+    const std::optional<SurfacePoint> p = rays.intersect({0.2f, 1.0f, 0.1f}, {0.0f, -1.0f, 0.0f});
+    REQUIRE(p.has_value());
+    const auto linear = [](float c) {
+        return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+    };
+    CHECK(p->albedo.r == doctest::Approx(0.5f * linear(128.0f / 255.0f) * 0.75f).epsilon(1e-5));
+    CHECK(p->albedo.g == doctest::Approx(linear(64.0f / 255.0f) * 0.75f).epsilon(1e-5));
+    CHECK(p->albedo.b == doctest::Approx(0.8f * 0.75f).epsilon(1e-5));
+    CHECK(p->position.y == doctest::Approx(0.0f));
+    // Seen from below, both normals face down.
+    const std::optional<SurfacePoint> below = rays.intersect({0.2f, -1.0f, 0.1f}, {0.0f, 1.0f, 0.0f});
+    REQUIRE(below.has_value());
+    CHECK(below->normal.y == doctest::Approx(-1.0f));
+    CHECK(below->geometricNormal.y == doctest::Approx(-1.0f));
 }
 
 TEST_CASE("reference: the same seed gives the same image on 1 and 2 threads") {
