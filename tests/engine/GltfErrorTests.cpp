@@ -130,7 +130,7 @@ TEST_CASE("glTF errors: an index to an element that does not exist names the ele
         {"normal7.gltf", [](json& g) { g["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 7; },
          "mesh 0 'tri' primitive 0: attribute NORMAL refers to accessor 7, which does not exist"},
         {"indices-2.gltf", [](json& g) { g["meshes"][0]["primitives"][0]["indices"] = -2; },
-         "mesh 0 'tri' primitive 0: \"indices\" refers to accessor -2, which does not exist"},
+         "mesh 0 'tri' primitive 0: indices is -2, expected an index (an integer, 0 or more)"},
         {"material2.gltf", [](json& g) { g["meshes"][0]["primitives"][0]["material"] = 2; },
          "mesh 0 'tri' primitive 0 refers to material 2, which does not exist"},
         {"view4.gltf", [](json& g) { g["accessors"][0]["bufferView"] = 4; },
@@ -300,7 +300,7 @@ void addLight(json& g, const std::string& light, const std::string& transform = 
 TEST_CASE("glTF errors: a version other than 2.x") {
     checkErrors({
         {"v1.gltf", [](json& g) { g["asset"]["version"] = "1.0"; },
-         "asset version '1.0' is not supported (glTF 2.x only)"},
+         "glTF 1.0 is not supported (asset.version 1.0); convert it to glTF 2.0"},
         {"vword.gltf", [](json& g) { g["asset"]["version"] = "two"; },
          "asset version 'two' is not supported (glTF 2.x only)"},
         {"minversion.gltf", [](json& g) { g["asset"]["minVersion"] = "2.1"; },
@@ -496,4 +496,143 @@ TEST_CASE("glTF errors: a data URI quoted in an error is cut short") {
     CHECK(error.find("Failed to decode 'uri'") != std::string::npos);
     CHECK(error.find(uri.substr(0, 48) + "... (" + std::to_string(uri.size()) + " characters)") !=
           std::string::npos);
+}
+
+namespace {
+
+// The triangle's JSON text with `member` (raw JSON text, `"name": value`) added first.
+std::string triangleWith(const std::string& member) {
+    return "{" + member + "," + triangle().dump().substr(1);
+}
+
+// A GLB holding `chunk` as its JSON chunk (padded with spaces), with `version` in its header.
+void writeGlb(const std::string& path, std::string chunk, uint32_t version = 2) {
+    chunk.append((4 - chunk.size() % 4) % 4, ' ');
+    const auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+    std::ofstream(path, std::ios::binary) << "glTF" << u32(version) << u32(uint32_t(20 + chunk.size()))
+                                          << u32(uint32_t(chunk.size())) << "JSON" << chunk;
+}
+
+} // namespace
+
+// 15,000 nested arrays in "extras" (30 KB) overflowed the stack inside the JSON parser. The depth is
+// counted before any parser sees the text; brackets inside strings are not nesting.
+TEST_CASE("glTF errors: JSON nested thousands deep is refused before it is parsed") {
+    for (const size_t depth : {size_t(15000), size_t(100000)}) {
+        INFO("depth: " << depth);
+        const std::string arrays = std::string(depth, '[') + std::string(depth, ']');
+        const std::string path = pathOf("deeparrays.gltf");
+        std::ofstream(path, std::ios::binary) << triangleWith("\"extras\": " + arrays);
+        // The root object is level 1: the 256th '[' is too deep, byte 11 + 255 ("{\"extras\": " first).
+        CHECK(gltfErrorOf(path) == path + ": JSON nested deeper than 256 levels (at byte 266); no glTF "
+                                          "needs more, so the file is refused");
+        std::string objects;
+        for (size_t i = 0; i < depth; ++i)
+            objects += "{\"a\":";
+        objects += "0" + std::string(depth, '}');
+        const std::string objectsPath = pathOf("deepobjects.gltf");
+        std::ofstream(objectsPath, std::ios::binary) << triangleWith("\"extras\": " + objects);
+        CHECK(gltfErrorOf(objectsPath).starts_with(objectsPath + ": JSON nested deeper than 256 levels"));
+        const std::string glb = pathOf("deep.glb");
+        writeGlb(glb, triangleWith("\"extras\": " + arrays));
+        // A GLB's byte counts from the file's start: its JSON chunk begins at byte 20.
+        CHECK(gltfErrorOf(glb) == glb + ": JSON nested deeper than 256 levels (at byte 286); no glTF needs "
+                                        "more, so the file is refused");
+    }
+    // 256 levels load; brackets in strings, with escaped quotes and backslashes, count for nothing.
+    const std::string path = pathOf("brackets.gltf");
+    std::ofstream(path, std::ios::binary)
+        << triangleWith("\"extras\": [" + std::string(254, '[') + std::string(254, ']') +
+                        ", \"\\\\\", \"\\\"[[\", \"" + std::string(20000, '[') + "\"]");
+    CHECK(gltfErrorOf(path) == "(no error)");
+}
+
+// glTF forbids count 0; the reader bound a reference to element 0 of an empty vector (UBSan).
+TEST_CASE("glTF errors: an accessor with count 0 names the accessor") {
+    checkErrors({
+        {"count0.gltf", [](json& g) { g["accessors"][0]["count"] = 0; },
+         "accessor 0: count is 0; glTF requires at least 1"},
+        {"indexcount0.gltf", [](json& g) { g["accessors"][1]["count"] = 0; },
+         "accessor 1: count is 0; glTF requires at least 1"},
+    });
+}
+
+TEST_CASE("glTF errors: glTF 1.0 files are named as such") {
+    const std::string hint = "; convert it to glTF 2.0";
+    checkErrors({
+        {"v10.gltf", [](json& g) { g["asset"]["version"] = "1.0"; },
+         "glTF 1.0 is not supported (asset.version 1.0)" + hint},
+        {"v1scene.gltf",
+         [](json& g) {
+             g.erase("asset");
+             g["scene"] = "defaultScene";
+         },
+         "glTF 1.0 is not supported (\"scene\" is the string \"defaultScene\")" + hint},
+        {"noasset.gltf", [](json& g) { g.erase("asset"); },
+         "glTF 1.0 is not supported (no \"asset\" object, which glTF 2.0 requires)" + hint},
+    });
+    const std::string glb = pathOf("v1.glb");
+    writeGlb(glb, R"({"scene": "defaultScene", "scenes": {"defaultScene": {"nodes": []}}})", 1);
+    CHECK(gltfErrorOf(glb) == glb + ": glTF 1.0 is not supported (binary glTF version 1)" + hint);
+}
+
+// Draco's accessors have no bufferView: the extension is named before any accessor is looked at.
+TEST_CASE("glTF errors: a required extension the engine lacks is named before the accessors") {
+    checkErrors({
+        {"draco.gltf",
+         [](json& g) {
+             g["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+             g["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+             g["accessors"][0].erase("bufferView");
+             g["accessors"][1]["bufferView"] = 9;
+         },
+         "requires extension 'KHR_draco_mesh_compression', which LPV Engine does not support"},
+        {"quantized.gltf",
+         [](json& g) {
+             g["extensionsRequired"] = {"KHR_lights_punctual", "KHR_mesh_quantization"};
+             g["accessors"][0]["componentType"] = 5121;
+         },
+         "requires extension 'KHR_mesh_quantization', which LPV Engine does not support"},
+    });
+}
+
+TEST_CASE("glTF errors: primitives written as an object, and negative texture indices") {
+    checkErrors({
+        {"primobject.gltf", [](json& g) { g["meshes"][0]["primitives"] = g["meshes"][0]["primitives"][0]; },
+         "mesh 0 'tri': primitives must be an array (of primitive objects), not an object"},
+        {"basecolor-1.gltf",
+         [](json& g) {
+             g["materials"] = json::parse(
+                 R"([{"name": "paint", "pbrMetallicRoughness": {"baseColorTexture": {"index": -1}}}])");
+         },
+         "material 0 'paint': pbrMetallicRoughness.baseColorTexture.index is -1, expected an index (an "
+         "integer, 0 or more)"},
+        {"normal-5.gltf",
+         [](json& g) { g["materials"] = json::parse(R"([{"normalTexture": {"index": -5}}])"); },
+         "material 0: normalTexture.index is -5, expected an index (an integer, 0 or more)"},
+        {"emissive9.gltf",
+         [](json& g) { g["materials"] = json::parse(R"([{"emissiveTexture": {"index": 9}}])"); },
+         "material 0: emissiveTexture refers to texture 9, which does not exist"},
+    });
+}
+
+// A 1 MB string was echoed whole in the error.
+TEST_CASE("glTF errors: a very long value echoed in an error is cut short") {
+    const std::string name(1 << 20, 'n');
+    const std::string cut = std::string(80, 'n') + "... (1048576 bytes)";
+    checkErrors({
+        {"longversion.gltf", [&](json& g) { g["asset"]["version"] = name; },
+         "asset version '" + cut + "' is not supported (glTF 2.x only)"},
+        {"longmesh.gltf",
+         [&](json& g) {
+             g["meshes"][0]["name"] = name;
+             g["meshes"][0]["primitives"][0]["material"] = 7;
+         },
+         "mesh 0 '" + cut + "' primitive 0 refers to material 7, which does not exist"},
+        {"longtype.gltf", [&](json& g) { addLight(g, R"({"type": ")" + name + R"("})"); },
+         "light 0: type '" + cut + "' is not directional, point or spot"},
+        {"longstr.gltf",
+         [&](json& g) { addLight(g, R"({"type": "point", "intensity": ")" + name + R"("})"); },
+         "light 0: intensity is \"" + std::string(79, 'n') + "... (1048578 bytes), expected a number"},
+    });
 }

@@ -4,6 +4,7 @@
 #include "GltfJsonTypes.h"
 #include "GltfValidation.h"
 
+#include "engine/config/ShownText.h"
 #include "engine/scene/BuiltinScenes.h"
 #include "engine/scene/SceneLoading.h"
 
@@ -54,6 +55,23 @@ std::string trimmed(std::string s) {
     return s;
 }
 
+// The triangles of a strip or a fan as a list, in the order and winding glTF 2.0 gives (3.7.2.1):
+// strip triangle i is (v[i], v[i+1], v[i+2]) for even i and (v[i], v[i+2], v[i+1]) for odd i, so that
+// every triangle faces the way the first does; fan triangle i is (v[i+1], v[i+2], v[0]).
+std::vector<uint32_t> triangleList(const std::vector<uint32_t>& v, bool strip) {
+    std::vector<uint32_t> list;
+    list.reserve((v.size() - 2) * 3);
+    for (size_t i = 0; i + 2 < v.size(); ++i) {
+        if (!strip)
+            list.insert(list.end(), {v[i + 1], v[i + 2], v[0]});
+        else if (i % 2 == 0)
+            list.insert(list.end(), {v[i], v[i + 1], v[i + 2]});
+        else
+            list.insert(list.end(), {v[i], v[i + 2], v[i + 1]});
+    }
+    return list;
+}
+
 class GltfReader {
 public:
     GltfReader(const std::string& path, const tinygltf::Model& model) : path_(path), model_(model) {}
@@ -67,8 +85,15 @@ private:
     // (a zero scale) leaves that undefined, and normalize() would make it NaN.
     glm::vec3 direction(const glm::mat4& world, glm::vec3 axis, int node, const std::string& what) const;
 
-    // Returns a pointer to element 0 and the stride; validateGltf has checked the range is in the buffer.
-    const uint8_t* accessorData(int accessorIndex, size_t elementSize, size_t& stride, size_t& count) const;
+    // An accessor's elements, `stride` bytes apart from `data`: in its bufferView (validateGltf has
+    // checked the range), or in `copy` when it is sparse or has no bufferView.
+    struct Elements {
+        const uint8_t* data = nullptr;
+        size_t stride = 0;
+        size_t count = 0;
+        std::vector<uint8_t> copy;
+    };
+    Elements accessorData(int accessorIndex, size_t elementSize) const;
     // `integers`: also normalized unsigned bytes and shorts, as glTF 2.0 allows for texture
     // coordinates (positions, normals and tangents are floats unless KHR_mesh_quantization, which
     // this reader does not support, is required).
@@ -88,20 +113,65 @@ private:
     Scene scene_;
     std::map<std::pair<int, bool>, int32_t> textures_;   // (glTF texture, sRGB) -> scene texture
     std::vector<std::vector<uint32_t>> primitiveMeshes_; // glTF mesh -> engine meshes
+    size_t skippedPrimitives_ = 0;                       // points and lines
 };
 
-const uint8_t* GltfReader::accessorData(int accessorIndex, size_t elementSize, size_t& stride,
-                                        size_t& count) const {
+// Elements an accessor without a bufferView may have: it is built in memory, all zeros but for its
+// sparse values, and a count from the file must not size that unchecked (16 bytes each: 1 GiB).
+constexpr size_t kMaxBuiltElements = size_t(1) << 26;
+
+GltfReader::Elements GltfReader::accessorData(int accessorIndex, size_t elementSize) const {
     const tinygltf::Accessor& a = model_.accessors[size_t(accessorIndex)];
-    if (a.sparse.isSparse)
-        fail("accessor " + std::to_string(accessorIndex) + " is sparse, which is not supported");
-    if (a.bufferView < 0)
-        fail("accessor " + std::to_string(accessorIndex) +
-             " has no bufferView (all zeros), which is not supported for vertex data");
-    const tinygltf::BufferView& view = model_.bufferViews[size_t(a.bufferView)];
-    stride = view.byteStride ? view.byteStride : elementSize;
-    count = a.count;
-    return model_.buffers[size_t(view.buffer)].data.data() + view.byteOffset + a.byteOffset;
+    const std::string who = "accessor " + std::to_string(accessorIndex);
+    Elements e;
+    e.count = a.count;
+    if (a.bufferView >= 0) {
+        const tinygltf::BufferView& view = model_.bufferViews[size_t(a.bufferView)];
+        e.stride = view.byteStride ? view.byteStride : elementSize;
+        e.data = model_.buffers[size_t(view.buffer)].data.data() + view.byteOffset + a.byteOffset;
+        if (!a.sparse.isSparse) return e;
+    }
+    // glTF 2.0: the base elements (zeros without a bufferView), then each sparse value at its index.
+    if (a.count > kMaxBuiltElements)
+        fail(who + ": " + std::to_string(a.count) +
+             " elements without a bufferView or sparse are more than the " +
+             std::to_string(kMaxBuiltElements) + " the engine builds");
+    e.copy.assign(a.count * elementSize, 0);
+    if (e.data)
+        for (size_t i = 0; i < a.count; ++i)
+            std::memcpy(e.copy.data() + i * elementSize, e.data + i * e.stride, elementSize);
+    if (a.sparse.isSparse) {
+        // validateGltf has checked that both ranges lie in their bufferViews.
+        const auto viewData = [&](int view, int offset) {
+            const tinygltf::BufferView& v = model_.bufferViews[size_t(view)];
+            return model_.buffers[size_t(v.buffer)].data.data() + v.byteOffset + size_t(offset);
+        };
+        const uint8_t* indices = viewData(a.sparse.indices.bufferView, a.sparse.indices.byteOffset);
+        const uint8_t* values = viewData(a.sparse.values.bufferView, a.sparse.values.byteOffset);
+        const int indexSize = tinygltf::GetComponentSizeInBytes(uint32_t(a.sparse.indices.componentType));
+        size_t previous = 0;
+        for (size_t k = 0; k < size_t(a.sparse.count); ++k) {
+            uint32_t index = 0;
+            if (indexSize == 1)
+                index = indices[k];
+            else if (indexSize == 2) {
+                uint16_t u;
+                std::memcpy(&u, indices + k * 2, 2);
+                index = u;
+            } else
+                std::memcpy(&index, indices + k * 4, 4);
+            if (index >= a.count || (k > 0 && index <= previous))
+                fail(who + ": sparse index " + std::to_string(index) + " (number " + std::to_string(k) +
+                     ") " +
+                     (index >= a.count ? "is out of range (" + std::to_string(a.count) + " elements)"
+                                       : "is not greater than the one before it"));
+            previous = index;
+            std::memcpy(e.copy.data() + size_t(index) * elementSize, values + k * elementSize, elementSize);
+        }
+    }
+    e.data = e.copy.data();
+    e.stride = elementSize;
+    return e;
 }
 
 template <int N>
@@ -124,11 +194,10 @@ std::vector<glm::vec<N, float>> GltfReader::readFloats(int accessorIndex, const 
              std::to_string(components) + " components, expected " + std::to_string(N));
     const int componentSize = tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType));
     if (componentSize <= 0) fail(std::string(what) + " accessor has an invalid component type");
-    size_t stride = 0, count = 0;
-    const uint8_t* data = accessorData(accessorIndex, size_t(componentSize) * N, stride, count);
-    std::vector<glm::vec<N, float>> out(count);
-    for (size_t i = 0; i < count; ++i) {
-        const uint8_t* e = data + i * stride;
+    const Elements elements = accessorData(accessorIndex, size_t(componentSize) * N);
+    std::vector<glm::vec<N, float>> out(elements.count);
+    for (size_t i = 0; i < elements.count; ++i) {
+        const uint8_t* e = elements.data + i * elements.stride;
         for (int c = 0; c < N; ++c) {
             float v = 0.0f;
             switch (a.componentType) {
@@ -160,11 +229,10 @@ std::vector<uint32_t> GltfReader::readIndices(int accessorIndex) const {
     if (a.type != TINYGLTF_TYPE_SCALAR || (size != 1 && size != 2 && size != 4) ||
         a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT)
         fail("index accessor " + std::to_string(accessorIndex) + " is not an unsigned integer scalar");
-    size_t stride = 0, count = 0;
-    const uint8_t* data = accessorData(accessorIndex, size_t(size), stride, count);
-    std::vector<uint32_t> out(count);
-    for (size_t i = 0; i < count; ++i) {
-        const uint8_t* e = data + i * stride;
+    const Elements elements = accessorData(accessorIndex, size_t(size));
+    std::vector<uint32_t> out(elements.count);
+    for (size_t i = 0; i < elements.count; ++i) {
+        const uint8_t* e = elements.data + i * elements.stride;
         if (size == 1)
             out[i] = e[0];
         else if (size == 2) {
@@ -187,7 +255,7 @@ int32_t GltfReader::texture(int gltfTexture, bool srgb, const std::string& mater
     if (!image || image->image.empty() || image->width <= 0 || image->height <= 0 ||
         image->image.size() < size_t(image->width) * size_t(image->height) * size_t(image->component)) {
         log::warn(path_ + ": texture " + std::to_string(gltfTexture) + " (" +
-                  (image ? image->uri : "no image") + ") could not be loaded; " + material +
+                  (image ? shownText(image->uri) : "no image") + ") could not be loaded; " + material +
                   " uses its flat factor instead");
     } else if (image->bits != 8 || (image->component != 3 && image->component != 4)) {
         log::warn(path_ + ": texture " + std::to_string(gltfTexture) + " has " +
@@ -217,7 +285,7 @@ void GltfReader::readMaterials() {
         const tinygltf::Material& m = model_.materials[mi];
         // Named by index, and by name where it has one (many exporters leave it empty).
         const std::string material =
-            "material " + std::to_string(mi) + (m.name.empty() ? "" : " '" + m.name + "'");
+            "material " + std::to_string(mi) + (m.name.empty() ? "" : " '" + shownText(m.name) + "'");
         Material out;
         out.name = m.name;
         const auto& pbr = m.pbrMetallicRoughness;
@@ -237,7 +305,7 @@ void GltfReader::readMaterials() {
         if (m.occlusionTexture.index >= 0)
             log::warn(who + "occlusionTexture is not used (screen-space ambient occlusion stands in for it)");
         if (!m.alphaMode.empty() && m.alphaMode != "OPAQUE")
-            log::warn(who + "alphaMode " + m.alphaMode + " is drawn as OPAQUE");
+            log::warn(who + "alphaMode " + shownText(m.alphaMode) + " is drawn as OPAQUE");
         const std::pair<const char*, int> sets[] = {
             {"baseColorTexture", pbr.baseColorTexture.texCoord},
             {"metallicRoughnessTexture", pbr.metallicRoughnessTexture.texCoord},
@@ -263,11 +331,19 @@ void GltfReader::readMeshes() {
         std::vector<uint32_t> engineMeshes;
         for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
             const tinygltf::Primitive& prim = mesh.primitives[pi];
-            const std::string where =
-                "mesh " + std::to_string(mi) + " '" + mesh.name + "' primitive " + std::to_string(pi);
-            if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)
-                fail(where + ": primitive mode " + std::to_string(prim.mode) +
-                     " is not supported (triangles only)");
+            const std::string where = "mesh " + std::to_string(mi) + " '" + shownText(mesh.name) +
+                                      "' primitive " + std::to_string(pi);
+            // The renderer and the GI draw triangles: strips and fans become lists below; points and
+            // lines are skipped, and read() says how many, once.
+            const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+            if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE ||
+                mode == TINYGLTF_MODE_LINE_LOOP || mode == TINYGLTF_MODE_LINE_STRIP) {
+                ++skippedPrimitives_;
+                continue;
+            }
+            if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+                mode != TINYGLTF_MODE_TRIANGLE_FAN)
+                fail(where + ": primitive mode " + std::to_string(mode) + " is not a glTF mode (0 to 6)");
             const auto pos = prim.attributes.find("POSITION");
             if (pos == prim.attributes.end()) fail(where + ": has no POSITION attribute");
             const auto positions = readFloats<3>(pos->second, "POSITION");
@@ -299,7 +375,7 @@ void GltfReader::readMeshes() {
                     m.normalTexture.index >= 0 || m.emissiveTexture.index >= 0)
                     log::warn(
                         path_ + ": " + where + ": material " + std::to_string(prim.material) +
-                        (m.name.empty() ? "" : " '" + m.name + "'") +
+                        (m.name.empty() ? "" : " '" + shownText(m.name) + "'") +
                         " has texture maps but the primitive has no TEXCOORD_0; each map is read at its "
                         "first texel");
             }
@@ -310,13 +386,20 @@ void GltfReader::readMeshes() {
             else
                 for (uint32_t i = 0; i < positions.size(); ++i)
                     indices.push_back(i);
-            if (indices.size() % 3)
-                fail(where + ": index count " + std::to_string(indices.size()) + " is not a multiple of 3");
             for (size_t i = 0; i < indices.size(); ++i)
                 if (indices[i] >= positions.size())
                     fail(where + ": index " + std::to_string(indices[i]) + " at position " +
                          std::to_string(i) + " is out of range (" + std::to_string(positions.size()) +
                          " vertices)");
+            if (mode == TINYGLTF_MODE_TRIANGLES && indices.size() % 3)
+                fail(where + ": index count " + std::to_string(indices.size()) + " is not a multiple of 3");
+            if (mode != TINYGLTF_MODE_TRIANGLES) {
+                const char* name = mode == TINYGLTF_MODE_TRIANGLE_STRIP ? "TRIANGLE_STRIP" : "TRIANGLE_FAN";
+                if (indices.size() < 3)
+                    fail(where + ": " + name + " has " + std::to_string(indices.size()) +
+                         " vertices, fewer than the 3 of one triangle");
+                indices = triangleList(indices, mode == TINYGLTF_MODE_TRIANGLE_STRIP);
+            }
 
             Mesh out;
             out.name = mesh.name;
@@ -462,16 +545,13 @@ void GltfReader::visitTree(int root) {
 }
 
 Scene GltfReader::read() {
-    for (const std::string& ext : model_.extensionsRequired)
-        if (std::find(std::begin(kSupportedExtensions), std::end(kSupportedExtensions), ext) ==
-            std::end(kSupportedExtensions))
-            fail("requires extension '" + ext + "', which LPV Engine does not support");
+    // A required extension the engine lacks was refused by checkGltfJson, before tinygltf.
     // An optional extension the reader does not know (KHR_texture_transform, KHR_materials_clearcoat...)
     // changes what the author meant to be seen: said once, not dropped unnoticed.
     for (const std::string& ext : model_.extensionsUsed)
         if (std::find(std::begin(kSupportedExtensions), std::end(kSupportedExtensions), ext) ==
             std::end(kSupportedExtensions))
-            log::warn(path_ + ": uses extension '" + ext + "', which LPV Engine ignores");
+            log::warn(path_ + ": uses extension '" + shownText(ext) + "', which LPV Engine ignores");
     scene_.name = std::filesystem::path(path_).stem().string();
     readMaterials();
     readMeshes();
@@ -488,7 +568,13 @@ Scene GltfReader::read() {
         for (size_t n = 0; n < model_.nodes.size(); ++n)
             if (!isChild[n]) visitTree(int(n));
     }
-    if (scene_.instances.empty()) fail("has no meshes to draw");
+    const std::string skipped = std::to_string(skippedPrimitives_) +
+                                (skippedPrimitives_ == 1 ? " primitive" : " primitives") +
+                                " of points or lines";
+    if (scene_.instances.empty())
+        fail("has no meshes to draw" +
+             (skippedPrimitives_ ? " (" + skipped + " skipped: only triangles are drawn)" : std::string()));
+    if (skippedPrimitives_) log::warn(path_ + ": " + skipped + " skipped; only triangles are drawn");
     scene_.updateBounds();
     return std::move(scene_);
 }
@@ -559,10 +645,10 @@ Scene readGltfFile(const std::string& path) {
     loader.SetImageLoader(loadImageInsideBuffer, &model);
     std::string err, warn;
     const bool binary = probeGltfFile(path) == GltfContainer::Binary;
+    checkGltfJson(path, binary, kSupportedExtensions);
     const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
                            : loader.LoadASCIIFromFile(&model, &err, &warn, path);
     if (!ok) throw SceneError(path, "not a valid glTF 2.0 file: " + trimmed(err.empty() ? warn : err));
-    checkGltfJsonTypes(path, binary);
     validateGltf(path, model);
     // Image failures are warnings in tinygltf; they are reported per texture below.
     Scene scene = GltfReader(path, model).read();

@@ -3,6 +3,7 @@
 // a product or sum of them can wrap around and pass a check it should fail.
 #include "GltfValidation.h"
 
+#include "engine/config/ShownText.h"
 #include "engine/scene/SceneLoading.h"
 
 #include <charconv>
@@ -20,7 +21,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kAngleSlack = 1e-6;
 
 std::string quoted(const std::string& name) {
-    return name.empty() ? "" : " '" + name + "'";
+    return name.empty() ? "" : " '" + shownText(name) + "'";
 }
 
 std::string number(double v) {
@@ -90,6 +91,7 @@ private:
     void checkVersion() const;
     void checkBufferViews() const;
     void checkAccessors() const;
+    void checkSparse(size_t accessor, size_t elementSize) const;
     void checkTextures() const;
     void checkMaterials() const;
     void checkMeshes() const;
@@ -108,12 +110,12 @@ void GltfValidator::checkVersion() const {
     const tinygltf::Asset& asset = model_.asset;
     int major = 0, minor = 0;
     if (!parseVersion(asset.version, major, minor) || major != 2)
-        fail("asset version '" + asset.version + "' is not supported (glTF 2.x only)");
+        fail("asset version '" + shownText(asset.version) + "' is not supported (glTF 2.x only)");
     // minVersion names features a reader must have: those of 2.0 are all this one knows.
     int minMajor = 0, minMinor = 0;
     if (!asset.minVersion.empty() &&
         (!parseVersion(asset.minVersion, minMajor, minMinor) || minMajor != 2 || minMinor != 0))
-        fail("asset minVersion '" + asset.minVersion + "' is not supported (glTF 2.0 only)");
+        fail("asset minVersion '" + shownText(asset.minVersion) + "' is not supported (glTF 2.0 only)");
 }
 
 void GltfValidator::checkBufferViews() const {
@@ -135,9 +137,12 @@ void GltfValidator::checkAccessors() const {
         const int components = tinygltf::GetNumComponentsInType(uint32_t(a.type));
         if (componentSize <= 0 || components <= 0)
             fail(who + " has an invalid componentType " + std::to_string(a.componentType) + " or type");
-        if (a.bufferView < 0 || a.count == 0) continue;
-        const tinygltf::BufferView& view = model_.bufferViews[size_t(a.bufferView)];
+        // The reader would bind a reference to element 0 of nothing.
+        if (a.count == 0) fail(who + ": count is 0; glTF requires at least 1");
         const size_t elementSize = size_t(componentSize) * size_t(components);
+        if (a.sparse.isSparse) checkSparse(i, elementSize);
+        if (a.bufferView < 0) continue;
+        const tinygltf::BufferView& view = model_.bufferViews[size_t(a.bufferView)];
         const size_t stride = view.byteStride ? view.byteStride : elementSize;
         // The spec's rule, byteOffset + stride * (count - 1) + elementSize <= byteLength, by division.
         const bool fits = a.byteOffset <= view.byteLength && elementSize <= view.byteLength - a.byteOffset &&
@@ -147,6 +152,40 @@ void GltfValidator::checkAccessors() const {
                  " bytes, " + std::to_string(stride) + " bytes apart from byte " +
                  std::to_string(a.byteOffset) + ", do not fit in bufferView " + std::to_string(a.bufferView) +
                  " (" + std::to_string(view.byteLength) + " bytes)");
+    }
+}
+
+// A sparse accessor's indices and values must lie in their bufferViews (tinygltf reads the numbers as
+// ints, unchecked); that each index is in range and above the one before is the reader's to check as
+// it applies them.
+void GltfValidator::checkSparse(size_t i, size_t elementSize) const {
+    const tinygltf::Accessor& a = model_.accessors[i];
+    const std::string who = "accessor " + std::to_string(i) + ": sparse";
+    const auto& sparse = a.sparse;
+    if (sparse.count < 1 || size_t(sparse.count) > a.count)
+        fail(who + ".count " + std::to_string(sparse.count) + " must be in [1, " + std::to_string(a.count) +
+             "] (the accessor's count)");
+    const int indexType = sparse.indices.componentType;
+    if (indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+        fail(who + ".indices.componentType " + std::to_string(indexType) +
+             " is not an unsigned byte (5121), short (5123) or int (5125)");
+    const size_t indexSize = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(indexType)));
+    const std::pair<const char*, std::pair<int, int>> parts[] = {
+        {".indices", {sparse.indices.bufferView, sparse.indices.byteOffset}},
+        {".values", {sparse.values.bufferView, sparse.values.byteOffset}}};
+    for (const auto& [part, where] : parts) {
+        const auto [viewIndex, offset] = where;
+        requireElement(who + part, viewIndex, model_.bufferViews.size(), "bufferView");
+        const size_t size = part[1] == 'i' ? indexSize : elementSize;
+        const tinygltf::BufferView& view = model_.bufferViews[size_t(viewIndex)];
+        // count * size + offset <= byteLength, by division.
+        if (offset < 0 || size_t(offset) > view.byteLength ||
+            size_t(sparse.count) > (view.byteLength - size_t(offset)) / size)
+            fail(who + part + ": " + std::to_string(sparse.count) + " elements of " + std::to_string(size) +
+                 " bytes from byte " + std::to_string(offset) + " do not fit in bufferView " +
+                 std::to_string(viewIndex) + " (" + std::to_string(view.byteLength) + " bytes)");
     }
 }
 
@@ -233,7 +272,7 @@ void GltfValidator::checkLights() const {
         const tinygltf::Light& l = model_.lights[i];
         const std::string who = "light " + std::to_string(i) + quoted(l.name) + ": ";
         if (l.type != "directional" && l.type != "spot" && l.type != "point")
-            fail(who + "type '" + l.type + "' is not directional, point or spot");
+            fail(who + "type '" + shownText(l.type) + "' is not directional, point or spot");
         if (!l.color.empty() && l.color.size() != 3)
             fail(who + "color has " + std::to_string(l.color.size()) + " numbers, expected 3");
         requireUnitRange(who, "color", l.color);
