@@ -708,3 +708,16 @@ TEST_CASE("cli: a second SIGINT stops the game at once") {
     CHECK(!std::filesystem::exists(dir + "/shot.png"));
     std::filesystem::remove_all(dir);
 }
+
+// A key of 20,000 dotted parts overflowed the stack (SIGSEGV); it is bad input like any other.
+TEST_CASE("cli: a config key nested 20,000 levels deep exits 2 naming the file and line") {
+    const std::string path = "/tmp/lpv_cli_deep.toml";
+    std::string key = "a";
+    for (int i = 1; i < 20000; ++i)
+        key += ".a";
+    std::ofstream(path) << "# deep\n" << key << " = 1\n";
+    const Result r = runGame("--headless --backend null --frames 1 --config " + path);
+    CHECK(r.exitCode == 2);
+    CHECK_MESSAGE(r.output.find(path + ":2: key 'a.a.a.a") != std::string::npos, r.output);
+    CHECK(r.output.find("is nested 20000 levels deep; settings are at most ") != std::string::npos);
+}
