@@ -11,7 +11,8 @@ namespace lpv::reference {
 namespace {
 
 float smoothstep(float edge0, float edge1, float x) {
-    // GLSL's definition (edge0 > edge1 allowed: cos(outer) < cos(inner) is the usual order anyway).
+    // GLSL's definition; equal edges (inner = outer cone) are undefined there: a hard edge here.
+    if (edge0 == edge1) return x < edge0 ? 0.0f : 1.0f;
     const float t = std::clamp((x - edge0) / (edge1 - edge0), 0.0f, 1.0f);
     return t * t * (3.0f - 2.0f * t);
 }
