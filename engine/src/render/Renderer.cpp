@@ -275,6 +275,9 @@ void Renderer::setScene(const Scene& scene) {
     sceneSpots_ = scenePointLights_ = 0;
     for (const GpuPunctualLight& l : scene_->lightRecords())
         (l.directionType.w > 1.5f ? sceneSpots_ : scenePointLights_) += 1;
+    // A scene without a directional light has no sun: its punctual lights alone light it (the
+    // default sun, kept before, lit a room that has only a ceiling lamp).
+    sun_.radiance = glm::vec3(0.0f);
     for (const Light& l : scene.lights)
         if (l.type == LightType::Directional) {
             sun_.direction = glm::normalize(l.direction);

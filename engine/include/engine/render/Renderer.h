@@ -60,7 +60,8 @@ public:
     Renderer& operator=(const Renderer&) = delete;
 
     void resize(uint32_t width, uint32_t height);
-    // Uploads the scene (replacing the previous one) and takes its first directional light as the sun.
+    // Uploads the scene (replacing the previous one) and takes its first directional light as the sun
+    // (none: the sun gives no light).
     void setScene(const Scene& scene);
     SunLight& sun() { return sun_; }
     const SunLight& sun() const { return sun_; }

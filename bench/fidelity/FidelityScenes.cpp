@@ -1,0 +1,39 @@
+// The fidelity scenes (FidelityScenes.h). The glTF ones come from scripts/make-fidelity-scenes.py.
+#include "FidelityScenes.h"
+
+namespace lpv::bench {
+
+std::vector<FidelityScene> fidelityScenes(const std::string& sceneDir) {
+    return {
+        // The built-in box: the sun through a square opening in the ceiling onto the floor.
+        {"cornell", "cornell", {"gi.cell_size=0.2"}, 256, 256, true},
+        // The standard Cornell box, open at the front, the sun entering through it onto the floor.
+        {"cornell-sun", sceneDir + "/cornell-sun.gltf", {"gi.cell_size=0.2"}, 256, 256, true},
+        // The same box lit by a point light under its ceiling; the light gets an RSM of its own so
+        // that the volume carries its bounce only (it is lit per pixel, as the reference's direct
+        // light is left out of its indirect pass).
+        {"cornell-point",
+         sceneDir + "/cornell-point.gltf",
+         {"gi.cell_size=0.2", "gi.point_light_rsms=1"},
+         256,
+         256,
+         true},
+        // A closed room lit through a door from the sunlit ground outside: light leaking through
+        // walls shows here.
+        {"doorway", sceneDir + "/doorway.gltf", {"gi.cell_size=0.2"}, 256, 256, false},
+        // Figures only, at a small size. Cells: 28 span the Cornell boxes, 30 the doorway's room.
+        {"atrium", "atrium", {"gi.cell_size=1.0"}, 256, 144, false},
+        // The hall's point lights lit per pixel: with gi.analytic_lights the volume carries their direct
+        // light too, which the reference's indirect pass leaves out. Their bounce is then missing.
+        {"lights", "lights", {"gi.cell_size=0.25", "gi.analytic_lights=false"}, 256, 144, false},
+    };
+}
+
+std::vector<std::string> fidelitySceneNames() {
+    std::vector<std::string> names;
+    for (const FidelityScene& s : fidelityScenes(""))
+        names.push_back(s.name);
+    return names;
+}
+
+} // namespace lpv::bench

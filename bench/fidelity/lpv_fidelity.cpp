@@ -1,0 +1,148 @@
+// The fidelity benchmark: the engine's indirect light against the path tracer's (lpv_reference),
+// per scene and backend. Prints, per scene: mean ratio per channel, relative RMSE (RMSE / mean
+// reference luminance over pixels with geometry), the same after the best single scale, the mean
+// ratio on ceilings, floors and walls, and the share of pixels over 3x the reference; with --out,
+// writes each view as engine | reference side by side (PNG, one exposure for both).
+//
+//   lpv_fidelity [--backends=vulkan,gl-egl] [--scenes=cornell,...] [--spp=N] [--bounces=1..3]
+//                [--out=DIR] [--set key=value ...]
+#include "../BenchBackends.h"
+#include "../BenchCommandLine.h"
+#include "EngineIndirect.h"
+#include "FidelityMetrics.h"
+#include "FidelityScenes.h"
+
+#include "engine/ImageFile.h"
+#include "engine/config/Config.h"
+#include "engine/scene/SceneLoading.h"
+#include "platforms/Clock.h"
+#include "platforms/Platform.h"
+#include "reference/PathTracer.h"
+
+#include <glm/common.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+using namespace lpv;
+using namespace lpv::bench;
+
+namespace {
+
+// Both images at one exposure (the reference's mean luminance to 0.18), Reinhard, sRGB.
+void writeSideBySide(const std::string& path, uint32_t w, uint32_t h, const std::vector<glm::vec3>& engine,
+                     const std::vector<glm::vec3>& reference) {
+    double sum = 0.0;
+    for (const glm::vec3& r : reference)
+        sum += 0.2126 * r.r + 0.7152 * r.g + 0.0722 * r.b;
+    const float exposure = sum > 0.0 ? float(0.18 * double(reference.size()) / sum) : 1.0f;
+    const auto encode = [&](float v) {
+        v *= exposure;
+        v = v / (1.0f + v);
+        v = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+        return uint8_t(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f);
+    };
+    const uint32_t gap = 4, width = 2 * w + gap;
+    std::vector<uint8_t> rgba(size_t(width) * h * 4, 255);
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x)
+            for (int side = 0; side < 2; ++side) {
+                const glm::vec3 c = (side == 0 ? engine : reference)[size_t(y) * w + x];
+                uint8_t* o = &rgba[(size_t(y) * width + x + side * (w + gap)) * 4];
+                o[0] = encode(c.r), o[1] = encode(c.g), o[2] = encode(c.b), o[3] = 255;
+            }
+    engine::writePng(path, width, h, rgba);
+}
+
+std::string ratio(float r) {
+    if (r < 0.0f) return "-";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2f", r);
+    return buf;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"GI fidelity: the engine's indirect light against a path-traced reference (lpv_reference), "
+                 "per scene and backend"};
+    std::vector<BenchBackend> backends = {
+        {"vulkan", rhi::BackendKind::Vulkan},
+        {"gl-egl", rhi::BackendKind::OpenGL, rhi::GlHeadless::EglSurfaceless}};
+    addBackendsOption(app, backends);
+    std::vector<std::string> names = fidelitySceneNames();
+    app.add_option("--scenes", names, "Scenes, comma-separated")
+        ->delimiter(',')
+        ->check(CLI::IsMember(fidelitySceneNames()))
+        ->capture_default_str();
+    uint32_t spp = 256, bounces = 1;
+    int frames = 3;
+    app.add_option("--spp", spp, "Reference samples per pixel")
+        ->check(CLI::Range(1, 1 << 20))
+        ->capture_default_str();
+    app.add_option("--bounces", bounces,
+                   "Diffuse bounces in the reference's indirect light (the engine runs with gi.bounces set "
+                   "to the same)")
+        ->check(CLI::Range(1, 3))
+        ->capture_default_str();
+    app.add_option("--frames", frames, "Engine frames before the read-back")->check(CLI::Range(1, 100));
+    std::string outDir;
+    app.add_option("--out", outDir, "Folder for the side-by-side images (engine | reference)");
+    std::vector<std::string> assignments;
+    app.add_option("--set", assignments,
+                   "A setting for every scene, after the scene's own: --set gi.iterations=16");
+    if (const std::optional<int> exit = parseCommandLine(app, argc, argv)) return *exit;
+    if (!outDir.empty()) platforms::Platform::createDirectories(outDir);
+
+    const std::vector<FidelityScene> all = fidelityScenes(LPV_FIDELITY_SCENES);
+    int failures = 0;
+    std::printf("## GI fidelity against the path tracer (%u bounce%s, %u spp)\n\n", bounces,
+                bounces > 1 ? "s" : "", spp);
+    for (const std::string& s : assignments)
+        std::printf("--set %s\n", s.c_str());
+    std::printf(
+        "| scene | backend | mean ratio r/g/b | rel. RMSE | after scale (x) | ceilings | floors | walls | "
+        ">3x |\n|---|---|---|---|---|---|---|---|---|\n");
+    for (const FidelityScene& fs : all) {
+        if (std::find(names.begin(), names.end(), fs.name) == names.end()) continue;
+        try {
+            const engine::Scene scene = engine::loadScene(fs.source);
+            const engine::Camera camera = scene.camera.value_or(engine::Camera{});
+            reference::TraceSettings ts;
+            ts.width = fs.width, ts.height = fs.height, ts.samplesPerPixel = spp, ts.bounces = bounces;
+            const uint64_t t0 = platforms::nowNanoseconds();
+            const reference::TracedImage ref = reference::trace(scene, camera, ts);
+            const double traceMs = double(platforms::nowNanoseconds() - t0) / 1e6;
+            for (const BenchBackend& b : backends) {
+                engine::Config config;
+                config.applyOverride("gi.enabled=true", "lpv_fidelity");
+                config.applyOverride("gi.bounces=" + std::to_string(bounces), "lpv_fidelity");
+                for (const std::string& s : fs.settings)
+                    config.applyOverride(s, "lpv_fidelity's scene " + fs.name);
+                for (const std::string& s : assignments)
+                    config.applyOverride(s);
+                auto device = makeDevice(b);
+                const std::vector<glm::vec3> engineImage =
+                    renderEngineIndirect(*device, scene, camera, fs.width, fs.height, config, frames);
+                const FidelityFigures f = compareIndirect(engineImage, ref.indirect, {ref.normal, ref.hit});
+                std::printf("| %s | %s | %.2f/%.2f/%.2f | %.2f | %.2f (%.2f) | %s | %s | %s | %.1f%% |\n",
+                            fs.name.c_str(), b.name.c_str(), f.meanRatio.r, f.meanRatio.g, f.meanRatio.b,
+                            f.relativeRmse, f.relativeRmseScaled, f.bestScale,
+                            ratio(f.orientation.ceilings).c_str(), ratio(f.orientation.floors).c_str(),
+                            ratio(f.orientation.walls).c_str(), 100.0 * f.shareOver3x);
+                std::fflush(stdout);
+                if (!outDir.empty())
+                    writeSideBySide(outDir + "/" + fs.name + "-" + b.name + ".png", fs.width, fs.height,
+                                    engineImage, ref.indirect);
+            }
+            std::fprintf(stderr, "%s: reference traced in %.1f s\n", fs.name.c_str(), traceMs / 1000.0);
+        } catch (const std::exception& e) {
+            std::printf("| %s | failed: %s |\n", fs.name.c_str(), e.what());
+            ++failures;
+        }
+    }
+    return failures ? 1 : 0;
+}
