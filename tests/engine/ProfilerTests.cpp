@@ -255,7 +255,8 @@ TEST_CASE("profiler: the GI total is held to the budget, on the active profile's
         INFO(md);
         CHECK((md.find("(predicted slow: 25.0%)") != std::string::npos) == predicted);
         const std::string csv = profileSummaryCsv(profiler);
-        CHECK(csv.find(predicted ? "gi,6,0.0" : "gi,6,") != std::string::npos);
+        // Over the 5 steady-state frames: the first ran both passes for the first time (warm-up).
+        CHECK(csv.find(predicted ? "gi,5,0.0" : "gi,5,") != std::string::npos);
         CHECK(csv.find(predicted ? ",6.0000,12.0000,50.00,\"predicted slow\"\n" : ",\"measured\"\n") !=
               std::string::npos);
         // Each pass 40% of a 7.5 ms budget, together 80%; at 4.5 ms each is 67%, together 133%.
@@ -585,4 +586,58 @@ TEST_CASE("profiler: the predicted GI time adds up its passes, and names the fra
     CHECK(check.giPredictedX360Ms == doctest::Approx(2.0));
     CHECK(check.giBudgetedMs == doctest::Approx(2.0)); // x360: held to the predicted time
     CHECK(check.giPredictedOverBudget == false);       // 2 ms of a 3.3 ms budget
+}
+
+// The report is of the steady state: a frame that made or freed resources (before it began, as a
+// GI rebuild does, or in it) or ran a pass for the first time (compiling its pipelines) is marked
+// warm-up and left out of the statistics, and the report says how many.
+TEST_CASE("profiler: warm-up frames are marked and left out of the report's statistics") {
+    auto device = nullDevice();
+    FrameProfiler profiler(*device, tinyProfile(100, 100));
+    frame(*device, profiler, 50, 2); // 1: every pass runs for the first time
+    frame(*device, profiler, 3, 2);  // 2: steady
+    const rhi::BufferHandle buffer = device->createBuffer({4096, rhi::kBufferStorage});
+    frame(*device, profiler, 50, 2); // 3: a resource made before it began
+    device->destroy(buffer);
+    frame(*device, profiler, 50, 2); // 4: and freed
+    frame(*device, profiler, 3, 2);  // 5: steady
+    profiler.collectPending();
+    std::vector<uint8_t> warmUp;
+    profiler.forEachFrame([&](const FrameProfiler::FrameRecord& r) { warmUp.push_back(r.warmUp); });
+    CHECK(warmUp ==
+          std::vector<uint8_t>{kWarmUpFirstRunOfPass, 0, kWarmUpMadeResources, kWarmUpMadeResources, 0});
+    CHECK(profiler.warmUp().frames == 3);
+    CHECK(profiler.warmUp().madeResources == 2);
+    CHECK(profiler.warmUp().firstRunOfPass == 1);
+    CHECK(profiler.warmUp().checked == 3);
+    // The live window holds every frame (median of 50, 3, 50, 50, 3 dispatches); the report the
+    // two steady ones (3 dispatches, 1 us each in the null device).
+    CHECK(profiler.scopes()[1].gpuMs.stats().median == doctest::Approx(0.050));
+    const std::string text = profileSummaryText(profiler);
+    INFO(text);
+    CHECK(text.find("Steady state: 3 warm-up frames left out of the statistics (frames 1, 3 and 4)") !=
+          std::string::npos);
+    CHECK(text.find("frames checked 5, 3 of them warm-up; over budget 0 of the 2 steady-state frames") !=
+          std::string::npos);
+    const size_t row = text.find("\n  gbuffer ");
+    REQUIRE(row != std::string::npos);
+    CHECK(text.substr(row, 60).find("0.003") != std::string::npos);
+    CHECK(text.substr(row, 60).find("0.050") == std::string::npos);
+    CHECK(profileSummaryCsv(profiler).find("\nreached,2,3,2,1\n") != std::string::npos);
+    const std::string brief = profileShortSummary(profiler, "out/summary.md");
+    CHECK(brief.find("2 steady-state frames (3 warm-up frames left out") != std::string::npos);
+    CHECK(brief.find("The full report: out/summary.md") != std::string::npos);
+}
+
+// One frame is all warm-up: no steady state, said, and its figures are that frame's.
+TEST_CASE("profiler: a run of warm-up frames only says it has no steady state") {
+    auto device = nullDevice();
+    FrameProfiler profiler(*device, tinyProfile(100, 100));
+    frame(*device, profiler, 3, 2);
+    profiler.collectPending();
+    const std::string text = profileSummaryText(profiler);
+    INFO(text);
+    CHECK(text.find("Steady state: not reached") != std::string::npos);
+    CHECK(text.find("gpu median 0.005 ms") != std::string::npos);
+    CHECK(profileShortSummary(profiler, "").find("no steady state yet") != std::string::npos);
 }

@@ -35,6 +35,14 @@ FrameProfiler::FrameProfiler(rhi::Device& device, platforms::PlatformProfile pro
     stack_.reserve(64);
     scopes_.reserve(256);
     timestampScratch_.resize(gpuSlots_);
+    resources_ = resourceSignature();
+}
+
+std::pair<uint64_t, uint64_t> FrameProfiler::resourceSignature() const {
+    uint64_t count = 0;
+    for (const auto& category : device_.allocations().categories())
+        count += category.second.count;
+    return {count, device_.allocations().totalBytes()};
 }
 
 FrameProfiler::~FrameProfiler() = default;
@@ -43,6 +51,7 @@ uint16_t FrameProfiler::internScope(std::string_view name, int32_t parent) {
     for (size_t i = 0; i < scopes_.size(); ++i)
         if (scopes_[i].parent == parent && scopes_[i].name == name) return uint16_t(i);
     if (scopes_.size() >= 0xffff) throw std::logic_error("profiler: too many distinct scopes");
+    if (current_) current_->warmUp |= kWarmUpFirstRunOfPass;
     ScopeInfo info{std::string(name),
                    std::string(name),
                    parent,
@@ -75,6 +84,13 @@ void FrameProfiler::beginFrame(rhi::CommandList& cmd) {
     r.memoryTotal = device_.allocations().totalBytes();
     r.memoryGi = device_.allocations().bytesIn("gi");
     r.check = {};
+    // Resources made since the last frame ended (a GI rebuild, the renderer's targets) belong to
+    // this frame's warm-up.
+    r.warmUp = 0;
+    if (const auto resources = resourceSignature(); resources != resources_) {
+        r.warmUp |= kWarmUpMadeResources;
+        resources_ = resources;
+    }
     current_ = &r;
     // Notes made since the last frame ended belong to this one.
     for (uint32_t i = 0; i < pendingNotes_; ++i) {
@@ -239,6 +255,15 @@ void FrameProfiler::endFrame(rhi::CommandList& cmd) {
     current_->memoryTotal = device_.allocations().totalBytes();
     current_->memoryGi = device_.allocations().bytesIn("gi");
     frameCpu_.add(ms(current_->cpuBegin, current_->cpuEnd));
+    if (const auto resources = resourceSignature(); resources != resources_) {
+        current_->warmUp |= kWarmUpMadeResources;
+        resources_ = resources;
+    }
+    if (current_->warmUp) {
+        ++warmUp_.frames;
+        warmUp_.madeResources += current_->warmUp & kWarmUpMadeResources ? 1 : 0;
+        warmUp_.firstRunOfPass += current_->warmUp & kWarmUpFirstRunOfPass ? 1 : 0;
+    }
     if (!gpuSlots_) finishCheck(*current_);
     current_ = nullptr;
 }
@@ -309,6 +334,11 @@ void FrameProfiler::finishCheck(FrameRecord& r) {
     ++framesChecked_;
     if (c.frameOverBudget || c.giOverBudget || c.giPredictedOverBudget) ++framesOverBudget_;
     if (c.giOverBudget || c.giPredictedOverBudget) ++framesOverGiBudget_;
+    if (r.warmUp) {
+        ++warmUp_.checked;
+        warmUp_.overBudget += c.frameOverBudget || c.giOverBudget || c.giPredictedOverBudget ? 1 : 0;
+        warmUp_.overGiBudget += c.giOverBudget || c.giPredictedOverBudget ? 1 : 0;
+    }
 }
 
 } // namespace lpv::engine

@@ -61,6 +61,7 @@ struct Row {
     // "predicted": x360, ps3): a GI pass's prediction on that profile's throughput, in percent of
     // the budget; else 0.
     double predictedShareOfGi;
+    bool warmUpOnly; // ran in warm-up frames only: its figures are theirs, not held to the budget
 };
 
 // A row's timing source: the GPU's, "in <scope>" for work measured inside another scope's time
@@ -76,6 +77,106 @@ std::string_view predictedProfile(const FrameProfiler& p) {
     return p.profile().giTimePredicted ? std::string_view(p.profile().name) : std::string_view();
 }
 
+// The report's statistics are over the steady-state frames still recorded: the warm-up frames
+// (FrameRecord::warmUp: they made resources or ran a pass for the first time, compiling its
+// pipelines) are left out. When every recorded frame warmed up (a run of one frame) there is no
+// steady state, and the statistics are over all of them, said so.
+struct SteadyState {
+    bool reached = false;
+    uint32_t frames = 0;                // frames the statistics cover
+    std::vector<uint64_t> warmUpFrames; // recorded warm-up frames
+    std::vector<SampleStats> cpu, gpu;  // per scope, over the covered frames
+    SampleStats frameCpu, frameGpu;
+    bool covers(const FrameProfiler::FrameRecord& r) const { return r.cpuEnd && (!reached || !r.warmUp); }
+};
+
+SteadyState steadyState(const FrameProfiler& p) {
+    SteadyState st;
+    p.forEachFrame([&](const FrameProfiler::FrameRecord& r) {
+        if (r.cpuEnd && !r.warmUp) st.reached = true;
+        if (r.cpuEnd && r.warmUp) st.warmUpFrames.push_back(r.frame);
+    });
+    // Windows sized to hold every sample, then filled.
+    std::vector<uint32_t> samples(p.scopes().size(), 0);
+    p.forEachFrame([&](const FrameProfiler::FrameRecord& r) {
+        if (!st.covers(r)) return;
+        ++st.frames;
+        for (uint32_t k = 0; k < r.sampleCount; ++k)
+            ++samples[r.samples[k].scope];
+    });
+    std::vector<SampleWindow> cpu, gpu;
+    for (uint32_t n : samples) {
+        cpu.emplace_back(std::max(n, 1u));
+        gpu.emplace_back(std::max(n, 1u));
+    }
+    SampleWindow frameCpu(std::max(st.frames, 1u)), frameGpu(std::max(st.frames, 1u));
+    const auto ms = [](uint64_t begin, uint64_t end) {
+        return end > begin ? double(end - begin) / 1e6 : 0.0;
+    };
+    p.forEachFrame([&](const FrameProfiler::FrameRecord& r) {
+        if (!st.covers(r)) return;
+        frameCpu.add(ms(r.cpuBegin, r.cpuEnd));
+        if (r.gpuResolved) frameGpu.add(ms(r.gpuBegin, r.gpuEnd));
+        for (uint32_t k = 0; k < r.sampleCount; ++k) {
+            const FrameProfiler::Sample& sample = r.samples[k];
+            if (sample.cpuEnd) cpu[sample.scope].add(ms(sample.cpuBegin, sample.cpuEnd));
+            if (r.gpuResolved && sample.gpuTimed && sample.gpuEnd >= sample.gpuBegin)
+                gpu[sample.scope].add(ms(sample.gpuBegin, sample.gpuEnd));
+        }
+    });
+    for (size_t i = 0; i < samples.size(); ++i) {
+        st.cpu.push_back(cpu[i].stats());
+        st.gpu.push_back(gpu[i].stats());
+    }
+    st.frameCpu = frameCpu.stats();
+    st.frameGpu = frameGpu.stats();
+    return st;
+}
+
+// "frames 1, 2 and 5" (the first few of a long list).
+std::string frameList(const std::vector<uint64_t>& frames) {
+    std::string out = frames.size() == 1 ? "frame " : "frames ";
+    for (size_t i = 0; i < frames.size() && i < 8; ++i)
+        out += (i == 0 ? "" : i + 1 == frames.size() ? " and " : ", ") + std::to_string(frames[i]);
+    return frames.size() > 8 ? out + ", ..." : out;
+}
+
+// What the statistics leave out, and why.
+std::string steadyStateLine(const FrameProfiler& p, const SteadyState& st) {
+    const WarmUpCounts& w = p.warmUp();
+    if (!w.frames) return "Steady state: every frame (" + std::to_string(st.frames) + "); none warmed up.";
+    const std::string why = "made resources or ran a pass for the first time, compiling its pipelines";
+    if (!st.reached)
+        return "Steady state: not reached. Every recorded frame (" + frameList(st.warmUpFrames) + ") " + why +
+               "; the figures include them. Render more frames for a steady-state median.";
+    return "Steady state: " + std::to_string(w.frames) + " warm-up frame" + (w.frames == 1 ? "" : "s") +
+           " left out of the statistics (" + frameList(st.warmUpFrames) +
+           "): they compiled pipelines / made resources (" + std::to_string(w.madeResources) +
+           " made or freed GPU resources, " + std::to_string(w.firstRunOfPass) +
+           " ran a pass for the first time); the figures are over the " + std::to_string(st.frames) +
+           " steady-state frames.";
+}
+
+// Frames checked against the budgets and found over, in the frames the statistics cover.
+struct BudgetCounts {
+    uint64_t checked, over, overGi;
+};
+BudgetCounts budgetCounts(const FrameProfiler& p, const SteadyState& st) {
+    if (!st.reached) return {p.framesChecked(), p.framesOverBudget(), p.framesOverGiBudget()};
+    const WarmUpCounts& w = p.warmUp();
+    return {p.framesChecked() - w.checked, p.framesOverBudget() - w.overBudget,
+            p.framesOverGiBudget() - w.overGiBudget};
+}
+
+// "frames checked 60, 2 of them warm-up; over budget 58 of the 58 steady-state frames (...)".
+std::string framesCheckedLine(const FrameProfiler& p, const SteadyState& st) {
+    const BudgetCounts counts = budgetCounts(p, st);
+    return "frames checked " + std::to_string(p.framesChecked()) + ", " + std::to_string(p.warmUp().checked) +
+           " of them warm-up; over budget " + std::to_string(counts.over) + " of the " +
+           std::to_string(counts.checked) + (st.reached ? " steady-state" : "") +
+           " frames (over the GI budget: " + std::to_string(counts.overGi) + ")";
+}
+
 // Every GI pass together (the top-level "gi" scopes: gi and gi.rebuild), as the budget check
 // adds them, over the checked frames still recorded: the figure the GI budget is held to.
 struct GiTotal {
@@ -87,12 +188,14 @@ struct GiTotal {
 
 GiTotal giTotal(const FrameProfiler& p) {
     GiTotal t;
-    p.forEachFrame([&](const FrameProfiler::FrameRecord& r) { t.frames += r.checked ? 1 : 0; });
+    const SteadyState st = steadyState(p);
+    const auto counted = [&](const FrameProfiler::FrameRecord& r) { return r.checked && st.covers(r); };
+    p.forEachFrame([&](const FrameProfiler::FrameRecord& r) { t.frames += counted(r) ? 1 : 0; });
     if (!t.frames) return t;
     // The profiler's own windowed statistics, sized to hold every checked frame.
     SampleWindow measured(t.frames), predicted(t.frames), x360(t.frames), ps3(t.frames), budgeted(t.frames);
     p.forEachFrame([&](const FrameProfiler::FrameRecord& r) {
-        if (!r.checked) return;
+        if (!counted(r)) return;
         measured.add(r.check.giMs);
         predicted.add(r.check.giPredictedMs);
         x360.add(r.check.giPredictedX360Ms);
@@ -130,19 +233,24 @@ std::string giTotalLine(const FrameProfiler& p) {
 }
 
 std::vector<Row> rows(const FrameProfiler& p) {
+    const SteadyState st = steadyState(p);
     std::vector<Row> out;
     for (const ScopeInfo& s : p.scopes()) {
-        const FrameProfiler::ScopePrediction predicted = p.predicted(size_t(&s - p.scopes().data()));
+        const size_t index = size_t(&s - p.scopes().data());
+        const FrameProfiler::ScopePrediction predicted = p.predicted(index);
+        // A pass that ran only in warm-up frames (a rebuild) keeps those figures, marked.
+        const bool warmUpOnly = st.cpu[index].count == 0 && st.gpu[index].count == 0;
         Row r{&s,
-              s.cpuMs.stats(),
-              s.gpuMs.stats(),
+              warmUpOnly ? s.cpuMs.stats() : st.cpu[index],
+              warmUpOnly ? s.gpuMs.stats() : st.gpu[index],
               predicted.x360,
               predicted.ps3,
               predicted.active,
               s.path.starts_with("gi"),
               0,
               0,
-              0};
+              0,
+              warmUpOnly && st.reached};
         const double t = r.gpu.count ? r.gpu.median : r.cpu.median;
         r.shareOfFrame = p.profile().frameBudgetMs > 0 ? 100.0 * t / p.profile().frameBudgetMs : 0;
         r.shareOfGi =
@@ -171,7 +279,13 @@ uint64_t giMemory(const FrameProfiler& p) {
 // A pass is over budget when its median alone exceeds the frame budget, or, for GI passes, the
 // GI budget, or on a profile whose GI time is predicted when its predicted time does.
 bool overBudget(const Row& r) {
+    if (r.warmUpOnly) return false;
     return r.shareOfFrame > 100.0 || r.shareOfGi > 100.0 || r.predictedShareOfGi > 100.0;
+}
+
+// The budget column: OVER, ok, or warm-up for a pass that ran in warm-up frames only.
+const char* budgetWord(const Row& r) {
+    return overBudget(r) ? "OVER" : r.warmUpOnly ? "warm-up" : "ok";
 }
 
 // Notes grouped by topic, topics in the order they first appear.
@@ -212,10 +326,10 @@ std::string profileSummaryText(const FrameProfiler& p) {
     const auto& prof = p.profile();
     o << "Frame profile: platform " << prof.name << " (frame budget " << ms(prof.frameBudgetMs) << ", GI "
       << ms(prof.giBudgetMs) << ", GI memory " << mib(prof.giMemoryBudgetBytes) << ")\n";
-    o << "GPU timing source: " << gpuSourceName(p) << "; frames checked " << p.framesChecked()
-      << ", over budget " << p.framesOverBudget() << " (over the GI budget: " << p.framesOverGiBudget()
-      << ")\n";
-    const SampleStats fc = p.frameCpuMs(), fg = p.frameGpuMs();
+    const SteadyState st = steadyState(p);
+    o << steadyStateLine(p, st) << "\n";
+    o << "GPU timing source: " << gpuSourceName(p) << "; " << framesCheckedLine(p, st) << "\n";
+    const SampleStats fc = st.frameCpu, fg = st.frameGpu;
     o << "frame: cpu median " << fixed(fc.median) << " ms (p95 " << fixed(fc.p95) << ")";
     if (fg.count) o << ", gpu median " << fixed(fg.median) << " ms (p95 " << fixed(fg.p95) << ")";
     o << "\n" << giTotalLine(p) << "\n\n";
@@ -231,14 +345,13 @@ std::string profileSummaryText(const FrameProfiler& p) {
     const auto percent = [](double v, bool shown) { return shown ? fixed(v, 1) + "%" : std::string("-"); };
     for (const Row& r : rows(p)) {
         const std::string name = std::string(2 * r.scope->depth, ' ') + r.scope->name;
-        std::snprintf(line, sizeof(line), "%-28s %9.3f %9s %9s %9s %9s %9.3f %8.3f %7.1f%% %8s %10s %s\n",
-                      name.c_str(), r.cpu.median, r.gpu.count ? fixed(r.gpu.last).c_str() : "-",
-                      r.gpu.count ? fixed(r.gpu.median).c_str() : "-",
-                      r.gpu.count ? fixed(r.gpu.p95).c_str() : "-",
-                      r.gpu.count ? fixed(r.gpu.max).c_str() : "-", r.x360.ms, r.ps3.ms, r.shareOfFrame,
-                      percent(r.shareOfGi, r.gi).c_str(),
-                      percent(r.predictedShareOfGi, r.gi && p.profile().giTimePredicted).c_str(),
-                      overBudget(r) ? "OVER" : "ok");
+        std::snprintf(
+            line, sizeof(line), "%-28s %9.3f %9s %9s %9s %9s %9.3f %8.3f %7.1f%% %8s %10s %s\n", name.c_str(),
+            r.cpu.median, r.gpu.count ? fixed(r.gpu.last).c_str() : "-",
+            r.gpu.count ? fixed(r.gpu.median).c_str() : "-", r.gpu.count ? fixed(r.gpu.p95).c_str() : "-",
+            r.gpu.count ? fixed(r.gpu.max).c_str() : "-", r.x360.ms, r.ps3.ms, r.shareOfFrame,
+            percent(r.shareOfGi, r.gi).c_str(),
+            percent(r.predictedShareOfGi, r.gi && p.profile().giTimePredicted).c_str(), budgetWord(r));
         o << line;
     }
     o << "\nmemory by category (current / peak):\n";
@@ -258,14 +371,63 @@ std::string profileSummaryText(const FrameProfiler& p) {
     return o.str();
 }
 
+std::string profileShortSummary(const FrameProfiler& p, const std::string& fullReport) {
+    std::ostringstream o;
+    const auto& prof = p.profile();
+    const SteadyState st = steadyState(p);
+    const std::vector<Row> all = rows(p);
+    o << "Frame profile: platform " << prof.name << ", " << st.frames
+      << (st.reached ? " steady-state frames" : " frames, no steady state yet");
+    if (st.reached && p.warmUp().frames)
+        o << " (" << p.warmUp().frames << " warm-up frame" << (p.warmUp().frames == 1 ? "" : "s")
+          << " left out: they compiled pipelines / made resources)";
+    o << "\n";
+    const bool gpu = st.frameGpu.count > 0;
+    const double frameMs = gpu ? st.frameGpu.median : st.frameCpu.median;
+    o << "  frame: median " << ms(frameMs) << " (" << (gpu ? gpuSourceName(p) : std::string("cpu"))
+      << ") of the " << ms(prof.frameBudgetMs)
+      << " budget: " << (frameMs > prof.frameBudgetMs ? "OVER" : "ok") << "\n";
+    const bool giRan = std::any_of(all.begin(), all.end(), [](const Row& r) { return r.gi; });
+    const GiTotal t = giTotal(p);
+    if (!giRan)
+        o << "  GI: off (no GI pass ran)\n";
+    else if (t.frames)
+        o << "  GI: median " << ms(t.budgetedMedian) << " (" << giTimeKind(p) << ") of the "
+          << ms(prof.giBudgetMs) << " budget (" << fixed(t.shareOfGi, 1)
+          << "%): " << (t.shareOfGi > 100.0 ? "OVER" : "ok") << "\n";
+    // The costliest passes: those with no pass inside them, by median.
+    std::vector<const Row*> leaves;
+    for (const Row& r : all) {
+        const int32_t index = int32_t(r.scope - p.scopes().data());
+        const bool parent = std::any_of(p.scopes().begin(), p.scopes().end(),
+                                        [&](const ScopeInfo& s) { return s.parent == index; });
+        if (!parent && !r.warmUpOnly) leaves.push_back(&r);
+    }
+    const auto median = [](const Row* r) { return r->gpu.count ? r->gpu.median : r->cpu.median; };
+    std::sort(leaves.begin(), leaves.end(),
+              [&](const Row* a, const Row* b) { return median(a) > median(b); });
+    o << "  costliest passes:";
+    for (size_t i = 0; i < leaves.size() && i < 3; ++i)
+        o << (i ? ", " : " ") << leaves[i]->scope->path << " " << ms(median(leaves[i]));
+    o << "\n  memory: " << mib(p.allocations().totalBytes()) << " of the platform's "
+      << mib(prof.gpuMemoryBytes) << (p.allocations().peakTotalBytes() > prof.gpuMemoryBytes ? " (OVER)" : "")
+      << "; GI total: " << mib(giMemory(p)) << " of " << mib(prof.giMemoryBudgetBytes) << " budget"
+      << (giMemory(p) > prof.giMemoryBudgetBytes ? " (OVER BUDGET)" : "") << "\n";
+    o << "  " << framesCheckedLine(p, st) << "\n";
+    o << (fullReport.empty() ? std::string("The full report: --profile-out DIR writes it (summary.md)")
+                             : "The full report: " + fullReport)
+      << "\n";
+    return o.str();
+}
+
 std::string profileSummaryMarkdown(const FrameProfiler& p) {
     std::ostringstream o;
     const auto& prof = p.profile();
     o << "# Frame profile\n\nPlatform `" << prof.name << "`: frame budget " << ms(prof.frameBudgetMs)
       << ", GI budget " << ms(prof.giBudgetMs) << ", GI memory budget " << mib(prof.giMemoryBudgetBytes)
-      << ".\nGPU timing source: `" << gpuSourceName(p) << "`. Frames checked: " << p.framesChecked()
-      << ", over budget: " << p.framesOverBudget() << " (over the GI budget: " << p.framesOverGiBudget()
-      << ").\n"
+      << ".\n"
+      << steadyStateLine(p, steadyState(p)) << "\nGPU timing source: `" << gpuSourceName(p) << "`; "
+      << framesCheckedLine(p, steadyState(p)) << ".\n"
       << giTotalLine(p) << "\n\n";
     o << "| pass | timing | cpu median ms | gpu last | gpu mean | gpu median | gpu p95 | gpu max | predicted "
          "x360 ms | "
@@ -284,7 +446,7 @@ std::string profileSummaryMarkdown(const FrameProfiler& p) {
         if (r.gi && p.profile().giTimePredicted)
             o << " (predicted " << markdownCell(predictedProfile(p)) << ": " << fixed(r.predictedShareOfGi, 1)
               << "%)";
-        o << " | " << (overBudget(r) ? "**OVER**" : "ok") << " |\n";
+        o << " | " << (overBudget(r) ? "**OVER**" : budgetWord(r)) << " |\n";
     }
     // The GI budget holds every GI pass together, gi.rebuild included: the row the check reads.
     const GiTotal t = giTotal(p);
@@ -338,6 +500,11 @@ std::string profileSummaryCsv(const FrameProfiler& p) {
       << fixed(t.x360Median, 4) << "," << fixed(t.ps3Median, 4) << "," << fixed(t.budgetedMedian, 4) << ","
       << fixed(p.profile().giBudgetMs, 4) << "," << fixed(t.shareOfGi, 2) << "," << csvQuote(giTimeKind(p))
       << "\n";
+    const SteadyState st = steadyState(p);
+    o << "\nsteady_state,statistics_frames,warm_up_frames_left_out,made_resources,first_run_of_pass\n";
+    o << (st.reached ? "reached" : "not_reached") << "," << st.frames << ","
+      << (st.reached ? p.warmUp().frames : 0) << "," << p.warmUp().madeResources << ","
+      << p.warmUp().firstRunOfPass << "\n";
     o << "\ncategory,current_bytes,peak_bytes,resources\n";
     for (const auto& [category, usage] : p.allocations().categories())
         o << category << "," << usage.currentBytes << "," << usage.peakBytes << "," << usage.count << "\n";
@@ -368,7 +535,12 @@ std::string profileTraceJson(const FrameProfiler& p) {
         if (!r.cpuEnd) return;
         o << ",\n{\"name\":\"frame " << r.frame
           << "\",\"ph\":\"X\",\"pid\":1,\"tid\":1,\"ts\":" << us(r.cpuBegin)
-          << ",\"dur\":" << fixed(double(r.cpuEnd - r.cpuBegin) / 1000.0) << "}";
+          << ",\"dur\":" << fixed(double(r.cpuEnd - r.cpuBegin) / 1000.0);
+        if (r.warmUp)
+            o << ",\"args\":{\"warm_up\":true,\"made_resources\":"
+              << (r.warmUp & kWarmUpMadeResources ? "true" : "false")
+              << ",\"first_run_of_pass\":" << (r.warmUp & kWarmUpFirstRunOfPass ? "true" : "false") << "}";
+        o << "}";
         // GPU times are on the device's clock: place them relative to the frame's CPU start.
         const auto gpuTs = [&](uint64_t t) { return us(r.cpuBegin + (t - r.gpuBegin)); };
         if (r.gpuResolved)
@@ -413,9 +585,11 @@ std::string profileTraceJson(const FrameProfiler& p) {
 }
 
 std::string profileChartSvg(const FrameProfiler& p) {
+    // Steady-state frames only: a warm-up frame (seconds of pipeline compiles) would flatten the rest.
+    const SteadyState st = steadyState(p);
     std::vector<const FrameProfiler::FrameRecord*> frames;
     p.forEachFrame([&](const FrameProfiler::FrameRecord& r) {
-        if (r.checked) frames.push_back(&r);
+        if (r.checked && st.covers(r)) frames.push_back(&r);
     });
     const double width = 1000, height = 360, left = 60, top = 30, plotW = width - left - 200,
                  plotH = height - top - 40;
@@ -475,6 +649,8 @@ std::string profileChartSvg(const FrameProfiler& p) {
     }
     o << "<text x=\"" << left << "\" y=\"" << height - 10 << "\">frames (" << frames.size()
       << "); red marks: over budget; blue marks: notes (hover); ms on the left axis";
+    if (st.reached && !st.warmUpFrames.empty())
+        o << "; " << st.warmUpFrames.size() << " warm-up frames left out";
     // The chart holds the last traceFrames frames; notes of frames before them are still counted.
     const uint64_t firstShown = frames.empty() ? UINT64_MAX : frames.front()->frame;
     const size_t earlier = size_t(std::count_if(notesOfFrame.begin(), notesOfFrame.end(),

@@ -9,6 +9,11 @@
 // window of frames, the work counts and their predicted Xbox 360 / PS3 cost, and checks each
 // frame against the active platform profile's frame and GI budgets. All storage is allocated when
 // the profiler is made or when a scope name is first seen, never in a steady-state frame.
+//
+// Warm-up frames: a frame that made (or freed) GPU resources, or ran a pass for the first time
+// (whose pipelines the driver compiled then: Mesa compiles at first use), is marked
+// (FrameRecord::warmUp). The live statistics (scopes(), frameCpuMs(), the budget counters) hold
+// every frame; the report (ProfileReport.h) leaves warm-up frames out and says how many.
 #pragma once
 
 #include "engine/profiler/CostModel.h"
@@ -22,6 +27,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace lpv::engine {
@@ -63,6 +69,22 @@ struct FrameBudgetCheck {
     bool frameOverBudget = false;
     bool giOverBudget = false;
     bool giPredictedOverBudget = false; // "predicted" profiles: giPredictedMs against the GI budget
+};
+
+// Why a frame is not steady state (FrameRecord::warmUp, a mask).
+enum WarmUpReason : uint8_t {
+    // The device's live resources (their number or bytes) changed since the previous frame ended,
+    // in the frame or before it (a GI rebuild runs before beginFrame()).
+    kWarmUpMadeResources = 1,
+    // A scope not seen before opened: the pass ran for the first time.
+    kWarmUpFirstRunOfPass = 2,
+};
+
+// Warm-up frames so far, by reason (a frame may have both), and how many of them were checked
+// against the budgets and found over.
+struct WarmUpCounts {
+    uint64_t frames = 0, madeResources = 0, firstRunOfPass = 0;
+    uint64_t checked = 0, overBudget = 0, overGiBudget = 0;
 };
 
 class FrameProfiler {
@@ -140,6 +162,7 @@ public:
     uint64_t framesOverGiBudget() const { return framesOverGiBudget_; }
     uint64_t framesChecked() const { return framesChecked_; }
     uint64_t gpuResultsLost() const { return gpuLost_; }
+    const WarmUpCounts& warmUp() const { return warmUp_; }
     uint32_t openScopes() const { return uint32_t(stack_.size()); }
 
     // One recorded frame, for the trace and the chart.
@@ -156,6 +179,7 @@ public:
         uint64_t gpuBegin = 0, gpuEnd = 0;
         bool gpuResolved = false;
         bool checked = false; // budget check done (GPU results in, lost, or CPU-only)
+        uint8_t warmUp = 0;   // WarmUpReason bits; 0: a steady-state frame
         uint32_t sampleCount = 0;
         std::vector<Sample> samples;            // capacity maxScopesPerFrame, sized at construction
         uint64_t memoryTotal = 0, memoryGi = 0; // held at endFrame()
@@ -194,6 +218,8 @@ private:
     uint16_t internScope(std::string_view name, int32_t parent);
     void resolveGpu();
     void finishCheck(FrameRecord& r);
+    // The device's live resources: their number and bytes (allocation-free).
+    std::pair<uint64_t, uint64_t> resourceSignature() const;
 
     rhi::Device& device_;
     platforms::PlatformProfile profile_;
@@ -220,6 +246,8 @@ private:
     SampleWindow frameCpu_, frameGpu_;
     FrameBudgetCheck lastCheck_;
     uint64_t framesOverBudget_ = 0, framesOverGiBudget_ = 0, framesChecked_ = 0, gpuLost_ = 0;
+    std::pair<uint64_t, uint64_t> resources_; // resourceSignature() when the last frame ended
+    WarmUpCounts warmUp_;
 };
 
 } // namespace lpv::engine

@@ -11,6 +11,10 @@ namespace lpv::engine {
 class FrameProfiler;
 
 std::string profileSummaryText(const FrameProfiler& profiler);
+// A few lines for the end of a run: the steady-state frame median and the GI's against their
+// budgets, the three costliest passes, memory, and where the full report is (`fullReport`, a
+// path; empty: none was written).
+std::string profileShortSummary(const FrameProfiler& profiler, const std::string& fullReport);
 std::string profileSummaryMarkdown(const FrameProfiler& profiler);
 std::string profileSummaryCsv(const FrameProfiler& profiler);
 std::string profileTraceJson(const FrameProfiler& profiler);
