@@ -327,17 +327,18 @@ int runGame(const GameOptions& opt) {
             failures.emplace_back(e.what());
         }
     }
+    // A short summary at exit; the full table is in summary.md.
+    profiler.collectPending(); // the last frames' GPU timings
+    std::string fullReport;
     if (!opt.profileOut.empty()) {
-        profiler.collectPending(); // the last frames' GPU timings
         try {
             engine::writeProfileOutputs(profiler, opt.profileOut);
-            log::info("game: profile written to " + opt.profileOut +
-                      " (trace.json, summary.md, summary.csv, frames.svg)");
+            fullReport = opt.profileOut + "/summary.md (trace.json, summary.csv and frames.svg beside it)";
         } catch (const std::exception& e) {
             failures.emplace_back(e.what());
         }
-        std::fputs(engine::profileSummaryText(profiler).c_str(), stdout);
     }
+    std::fputs(engine::profileShortSummary(profiler, fullReport).c_str(), stdout);
     if (!refusal.empty()) {
         for (const std::string& f : failures)
             log::error("game: " + f);
