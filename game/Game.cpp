@@ -170,6 +170,7 @@ int runGame(const GameOptions& opt) {
     renderer.setScene(scene);
     engine::FrameProfiler profiler(*device, profile);
     gi::LightPropagationVolume lpv(*device, profile);
+    lpv.setScene(scene); // gi.cell_size = auto sizes the volume to the room around the camera
     // The overlay goes on frames that are presented, not on screenshots of headless runs.
     std::unique_ptr<engine::ProfilerOverlay> overlay;
     if (device->caps().presentation) overlay = std::make_unique<engine::ProfilerOverlay>(*device);

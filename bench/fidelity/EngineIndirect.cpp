@@ -19,6 +19,7 @@ std::vector<glm::vec3> renderEngineIndirect(rhi::Device& device, const engine::S
     engine::Renderer renderer(device, width, height);
     renderer.setScene(scene);
     gi::LightPropagationVolume lpv(device, platforms::loadPlatformProfile("pc"));
+    lpv.setScene(scene);
     const engine::CameraMatrices m = engine::cameraMatrices(camera, float(width) / float(height));
     for (int f = 0; f < frames; ++f) {
         lpv.update(config, renderer, m);

@@ -274,6 +274,35 @@ void LightPropagationVolume::reportRgba8Clipping(engine::FrameProfiler* profiler
     if (profiler) profiler->note(kRgba8ClippingNoteTopic, text, clipping->peakFrames()[size_t(cascade)]);
 }
 
+void LightPropagationVolume::setScene(const engine::Scene& scene) {
+    openSpace_ = engine::OpenSpace(scene);
+    autoCellSize_ = 0.0f;
+}
+
+float LightPropagationVolume::autoCellSize(uint32_t gridSize, glm::vec3 camera,
+                                           const engine::Bounds& sceneBounds) {
+    float extent = openSpace_.empty() ? 0.0f : openSpace_.extentAround(camera);
+    if (!(extent > 0.0f)) {
+        const glm::vec3 side = sceneBounds.size();
+        extent = std::max(std::max(side.x, side.y), side.z);
+    }
+    if (!(extent > 0.0f)) return autoCellSize_ > 0.0f ? autoCellSize_ : 0.25f;
+    // gridSize - 4 cells across the room: two cells' margin on either side for the lookup's filter
+    // and the camera's offset.
+    float cell = std::clamp(extent / float(gridSize - 4), 0.01f, 100.0f);
+    // In eighths of an octave, kept until the room changes by more than one: a camera walking
+    // through a room does not rescale the volume, and the light with it, every few steps.
+    cell = std::exp2(std::round(std::log2(cell) * 8.0f) / 8.0f);
+    if (autoCellSize_ > 0.0f && std::abs(std::log2(cell / autoCellSize_)) < 0.126f) return autoCellSize_;
+    autoCellSize_ = cell;
+    char line[160];
+    std::snprintf(line, sizeof line,
+                  "gi: gi.cell_size = auto: %.3f m cells, the open space around the camera %.1f m across",
+                  double(cell), double(extent));
+    log::info(line);
+    return cell;
+}
+
 void LightPropagationVolume::update(const engine::Config& config, const engine::Renderer& renderer,
                                     const engine::CameraMatrices& camera, engine::FrameProfiler* profiler) {
     const LpvSettings configured = readLpvSettings(config);
@@ -286,6 +315,7 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
         schedulerBefore_ = scheduler_;
         scheduleBefore_ = schedule_;
     }
+    if (s.cellSizeAuto) s.cellSize = autoCellSize(s.gridSize, camera.position, renderer.sceneBounds());
     lightUpdates_ = volumeUpdates_ = ~0u;
     if (configured.enabled) {
         // The scheduler always sees the configured load; what it returns is this frame's. Without

@@ -10,8 +10,11 @@ using engine::Apply;
 const engine::BoolSetting kEnabled{"gi.enabled", false,
                                    "Dynamic global illumination (light propagation volumes)"};
 const engine::IntSetting kGridSize{"gi.grid_size", 32, 16, 64, "LPV cells per axis"};
-const engine::FloatSetting kCellSize{"gi.cell_size", 0.25, 0.01, 100.0,
-                                     "LPV cell size in metres (volume = grid x cell)"};
+const engine::AutoFloatSetting kCellSize{
+    "gi.cell_size", 0.25, 0.01, 100.0,
+    "LPV cell size in metres of the finest cascade (volume = grid x cell); auto: sized so that the finest "
+    "cascade spans the room around the camera (gi.grid_size - 4 cells across its largest side), or the scene "
+    "where the camera stands in the open"};
 const engine::IntSetting kCascades{"gi.cascades", 3, 1, 4,
                                    "Nested volumes, each twice the extent of the previous (cascaded LPV)"};
 const engine::IntSetting kCoarseUpdateInterval{
@@ -133,7 +136,9 @@ LpvSettings readLpvSettings(const engine::Config& config) {
     s.enabled = config.get(kEnabled);
     s.gridSize = uint32_t(config.get(kGridSize));
     s.cascades = uint32_t(config.get(kCascades));
-    s.cellSize = float(config.get(kCellSize));
+    const std::optional<double> cellSize = config.get(kCellSize);
+    s.cellSizeAuto = !cellSize;
+    s.cellSize = cellSize ? float(*cellSize) : s.cellSize;
     s.coarseUpdateInterval = uint32_t(config.get(kCoarseUpdateInterval));
     s.iterations = uint32_t(config.get(kIterations));
     s.rsmSize = uint32_t(config.get(kRsmSize));

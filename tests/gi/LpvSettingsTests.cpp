@@ -28,3 +28,23 @@ TEST_CASE("gi settings: a debug slice outside the volume names both settings and
     CHECK(gi::readLpvSettings(defaults).debugSlice == 16);
     std::remove(path.c_str());
 }
+
+TEST_CASE("gi settings: gi.cell_size takes a number or auto, from a file and the command line") {
+    engine::Config config;
+    CHECK(!gi::readLpvSettings(config).cellSizeAuto);
+    CHECK(gi::readLpvSettings(config).cellSize == doctest::Approx(0.25f));
+    config.loadString("[gi]\ncell_size = \"auto\"\n", "auto.toml");
+    CHECK(gi::readLpvSettings(config).cellSizeAuto);
+    config.applyOverride("gi.cell_size=0.5");
+    CHECK(!gi::readLpvSettings(config).cellSizeAuto);
+    CHECK(gi::readLpvSettings(config).cellSize == doctest::Approx(0.5f));
+    config.applyOverride("gi.cell_size=auto");
+    CHECK(gi::readLpvSettings(config).cellSizeAuto);
+    // Any other word, or a number out of range, names what is expected.
+    CHECK_THROWS_WITH_AS(config.applyOverride("gi.cell_size=big"),
+                         "--set: 'gi.cell_size' = 'big': expected a number in [0.01, 100] or auto",
+                         engine::ConfigError);
+    CHECK_THROWS_WITH_AS(config.loadString("[gi]\ncell_size = \"big\"\n", "big.toml"),
+                         doctest::Contains("big.toml:2"), engine::ConfigError);
+    CHECK_THROWS_AS(config.applyOverride("gi.cell_size=0"), engine::ConfigError);
+}

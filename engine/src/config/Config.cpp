@@ -49,6 +49,8 @@ std::string Config::validate(const SettingDecl& decl, const SettingValue& v) {
             return decl.expected();
         break;
     case SettingType::Float: {
+        if (const std::string* word = std::get_if<std::string>(&v))
+            return !decl.keyword.empty() && *word == decl.keyword ? std::string() : decl.expected();
         if (!std::holds_alternative<double>(v)) return decl.expected();
         const double x = std::get<double>(v);
         if (!std::isfinite(x) || (decl.min <= decl.max && (x < decl.min || x > decl.max)))
@@ -133,6 +135,10 @@ SettingValue Config::parse(const SettingDecl& decl, std::string_view raw, const 
         break;
     }
     case SettingType::Float: {
+        if (!decl.keyword.empty() && text == decl.keyword) {
+            v = std::string(text);
+            break;
+        }
         double x = 0;
         if (!parseDouble(text, x)) throw fail();
         v = x;

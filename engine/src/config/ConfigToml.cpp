@@ -56,6 +56,10 @@ SettingValue convert(const SettingDecl& decl, const toml::node& node, const std:
         v = *node.value<int64_t>();
         break;
     case SettingType::Float:
+        if (!decl.keyword.empty() && node.is_string() && *node.value<std::string>() == decl.keyword) {
+            v = *node.value<std::string>();
+            break;
+        }
         if (!node.is_number()) throw wrongType(typeNameOf(node));
         v = *node.value<double>();
         break;

@@ -41,7 +41,9 @@ std::string SettingDecl::expected() const {
     case SettingType::Int:
         return min <= max ? "an integer in [" + number(min) + ", " + number(max) + "]" : "an integer";
     case SettingType::Float:
-        return min <= max ? "a number in [" + number(min) + ", " + number(max) + "]" : "a number";
+        return (min <= max ? "a number in [" + number(min) + ", " + number(max) + "]"
+                           : std::string("a number")) +
+               (keyword.empty() ? "" : " or " + keyword);
     case SettingType::Enum: {
         std::string s = "one of: ";
         for (size_t i = 0; i < choices.size(); ++i)
@@ -203,6 +205,21 @@ IntSetting::IntSetting(std::string_view name, int64_t def, int64_t min, int64_t 
 FloatSetting::FloatSetting(std::string_view name, double def, double min, double max, std::string_view help,
                            Apply apply)
     : decl_(&declare(name, SettingType::Float, def, min, max, help, apply)) {}
+
+AutoFloatSetting::AutoFloatSetting(std::string_view name, std::optional<double> def, double min, double max,
+                                   std::string_view help, Apply apply)
+    : decl_([&]() -> const SettingDecl* {
+          SettingDecl d;
+          d.name = name;
+          d.type = SettingType::Float;
+          d.defaultValue = def ? SettingValue(*def) : SettingValue(std::string("auto"));
+          d.min = min;
+          d.max = max;
+          d.help = help;
+          d.apply = apply;
+          d.keyword = "auto";
+          return &SettingRegistry::global().add(std::move(d));
+      }()) {}
 
 StringSetting::StringSetting(std::string_view name, std::string_view def, std::string_view help, Apply apply)
     : decl_(&declare(name, SettingType::String, std::string(def), 1, 0, help, apply)) {}

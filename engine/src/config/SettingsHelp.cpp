@@ -12,9 +12,10 @@ std::string allowed(const SettingDecl& d) {
     switch (d.type) {
     case SettingType::Int:
     case SettingType::Float: {
-        if (d.min > d.max) return "any";
+        if (d.min > d.max) return d.keyword.empty() ? "any" : "any, " + d.keyword;
         std::ostringstream s;
         s << d.min << " .. " << d.max;
+        if (!d.keyword.empty()) s << ", " << d.keyword;
         return s.str();
     }
     case SettingType::Enum: {

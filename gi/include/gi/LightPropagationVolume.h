@@ -10,6 +10,7 @@
 
 #include "engine/render/IndirectLighting.h"
 #include "engine/render/Renderer.h"
+#include "engine/scene/OpenSpace.h"
 #include "gi/CascadeClasses.h"
 #include "gi/GeometryVolume.h"
 #include "gi/GiScheduler.h"
@@ -41,6 +42,9 @@ public:
     LightPropagationVolume(rhi::Device& device, platforms::PlatformProfile profile);
     ~LightPropagationVolume() override;
 
+    // The scene's geometry, for gi.cell_size = auto (engine::OpenSpace; made here, at load, not in a
+    // frame). Without it, auto sizes the finest cascade to the renderer's scene bounds.
+    void setScene(const engine::Scene& scene);
     // Reads gi.* and prepares the frame: checks the budget (throws GiBudgetError or
     // engine::ConfigError; the previous configuration stays), remakes resources on a change,
     // places the volume.
@@ -147,6 +151,10 @@ private:
     // update()'s configuration last accepted, and the scheduler as it was before a changed one
     // (put back when the budget check refuses the change).
     LpvSettings lastConfigured_;
+    // gi.cell_size = auto: the open space around the camera, and the cell size last chosen from it.
+    engine::OpenSpace openSpace_;
+    float autoCellSize_ = 0.0f;
+    float autoCellSize(uint32_t gridSize, glm::vec3 camera, const engine::Bounds& sceneBounds);
     GiBudgetScheduler schedulerBefore_;
     GiSchedule scheduleBefore_; // this frame leaves its further bounces to the next (update())
     const engine::Renderer* renderer_ = nullptr;

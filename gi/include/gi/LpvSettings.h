@@ -18,6 +18,9 @@ struct LpvSettings {
     bool enabled = false;
     uint32_t gridSize = 32;
     float cellSize = 0.25f; // of the finest cascade; each further cascade doubles it
+    // gi.cell_size = auto: the GI sizes the finest cascade to the open space around the camera
+    // (engine::OpenSpace) each frame, and cellSize is what it chose.
+    bool cellSizeAuto = false;
     uint32_t cascades = 3;
     // Frames between two updates of each coarse cascade (GiLoad::coarseUpdateInterval); under
     // gi.budget_policy=adapt the scheduler starts here.

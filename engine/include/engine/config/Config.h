@@ -9,6 +9,7 @@
 
 #include "engine/config/Setting.h"
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -46,6 +47,11 @@ public:
     bool get(const BoolSetting& s) const { return std::get<bool>(value(s.decl())); }
     int64_t get(const IntSetting& s) const { return std::get<int64_t>(value(s.decl())); }
     double get(const FloatSetting& s) const { return std::get<double>(value(s.decl())); }
+    // nullopt: "auto".
+    std::optional<double> get(const AutoFloatSetting& s) const {
+        const SettingValue& v = value(s.decl());
+        return std::holds_alternative<double>(v) ? std::optional<double>(std::get<double>(v)) : std::nullopt;
+    }
     const std::string& get(const StringSetting& s) const { return std::get<std::string>(value(s.decl())); }
     glm::vec3 get(const Vec3Setting& s) const { return std::get<glm::vec3>(value(s.decl())); }
     template <typename E> E get(const EnumSetting<E>& s) const {

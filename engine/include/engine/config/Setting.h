@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <initializer_list>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -35,6 +36,7 @@ struct SettingDecl {
     SettingValue defaultValue;
     double min = 0.0, max = 0.0;      // Int, Float and Vec3 (each component); min > max: unbounded
     std::vector<std::string> choices; // Enum only
+    std::string keyword;              // Float only: a word accepted instead of a number ("auto")
     std::string help;
     Apply apply = Apply::NextFrame;
     uint32_t index = 0; // registration order, the slot in a Config
@@ -92,6 +94,18 @@ class FloatSetting {
 public:
     FloatSetting(std::string_view name, double def, double min, double max, std::string_view help,
                  Apply apply = Apply::NextFrame);
+    const SettingDecl& decl() const { return *decl_; }
+
+private:
+    const SettingDecl* decl_;
+};
+
+// A number, or the word "auto" for a value the engine chooses itself (Config::get gives nullopt).
+class AutoFloatSetting {
+public:
+    // `def`: nullopt for auto.
+    AutoFloatSetting(std::string_view name, std::optional<double> def, double min, double max,
+                     std::string_view help, Apply apply = Apply::NextFrame);
     const SettingDecl& decl() const { return *decl_; }
 
 private:

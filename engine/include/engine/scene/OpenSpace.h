@@ -1,0 +1,38 @@
+// The open space around a point: how far a scene's surfaces leave room along each axis, read from
+// a coarse occupancy grid of its triangles made once per scene. The GI sizes its finest cascade to
+// the room the camera stands in with it (gi.cell_size = auto).
+#pragma once
+
+#include "engine/scene/Scene.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace lpv::engine {
+
+class OpenSpace {
+public:
+    OpenSpace() = default;
+    // Voxels of the scene's largest side / `resolution`; every triangle marks the voxels it crosses.
+    explicit OpenSpace(const Scene& scene, uint32_t resolution = 64);
+
+    // The largest, over the three axes, of the free span through `p`: from the first occupied voxel
+    // on one side to the first on the other, or to the scene's bounds where the way is open (the
+    // voxel `p` lies in does not count, so a camera against a wall still sees its room). The
+    // scene's largest side when `p` lies outside its bounds; 0 for an empty scene.
+    float extentAround(glm::vec3 p) const;
+    bool empty() const { return occupied_.empty(); }
+
+private:
+    bool occupiedAt(glm::ivec3 v) const;
+    void mark(glm::vec3 p);
+
+    Bounds bounds_;
+    glm::ivec3 size_{0};
+    float voxel_ = 1.0f;
+    std::vector<uint8_t> occupied_;
+};
+
+} // namespace lpv::engine
