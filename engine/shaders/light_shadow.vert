@@ -8,5 +8,6 @@ layout(binding = 2, std140) uniform LightShadowView {
 } light;
 
 void main() {
+    DrawRecord draw = drawRecords.draws[gl_InstanceIndex];
     gl_Position = light.viewProjection * draw.model * vec4(inPosition, 1.0);
 }

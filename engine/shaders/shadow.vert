@@ -7,5 +7,6 @@ layout(location = 0) in vec3 inPosition;
 #include "draw_uniforms.glsl"
 
 void main() {
+    DrawRecord draw = drawRecords.draws[gl_InstanceIndex];
     gl_Position = frame.sunViewProjection * draw.model * vec4(inPosition, 1.0);
 }

@@ -17,10 +17,12 @@ layout(binding = 4) uniform sampler2D metallicRoughnessTexture;
 
 layout(location = 0) in vec3 vNormal;
 layout(location = 1) in vec2 vUv;
+layout(location = DRAW_INDEX_LOCATION) flat in uint vDrawIndex;
 layout(location = 0) out vec4 outNormal;
 layout(location = 1) out vec4 outFlux;
 
 void main() {
+    DrawRecord draw = drawRecords.draws[vDrawIndex];
     vec3 n = normalize(vNormal);
     // Two-sided: the side the light sees; where a face turned toward it lies in the same plane,
     // that face.

@@ -14,8 +14,11 @@ layout(binding = 0, std140) uniform Rsm {
 
 layout(location = 0) out vec3 vNormal;
 layout(location = 1) out vec2 vUv;
+layout(location = DRAW_INDEX_LOCATION) flat out uint vDrawIndex;
 
 void main() {
+    DrawRecord draw = drawRecords.draws[gl_InstanceIndex];
+    vDrawIndex = uint(gl_InstanceIndex);
     vNormal = mat3(draw.normalMatrix) * inNormal;
     vUv = inUv;
     gl_Position = rsm.lightViewProjection * draw.model * vec4(inPosition, 1.0);

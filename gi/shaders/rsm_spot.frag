@@ -23,10 +23,12 @@ layout(binding = 4) uniform sampler2D metallicRoughnessTexture;
 layout(location = 0) in vec3 vNormal;
 layout(location = 1) in vec2 vUv;
 layout(location = 2) in vec3 vWorld;
+layout(location = DRAW_INDEX_LOCATION) flat in uint vDrawIndex;
 layout(location = 0) out vec4 outNormal;
 layout(location = 1) out vec4 outFlux;
 
 void main() {
+    DrawRecord draw = drawRecords.draws[vDrawIndex];
     vec3 toSurface = vWorld - rsm.lightPosition.xyz;
     float d2 = max(dot(toSurface, toSurface), 1e-8);
     vec3 w = toSurface * inversesqrt(d2);

@@ -17,8 +17,11 @@ layout(binding = 0, std140) uniform SpotRsm {
 layout(location = 0) out vec3 vNormal;
 layout(location = 1) out vec2 vUv;
 layout(location = 2) out vec3 vWorld;
+layout(location = DRAW_INDEX_LOCATION) flat out uint vDrawIndex;
 
 void main() {
+    DrawRecord draw = drawRecords.draws[gl_InstanceIndex];
+    vDrawIndex = uint(gl_InstanceIndex);
     vec4 world = draw.model * vec4(inPosition, 1.0);
     vNormal = mat3(draw.normalMatrix) * inNormal;
     vUv = inUv;

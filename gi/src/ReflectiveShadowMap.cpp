@@ -206,16 +206,16 @@ uint64_t ReflectiveShadowMap::draw(rhi::CommandList& cmd, const engine::GpuScene
     cmd.bindVertexBuffer(0, scene.vertices());
     cmd.bindIndexBuffer(scene.indices(), IndexType::Uint32);
     cmd.bindTexture(3, specularAlbedo, linearSampler_);
+    cmd.bindStorageBuffer(1, scene.drawRecords());
     uint64_t triangles = 0;
     for (const engine::GpuDraw& d : scene.draws()) {
         // The light's view holds the volume and, toward the light, its occluders (fit()): nothing
         // outside it can land in the map.
         if (d.worldSize < minObjectSize || d.worldBounds.outsideClipVolume(viewProjection_)) continue;
-        cmd.pushUniforms(1, &d.uniforms, sizeof(d.uniforms));
         cmd.bindTexture(2, d.baseColor, scene.materialSampler());
         cmd.bindTexture(4, d.metallicRoughnessMap, scene.materialSampler());
         const engine::DrawLod& lod = d.lodWithin(maxError(d));
-        cmd.drawIndexed(lod.indexCount, 1, lod.firstIndex);
+        cmd.drawIndexed(lod.indexCount, 1, lod.firstIndex, 0, d.index);
         triangles += lod.indexCount / 3;
     }
     cmd.endRenderPass();

@@ -121,10 +121,12 @@ GpuScene::GpuScene(rhi::Device& device, const Scene& scene) : device_(device) {
     lights.resize(lightCount_);
     lightRecords_ = std::move(lights);
 
+    draws_.reserve(scene.instances.size());
     for (const Instance& inst : scene.instances) {
         const Mesh& mesh = scene.meshes[inst.mesh];
         const Material& mat = scene.materials[mesh.material];
         GpuDraw d;
+        d.index = uint32_t(draws_.size());
         d.lods[0] = {mesh.firstIndex, mesh.indexCount, 0.0f};
         // A mesh's error grows with the instance's largest axis scale.
         const glm::mat3 linear(inst.transform);
@@ -152,6 +154,16 @@ GpuScene::GpuScene(rhi::Device& device, const Scene& scene) : device_(device) {
         draws_.push_back(d);
         triangles_ += mesh.indexCount / 3;
     }
+    // One record per draw, read by the shaders at the draw's first instance: a frame pushes no
+    // per-draw uniforms.
+    std::vector<DrawUniforms> records;
+    records.reserve(draws_.size());
+    for (const GpuDraw& d : draws_)
+        records.push_back(d.uniforms);
+    drawRecords_ = device.createBuffer({std::max<size_t>(records.size(), 1) * sizeof(DrawUniforms),
+                                        kBufferStorage | kBufferTransfer, MemoryAccess::GpuOnly,
+                                        scene.name + " draw records", "scene.draws"},
+                                       records.empty() ? nullptr : records.data());
 }
 
 GpuScene::~GpuScene() {
@@ -164,6 +176,7 @@ GpuScene::~GpuScene() {
     device_.destroy(vertices_);
     device_.destroy(indices_);
     device_.destroy(lights_);
+    device_.destroy(drawRecords_);
 }
 
 } // namespace lpv::engine

@@ -179,11 +179,11 @@ uint64_t LightShadows::drawView(rhi::CommandList& cmd, const GpuScene& scene, ui
     cmd.setViewport({float(x), float(y), float(tileSize_), float(tileSize_), 0.0f, 1.0f});
     cmd.setScissor(int32_t(x), int32_t(y), tileSize_, tileSize_);
     cmd.pushUniforms(2, &viewProjection, sizeof(viewProjection));
+    cmd.bindStorageBuffer(1, scene.drawRecords());
     uint64_t triangles = 0;
     for (const GpuDraw& d : scene.draws()) {
         if (d.worldBounds.outsideClipVolume(viewProjection)) continue;
-        cmd.pushUniforms(1, &d.uniforms, sizeof(d.uniforms));
-        cmd.drawIndexed(d.lods[0].indexCount, 1, d.lods[0].firstIndex);
+        cmd.drawIndexed(d.lods[0].indexCount, 1, d.lods[0].firstIndex, 0, d.index);
         triangles += d.lods[0].indexCount / 3;
     }
     return triangles;

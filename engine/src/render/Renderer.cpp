@@ -399,10 +399,9 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         cmd.pushUniforms(0, &frame_, sizeof(frame_));
         cmd.bindVertexBuffer(0, scene_->vertices());
         cmd.bindIndexBuffer(scene_->indices(), IndexType::Uint32);
-        for (const GpuDraw& d : scene_->draws()) {
-            cmd.pushUniforms(1, &d.uniforms, sizeof(d.uniforms));
-            cmd.drawIndexed(d.lods[0].indexCount, 1, d.lods[0].firstIndex);
-        }
+        cmd.bindStorageBuffer(1, scene_->drawRecords());
+        for (const GpuDraw& d : scene_->draws())
+            cmd.drawIndexed(d.lods[0].indexCount, 1, d.lods[0].firstIndex, 0, d.index);
         cmd.endRenderPass();
         cmd.endMarker();
         WorkCounts w;
@@ -441,16 +440,16 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
             cmd.pushUniforms(0, &frame_, sizeof(frame_));
             cmd.bindVertexBuffer(0, scene_->vertices());
             cmd.bindIndexBuffer(scene_->indices(), IndexType::Uint32);
+            cmd.bindStorageBuffer(1, scene_->drawRecords());
             for (const GpuDraw& d : scene_->draws()) {
                 if (d.hasMaterialMaps() != mapped) continue;
-                cmd.pushUniforms(1, &d.uniforms, sizeof(d.uniforms));
                 cmd.bindTexture(2, d.baseColor, scene_->materialSampler());
                 cmd.bindTexture(3, d.normal, scene_->materialSampler());
                 if (mapped) {
                     cmd.bindTexture(4, d.metallicRoughnessMap, scene_->materialSampler());
                     cmd.bindTexture(5, d.emissiveMap, scene_->materialSampler());
                 }
-                cmd.drawIndexed(d.lods[0].indexCount, 1, d.lods[0].firstIndex);
+                cmd.drawIndexed(d.lods[0].indexCount, 1, d.lods[0].firstIndex, 0, d.index);
             }
         }
         cmd.endRenderPass();

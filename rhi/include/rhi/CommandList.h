@@ -78,8 +78,10 @@ public:
                                    uint64_t size = kWholeSize) = 0;
     virtual void bindTexture(uint32_t binding, TextureHandle texture, SamplerHandle sampler) = 0;
     virtual void bindStorageImage(uint32_t binding, TextureHandle texture, uint32_t mipLevel = 0) = 0;
-    // Small per-draw constants: copied into a ring the backend owns for this frame and bound as a
-    // uniform buffer at `binding`. No allocation: the ring is sized at device creation.
+    // Small constants of a pass or a dispatch: copied into a ring the backend owns for this frame
+    // and bound as a uniform buffer at `binding`. No allocation: the ring is sized at device
+    // creation (DeviceConfig::uniformRingBytes), so it is no place for data that grows with a scene:
+    // per-draw records go in a storage buffer, read at the draw's firstInstance (gl_InstanceIndex).
     virtual void pushUniforms(uint32_t binding, const void* data, uint32_t size) = 0;
 
     virtual void draw(uint32_t vertexCount, uint32_t instanceCount = 1, uint32_t firstVertex = 0,

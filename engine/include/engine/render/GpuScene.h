@@ -1,7 +1,8 @@
 // A scene's GPU copy: vertex and index buffers (with each mesh's coarser levels of detail after
 // the scene's own indices), material textures with CPU-built mip chains, the punctual-light buffer
-// and the per-draw constants. Made once when a scene is set; a frame only
-// binds what is here.
+// and the per-draw records (transform and material). Made once when a scene is set; a frame only
+// binds what is here, so a frame's uniform ring holds per-pass constants only, whatever the number
+// of draws (a 20,000-draw level overflowed it when each draw pushed its own).
 #pragma once
 
 #include "engine/scene/MeshLods.h"
@@ -15,7 +16,8 @@
 
 namespace lpv::engine {
 
-// std140 block `Draw` of engine/shaders/draw_uniforms.glsl.
+// std430 element `DrawRecord` of engine/shaders/draw_uniforms.glsl: one per draw, in
+// GpuScene::drawRecords() at the draw's index.
 struct DrawUniforms {
     glm::mat4 model;
     glm::mat4 normalMatrix;
@@ -24,7 +26,7 @@ struct DrawUniforms {
     glm::vec4 material; // metallic, roughness, has normal map, has base color texture
     glm::vec4 maps;     // x: has a metallic-roughness texture, y: has an emissive texture
 };
-static_assert(sizeof(DrawUniforms) == 192, "DrawUniforms must match the std140 block Draw");
+static_assert(sizeof(DrawUniforms) == 192, "DrawUniforms must match the std430 struct DrawRecord");
 
 // std430 element of `Lights` in lighting.frag.
 struct GpuPunctualLight {
@@ -42,6 +44,9 @@ struct DrawLod {
 };
 
 struct GpuDraw {
+    // This draw's record in GpuScene::drawRecords(): what a draw passes as its first instance
+    // (the shaders read the record at gl_InstanceIndex).
+    uint32_t index = 0;
     // lods[0] is the full mesh; each further level is coarser (MeshLods.h).
     std::array<DrawLod, kMaxMeshLods> lods{};
     uint32_t lodCount = 1;
@@ -52,7 +57,7 @@ struct GpuDraw {
     rhi::TextureHandle metallicRoughnessMap, emissiveMap;
     float worldSize = 0.0f; // largest side of the world bounds (m): size filters use it
     Bounds worldBounds;     // culling against a view (Bounds::outsideClipVolume)
-    DrawUniforms uniforms;
+    DrawUniforms uniforms;  // the CPU copy of the record
 
     // A metallic-roughness or emissive map: drawn by the G-buffer's variant that reads them.
     bool hasMaterialMaps() const { return uniforms.maps.x > 0.5f || uniforms.maps.y > 0.5f; }
@@ -81,6 +86,9 @@ public:
     // The records in lights(), in the order of the scene's point and spot lights.
     const std::vector<GpuPunctualLight>& lightRecords() const { return lightRecords_; }
     const std::vector<GpuDraw>& draws() const { return draws_; }
+    // Every draw's DrawUniforms, at GpuDraw::index: bound as a storage buffer at binding 1
+    // (draw_uniforms.glsl) by every pass that draws the scene. Memory category "scene.draws".
+    rhi::BufferHandle drawRecords() const { return drawRecords_; }
     // Whether any draw hasMaterialMaps().
     bool hasMaterialMaps() const { return hasMaterialMaps_; }
     rhi::SamplerHandle materialSampler() const { return sampler_; }
@@ -88,7 +96,7 @@ public:
 
 private:
     rhi::Device& device_;
-    rhi::BufferHandle vertices_, indices_, lights_;
+    rhi::BufferHandle vertices_, indices_, lights_, drawRecords_;
     std::vector<rhi::TextureHandle> textures_;
     rhi::TextureHandle white_, flatNormal_;
     bool hasMaterialMaps_ = false;
