@@ -41,17 +41,6 @@ using namespace lpv;
 
 namespace {
 
-// The scene's camera, or one that looks at its bounds (as the sample game's).
-engine::Camera cameraFor(const engine::Scene& scene) {
-    if (scene.camera) return *scene.camera;
-    engine::Camera camera;
-    const glm::vec3 center = scene.bounds.center(), size = scene.bounds.size();
-    camera.position = center + glm::vec3(0.0f, 0.1f * size.y, 0.9f * std::max(size.x, size.z) + 0.5f);
-    camera.forward = glm::normalize(center - camera.position);
-    camera.farPlane = std::max(100.0f, 4.0f * glm::length(size));
-    return camera;
-}
-
 int run(int argc, char** argv) {
     std::string scenePath, screenshot, configPath = MINIMAL_GAME_CONFIG;
     std::vector<std::string> overrides;
@@ -100,7 +89,7 @@ int run(int argc, char** argv) {
     engine::FrameProfiler profiler(*device, profile);
     gi::LightPropagationVolume gi(*device, profile);
     const engine::CameraMatrices camera =
-        engine::cameraMatrices(cameraFor(scene), float(width) / float(height));
+        engine::cameraMatrices(engine::defaultCamera(scene), float(width) / float(height));
 
     for (int frame = 0; frame < frames; ++frame) {
         gi.update(config, renderer, camera, &profiler); // throws for settings over the budget

@@ -48,16 +48,6 @@ const engine::FloatSetting kSceneDetail{
 const engine::FloatSetting kCameraSpeed{"game.camera_speed", 3.0, 0.1, 100.0,
                                         "Free camera speed in metres per second"};
 
-engine::Camera defaultCamera(const engine::Scene& scene) {
-    if (scene.camera) return *scene.camera;
-    engine::Camera cam;
-    const glm::vec3 c = scene.bounds.center(), size = scene.bounds.size();
-    cam.position = c + glm::vec3(0.0f, 0.1f * size.y, 0.9f * std::max(size.x, size.z) + 0.5f);
-    cam.forward = glm::normalize(c - cam.position);
-    cam.farPlane = std::max(100.0f, 4.0f * glm::length(size));
-    return cam;
-}
-
 // Stages the next value of an enum setting (a key cycles through its choices).
 void cycle(engine::Config& config, const char* name) {
     const engine::SettingDecl* d = engine::SettingRegistry::global().find(name);
@@ -187,7 +177,7 @@ int runGame(const GameOptions& opt) {
     const engine::SettingDecl* renderView = engine::SettingRegistry::global().find("render.debug_view");
     std::string refusal; // set when the restored GI settings were refused too: the run ends
     bool firstFrame = true;
-    const engine::Camera start = defaultCamera(scene);
+    const engine::Camera start = engine::defaultCamera(scene);
     FreeCamera freeCamera(start);
     Console console;
     // What a team waits for before the first frame (the renderer's and the GI's pipelines, the

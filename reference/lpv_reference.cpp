@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
 
     try {
         const engine::Scene scene = engine::loadScene(scenePath);
-        engine::Camera camera = reference::defaultCamera(scene);
+        engine::Camera camera = engine::defaultCamera(scene);
         if (!cameraPos.empty()) camera.position = parseVec3(cameraPos, "--camera-pos");
         if (!cameraTarget.empty())
             camera.forward = glm::normalize(parseVec3(cameraTarget, "--camera-target") - camera.position);

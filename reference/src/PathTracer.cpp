@@ -164,15 +164,4 @@ TracedImage trace(const engine::Scene& scene, const engine::Camera& camera, cons
     return trace(rays, lights, camera, settings);
 }
 
-engine::Camera defaultCamera(const engine::Scene& scene) {
-    // The sample game's choice (game/Game.cpp), so the reference sees what the game shows.
-    if (scene.camera) return *scene.camera;
-    engine::Camera cam;
-    const glm::vec3 c = scene.bounds.center(), size = scene.bounds.size();
-    cam.position = c + glm::vec3(0.0f, 0.1f * size.y, 0.9f * std::max(size.x, size.z) + 0.5f);
-    cam.forward = glm::normalize(c - cam.position);
-    cam.farPlane = std::max(100.0f, 4.0f * glm::length(size));
-    return cam;
-}
-
 } // namespace lpv::reference

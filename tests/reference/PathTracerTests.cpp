@@ -271,7 +271,7 @@ TEST_CASE("reference: albedo is base colour factor x sRGB texture x (1 - metalli
 
 TEST_CASE("reference: the same seed gives the same image on 1 and 2 threads") {
     const engine::Scene scene = engine::loadScene("cornell");
-    const engine::Camera camera = defaultCamera(scene);
+    const engine::Camera camera = engine::defaultCamera(scene);
     TraceSettings settings;
     settings.width = settings.height = 32;
     settings.samplesPerPixel = 4;

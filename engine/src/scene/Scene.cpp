@@ -2,6 +2,9 @@
 #include "engine/scene/Scene.h"
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
 
 #include <array>
 
@@ -60,6 +63,16 @@ void Scene::updateBounds() {
         inst.worldBounds = meshes[inst.mesh].bounds.transformed(inst.transform);
         bounds.add(inst.worldBounds);
     }
+}
+
+Camera defaultCamera(const Scene& scene) {
+    if (scene.camera) return *scene.camera;
+    Camera cam;
+    const glm::vec3 c = scene.bounds.center(), size = scene.bounds.size();
+    cam.position = c + glm::vec3(0.0f, 0.1f * size.y, 0.9f * std::max(size.x, size.z) + 0.5f);
+    cam.forward = glm::normalize(c - cam.position);
+    cam.farPlane = std::max(100.0f, 4.0f * glm::length(size));
+    return cam;
 }
 
 } // namespace lpv::engine

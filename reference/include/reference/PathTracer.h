@@ -44,7 +44,4 @@ TracedImage trace(const RayScene& scene, const DirectLighting& lights, const eng
 glm::vec3 indirectIrradiance(const RayScene& scene, const DirectLighting& lights, const SurfacePoint& p,
                              uint32_t bounces, uint32_t samples, uint64_t seed);
 
-// The camera the game uses for a scene without one: looking at the scene's bounds from the front.
-engine::Camera defaultCamera(const engine::Scene& scene);
-
 } // namespace lpv::reference

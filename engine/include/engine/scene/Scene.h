@@ -118,4 +118,8 @@ struct Scene {
     void updateBounds();
 };
 
+// The scene's camera, or one in front of its bounds looking at their centre (for a glTF file
+// without a camera): what the sample game shows and the reference renderer traces.
+Camera defaultCamera(const Scene& scene);
+
 } // namespace lpv::engine
