@@ -40,6 +40,8 @@
 #include "gi/PointLightInjection.h"
 #include "gi/ReflectiveShadowMap.h"
 #include "gi/SpotLightRsms.h"
+#include "gi/adapter/EngineFrame.h"
+#include "gi/adapter/LpvConfig.h"
 #include "platforms/Clock.h"
 #include "platforms/Platform.h"
 #include "rhi/Device.h"
@@ -334,7 +336,7 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
         renderer.sun().direction =
             glm::normalize(scene.lights[0].direction + glm::vec3(0.1f * std::sin(t * 6.28f), 0, 0));
         const engine::CameraMatrices m = engine::cameraMatrices(cam, float(w) / float(h));
-        lpv.update(config, renderer, m);
+        gi::updateFromConfig(lpv, config, renderer, m);
         rhi::CommandList& cmd = device->beginFrame();
         profiler.beginFrame(cmd);
         renderer.render(cmd, m, config, &profiler, &lpv);
@@ -659,7 +661,7 @@ void consolePresetFlight(const char* console, bool printPasses) {
             glm::normalize(scene.lights[0].direction + glm::vec3(0.1f * std::sin(t * 6.28f), 0, 0));
         const engine::CameraMatrices m = engine::cameraMatrices(
             engine::cameraOnPath("flythrough", scene.bounds, start, t * 0.25f), float(w) / float(h));
-        lpv.update(config, renderer, m, &profiler);
+        gi::updateFromConfig(lpv, config, renderer, m, &profiler);
         rhi::CommandList& cmd = device->beginFrame();
         profiler.beginFrame(cmd);
         renderer.render(cmd, m, config, &profiler, &lpv);

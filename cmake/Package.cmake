@@ -1,6 +1,7 @@
 # The installed package: public headers, the static libraries and a relocatable
 # LpvEngineConfig.cmake, so that a game writes find_package(LpvEngine CONFIG REQUIRED) and links
-# lpv::gi, lpv::engine, lpv::platforms and lpv::rhi (examples/ is such a game; tests/package
+# lpv::gi, lpv::engine, lpv::platforms and lpv::rhi, and lpv::gi_adapter, the GI read from the
+# engine's config and renderer (examples/ is such a game; tests/package
 # installs this build and builds it). In the tree the same names are aliases.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
@@ -9,7 +10,11 @@ set(LPV_PACKAGE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/LpvEngine)
 set(LPV_PACKAGE_PRESET_DIR ${CMAKE_INSTALL_DATADIR}/LpvEngine/presets)
 
 set(lpv_package_targets)
-foreach(name rhi platforms engine gi)
+# name:folder, the folder holding the library's include/.
+foreach(entry rhi:rhi platforms:platforms engine:engine gi:gi gi_adapter:gi/adapter)
+  string(REPLACE ":" ";" entry ${entry})
+  list(GET entry 0 name)
+  list(GET entry 1 folder)
   set(target lpv_${name})
   add_library(lpv::${name} ALIAS ${target})
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${name})
@@ -23,7 +28,7 @@ foreach(name rhi platforms engine gi)
   endforeach()
   set_target_properties(${target} PROPERTIES INTERFACE_INCLUDE_DIRECTORIES
                                              "${build_dirs};$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
-  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${name}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${folder}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
   list(APPEND lpv_package_targets ${target})
 endforeach()
 

@@ -24,6 +24,7 @@
 #include "engine/render/Renderer.h"
 #include "engine/scene/SceneLoading.h"
 #include "gi/LightPropagationVolume.h"
+#include "gi/adapter/EngineFrame.h"
 #include "rhi/Device.h"
 
 #include <glm/geometric.hpp>
@@ -92,7 +93,7 @@ int run(int argc, char** argv) {
         engine::cameraMatrices(engine::defaultCamera(scene), float(width) / float(height));
 
     for (int frame = 0; frame < frames; ++frame) {
-        gi.update(config, renderer, camera, &profiler); // throws for settings over the budget
+        gi::updateFromConfig(gi, config, renderer, camera, &profiler); // throws for settings over the budget
         rhi::CommandList& cmd = device->beginFrame();
         profiler.beginFrame(cmd);
         renderer.render(cmd, camera, config, &profiler, gi.settings().enabled ? &gi : nullptr);

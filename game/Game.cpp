@@ -17,6 +17,7 @@
 #include "engine/scene/SceneLoading.h"
 #include "gi/GiBudget.h"
 #include "gi/LightPropagationVolume.h"
+#include "gi/adapter/EngineFrame.h"
 #include "platforms/Clock.h"
 #include "platforms/Log.h"
 #include "platforms/Platform.h"
@@ -250,7 +251,7 @@ int runGame(const GameOptions& opt) {
             cam = freeCamera.camera();
         const engine::CameraMatrices matrices = engine::cameraMatrices(cam, float(width) / float(height));
         try {
-            lpv.update(config, renderer, matrices, &profiler);
+            gi::updateFromConfig(lpv, config, renderer, matrices, &profiler);
         } catch (const std::runtime_error& e) {
             // GiBudgetError or ConfigError: at startup the configuration is refused outright; while
             // running the change is undone.
@@ -266,7 +267,7 @@ int runGame(const GameOptions& opt) {
                 log::info("game: " + restored->name + " = " + restored->format(config.value(*restored)) +
                           " (restored)");
             try {
-                lpv.update(config, renderer, matrices, &profiler);
+                gi::updateFromConfig(lpv, config, renderer, matrices, &profiler);
             } catch (const std::runtime_error& again) {
                 // What ran before cannot be refused now; undoing again could loop forever.
                 refusal =

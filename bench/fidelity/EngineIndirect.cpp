@@ -4,6 +4,7 @@
 #include "engine/render/CameraMatrices.h"
 #include "engine/render/Renderer.h"
 #include "gi/LightPropagationVolume.h"
+#include "gi/adapter/EngineFrame.h"
 #include "platforms/PlatformProfile.h"
 
 #include <glm/gtc/packing.hpp>
@@ -22,7 +23,7 @@ std::vector<glm::vec3> renderEngineIndirect(rhi::Device& device, const engine::S
     lpv.setScene(scene);
     const engine::CameraMatrices m = engine::cameraMatrices(camera, float(width) / float(height));
     for (int f = 0; f < frames; ++f) {
-        lpv.update(config, renderer, m);
+        gi::updateFromConfig(lpv, config, renderer, m);
         rhi::CommandList& cmd = device.beginFrame();
         renderer.render(cmd, m, config, nullptr, &lpv);
         device.endFrame();

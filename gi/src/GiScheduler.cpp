@@ -14,13 +14,6 @@
 namespace lpv::gi {
 namespace {
 
-const engine::EnumSetting<GiBudgetPolicy> kBudgetPolicy{
-    "gi.budget_policy",
-    GiBudgetPolicy::Fixed,
-    {{GiBudgetPolicy::Fixed, "fixed"}, {GiBudgetPolicy::Adapt, "adapt"}},
-    "GI over the platform budget: fixed only reports it; adapt updates coarse cascades less often, then "
-    "lowers iterations, then the RSM size, then gi.resolution, then gi.bounces"};
-
 // Decimals for a time in a note: 2, or 4 below 0.1 ms (a tiny budget read "0.00 ms").
 int digits(double ms) {
     return ms != 0 && ms < 0.1 ? 4 : 2;
@@ -93,12 +86,8 @@ void setKnob(GiLoad& load, GiKnob knob, uint32_t value) {
 
 } // namespace
 
-GiBudgetPolicy readGiBudgetPolicy(const engine::Config& config) {
-    return config.get(kBudgetPolicy);
-}
-
 std::string_view giBudgetPolicyName(GiBudgetPolicy policy) {
-    return kBudgetPolicy.nameOf(policy);
+    return policy == GiBudgetPolicy::Adapt ? "adapt" : "fixed";
 }
 
 GiLoad giLoadOf(const LpvSettings& settings, uint32_t cascades) {

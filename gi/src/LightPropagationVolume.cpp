@@ -303,9 +303,9 @@ float LightPropagationVolume::autoCellSize(uint32_t gridSize, glm::vec3 camera,
     return cell;
 }
 
-void LightPropagationVolume::update(const engine::Config& config, const engine::Renderer& renderer,
-                                    const engine::CameraMatrices& camera, engine::FrameProfiler* profiler) {
-    const LpvSettings configured = readLpvSettings(config);
+void LightPropagationVolume::update(const LpvSettings& configured, const GiFrameInputs& inputs,
+                                    engine::FrameProfiler* profiler) {
+    const engine::CameraMatrices& camera = inputs.camera;
     LpvSettings s = configured;
     // A configuration the budget check refuses below must leave the scheduler as it was: its steps
     // carry over to the settings the game restores. Only a changed configuration can be refused,
@@ -315,7 +315,7 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
         schedulerBefore_ = scheduler_;
         scheduleBefore_ = schedule_;
     }
-    if (s.cellSizeAuto) s.cellSize = autoCellSize(s.gridSize, camera.position, renderer.sceneBounds());
+    if (s.cellSizeAuto) s.cellSize = autoCellSize(s.gridSize, camera.position, inputs.sceneBounds);
     lightUpdates_ = volumeUpdates_ = ~0u;
     if (configured.enabled) {
         // The scheduler always sees the configured load; what it returns is this frame's. Without
@@ -333,12 +333,13 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
             if (halves & kCascadeVolume) volumeUpdates_ |= 1u << c;
         }
     }
-    renderer_ = &renderer;
+    frame_ = inputs;
+    haveFrame_ = true;
     // RSMs for as many spot (point) lights as the scene has, up to gi.light_rsms
     // (gi.point_light_rsms): none for a scene without.
-    s.lightRsms = std::min(s.lightRsms, lightCount(renderer.punctualLights(), engine::LightType::Spot));
+    s.lightRsms = std::min(s.lightRsms, lightCount(inputs.punctualLights, engine::LightType::Spot));
     s.pointLightRsms =
-        std::min(s.pointLightRsms, lightCount(renderer.punctualLights(), engine::LightType::Point));
+        std::min(s.pointLightRsms, lightCount(inputs.punctualLights, engine::LightType::Point));
     // Against what the resources were made for, not last frame's settings: a change made while GI
     // was off still applies when it comes back on.
     const bool resized = !made_ || s.vplCount != madeWith_.vplCount || !volumes_->matches(s) ||
@@ -378,15 +379,15 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
     settings_ = s;
     // Kept coarse cascades hold the lights as they were added (or not) when they were made: a
     // change makes every cascade again, so none carries the lights twice or misses them.
-    const bool analyticLights = analyticLightsEnabled(config);
+    const bool analyticLights = s.analyticLights;
     if (analyticLights != analyticLights_) cascadesValid_ = 0;
     analyticLights_ = analyticLights;
     LpvSettings level = s;
     for (Cascade& c : cascades_) {
-        c.placement = placeVolume(level, camera.position, camera.forward, renderer.sceneBounds());
+        c.placement = placeVolume(level, camera.position, camera.forward, inputs.sceneBounds);
         level.cellSize *= 2.0f;
     }
-    grid_ = cascades_.empty() ? placeVolume(s, camera.position, camera.forward, renderer.sceneBounds())
+    grid_ = cascades_.empty() ? placeVolume(s, camera.position, camera.forward, inputs.sceneBounds)
                               : cascades_[0].placement;
     // Under adapt, a frame that must make cascades its schedule leaves for later (the first frame,
     // or one after the volumes were remade: none has a result yet) does all of them at once; it
@@ -406,7 +407,7 @@ void LightPropagationVolume::update(const engine::Config& config, const engine::
                                            "this frame makes cascades its schedule left for later (they "
                                            "have no result yet)");
     // Before the renderer asks which lights the volume carries.
-    if (s.enabled && made_) spotRsms_->select(renderer.punctualLights(), cascades_.back().placement);
+    if (s.enabled && made_) spotRsms_->select(inputs.punctualLights, cascades_.back().placement);
 }
 
 void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
@@ -414,7 +415,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                                             rhi::TextureHandle glossyTarget,
                                             engine::FrameProfiler* profiler) {
     using namespace rhi;
-    if (!settings_.enabled || !made_ || !renderer_ || !renderer_->scene()) {
+    if (!settings_.enabled || !made_ || !haveFrame_ || !frame_.scene) {
         cmd.clearTexture(target, {0, 0, 0, 0}); // GI off: no indirect light at all
         cmd.clearTexture(glossyTarget, {0, 0, 0, 0});
         return;
@@ -426,8 +427,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     const auto work = [&](const engine::WorkCounts& w) {
         if (profiler) profiler->setWork(w);
     };
-    const engine::SunLight& sun = renderer_->sun();
-    const glm::vec3 lightDir = glm::normalize(sun.direction);
+    const glm::vec3 lightDir = glm::normalize(frame_.sunDirection);
     auto giScope = scope("gi");
     cmd.beginMarker("gi");
     static const char* const kCascadeScopes[4] = {"cascade0", "cascade1", "cascade2", "cascade3"};
@@ -436,8 +436,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     // cascade they reach.
     if (const uint32_t lightRsms = spotRsms_->rsmCount()) {
         auto s = scope("lightrsm");
-        const uint64_t triangles = spotRsms_->render(
-            cmd, *renderer_->scene(), renderer_->specularAlbedoTexture(), renderer_->punctualLights());
+        const uint64_t triangles =
+            spotRsms_->render(cmd, *frame_.scene, frame_.specularAlbedo, frame_.punctualLights);
         work(lightRsmWork(settings_, lightRsms, triangles));
     }
     // Coarsest first: each finer cascade takes the light from beyond its border from the one
@@ -461,8 +461,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                 rsm_->fit(cascade.lit, lightDir);
                 // Objects smaller than a cell of this cascade are left to the finer ones.
                 const uint64_t triangles =
-                    rsm_->render(cmd, *renderer_->scene(), renderer_->specularAlbedoTexture(), lightDir,
-                                 sun.radiance, c == 0 ? 0.0f : cascade.lit.cellSize, settings_.rsmLodTexels);
+                    rsm_->render(cmd, *frame_.scene, frame_.specularAlbedo, lightDir, frame_.sunRadiance,
+                                 c == 0 ? 0.0f : cascade.lit.cellSize, settings_.rsmLodTexels);
                 work(rsmWork(settings_, triangles));
             }
             auto s = scope("vpl");
@@ -480,7 +480,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             const float texelsPerVpl = float(rsm_->size() / side) * float(rsm_->size() / side);
             cascade.lightDirection = lightDir;
             cascade.vplArea = rsm_->texelArea() * texelsPerVpl;
-            cascade.whiteTexelFlux = sun.radiance * rsm_->texelArea();
+            cascade.whiteTexelFlux = frame_.sunRadiance * rsm_->texelArea();
         }
         if (!volumeHalf) continue;
         propagated |= 1u << c;
@@ -563,7 +563,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             // counted them twice (the lights hall 12% brighter with gi.coarse_update_interval=2).
             if (!(propagated & (1u << c))) continue;
             const uint32_t n =
-                pointLights_->inject(cmd, renderer_->punctualLights(), *volumes_, cascades_[c].grid,
+                pointLights_->inject(cmd, frame_.punctualLights, *volumes_, cascades_[c].grid,
                                      settings_.intensity, &cascades_[c].result, c, spotRsms_->selection());
             lightsWork += analyticLightsWork(settings_, n, pointLights_->cellEvaluations());
         }
@@ -632,7 +632,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             bindCascadeReads(cmd, gbuffer, std::span(volumes.data(), cascades_.size()), pointSampler_,
                              linearSampler_);
             cmd.bindTexture(15, gbuffer.albedo, pointSampler_);
-            cmd.bindTexture(16, renderer_->specularAlbedoTexture(), linearSampler_);
+            cmd.bindTexture(16, frame_.specularAlbedo, linearSampler_);
             // Without occlusion the bindings are unread; any 3D texture fills them.
             for (uint32_t c = 0; c < 4; ++c) {
                 const uint32_t slot = std::min(
@@ -665,8 +665,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             glossyCascades[c] = {cascades_[c].grid, cascades_[c].result};
         glossy_.render(cmd, camera, gbuffer, std::span(glossyCascades.data(), cascades_.size()),
                        volumes_->encoded() ? settings_.rgba8Range : 0.0f, settings_.glossyMaxRoughness,
-                       glossyTarget, renderer_->specularAlbedoTexture(), divisor,
-                       classified ? classes_.get() : nullptr);
+                       glossyTarget, frame_.specularAlbedo, divisor, classified ? classes_.get() : nullptr);
         work(glossyWork(lookupPixels));
     }
     cmd.endMarker();
@@ -689,7 +688,7 @@ void LightPropagationVolume::renderDebugOverlay(rhi::CommandList& cmd, const eng
         const float side = float(d.height) * 0.5f;
         cmd.setViewport({0, 0, side, side, 0, 1});
         SliceUniforms u;
-        const uint32_t slice = std::min(settings_.debugSlice, grid_.size - 1);
+        const uint32_t slice = std::min(settings_.debugSlice.value_or(16u), grid_.size - 1);
         u.params = glm::vec4((float(slice) + 0.5f) / float(grid_.size),
                              1.0f / (grid_.cellSize * grid_.cellSize), volumes_->encodeRange(grid_), 0);
         u.flags = glm::ivec4(volumes_->encoded() ? 1 : 0, 0, 0, 0);

@@ -1,116 +1,15 @@
-// gi.* setting declarations.
+// The GI settings' derived sizes and cross-checks.
 #include "gi/LpvSettings.h"
 
 #include <cmath>
+#include <string>
 
 namespace lpv::gi {
 namespace {
 
-using engine::Apply;
-const engine::BoolSetting kEnabled{"gi.enabled", false,
-                                   "Dynamic global illumination (light propagation volumes)"};
-const engine::IntSetting kGridSize{"gi.grid_size", 32, 16, 64, "LPV cells per axis"};
-const engine::AutoFloatSetting kCellSize{
-    "gi.cell_size", 0.25, 0.01, 100.0,
-    "LPV cell size in metres of the finest cascade (volume = grid x cell); auto: sized so that the finest "
-    "cascade spans the room around the camera (gi.grid_size - 4 cells across its largest side), or the scene "
-    "where the camera stands in the open"};
-const engine::IntSetting kCascades{"gi.cascades", 3, 1, 4,
-                                   "Nested volumes, each twice the extent of the previous (cascaded LPV)"};
-const engine::IntSetting kCoarseUpdateInterval{
-    "gi.coarse_update_interval", 1, 1, 4,
-    "Frames between two updates of each coarse cascade (all but the finest), which keep their last result "
-    "in between and take turns; from 2 x (gi.cascades - 1) each update is split over two frames (its RSM, "
-    "then its volume). gi.budget_policy=adapt starts from this value"};
-const engine::IntSetting kIterations{"gi.iterations", 8, 1, 64, "Propagation iterations per frame"};
-const engine::IntSetting kRsmSize{"gi.rsm_size", 256, 32, 2048,
-                                  "Reflective shadow map resolution (texels per side)"};
-const engine::FloatSetting kRsmLodTexels{
-    "gi.rsm_lod_texels", 0.5, 0.0, 16.0,
-    "Geometric error allowed in an RSM, in its texels: each object is drawn at the coarsest level of detail "
-    "(simplified at load) that strays less; 0 draws every mesh in full"};
-const engine::IntSetting kVplCount{
-    "gi.vpl_count", 4096, 16, 262144,
-    "VPLs after clustering the RSM (a square number whose side divides gi.rsm_size)"};
-const engine::FloatSetting kIntensity{"gi.intensity", 1.0, 0.0, 100.0, "Scale of the indirect light"};
-const engine::EnumSetting<ShFormat> kShFormat{
-    "gi.sh_format",
-    ShFormat::Rgba16f,
-    {{ShFormat::Rgba8, "rgba8"}, {ShFormat::Rgba16f, "rgba16f"}, {ShFormat::Rgba32f, "rgba32f"}},
-    "Storage of the SH volumes; the platform profile limits it"};
-const engine::EnumSetting<GiDebugView> kDebugView{
-    "gi.debug_view",
-    GiDebugView::None,
-    {{GiDebugView::None, "none"},
-     {GiDebugView::VolumeSlice, "volume_slice"},
-     {GiDebugView::Vpls, "vpls"},
-     {GiDebugView::Indirect, "indirect"}},
-    "GI debug view: a volume slice, the VPLs, or the indirect light alone"};
-// A radiance, so one value fits every cascade and cell size (LpvVolumes::encodeRange). 12 keeps the
-// mean indirect light of the Cornell box, the atrium and the lights hall within 1% of rgba16f's
-// (640x360; the tests hold them within 3% at 320x240).
-const engine::FloatSetting kRgba8Range{
-    "gi.rgba8_range", 12.0, 0.001, 10000.0,
-    "Largest SH coefficient an rgba8 volume stores, over its cells' "
-    "cross-section (m^2): too small clips light, too large rounds dim light"};
-const engine::BoolSetting kDamping{"gi.damping", true,
-                                   "Anisotropic damping of light arriving through surfaces"};
-const engine::BoolSetting kOcclusion{
-    "gi.occlusion", true,
-    "Geometry volume from the RSM and camera depth attenuates propagation (stops leaks through walls)"};
-// On by default since the light's coverage is closed over one-cell holes (gv_faces_body.glsl):
-// before, where the light's surfels left a wall's faces partly open (a wall the sun grazes), the
-// lookup read through some cells and not others, and the Cornell box's back wall showed cell-sized
-// blotches. The console preset turns it off: its face volumes would take the plan past 3 MiB.
-const engine::BoolSetting kLookupOcclusion{
-    "gi.lookup_occlusion", true,
-    "With gi.occlusion, the coarse cascades' lookups also keep to the faces their geometry volumes leave "
-    "open (the finest cascade's always does), so light beyond a wall thinner than a cell is not read "
-    "through it; a face volume per cascade (4 bytes a cell)"};
-// Only the finest cascade took the camera until each sample added its area: marking a coarse cell
-// whole made every small object block it, and whether a sample landed in it changed with every
-// camera move. Without it the coarse cascades block only what the light sees, and the light of a
-// wall's sunlit outside reached a room through the walls the sun does not light (the Cornell box,
-// sealed, seen from inside: 9.7% of the open box's light, 3.6% with them). The console preset turns it off.
-const engine::BoolSetting kCoarseCameraOcclusion{
-    "gi.coarse_camera_occlusion", true,
-    "With gi.occlusion, the coarse cascades' geometry volumes also take the camera's depth buffer (the "
-    "area of surface each sample stands for), not only the light's surfels (the finest cascade's always "
-    "does); 12 bytes a geometry volume cell"};
-const engine::BoolSetting kGlossy{
-    "gi.glossy", true,
-    "Glossy reflections: a few cells marched along the reflected view ray through the LPV (by roughness)"};
-const engine::FloatSetting kGlossyMaxRoughness{
-    "gi.glossy_max_roughness", 1.0, 0.0, 1.0,
-    "Surfaces this rough or rougher get no glossy march (it fades out over the 0.1 below) and reflect the "
-    "volume at their lobe's mean direction instead, saving the march's cost per pixel; 1: all but the fully "
-    "rough ones"};
-const engine::IntSetting kBounces{
-    "gi.bounces", 1, 1, 3,
-    "Light bounces: 2-3 reflect the light the geometry volume blocks off its surfels (needs gi.occlusion)"};
-const engine::IntSetting kBounceCascades{
-    "gi.bounce_cascades", 1, 1, 4,
-    "Cascades, finest first, that add the further bounces of gi.bounces (more than gi.cascades: every "
-    "cascade); the coarser ones carry one bounce (each costs about a propagation)"};
-const engine::IntSetting kLightRsms{"gi.light_rsms", 1, 0, 4,
-                                    "Spot lights (the brightest reaching the volume) with their own RSM: "
-                                    "bounce light in the colour they hit"};
-const engine::IntSetting kPointLightRsms{
-    "gi.point_light_rsms", 0, 0, 2,
-    "Point lights (the brightest reaching the volume) with a cube RSM of their own, six gi.rsm_size faces: "
-    "bounce light in the colour they hit"};
-const engine::EnumSetting<uint32_t> kResolution{
-    "gi.resolution",
-    2u,
-    {{1u, "full"}, {2u, "half"}, {4u, "quarter"}},
-    "Pixels per axis given a GI lookup and glossy march (full, half, quarter); the lighting pass rebuilds "
-    "the others with a depth- and normal-aware (bilateral) filter"};
-const engine::IntSetting kDebugSlice{"gi.debug_slice", 16, 0, 63,
-                                     "Volume slice (z) shown by gi.debug_view=volume_slice"};
-
 // The valid gi.vpl_count nearest `wanted` (a square whose side divides rsmSize, within the
 // setting's range; the smaller on a tie), for the error that refuses `wanted`; 0 when there is none.
-uint32_t nearestVplCount(uint32_t wanted, uint32_t rsmSize, int64_t least, int64_t most) {
+uint32_t nearestVplCount(uint32_t wanted, uint32_t rsmSize, uint32_t least, uint32_t most) {
     uint64_t best = 0, bestDistance = ~uint64_t(0);
     for (uint32_t side = 1; side <= rsmSize; ++side) {
         const uint64_t count = uint64_t(side) * side;
@@ -131,64 +30,32 @@ uint32_t LpvSettings::vplGridSide() const {
     return uint32_t(std::lround(std::sqrt(double(vplCount))));
 }
 
-LpvSettings readLpvSettings(const engine::Config& config) {
-    LpvSettings s;
-    s.enabled = config.get(kEnabled);
-    s.gridSize = uint32_t(config.get(kGridSize));
-    s.cascades = uint32_t(config.get(kCascades));
-    const std::optional<double> cellSize = config.get(kCellSize);
-    s.cellSizeAuto = !cellSize;
-    s.cellSize = cellSize ? float(*cellSize) : s.cellSize;
-    s.coarseUpdateInterval = uint32_t(config.get(kCoarseUpdateInterval));
-    s.iterations = uint32_t(config.get(kIterations));
-    s.rsmSize = uint32_t(config.get(kRsmSize));
-    s.rsmLodTexels = float(config.get(kRsmLodTexels));
-    s.vplCount = uint32_t(config.get(kVplCount));
-    s.intensity = float(config.get(kIntensity));
-    s.shFormat = config.get(kShFormat);
-    s.debugView = config.get(kDebugView);
-    s.debugSlice = uint32_t(config.get(kDebugSlice));
-    s.rgba8Range = float(config.get(kRgba8Range));
-    s.damping = config.get(kDamping);
-    s.occlusion = config.get(kOcclusion);
-    s.lookupOcclusion = config.get(kLookupOcclusion);
-    s.coarseCameraOcclusion = config.get(kCoarseCameraOcclusion);
-    s.glossy = config.get(kGlossy);
-    s.glossyMaxRoughness = float(config.get(kGlossyMaxRoughness));
-    s.bounces = uint32_t(config.get(kBounces));
-    s.bounceCascades = uint32_t(config.get(kBounceCascades));
-    s.lightRsms = uint32_t(config.get(kLightRsms));
-    s.pointLightRsms = uint32_t(config.get(kPointLightRsms));
-    s.resolutionDivisor = config.get(kResolution);
-    s.budgetPolicy = readGiBudgetPolicy(config);
+std::optional<LpvSettingsError> validateLpvSettings(const LpvSettings& s) {
     const uint32_t side = s.vplGridSide();
     if (side * side != s.vplCount || s.rsmSize % side != 0) {
-        const uint32_t nearest = nearestVplCount(s.vplCount, s.rsmSize, int64_t(kVplCount.decl().min),
-                                                 int64_t(kVplCount.decl().max));
-        throw engine::ConfigError(
-            config.origin(kVplCount.decl()), 0,
+        const uint32_t nearest = nearestVplCount(s.vplCount, s.rsmSize, kMinVplCount, kMaxVplCount);
+        return LpvSettingsError{
+            "gi.vpl_count", "gi.rsm_size",
             "'gi.vpl_count' = " + std::to_string(s.vplCount) +
                 ": expected a square number whose side divides gi.rsm_size (" + std::to_string(s.rsmSize) +
                 ")" +
                 (nearest ? ", such as " + std::to_string(nearest)
-                         : ", and none from " + std::to_string(int64_t(kVplCount.decl().min)) + " to " +
-                               std::to_string(int64_t(kVplCount.decl().max)) +
-                               " is: choose a gi.rsm_size with more divisors, such as a power of two"));
+                         : ", and none from " + std::to_string(kMinVplCount) + " to " +
+                               std::to_string(kMaxVplCount) +
+                               " is: choose a gi.rsm_size with more divisors, such as a power of two")};
     }
-    // Only a slice someone chose: the default (16, the middle of the default 32 grid) is clamped
-    // to the last slice of a smaller volume when shown.
-    if (s.debugSlice >= s.gridSize && config.origin(kDebugSlice.decl()) != "default")
-        throw engine::ConfigError(config.origin(kDebugSlice.decl()), 0,
-                                  "'gi.debug_slice' = " + std::to_string(s.debugSlice) +
-                                      ": outside the volume: gi.grid_size is " + std::to_string(s.gridSize) +
-                                      " (" + config.origin(kGridSize.decl()) + "), so expected 0 to " +
-                                      std::to_string(s.gridSize - 1));
+    // Only a slice someone chose: without one, the last slice of a small volume is shown.
+    if (s.debugSlice && *s.debugSlice >= s.gridSize)
+        return LpvSettingsError{"gi.debug_slice", "gi.grid_size",
+                                "'gi.debug_slice' = " + std::to_string(*s.debugSlice) +
+                                    ": outside the volume: gi.grid_size is " + std::to_string(s.gridSize) +
+                                    ", so expected 0 to " + std::to_string(s.gridSize - 1)};
     if (s.bounces > 1 && !s.occlusion)
-        throw engine::ConfigError(config.origin(kBounces.decl()), 0,
-                                  "'gi.bounces' = " + std::to_string(s.bounces) +
-                                      ": expected 1 while gi.occlusion is false (further bounces reflect the "
-                                      "light the geometry volume blocks)");
-    return s;
+        return LpvSettingsError{"gi.bounces", "gi.occlusion",
+                                "'gi.bounces' = " + std::to_string(s.bounces) +
+                                    ": expected 1 while gi.occlusion is false (further bounces reflect the "
+                                    "light the geometry volume blocks)"};
+    return std::nullopt;
 }
 
 std::string_view shFormatName(ShFormat f) {

@@ -14,10 +14,6 @@
 namespace lpv::gi {
 namespace {
 
-const engine::BoolSetting kAnalyticLights{
-    "gi.analytic_lights", true,
-    "Point and spot lights lit through the LPV (added analytically, no RSM) instead of per pixel"};
-
 constexpr uint32_t kBlock = 4; // cells per side of a shader group (point_lights_body.glsl)
 
 struct PointLightUniforms {
@@ -56,10 +52,6 @@ uint64_t cellsEvaluating(const AnalyticLight& light, const VolumeGrid& grid) {
 }
 
 } // namespace
-
-bool analyticLightsEnabled(const engine::Config& config) {
-    return config.get(kAnalyticLights);
-}
 
 PointLightInjection::PointLightInjection(rhi::Device& device, const LpvSettings& settings)
     : device_(device), format_(shTextureFormat(settings.shFormat)) {

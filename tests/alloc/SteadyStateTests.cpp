@@ -14,6 +14,7 @@
 #include "gi/GiScheduler.h"
 #include "gi/GiWork.h"
 #include "gi/LightPropagationVolume.h"
+#include "gi/adapter/EngineFrame.h"
 #include "platforms/PlatformProfile.h"
 
 #include <doctest/doctest.h>
@@ -82,7 +83,7 @@ uint64_t steadyStateAllocations(const test::BackendUnderTest& backend, const eng
                                rhi::kTextureColorTarget, "window", "test"});
     const engine::CameraMatrices camera = engine::cameraMatrices(*scene.camera, 160.0f / 120.0f);
     const auto frame = [&] {
-        lpv.update(settings, renderer, camera);
+        gi::updateFromConfig(lpv, settings, renderer, camera);
         rhi::CommandList& cmd = device->beginFrame();
         profiler.beginFrame(cmd);
         renderer.render(cmd, camera, settings, &profiler, &lpv);

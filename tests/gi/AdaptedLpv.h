@@ -9,6 +9,7 @@
 #include "engine/scene/BuiltinScenes.h"
 #include "gi/GiScheduler.h"
 #include "gi/LightPropagationVolume.h"
+#include "gi/adapter/EngineFrame.h"
 #include "platforms/PlatformProfile.h"
 #include "rhi/Device.h"
 
@@ -57,7 +58,7 @@ struct AdaptedLpv {
     }
     // One frame; the GI cost the scheduler will see next.
     std::optional<gi::GiFrameCost> frame() {
-        lpv.update(config, renderer, camera, &profiler);
+        gi::updateFromConfig(lpv, config, renderer, camera, &profiler);
         rhi::CommandList& cmd = device->beginFrame();
         profiler.beginFrame(cmd);
         renderer.render(cmd, camera, config, &profiler, &lpv);

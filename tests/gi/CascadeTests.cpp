@@ -10,6 +10,7 @@
 #include "engine/scene/BuiltinScenes.h"
 #include "gi/LightPropagationVolume.h"
 #include "gi/ShBasis.h"
+#include "gi/adapter/EngineFrame.h"
 #include "platforms/PlatformProfile.h"
 
 #include <doctest/doctest.h>
@@ -195,7 +196,7 @@ TEST_CASE("gi: coarse cascades updated in two halves on two frames match a whole
                 uint64_t stableSince = 0;
                 uint32_t steps = ~0u;
                 for (int f = 0; f < 200 && device->frameIndex() < stableSince + 12; ++f) {
-                    lpv.update(config, renderer, camera, &profiler);
+                    gi::updateFromConfig(lpv, config, renderer, camera, &profiler);
                     if (lpv.schedule().stepsInEffect != steps) {
                         steps = lpv.schedule().stepsInEffect;
                         stableSince = device->frameIndex();

@@ -7,7 +7,7 @@
 #include "engine/render/CameraPath.h"
 #include "gi/GiBudget.h"
 #include "gi/GiScheduler.h"
-#include "gi/LpvSettings.h"
+#include "gi/adapter/LpvConfig.h"
 
 #include <doctest/doctest.h>
 

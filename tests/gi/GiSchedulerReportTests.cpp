@@ -12,6 +12,7 @@
 #include "engine/scene/BuiltinScenes.h"
 #include "gi/GiScheduler.h"
 #include "gi/LightPropagationVolume.h"
+#include "gi/adapter/EngineFrame.h"
 #include "rhi/Device.h"
 
 #include "../support/TestDevice.h"
@@ -200,7 +201,8 @@ TEST_CASE("gi budget: a change the budget check refuses leaves adapt's steps in 
 
     // A change of the scheduler's load (the cascades) that does not fit the Xbox 360's 3 MiB.
     run.config.applyOverride("gi.cascades=3", "console");
-    CHECK_THROWS_AS(run.lpv.update(run.config, run.renderer, run.camera, &run.profiler), gi::GiBudgetError);
+    CHECK_THROWS_AS(gi::updateFromConfig(run.lpv, run.config, run.renderer, run.camera, &run.profiler),
+                    gi::GiBudgetError);
     run.config.applyOverride("gi.cascades=1", "restored");
     run.frame();
     CHECK(run.lpv.schedule().stepsInEffect == before.stepsInEffect);

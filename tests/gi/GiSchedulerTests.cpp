@@ -5,7 +5,7 @@
 
 #include "engine/config/Config.h"
 #include "gi/GiScheduler.h"
-#include "gi/LpvSettings.h"
+#include "gi/adapter/LpvConfig.h"
 
 #include <doctest/doctest.h>
 

@@ -10,6 +10,7 @@
 #include "gi/LpvReference.h"
 #include "gi/LpvVolumes.h"
 #include "gi/ShEncoding.h"
+#include "gi/adapter/LpvConfig.h"
 #include "platforms/PlatformProfile.h"
 
 #include <doctest/doctest.h>

@@ -8,6 +8,7 @@
 #include "engine/scene/BuiltinScenes.h"
 #include "gi/LightPropagationVolume.h"
 #include "gi/Rgba8Clipping.h"
+#include "gi/adapter/EngineFrame.h"
 #include "platforms/PlatformProfile.h"
 
 #include <doctest/doctest.h>
@@ -45,7 +46,7 @@ ClippingRun runClippingCheck(rhi::Device& device, const engine::Scene& scene,
     const engine::CameraMatrices camera = engine::cameraMatrices(*scene.camera, float(width) / float(height));
     // The first frame's records come back framesInFlight frames later.
     for (uint32_t f = 0; f < device.caps().framesInFlight + 2; ++f) {
-        lpv.update(config, renderer, camera, &profiler);
+        gi::updateFromConfig(lpv, config, renderer, camera, &profiler);
         rhi::CommandList& cmd = device.beginFrame();
         profiler.beginFrame(cmd);
         renderer.render(cmd, camera, config, &profiler, &lpv);

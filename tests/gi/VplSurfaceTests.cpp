@@ -12,6 +12,7 @@
 #include "engine/scene/MeshBuilder.h"
 #include "gi/GeometryVolume.h"
 #include "gi/LightPropagationVolume.h"
+#include "gi/adapter/EngineFrame.h"
 #include "platforms/PlatformProfile.h"
 
 #include <doctest/doctest.h>
@@ -43,7 +44,7 @@ void oneFrame(rhi::Device& device, const engine::Scene& scene, const std::vector
     engine::Camera camera = *scene.camera;
     camera.position += cameraOffset;
     const engine::CameraMatrices m = engine::cameraMatrices(camera, 320.0f / 240.0f);
-    lpv.update(config, renderer, m);
+    gi::updateFromConfig(lpv, config, renderer, m);
     rhi::CommandList& cmd = device.beginFrame();
     renderer.render(cmd, m, config, nullptr, &lpv);
     device.endFrame();

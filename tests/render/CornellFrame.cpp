@@ -7,6 +7,7 @@
 #include "engine/render/SpecularAlbedo.h"
 #include "engine/scene/BuiltinScenes.h"
 #include "gi/LightPropagationVolume.h"
+#include "gi/adapter/EngineFrame.h"
 #include "platforms/PlatformProfile.h"
 
 #include <glm/geometric.hpp>
@@ -108,7 +109,7 @@ CornellFrame renderSceneFrame(rhi::Device& device, engine::Scene scene,
         camera.position += cameraOffset;
         f.camera = engine::cameraMatrices(camera, float(width) / float(height));
         for (int i = 0; i < frames; ++i) {
-            lpv.update(config, renderer, f.camera);
+            gi::updateFromConfig(lpv, config, renderer, f.camera);
             rhi::CommandList& cmd = device.beginFrame();
             // The LPV is always the indirect provider here, so GI off means no indirect light at all.
             renderer.render(cmd, f.camera, config, nullptr, &lpv);
@@ -145,7 +146,7 @@ Image renderHdrAfterFrames(rhi::Device& device, const engine::Scene& scene, int 
     const engine::CameraMatrices camera = engine::cameraMatrices(*scene.camera, 320.0f / 240.0f);
     for (int i = 0; i < frames; ++i) {
         const engine::Config& config = configFor(i);
-        lpv.update(config, renderer, camera);
+        gi::updateFromConfig(lpv, config, renderer, camera);
         rhi::CommandList& cmd = device.beginFrame();
         renderer.render(cmd, camera, config, nullptr, &lpv);
         device.endFrame();

@@ -1,9 +1,7 @@
 // gi.budget_policy: whether GI only reports going over the platform profile's budget (fixed) or
 // the budget scheduler lowers its load to stay inside it (adapt, gi/GiScheduler.h). The setting is
-// declared next to the scheduler, in GiScheduler.cpp; LpvSettings carries its value.
+// read by the engine's adapter (gi/adapter/LpvConfig.h); LpvSettings carries its value.
 #pragma once
-
-#include "engine/config/Config.h"
 
 #include <string_view>
 
@@ -11,7 +9,6 @@ namespace lpv::gi {
 
 enum class GiBudgetPolicy { Fixed, Adapt };
 
-GiBudgetPolicy readGiBudgetPolicy(const engine::Config& config);
 std::string_view giBudgetPolicyName(GiBudgetPolicy policy);
 
 } // namespace lpv::gi

@@ -3,16 +3,18 @@
 //   rsm -> vpl (intensity-aware clustering) -> inject -> propagate -> (classify) -> lookup -> glossy
 //   (+ debug views)
 // each a profiler scope under "gi" with its work counts. The volume follows the camera, snapped to
-// whole cells and kept inside the scene. Settings are read every frame; a change of size or format
+// whole cells and kept inside the scene. Each frame update() takes the settings (a plain struct) and
+// the frame's inputs (GiFrameInputs: camera, scene, lights, sun); a change of size or format
 // remakes the resources on that frame (not a steady-state frame), after checking the platform
-// profile's budget; a change of the RSM size or the bounces keeps the cascades' results.
+// profile's budget; a change of the RSM size or the bounces keeps the cascades' results. The
+// engine's adapter (gi/adapter/) reads the settings from gi.* and the inputs from engine::Renderer.
 #pragma once
 
 #include "engine/render/IndirectLighting.h"
-#include "engine/render/Renderer.h"
 #include "engine/scene/OpenSpace.h"
 #include "gi/CascadeClasses.h"
 #include "gi/GeometryVolume.h"
+#include "gi/GiFrameInputs.h"
 #include "gi/GiScheduler.h"
 #include "gi/GiWork.h"
 #include "gi/GlossyReflections.h"
@@ -43,16 +45,17 @@ public:
     ~LightPropagationVolume() override;
 
     // The scene's geometry, for gi.cell_size = auto (engine::OpenSpace; made here, at load, not in a
-    // frame). Without it, auto sizes the finest cascade to the renderer's scene bounds.
+    // frame). Without it, auto sizes the finest cascade to the frame's scene bounds.
     void setScene(const engine::Scene& scene);
-    // Reads gi.* and prepares the frame: checks the budget (throws GiBudgetError or
-    // engine::ConfigError; the previous configuration stays), remakes resources on a change,
-    // places the volume.
+    // Prepares the frame, before the device's beginFrame(): checks the budget (throws
+    // GiBudgetError; the previous configuration stays), remakes resources on a change, places the
+    // volume. The frame is the device's next (rhi::Device::frameIndex() + 1); `inputs` must stay
+    // valid until its renderIndirect().
     // With `profiler` (before its beginFrame), gi.budget_policy runs: the budget scheduler picks
     // this frame's iterations, RSM size and which coarse cascades update, from the profiler's
     // newest GI cost, and notes what it changed and why in the profiler's report.
-    void update(const engine::Config& config, const engine::Renderer& renderer,
-                const engine::CameraMatrices& camera, engine::FrameProfiler* profiler = nullptr);
+    void update(const LpvSettings& settings, const GiFrameInputs& inputs,
+                engine::FrameProfiler* profiler = nullptr);
     // The scheduler's answer for the current frame (the configured load without a profiler).
     const GiSchedule& schedule() const { return schedule_; }
     // At the end of a run, once the device is idle: reports what the last frames' GPU work left to
@@ -157,7 +160,8 @@ private:
     float autoCellSize(uint32_t gridSize, glm::vec3 camera, const engine::Bounds& sceneBounds);
     GiBudgetScheduler schedulerBefore_;
     GiSchedule scheduleBefore_; // this frame leaves its further bounces to the next (update())
-    const engine::Renderer* renderer_ = nullptr;
+    GiFrameInputs frame_;       // the last update()'s
+    bool haveFrame_ = false;
     std::unique_ptr<ReflectiveShadowMap> rsm_;
     std::unique_ptr<LpvVolumes> volumes_;
     std::unique_ptr<GeometryVolume> geometry_;

@@ -1,13 +1,16 @@
-// The gi.* settings, read once per frame into a plain struct. Declared in LpvSettings.cpp; every
-// one can change while the game runs (volumes are remade on the next frame when a size changes).
+// The GI's settings, a plain struct the game fills and hands to LightPropagationVolume::update()
+// each frame; every one can change while the game runs (volumes are remade on the next frame when a
+// size changes). The engine's adapter (gi/adapter/LpvConfig.h) reads them from gi.* in TOML and
+// --set; the names in the comments are those keys.
 #pragma once
 
-#include "engine/config/Config.h"
 #include "gi/GiBudgetPolicy.h"
 #include "rhi/Format.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 
 namespace lpv::gi {
 
@@ -33,7 +36,9 @@ struct LpvSettings {
     float intensity = 1.0f;
     ShFormat shFormat = ShFormat::Rgba16f;
     GiDebugView debugView = GiDebugView::None;
-    uint32_t debugSlice = 16;
+    // The volume slice gi.debug_view=volume_slice shows; none chosen: slice 16, or the last one of
+    // a smaller volume (a chosen slice outside the volume is refused).
+    std::optional<uint32_t> debugSlice;
     float rgba8Range = 12.0f;
     bool damping = true;
     bool occlusion = true; // geometry volume attenuates propagation
@@ -53,6 +58,8 @@ struct LpvSettings {
     // Whether cascade c (0 = finest) adds the further bounces.
     bool bouncesIn(uint32_t c) const { return bounces > 1 && c < bounceCascades; }
     GiBudgetPolicy budgetPolicy = GiBudgetPolicy::Fixed;
+    // gi.analytic_lights: the volume carries the point and spot lights (PointLightInjection).
+    bool analyticLights = true;
     // Spot lights with a reflective shadow map of their own (SpotLightRsms).
     uint32_t lightRsms = 1;
     // Point lights with a cube RSM of their own (six faces, SpotLightRsms).
@@ -76,9 +83,20 @@ struct LpvSettings {
 // budgets count slots.
 inline constexpr uint32_t kVplsPerCluster = 2;
 
-// Reads and cross-checks the settings (vpl count against RSM size, bounces against occlusion, a
-// chosen debug slice against the grid size). Throws engine::ConfigError.
-LpvSettings readLpvSettings(const engine::Config& config);
+// gi.vpl_count's range.
+inline constexpr uint32_t kMinVplCount = 16, kMaxVplCount = 262144;
+
+// A setting at odds with another: the one refused, the one it contradicts (empty: none) and why,
+// in a sentence that names both.
+struct LpvSettingsError {
+    std::string_view setting; // "gi.vpl_count"
+    std::string_view related; // "gi.rsm_size"
+    std::string message;
+};
+
+// Cross-checks the settings (vpl count against RSM size, bounces against occlusion, a chosen debug
+// slice against the grid size); nothing when they hold together. No heap unless there is an error.
+std::optional<LpvSettingsError> validateLpvSettings(const LpvSettings& settings);
 
 std::string_view shFormatName(ShFormat f);
 rhi::Format shTextureFormat(ShFormat f);

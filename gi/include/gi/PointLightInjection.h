@@ -5,7 +5,6 @@
 // not propagated a second time. Setting: gi.analytic_lights.
 #pragma once
 
-#include "engine/config/Config.h"
 #include "engine/profiler/WorkCounts.h"
 #include "engine/scene/Scene.h"
 #include "gi/AnalyticLight.h"
@@ -17,9 +16,6 @@
 #include <span>
 
 namespace lpv::gi {
-
-// gi.analytic_lights.
-bool analyticLightsEnabled(const engine::Config& config);
 
 class PointLightInjection {
 public:
