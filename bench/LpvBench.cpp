@@ -348,17 +348,36 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
     std::printf("\n### %s, %s (%llu triangles, %ux%u, GI %s, timing: %s)\n\n", sceneName.c_str(),
                 b.name.c_str(), (unsigned long long)scene.triangleCount(), w, h, describe(config).c_str(),
                 source.c_str());
+    // Commands per pass: those of the last frame that ran it (rhi::CommandCounts).
     std::printf(
-        "| pass | median ms | p95 ms | predicted x360 ms | predicted ps3 ms |\n|---|---|---|---|---|\n");
+        "| pass | median ms | p95 ms | predicted x360 ms | predicted ps3 ms | dispatches | draws | barriers "
+        "| stages |\n|---|---|---|---|---|---|---|---|---|\n");
     double giMs = 0;
     for (size_t i = 0; i < profiler.scopes().size(); ++i) {
         const engine::ScopeInfo& s = profiler.scopes()[i];
         const engine::FrameProfiler::ScopePrediction predicted = profiler.predicted(i);
         const engine::SampleStats st = s.gpuMs.count() ? s.gpuMs.stats() : s.cpuMs.stats();
         if (s.depth == 0 && s.name == "gi") giMs = st.median;
-        std::printf("| %s%s | %.2f | %.2f | %.3f | %.3f |\n", std::string(2 * s.depth, ' ').c_str(),
-                    s.path.c_str(), st.median, st.p95, predicted.x360.ms, predicted.ps3.ms);
+        std::printf("| %s%s | %.2f | %.2f | %.3f | %.3f | %u | %u | %u | %u |\n",
+                    std::string(2 * s.depth, ' ').c_str(), s.path.c_str(), st.median, st.p95,
+                    predicted.x360.ms, predicted.ps3.ms, s.commands.dispatches, s.commands.allDraws(),
+                    s.commands.barriers, s.commands.stages);
     }
+    // The newest steady-state frame's commands, and its GI's dependent-pass chain.
+    rhi::CommandCounts total, gi;
+    profiler.forEachFrame([&](const engine::FrameProfiler::FrameRecord& r) {
+        if (!r.cpuEnd || r.warmUp) return;
+        total = r.commands;
+        gi = {};
+        for (uint32_t k = 0; k < r.sampleCount; ++k) {
+            const engine::ScopeInfo& s = profiler.scopes()[r.samples[k].scope];
+            if (s.depth == 0 && s.path.starts_with("gi")) gi += r.samples[k].commands;
+        }
+    });
+    std::printf("\ncommands per steady frame: %u dispatches, %u draws (%u indexed), %u barriers; GI: %u "
+                "dispatches, %u draws, %u barriers, dependent-pass chain %u stages\n",
+                total.dispatches, total.allDraws(), total.drawsIndexed, total.barriers, gi.dispatches,
+                gi.allDraws(), gi.barriers, gi.stages);
     const engine::SampleStats frame =
         profiler.frameGpuMs().count ? profiler.frameGpuMs() : profiler.frameCpuMs();
     std::printf("\nframe median %.2f ms; GI %.2f ms = %.1f%% of the frame (goal: at most 10%%)\n",

@@ -28,6 +28,7 @@ GLuint clearUint(float v) {
 } // namespace
 
 void GlCommandList::begin() {
+    resetCounts();
     inPass_ = false;
     markerDepth_ = 0;
     graphics_ = {};
@@ -164,6 +165,7 @@ void GlCommandList::endRenderPass() {
     gl.glPopDebugGroup();
     // Storage writes of the pass's shaders become visible to everything recorded later.
     gl.glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    ++counts_.barriers;
     inPass_ = false;
 }
 
@@ -345,6 +347,8 @@ void GlCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t 
     if (p.baseInstanceLocation >= 0) gl.glUniform1i(p.baseInstanceLocation, GLint(firstInstance));
     gl.glDrawArraysInstancedBaseInstance(primitiveMode(p.desc.topology), GLint(firstVertex),
                                          GLsizei(vertexCount), GLsizei(instanceCount), firstInstance);
+    ++counts_.draws;
+    countStage(counts_.barriers);
 }
 
 void GlCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex,
@@ -360,6 +364,8 @@ void GlCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uin
                                                      u16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT,
                                                      reinterpret_cast<const void*>(uintptr_t(byteOffset)),
                                                      GLsizei(instanceCount), vertexOffset, firstInstance);
+    ++counts_.drawsIndexed;
+    countStage(counts_.barriers);
 }
 
 void GlCommandList::dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) {
@@ -368,8 +374,11 @@ void GlCommandList::dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groups
     useProgram(device_.computePipelines.get(compute_).program);
     const Functions& gl = device_.gl();
     gl.glDispatchCompute(groupsX, groupsY, groupsZ);
+    ++counts_.dispatches;
+    countStage(counts_.barriers);
     // Storage writes of the dispatch become visible to every later command.
     gl.glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    ++counts_.barriers;
 }
 
 void GlCommandList::clearTexture(TextureHandle texture, const std::array<float, 4>& value) {
@@ -392,6 +401,7 @@ void GlCommandList::clearTexture(TextureHandle texture, const std::array<float, 
         }
     }
     gl.glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    ++counts_.barriers;
 }
 
 void GlCommandList::updateBuffer(BufferHandle buffer, uint64_t offset, const void* data, uint32_t size) {
@@ -405,6 +415,7 @@ void GlCommandList::updateBuffer(BufferHandle buffer, uint64_t offset, const voi
     // In stream: GL orders the update after the draws and dispatches issued before it.
     device_.gl().glNamedBufferSubData(b.id, GLintptr(offset), GLsizeiptr(size), data);
     device_.gl().glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    ++counts_.barriers;
 }
 
 void GlCommandList::copyTexture(TextureHandle src, TextureHandle dst) {
@@ -420,6 +431,7 @@ void GlCommandList::copyTexture(TextureHandle src, TextureHandle dst) {
     gl.glCopyImageSubData(s.id, s.target, 0, 0, 0, 0, d.id, d.target, 0, 0, 0, 0, GLsizei(s.desc.width),
                           GLsizei(s.desc.height), GLsizei(s.desc.depthOrLayers));
     gl.glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    ++counts_.barriers;
 }
 
 void GlCommandList::writeTimestamp(uint32_t slot) {

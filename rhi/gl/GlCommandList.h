@@ -21,6 +21,8 @@ public:
     void begin();
     // Closes what the frame left open (markers); throws inside a render pass.
     void finish();
+    // The device's own glMemoryBarrier at endFrame(), counted with the frame's.
+    void countBarrier() { ++counts_.barriers; }
 
     void beginRenderPass(const RenderPassDesc& desc) override;
     void endRenderPass() override;

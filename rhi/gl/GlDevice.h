@@ -51,6 +51,7 @@ public:
     CommandList& beginFrame() override;
     void endFrame(TextureHandle present) override;
     uint64_t frameIndex() const override { return frame_; }
+    CommandCounts frameCounters() const override { return lastFrame_; }
     bool readTimestamps(uint64_t frame, std::span<uint64_t> nanoseconds) override;
     void waitIdle() override;
     const AllocationRecord& allocations() const override { return allocations_; }
@@ -87,6 +88,7 @@ private:
     Caps caps_;
     AllocationRecord allocations_;
     GlCommandList list_;
+    CommandCounts lastFrame_;
     GlFramebufferCache framebuffers_;
     GlUniformRing uniformRing_;
     GlTimestamps timestamps_;

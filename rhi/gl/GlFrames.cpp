@@ -42,6 +42,8 @@ void GlDevice::endFrame(TextureHandle presentTexture) {
     // Shader writes to MemoryAccess::HostRead buffers reach their persistent mappings by the time
     // the fence below signals, for beginFrame()'s wait to make them readable.
     gl_.glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
+    list_.countBarrier();
+    lastFrame_ = list_.counts();
     fences_[frame_ % fences_.size()] = gl_.glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     gl_.glFlush(); // "submit": the driver starts on the frame now
     inFrame_ = false;

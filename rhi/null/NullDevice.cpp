@@ -40,7 +40,10 @@ class NullCommandList final : public CommandList {
 public:
     explicit NullCommandList(NullDevice& device) : device_(device) {}
     void beginRenderPass(const RenderPassDesc& desc) override;
-    void endRenderPass() override { inPass_ = false; }
+    void endRenderPass() override {
+        inPass_ = false;
+        ++counts_.barriers;
+    }
     void setViewport(const Viewport&) override {}
     void setScissor(int32_t, int32_t, uint32_t, uint32_t) override {}
     void bindPipeline(GraphicsPipelineHandle p) override;
@@ -52,17 +55,32 @@ public:
     void bindTexture(uint32_t, TextureHandle t, SamplerHandle s) override;
     void bindStorageImage(uint32_t binding, TextureHandle t, uint32_t) override;
     void pushUniforms(uint32_t, const void*, uint32_t) override {}
-    void draw(uint32_t, uint32_t, uint32_t, uint32_t) override { requirePass(true, "draw"); }
+    void draw(uint32_t, uint32_t, uint32_t, uint32_t) override {
+        requirePass(true, "draw");
+        ++counts_.draws;
+        countStage(counts_.barriers);
+    }
     void drawIndexed(uint32_t, uint32_t, uint32_t, int32_t, uint32_t) override {
         requirePass(true, "drawIndexed");
+        ++counts_.drawsIndexed;
+        countStage(counts_.barriers);
     }
-    void dispatch(uint32_t, uint32_t, uint32_t) override { requirePass(false, "dispatch"); }
+    // Barriers: one after each dispatch, pass, clear and copy, two around a buffer update (the
+    // Vulkan backend's conservative rule, DeviceConfig::conservativeBarriers).
+    void dispatch(uint32_t, uint32_t, uint32_t) override {
+        requirePass(false, "dispatch");
+        ++counts_.dispatches;
+        countStage(counts_.barriers);
+        ++counts_.barriers;
+    }
     void clearTexture(TextureHandle t, const std::array<float, 4>&) override;
     void updateBuffer(BufferHandle b, uint64_t offset, const void* data, uint32_t size) override;
     void copyTexture(TextureHandle src, TextureHandle dst) override;
     void writeTimestamp(uint32_t slot) override;
     void beginMarker(const char*) override {}
     void endMarker() override {}
+
+    using CommandList::resetCounts;
 
 private:
     // Checks pass state and advances the simulated GPU clock: every command "costs" 1 us.
@@ -165,6 +183,7 @@ public:
         if (inFrame_) throw Error("beginFrame() called twice without endFrame()");
         inFrame_ = true;
         ++frame_;
+        list_.resetCounts();
         // Beginning frame F waits for frame F - framesInFlight, as a real device's fence does.
         if (frame_ > caps_.framesInFlight) completed_ = std::max(completed_, frame_ - caps_.framesInFlight);
         FrameTimestamps& t = slotFor(frame_);
@@ -176,8 +195,10 @@ public:
         if (!inFrame_) throw Error("endFrame() without beginFrame()");
         if (present) textures.get(present);
         inFrame_ = false;
+        lastFrame_ = list_.counts();
     }
     uint64_t frameIndex() const override { return frame_; }
+    CommandCounts frameCounters() const override { return lastFrame_; }
     bool readTimestamps(uint64_t frame, std::span<uint64_t> out) override {
         const FrameTimestamps& t = slotFor(frame);
         if (t.frame != frame || frame > completed_) return false;
@@ -224,6 +245,7 @@ private:
     uint64_t completed_ = 0;
     uint64_t clockNs_ = 1000000;
     NullCommandList list_;
+    CommandCounts lastFrame_;
     uint64_t frame_ = 0;
     bool inFrame_ = false;
 };
@@ -275,15 +297,18 @@ void NullCommandList::bindStorageImage(uint32_t binding, TextureHandle t, uint32
 void NullCommandList::clearTexture(TextureHandle t, const std::array<float, 4>&) {
     requirePass(false, "clearTexture");
     device_.textures.get(t);
+    ++counts_.barriers;
 }
 void NullCommandList::updateBuffer(BufferHandle b, uint64_t offset, const void* data, uint32_t size) {
     requirePass(false, "updateBuffer");
     device_.uploadBuffer(b, offset, data, size);
+    counts_.barriers += 2;
 }
 void NullCommandList::copyTexture(TextureHandle src, TextureHandle dst) {
     requirePass(false, "copyTexture");
     device_.textures.get(src);
     device_.textures.get(dst);
+    ++counts_.barriers;
 }
 
 } // namespace

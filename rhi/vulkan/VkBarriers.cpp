@@ -4,6 +4,8 @@
 namespace lpv::rhi::vk {
 namespace {
 
+thread_local uint64_t barrierCalls = 0;
+
 constexpr VkPipelineStageFlags2 kAllStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
 constexpr VkAccessFlags2 kAllWrites = VK_ACCESS_2_MEMORY_WRITE_BIT;
 constexpr VkAccessFlags2 kAllAccess = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
@@ -23,10 +25,19 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 dstStages, VkAcces
     VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     dep.memoryBarrierCount = 1;
     dep.pMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(cmd, &dep);
+    cmdPipelineBarrier2(cmd, dep);
 }
 
 } // namespace
+
+void cmdPipelineBarrier2(VkCommandBuffer cmd, const VkDependencyInfo& dep) {
+    vkCmdPipelineBarrier2(cmd, &dep);
+    ++barrierCalls;
+}
+
+uint64_t pipelineBarrierCalls() {
+    return barrierCalls;
+}
 
 void fullBarrier(VkCommandBuffer cmd) {
     BarrierBatch(cmd).memory();
@@ -74,7 +85,7 @@ void BarrierBatch::flush() {
     dep.pMemoryBarriers = &barrier;
     dep.imageMemoryBarrierCount = imageCount_;
     dep.pImageMemoryBarriers = images_.data();
-    vkCmdPipelineBarrier2(cmd_, &dep);
+    cmdPipelineBarrier2(cmd_, dep);
     imageCount_ = 0;
     memory_ = false;
 }

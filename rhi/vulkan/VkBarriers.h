@@ -41,6 +41,12 @@ private:
     bool memory_ = false;
 };
 
+// Every vkCmdPipelineBarrier2 of the backend goes through here, which counts it.
+void cmdPipelineBarrier2(VkCommandBuffer cmd, const VkDependencyInfo& dep);
+// vkCmdPipelineBarrier2 calls recorded so far on this thread (a device records on one thread):
+// a command list counts its frame's by difference.
+uint64_t pipelineBarrierCalls();
+
 // A full memory barrier: all earlier writes visible to every later stage and access.
 void fullBarrier(VkCommandBuffer cmd);
 

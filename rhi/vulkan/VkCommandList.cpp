@@ -32,6 +32,17 @@ void VulkanCommandList::begin(VkCommandBuffer cmd) {
     markerDepth_ = 0;
 }
 
+void VulkanCommandList::resetCounts() {
+    CommandList::resetCounts();
+    barrierBase_ = pipelineBarrierCalls();
+}
+
+CommandCounts VulkanCommandList::counts() const {
+    CommandCounts c = counts_;
+    c.barriers = uint32_t(pipelineBarrierCalls() - barrierBase_);
+    return c;
+}
+
 void VulkanCommandList::finish() {
     if (inPass_) throw Error("endFrame() inside a render pass: call endRenderPass() first");
     while (markerDepth_ > 0) {
@@ -346,10 +357,15 @@ void VulkanCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint3
     // instance: instances are the outer loop of a draw.
     if (p.pointChunk == 0 || instanceCount != 1) {
         vkCmdDraw(cmd_, vertexCount, instanceCount, firstVertex, firstInstance);
+        ++counts_.draws;
+        countStage(pipelineBarrierCalls());
         return;
     }
-    for (uint32_t done = 0; done < vertexCount; done += p.pointChunk)
+    for (uint32_t done = 0; done < vertexCount; done += p.pointChunk) {
         vkCmdDraw(cmd_, std::min(p.pointChunk, vertexCount - done), 1, firstVertex + done, firstInstance);
+        ++counts_.draws;
+        countStage(pipelineBarrierCalls());
+    }
 }
 
 void VulkanCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex,
@@ -358,6 +374,8 @@ void VulkanCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount,
     if (!graphics_) throw Error("drawIndexed without a graphics pipeline");
     pushBindings(device_.graphicsPipelines.get(graphics_));
     vkCmdDrawIndexed(cmd_, indexCount, instanceCount, firstIndex, vertexOffset, firstInstance);
+    ++counts_.drawsIndexed;
+    countStage(pipelineBarrierCalls());
 }
 
 void VulkanCommandList::dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) {
@@ -366,6 +384,8 @@ void VulkanCommandList::dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t gr
     device_.flushNewTextures(cmd_);
     pushBindings(device_.computePipelines.get(compute_));
     vkCmdDispatch(cmd_, groupsX, groupsY, groupsZ);
+    ++counts_.dispatches;
+    countStage(pipelineBarrierCalls());
     // Storage writes of the dispatch become visible to every later command.
     fullBarrier(cmd_);
 }

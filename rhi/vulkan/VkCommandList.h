@@ -23,6 +23,9 @@ public:
     void begin(VkCommandBuffer cmd);
     // Checks the frame can be submitted and closes markers left open.
     void finish();
+    // Starts this frame's counts (before the device's own barriers at the frame's start).
+    void resetCounts();
+    CommandCounts counts() const override;
 
     void beginRenderPass(const RenderPassDesc& desc) override;
     void endRenderPass() override;
@@ -81,6 +84,7 @@ private:
     VkExtent2D passExtent_{0, 0};
     bool inPass_ = false;
     uint32_t markerDepth_ = 0;
+    uint64_t barrierBase_ = 0; // pipelineBarrierCalls() when the frame began
 };
 
 } // namespace lpv::rhi::vk

@@ -223,6 +223,7 @@ CommandList& VulkanDevice::beginFrame() {
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     vkCheck(vkBeginCommandBuffer(f.cmd, &begin), "vkBeginCommandBuffer");
     inFrame_ = true;
+    list_->resetCounts();
     // Orders this frame after everything submitted before it (immediate transfers included).
     fullBarrier(f.cmd);
     timestamps_.beginFrame(f.cmd, frame_);
@@ -252,7 +253,7 @@ void VulkanDevice::recordPresent(VkCommandBuffer cmd, VulkanTexture& source, uin
     VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     dep.imageMemoryBarrierCount = 1;
     dep.pImageMemoryBarriers = &toBlit;
-    vkCmdPipelineBarrier2(cmd, &dep);
+    cmdPipelineBarrier2(cmd, dep);
 
     // Straight blit: memory row 0 of the texture becomes the top row of the window.
     VkImageBlit region{};
@@ -272,7 +273,7 @@ void VulkanDevice::recordPresent(VkCommandBuffer cmd, VulkanTexture& source, uin
     toPresent.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
     toPresent.newLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
     dep.pImageMemoryBarriers = &toPresent;
-    vkCmdPipelineBarrier2(cmd, &dep);
+    cmdPipelineBarrier2(cmd, dep);
 
     transitionHome(cmd, source);
 }
@@ -295,6 +296,7 @@ void VulkanDevice::endFrame(TextureHandle present) {
         }
     }
     hostReadBarrier(f.cmd); // MemoryAccess::HostRead buffers, read after the fence
+    lastFrame_ = list_->counts();
     vkCheck(vkEndCommandBuffer(f.cmd), "vkEndCommandBuffer");
 
     VkCommandBufferSubmitInfo cmdInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};

@@ -50,6 +50,7 @@ public:
     CommandList& beginFrame() override;
     void endFrame(TextureHandle present) override;
     uint64_t frameIndex() const override { return frame_; }
+    CommandCounts frameCounters() const override { return lastFrame_; }
     bool readTimestamps(uint64_t frame, std::span<uint64_t> nanoseconds) override;
     void waitIdle() override;
 
@@ -132,6 +133,7 @@ private:
     std::vector<TextureHandle> newTextures_;
 
     std::unique_ptr<VulkanCommandList> list_;
+    CommandCounts lastFrame_;
     uint64_t frame_ = 0;
     uint64_t submitted_ = 0; // last frame handed to the queue
     uint64_t completed_ = 0; // last frame known finished on the GPU

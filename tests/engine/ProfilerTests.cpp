@@ -179,7 +179,7 @@ TEST_CASE("profiler: on a console profile a GI pass predicted over the GI budget
     CHECK(line.find("(predicted x360: 200.0%)") != std::string::npos);
     CHECK(line.find("**OVER**") != std::string::npos);
     CHECK(profileSummaryText(profiler).find("OVER") != std::string::npos);
-    CHECK(profileSummaryCsv(profiler).find(",200.00\n") != std::string::npos);
+    CHECK(profileSummaryCsv(profiler).find(",200.00,") != std::string::npos); // commands follow
     CHECK(profileTraceJson(profiler).find("\"gi_predicted_ms\":1.0") != std::string::npos);
     // Off the consoles nothing is predicted against the budget.
     auto pcDevice = nullDevice();
@@ -333,7 +333,7 @@ TEST_CASE("profiler: the trace is valid JSON with CPU and GPU tracks, counters a
     CHECK(tids == std::set<int>{1, 2});
     CHECK(names.count("render/gbuffer") == 1);
     CHECK(names.count("gi/propagate") == 1);
-    CHECK(counters == std::set<std::string>{"memory", "budget"});
+    CHECK(counters == std::set<std::string>{"commands", "memory", "budget"});
     // The other outputs carry the same passes and the timing source.
     const std::string md = profileSummaryMarkdown(profiler);
     CHECK(md.find("gi/propagate") != std::string::npos);
@@ -640,4 +640,34 @@ TEST_CASE("profiler: a run of warm-up frames only says it has no steady state") 
     CHECK(text.find("Steady state: not reached") != std::string::npos);
     CHECK(text.find("gpu median 0.005 ms") != std::string::npos);
     CHECK(profileShortSummary(profiler, "").find("no steady state yet") != std::string::npos);
+}
+
+TEST_CASE("profiler: commands per pass and per frame, and the GI's dependent-pass chain, in the reports") {
+    auto device = nullDevice();
+    FrameProfiler profiler(*device, tinyProfile(100, 100));
+    for (int i = 0; i < 3; ++i)
+        frame(*device, profiler, 2, 3);
+    // The null device counts a barrier after each dispatch, so each dispatch is a stage of its own.
+    REQUIRE(profiler.scopes().size() == 4);
+    CHECK(profiler.scopes()[1].commands == rhi::CommandCounts{2, 0, 0, 2, 2}); // render/gbuffer
+    CHECK(profiler.scopes()[0].commands == profiler.scopes()[1].commands);     // render: nested included
+    CHECK(profiler.scopes()[2].commands == rhi::CommandCounts{3, 0, 0, 3, 3}); // gi
+    CHECK(device->frameCounters() == rhi::CommandCounts{5, 0, 0, 5, 5});
+
+    const std::string csv = profileSummaryCsv(profiler);
+    CHECK(csv.find(",3,0,0,3,3\n") != std::string::npos);
+    CHECK(csv.find("commands,frame,dispatches,draws,draws_indexed,barriers,stages\nframe,3,5,0,0,5,5\ngi,3,3,"
+                   "0,0,3,3\n") != std::string::npos);
+    const std::string md = profileSummaryMarkdown(profiler);
+    CHECK(md.find("GI dependent-pass chain: 3 stages") != std::string::npos);
+    CHECK(md.find("| 2 | 0 | 2 | 2 |") != std::string::npos); // render/gbuffer's columns
+    const auto trace = nlohmann::json::parse(profileTraceJson(profiler));
+    int withArgs = 0;
+    for (const auto& e : trace["traceEvents"])
+        if (e.value("name", "") == "gi/propagate" && e.value("tid", 0) == 1) {
+            CHECK(e["args"]["dispatches"] == 3);
+            CHECK(e["args"]["barriers"] == 3);
+            ++withArgs;
+        }
+    CHECK(withArgs == 3);
 }

@@ -91,7 +91,9 @@ void FrameProfiler::beginFrame(rhi::CommandList& cmd) {
         r.warmUp |= kWarmUpMadeResources;
         resources_ = resources;
     }
+    r.commands = {};
     current_ = &r;
+    frameCmd_ = &cmd;
     // Notes made since the last frame ended belong to this one.
     for (uint32_t i = 0; i < pendingNotes_; ++i) {
         Note& n = notes_[(noted_ - 1 - i) % notes_.size()];
@@ -118,7 +120,7 @@ FrameProfiler::Scope FrameProfiler::scope(std::string_view name, rhi::CommandLis
         if (s.gpuTimed) gpu->writeTimestamp(slot);
         s.cpuBegin = platforms::nowNanoseconds();
     }
-    stack_.push_back({id, sampleIndex, gpu});
+    stack_.push_back({id, sampleIndex, gpu, frameCmd_->counts()});
     scopes_[id].lastFrame = current_->frame;
     return Scope(this);
 }
@@ -126,8 +128,16 @@ FrameProfiler::Scope FrameProfiler::scope(std::string_view name, rhi::CommandLis
 void FrameProfiler::closeScope() {
     const Open open = stack_.back();
     stack_.pop_back();
+    const rhi::CommandCounts commands = frameCmd_->counts() - open.commands;
+    ScopeInfo& info = scopes_[open.scope];
+    if (info.commandsFrame != current_->frame) {
+        info.commands = {};
+        info.commandsFrame = current_->frame;
+    }
+    info.commands += commands;
     if (open.sample == UINT32_MAX) return; // over maxScopesPerFrame: not recorded
     Sample& s = current_->samples[open.sample];
+    s.commands = commands;
     s.cpuEnd = platforms::nowNanoseconds();
     if (s.gpuTimed) open.gpu->writeTimestamp(3 + 2 * open.sample);
     scopes_[open.scope].cpuMs.add(ms(s.cpuBegin, s.cpuEnd));
@@ -250,6 +260,7 @@ void FrameProfiler::endFrame(rhi::CommandList& cmd) {
                                "' still open at endFrame()");
     if (gpuSlots_) cmd.writeTimestamp(1);
     current_->cpuEnd = platforms::nowNanoseconds();
+    current_->commands = cmd.counts();
     // Sampled at the end: what the frame made lazily (the renderer's targets on its first
     // render(), the volumes of a rebuild) is memory it ran with.
     current_->memoryTotal = device_.allocations().totalBytes();
@@ -266,6 +277,7 @@ void FrameProfiler::endFrame(rhi::CommandList& cmd) {
     }
     if (!gpuSlots_) finishCheck(*current_);
     current_ = nullptr;
+    frameCmd_ = nullptr;
 }
 
 void FrameProfiler::collectPending() {

@@ -272,6 +272,49 @@ std::vector<Row> rows(const FrameProfiler& p) {
     return ordered;
 }
 
+// The commands of the newest steady-state frame (any frame before steady state is reached): the
+// frame's totals and its top-level GI scopes' (their stages: the GI's dependent-pass chain).
+struct FrameCommands {
+    bool any = false;
+    uint64_t frame = 0;
+    rhi::CommandCounts total, gi;
+};
+
+FrameCommands frameCommands(const FrameProfiler& p) {
+    const SteadyState st = steadyState(p);
+    FrameCommands out;
+    p.forEachFrame([&](const FrameProfiler::FrameRecord& r) {
+        if (!st.covers(r)) return;
+        out.any = true;
+        out.frame = r.frame;
+        out.total = r.commands;
+        out.gi = {};
+        for (uint32_t k = 0; k < r.sampleCount; ++k) {
+            const ScopeInfo& scope = p.scopes()[r.samples[k].scope];
+            if (scope.depth == 0 && scope.path.starts_with("gi")) out.gi += r.samples[k].commands;
+        }
+    });
+    return out;
+}
+
+std::string commandsLine(const FrameProfiler& p) {
+    const FrameCommands c = frameCommands(p);
+    if (!c.any) return "Commands per frame: no frame recorded";
+    return "Commands per frame (frame " + std::to_string(c.frame) +
+           "): " + std::to_string(c.total.dispatches) + " dispatches, " + std::to_string(c.total.allDraws()) +
+           " draws (" + std::to_string(c.total.drawsIndexed) + " indexed), " +
+           std::to_string(c.total.barriers) + " barriers, " + std::to_string(c.total.stages) +
+           " serial stages. GI dependent-pass chain: " + std::to_string(c.gi.stages) +
+           " stages (runs of GI dispatches and draws between barriers) of " +
+           std::to_string(c.gi.dispatches) + " dispatches, " + std::to_string(c.gi.allDraws()) +
+           " draws and " + std::to_string(c.gi.barriers) + " barriers";
+}
+
+std::string commandArgs(const rhi::CommandCounts& c) {
+    return "{\"dispatches\":" + std::to_string(c.dispatches) + ",\"draws\":" + std::to_string(c.allDraws()) +
+           ",\"barriers\":" + std::to_string(c.barriers) + ",\"stages\":" + std::to_string(c.stages) + "}";
+}
+
 uint64_t giMemory(const FrameProfiler& p) {
     return p.allocations().bytesIn("gi");
 }
@@ -428,11 +471,13 @@ std::string profileSummaryMarkdown(const FrameProfiler& p) {
       << ".\n"
       << steadyStateLine(p, steadyState(p)) << "\nGPU timing source: `" << gpuSourceName(p) << "`; "
       << framesCheckedLine(p, steadyState(p)) << ".\n"
-      << giTotalLine(p) << "\n\n";
+      << giTotalLine(p) << "\n"
+      << commandsLine(p) << ".\n\n";
     o << "| pass | timing | cpu median ms | gpu last | gpu mean | gpu median | gpu p95 | gpu max | predicted "
          "x360 ms | "
-         "predicted ps3 ms | bottleneck (x360) | share of frame | share of GI budget | budget |\n";
-    o << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+         "predicted ps3 ms | bottleneck (x360) | share of frame | share of GI budget | budget | dispatches | "
+         "draws | barriers | stages |\n";
+    o << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Row& r : rows(p)) {
         o << "| " << std::string(r.scope->depth * 2, ' ') << r.scope->path << " | " << timingOf(p, r) << " | "
           << fixed(r.cpu.median) << " | ";
@@ -446,7 +491,9 @@ std::string profileSummaryMarkdown(const FrameProfiler& p) {
         if (r.gi && p.profile().giTimePredicted)
             o << " (predicted " << markdownCell(predictedProfile(p)) << ": " << fixed(r.predictedShareOfGi, 1)
               << "%)";
-        o << " | " << (overBudget(r) ? "**OVER**" : budgetWord(r)) << " |\n";
+        const rhi::CommandCounts& c = r.scope->commands;
+        o << " | " << (overBudget(r) ? "**OVER**" : budgetWord(r)) << " | " << c.dispatches << " | "
+          << c.allDraws() << " | " << c.barriers << " | " << c.stages << " |\n";
     }
     // The GI budget holds every GI pass together, gi.rebuild included: the row the check reads.
     const GiTotal t = giTotal(p);
@@ -461,7 +508,10 @@ std::string profileSummaryMarkdown(const FrameProfiler& p) {
           << "% | " << fixed(measuredShare, 1) << "%";
         if (p.profile().giTimePredicted)
             o << " (predicted " << markdownCell(predictedProfile(p)) << ": " << fixed(t.shareOfGi, 1) << "%)";
-        o << " | " << (measuredShare > 100.0 || t.shareOfGi > 100.0 ? "**OVER**" : "ok") << " |\n";
+        const FrameCommands c = frameCommands(p);
+        o << " | " << (measuredShare > 100.0 || t.shareOfGi > 100.0 ? "**OVER**" : "ok") << " | "
+          << c.gi.dispatches << " | " << c.gi.allDraws() << " | " << c.gi.barriers << " | " << c.gi.stages
+          << " |\n";
     }
     o << "\n## Memory\n\n| category | current | peak | resources |\n|---|---|---|---|\n";
     for (const auto& [category, usage] : p.allocations().categories())
@@ -485,14 +535,22 @@ std::string profileSummaryMarkdown(const FrameProfiler& p) {
 std::string profileSummaryCsv(const FrameProfiler& p) {
     std::ostringstream o;
     o << "pass,depth,timing_source,cpu_median_ms,gpu_last_ms,gpu_mean_ms,gpu_median_ms,gpu_p95_ms,gpu_max_ms,"
-         "predicted_x360_ms,predicted_ps3_ms,share_of_frame_pct,share_of_gi_pct,predicted_share_of_gi_pct\n";
+         "predicted_x360_ms,predicted_ps3_ms,share_of_frame_pct,share_of_gi_pct,predicted_share_of_gi_pct,"
+         "dispatches,draws,draws_indexed,barriers,stages\n";
     for (const Row& r : rows(p)) {
         o << r.scope->path << "," << r.scope->depth << "," << timingOf(p, r) << "," << fixed(r.cpu.median, 4)
           << "," << fixed(r.gpu.last, 4) << "," << fixed(r.gpu.mean, 4) << "," << fixed(r.gpu.median, 4)
           << "," << fixed(r.gpu.p95, 4) << "," << fixed(r.gpu.max, 4) << "," << fixed(r.x360.ms, 4) << ","
           << fixed(r.ps3.ms, 4) << "," << fixed(r.shareOfFrame, 2) << "," << fixed(r.shareOfGi, 2) << ","
-          << fixed(r.predictedShareOfGi, 2) << "\n";
+          << fixed(r.predictedShareOfGi, 2) << "," << r.scope->commands.dispatches << ","
+          << r.scope->commands.allDraws() << "," << r.scope->commands.drawsIndexed << ","
+          << r.scope->commands.barriers << "," << r.scope->commands.stages << "\n";
     }
+    const FrameCommands c = frameCommands(p);
+    o << "\ncommands,frame,dispatches,draws,draws_indexed,barriers,stages\n";
+    for (const auto& [what, n] : {std::pair{"frame", c.total}, std::pair{"gi", c.gi}})
+        o << what << "," << c.frame << "," << n.dispatches << "," << n.allDraws() << "," << n.drawsIndexed
+          << "," << n.barriers << "," << n.stages << "\n";
     const GiTotal t = giTotal(p);
     o << "\ngi_total,checked_frames,measured_median_ms,predicted_median_ms,predicted_x360_median_ms,"
          "predicted_ps3_median_ms,budgeted_median_ms,gi_budget_ms,share_of_gi_pct,time_held\n";
@@ -551,12 +609,15 @@ std::string profileTraceJson(const FrameProfiler& p) {
             const auto& s = r.samples[k];
             const std::string name = jsonEscape(p.scopes()[s.scope].path);
             o << ",\n{\"name\":\"" << name << "\",\"ph\":\"X\",\"pid\":1,\"tid\":1,\"ts\":" << us(s.cpuBegin)
-              << ",\"dur\":" << fixed(double(s.cpuEnd - s.cpuBegin) / 1000.0) << "}";
+              << ",\"dur\":" << fixed(double(s.cpuEnd - s.cpuBegin) / 1000.0)
+              << ",\"args\":" << commandArgs(s.commands) << "}";
             if (r.gpuResolved && s.gpuTimed && s.gpuEnd >= s.gpuBegin)
                 o << ",\n{\"name\":\"" << name
                   << "\",\"ph\":\"X\",\"pid\":1,\"tid\":2,\"ts\":" << gpuTs(s.gpuBegin)
                   << ",\"dur\":" << fixed(double(s.gpuEnd - s.gpuBegin) / 1000.0) << "}";
         }
+        o << ",\n{\"name\":\"commands\",\"ph\":\"C\",\"pid\":1,\"ts\":" << us(r.cpuBegin)
+          << ",\"args\":" << commandArgs(r.commands) << "}";
         o << ",\n{\"name\":\"memory\",\"ph\":\"C\",\"pid\":1,\"ts\":" << us(r.cpuBegin)
           << ",\"args\":{\"total_bytes\":" << r.memoryTotal << ",\"gi_bytes\":" << r.memoryGi << "}}";
         if (r.checked) {

@@ -54,6 +54,42 @@ struct Viewport {
 
 inline constexpr uint64_t kWholeSize = std::numeric_limits<uint64_t>::max();
 
+// Commands recorded, counted as the backend issues them to its API: on Vulkan vkCmdDispatch,
+// vkCmdDraw, vkCmdDrawIndexed and vkCmdPipelineBarrier2 calls (a split point list is several
+// draws); on GL glDispatchCompute, the glDraw* calls and glMemoryBarrier calls; on the null device
+// what the Vulkan backend's rule would record. Snapshots subtract: counts at a pass's end minus
+// counts at its begin are the pass's.
+struct CommandCounts {
+    uint32_t dispatches = 0;
+    uint32_t draws = 0; // not indexed
+    uint32_t drawsIndexed = 0;
+    uint32_t barriers = 0;
+    // Serial stages: runs of dispatches and draws with no barrier between them, counted at each
+    // run's first command. Work in one stage may overlap on a GPU; a barrier ends the stage (even
+    // one that orders unrelated resources). Over a scope: the length of its chain of dependent
+    // passes, as recorded.
+    uint32_t stages = 0;
+
+    uint32_t allDraws() const { return draws + drawsIndexed; }
+    CommandCounts& operator+=(const CommandCounts& o) {
+        dispatches += o.dispatches;
+        draws += o.draws;
+        drawsIndexed += o.drawsIndexed;
+        barriers += o.barriers;
+        stages += o.stages;
+        return *this;
+    }
+    friend CommandCounts operator-(CommandCounts a, const CommandCounts& b) {
+        a.dispatches -= b.dispatches;
+        a.draws -= b.draws;
+        a.drawsIndexed -= b.drawsIndexed;
+        a.barriers -= b.barriers;
+        a.stages -= b.stages;
+        return a;
+    }
+    friend bool operator==(const CommandCounts&, const CommandCounts&) = default;
+};
+
 class CommandList {
 public:
     virtual ~CommandList() = default;
@@ -102,6 +138,29 @@ public:
     // Debug markers (VK_EXT_debug_utils / KHR_debug) so a capture reads like the code.
     virtual void beginMarker(const char* name) = 0;
     virtual void endMarker() = 0;
+
+    // What this frame recorded so far, from Device::beginFrame() on (the device's own barriers at
+    // the frame's start included). Device::frameCounters() has the whole of the last ended frame.
+    virtual CommandCounts counts() const { return counts_; }
+
+protected:
+    // Backends count into counts_; a dispatch or draw calls countStage with the barriers recorded
+    // so far (on any scale that grows by one per barrier).
+    void countStage(uint64_t barriersSoFar) {
+        if (barriersSoFar != stageBarriers_) {
+            ++counts_.stages;
+            stageBarriers_ = barriersSoFar;
+        }
+    }
+    void resetCounts() {
+        counts_ = {};
+        stageBarriers_ = std::numeric_limits<uint64_t>::max();
+    }
+
+    CommandCounts counts_;
+
+private:
+    uint64_t stageBarriers_ = std::numeric_limits<uint64_t>::max();
 };
 
 } // namespace lpv::rhi

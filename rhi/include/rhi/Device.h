@@ -110,6 +110,8 @@ public:
     virtual void endFrame(TextureHandle present = {}) = 0;
     // Index of the frame last begun (0 before the first beginFrame()).
     virtual uint64_t frameIndex() const = 0;
+    // Commands the last ended frame recorded (CommandList::counts()), endFrame()'s own included.
+    virtual CommandCounts frameCounters() const = 0;
     // Timestamps written in `frame`, in nanoseconds on one clock. Returns false without waiting
     // when that frame's results are not ready yet or no longer kept (kept for framesInFlight + 1
     // frames after they are written).

@@ -50,6 +50,10 @@ struct ScopeInfo {
     SampleWindow gpuMs;
     WorkCounts work; // of the last frame that ran it
     uint64_t lastFrame = 0;
+    // Commands recorded inside it (nested scopes' included) in the last frame that ran it, every
+    // time it ran in that frame added (rhi::CommandCounts: dispatches, draws, barriers, stages).
+    rhi::CommandCounts commands;
+    uint64_t commandsFrame = 0; // the frame `commands` is of
     // A scope not timed on its own whose GPU work runs inside another scope (setTimedIn()): the
     // report names that scope where it would give a timing source.
     std::string timedIn;
@@ -172,6 +176,7 @@ public:
         uint64_t gpuBegin = 0, gpuEnd = 0; // 0 when not timed or not resolved
         bool gpuTimed = false;
         WorkCounts work;
+        rhi::CommandCounts commands; // recorded between its open and close, nested scopes' included
     };
     struct FrameRecord {
         uint64_t frame = 0;
@@ -183,6 +188,8 @@ public:
         uint32_t sampleCount = 0;
         std::vector<Sample> samples;            // capacity maxScopesPerFrame, sized at construction
         uint64_t memoryTotal = 0, memoryGi = 0; // held at endFrame()
+        // Commands the frame recorded from Device::beginFrame() to the profiler's endFrame().
+        rhi::CommandCounts commands;
         FrameBudgetCheck check;
     };
     struct Note {
@@ -236,7 +243,9 @@ private:
         uint16_t scope;
         uint32_t sample;
         rhi::CommandList* gpu;
+        rhi::CommandCounts commands; // the frame's when it opened
     };
+    rhi::CommandList* frameCmd_ = nullptr; // the command list of the frame being recorded
     std::vector<Open> stack_;
     std::vector<uint64_t> timestampScratch_;
     std::vector<Note> notes_;   // ring
