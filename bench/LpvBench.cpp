@@ -336,7 +336,8 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
         renderer.sun().direction =
             glm::normalize(scene.lights[0].direction + glm::vec3(0.1f * std::sin(t * 6.28f), 0, 0));
         const engine::CameraMatrices m = engine::cameraMatrices(cam, float(w) / float(h));
-        gi::updateFromConfig(lpv, config, renderer, m);
+        if (const gi::GiConfigResult r = gi::updateFromConfig(lpv, config, renderer, m); !r)
+            throw std::runtime_error(r.message());
         rhi::CommandList& cmd = device->beginFrame();
         profiler.beginFrame(cmd);
         renderer.render(cmd, m, config, &profiler, &lpv);
@@ -680,7 +681,8 @@ void consolePresetFlight(const char* console, bool printPasses) {
             glm::normalize(scene.lights[0].direction + glm::vec3(0.1f * std::sin(t * 6.28f), 0, 0));
         const engine::CameraMatrices m = engine::cameraMatrices(
             engine::cameraOnPath("flythrough", scene.bounds, start, t * 0.25f), float(w) / float(h));
-        gi::updateFromConfig(lpv, config, renderer, m, &profiler);
+        if (const gi::GiConfigResult r = gi::updateFromConfig(lpv, config, renderer, m, &profiler); !r)
+            throw std::runtime_error(r.message());
         rhi::CommandList& cmd = device->beginFrame();
         profiler.beginFrame(cmd);
         renderer.render(cmd, m, config, &profiler, &lpv);

@@ -34,6 +34,7 @@
 #include <cstdlib>
 #include <exception>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -93,7 +94,10 @@ int run(int argc, char** argv) {
         engine::cameraMatrices(engine::defaultCamera(scene), float(width) / float(height));
 
     for (int frame = 0; frame < frames; ++frame) {
-        gi::updateFromConfig(gi, config, renderer, camera, &profiler); // throws for settings over the budget
+        // Settings over the platform's budget are refused; the GI keeps what it ran (off at first).
+        if (const gi::GiConfigResult result = gi::updateFromConfig(gi, config, renderer, camera, &profiler);
+            !result)
+            throw std::runtime_error("GI settings refused: " + result.message());
         rhi::CommandList& cmd = device->beginFrame();
         profiler.beginFrame(cmd);
         renderer.render(cmd, camera, config, &profiler, gi.settings().enabled ? &gi : nullptr);

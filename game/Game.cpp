@@ -176,7 +176,6 @@ int runGame(const GameOptions& opt) {
     };
     std::vector<KeptSetting> lastGoodGi;
     const engine::SettingDecl* renderView = engine::SettingRegistry::global().find("render.debug_view");
-    std::string refusal; // set when the restored GI settings were refused too: the run ends
     bool firstFrame = true;
     const engine::Camera start = engine::defaultCamera(scene);
     FreeCamera freeCamera(start);
@@ -250,30 +249,21 @@ int runGame(const GameOptions& opt) {
         else if (freeCamera.update(*platform, dt, float(config.get(kCameraSpeed))))
             cam = freeCamera.camera();
         const engine::CameraMatrices matrices = engine::cameraMatrices(cam, float(width) / float(height));
-        try {
-            gi::updateFromConfig(lpv, config, renderer, matrices, &profiler);
-        } catch (const std::runtime_error& e) {
-            // GiBudgetError or ConfigError: at startup the configuration is refused outright; while
-            // running the change is undone.
-            if (firstFrame) throw engine::ConfigError("gi settings", 0, e.what());
-            log::error(std::string("game: GI change refused (the previous GI settings come back): ") +
-                       e.what());
+        // A GI configuration refused at startup ends the run; refused while running, the GI goes on
+        // with what ran before, and the config shows it again: the refused values are undone.
+        if (const gi::GiConfigResult result =
+                gi::updateFromConfig(lpv, config, renderer, matrices, &profiler);
+            !result) {
+            if (firstFrame) throw engine::ConfigError("gi settings", 0, result.message());
+            log::error("game: GI change refused (the previous GI settings come back): " + result.message());
             for (const KeptSetting& k : lastGoodGi)
                 config.stage(*k.decl, k.value, k.origin);
             if (viewBeforeFollow)
                 config.stage(*renderView, viewBeforeFollow->value, viewBeforeFollow->origin);
-            // At once, before any new input can mix in, and the frame goes on with what ran before.
+            // At once, before any new input can mix in.
             for (const engine::SettingDecl* restored : config.applyPending())
                 log::info("game: " + restored->name + " = " + restored->format(config.value(*restored)) +
                           " (restored)");
-            try {
-                gi::updateFromConfig(lpv, config, renderer, matrices, &profiler);
-            } catch (const std::runtime_error& again) {
-                // What ran before cannot be refused now; undoing again could loop forever.
-                refusal =
-                    std::string("the last accepted GI settings were refused when restored: ") + again.what();
-                break;
-            }
         }
         if (firstFrame || !changes.empty()) {
             lastGoodGi.clear();
@@ -331,11 +321,6 @@ int runGame(const GameOptions& opt) {
         }
     }
     std::fputs(engine::profileShortSummary(profiler, fullReport).c_str(), stdout);
-    if (!refusal.empty()) {
-        for (const std::string& f : failures)
-            log::error("game: " + f);
-        throw engine::ConfigError("gi settings", 0, refusal);
-    }
     if (!failures.empty()) throw OutputError(std::move(failures));
     return 0;
 }

@@ -9,6 +9,8 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include <stdexcept>
+
 namespace lpv::bench {
 
 std::vector<glm::vec3> renderEngineIndirect(rhi::Device& device, const engine::Scene& scene,
@@ -23,7 +25,8 @@ std::vector<glm::vec3> renderEngineIndirect(rhi::Device& device, const engine::S
     lpv.setScene(scene);
     const engine::CameraMatrices m = engine::cameraMatrices(camera, float(width) / float(height));
     for (int f = 0; f < frames; ++f) {
-        gi::updateFromConfig(lpv, config, renderer, m);
+        if (const gi::GiConfigResult r = gi::updateFromConfig(lpv, config, renderer, m); !r)
+            throw std::runtime_error(r.message());
         rhi::CommandList& cmd = device.beginFrame();
         renderer.render(cmd, m, config, nullptr, &lpv);
         device.endFrame();

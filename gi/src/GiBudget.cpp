@@ -80,27 +80,47 @@ uint64_t giBytes(const std::vector<GiResource>& resources) {
     return sum;
 }
 
-void checkGiBudget(const LpvSettings& s, const platforms::PlatformProfile& profile) {
+GiConfigResult checkGiBudget(const LpvSettings& s, const platforms::PlatformProfile& profile) {
     if (!profile.allowsShFormat(shFormatName(s.shFormat))) {
         std::string allowed;
         for (const auto& f : profile.shFormats)
             allowed += (allowed.empty() ? "" : ", ") + f;
-        throw GiBudgetError("gi.sh_format '" + std::string(shFormatName(s.shFormat)) +
-                            "' is not allowed by platform '" + profile.name + "' (allowed: " + allowed + ")");
+        return GiConfigResult::refused("gi.sh_format", "gi.sh_format '" +
+                                                           std::string(shFormatName(s.shFormat)) +
+                                                           "' is not allowed by platform '" + profile.name +
+                                                           "' (allowed: " + allowed + ")");
     }
     if (s.gridSize > profile.maxVolumeSize)
-        throw GiBudgetError("gi.grid_size " + std::to_string(s.gridSize) + " exceeds platform '" +
-                            profile.name + "' limit of " + std::to_string(profile.maxVolumeSize));
-    const auto resources = giResources(s);
+        return GiConfigResult::refused(
+            "gi.grid_size", "gi.grid_size " + std::to_string(s.gridSize) + " exceeds platform '" +
+                                profile.name + "' limit of " + std::to_string(profile.maxVolumeSize));
+    std::vector<GiResource> resources = giResources(s);
     const uint64_t total = giBytes(resources);
-    if (total <= profile.giMemoryBudgetBytes) return;
-    std::string message = "GI configuration needs " + std::to_string(total) + " bytes, over platform '" +
-                          profile.name + "' GI memory budget of " +
-                          std::to_string(profile.giMemoryBudgetBytes) + " bytes by " +
-                          std::to_string(total - profile.giMemoryBudgetBytes) + ":";
+    if (total <= profile.giMemoryBudgetBytes) return {};
+    return GiConfigResult::refused({},
+                                   "GI configuration needs " + std::to_string(total) +
+                                       " bytes, over platform '" + profile.name + "' GI memory budget of " +
+                                       std::to_string(profile.giMemoryBudgetBytes) + " bytes by " +
+                                       std::to_string(total - profile.giMemoryBudgetBytes),
+                                   std::move(resources));
+}
+
+std::string GiConfigResult::message() const {
+    std::string text = reason;
+    if (!resources.empty()) text += ":";
     for (const GiResource& r : resources)
-        message += "\n  " + r.category + " " + r.name + ": " + std::to_string(r.bytes) + " bytes";
-    throw GiBudgetError(message);
+        text += "\n  " + r.category + " " + r.name + ": " + std::to_string(r.bytes) + " bytes";
+    return text;
+}
+
+GiConfigResult GiConfigResult::refused(std::string setting, std::string reason,
+                                       std::vector<GiResource> resources) {
+    GiConfigResult r;
+    r.accepted = false;
+    r.setting = std::move(setting);
+    r.reason = std::move(reason);
+    r.resources = std::move(resources);
+    return r;
 }
 
 } // namespace lpv::gi

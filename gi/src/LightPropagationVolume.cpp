@@ -303,15 +303,31 @@ float LightPropagationVolume::autoCellSize(uint32_t gridSize, glm::vec3 camera,
     return cell;
 }
 
-void LightPropagationVolume::update(const LpvSettings& configured, const GiFrameInputs& inputs,
-                                    engine::FrameProfiler* profiler) {
+GiConfigResult LightPropagationVolume::update(const LpvSettings& settings, const GiFrameInputs& inputs,
+                                              engine::FrameProfiler* profiler) {
+    GiConfigResult result = prepare(settings, inputs, profiler);
+    if (result.accepted) return result;
+    // Refused: the frame runs the configuration that ran before (none before the first accepted
+    // one: GI off), which prepare() took once already, with this frame's inputs.
+    if (!prepare(lastConfigured_, inputs, profiler).accepted) {
+        // Only when the inputs changed what it needs (the scene's lights, say): no GI this frame
+        // rather than one over its budget.
+        settings_.enabled = false;
+    }
+    return result;
+}
+
+GiConfigResult LightPropagationVolume::prepare(const LpvSettings& configured, const GiFrameInputs& inputs,
+                                               engine::FrameProfiler* profiler) {
     const engine::CameraMatrices& camera = inputs.camera;
     LpvSettings s = configured;
-    // A configuration the budget check refuses below must leave the scheduler as it was: its steps
-    // carry over to the settings the game restores. Only a changed configuration can be refused,
-    // so only then is its state kept (fixed-size: no heap).
+    // A configuration refused below must leave the scheduler as it was: its steps carry over to
+    // the configuration kept. Only a changed configuration can be refused, so only then is its
+    // state kept (fixed-size: no heap).
     const bool reconfigured = configured != lastConfigured_;
     if (reconfigured) {
+        if (std::optional<LpvSettingsError> error = validateLpvSettings(configured))
+            return GiConfigResult::refused(std::string(error->setting), std::move(error->message));
         schedulerBefore_ = scheduler_;
         scheduleBefore_ = schedule_;
     }
@@ -354,14 +370,13 @@ void LightPropagationVolume::update(const LpvSettings& configured, const GiFrame
     const bool updateResized =
         !resized && (s.rsmSize != madeWith_.rsmSize || (s.bounces > 1) != (bounces_ != nullptr));
     if (s.enabled && (resized || updateResized)) {
-        try {
-            checkGiBudget(s, profile_); // throws before anything else changes
-        } catch (...) {
+        GiConfigResult fits = checkGiBudget(s, profile_); // before anything else changes
+        if (!fits.accepted) {
             if (reconfigured) {
                 scheduler_ = schedulerBefore_;
                 schedule_ = scheduleBefore_;
             }
-            throw;
+            return fits;
         }
         if (resized) {
             remake(s);
@@ -408,6 +423,7 @@ void LightPropagationVolume::update(const LpvSettings& configured, const GiFrame
                                            "have no result yet)");
     // Before the renderer asks which lights the volume carries.
     if (s.enabled && made_) spotRsms_->select(inputs.punctualLights, cascades_.back().placement);
+    return {};
 }
 
 void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine::CameraMatrices& camera,

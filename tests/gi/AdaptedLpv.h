@@ -34,6 +34,7 @@ struct AdaptedLpv {
     engine::FrameProfiler profiler;
     gi::LightPropagationVolume lpv;
     engine::CameraMatrices camera;
+    gi::GiConfigResult lastUpdate; // what the GI said of the last frame's settings
 
     AdaptedLpv(platforms::PlatformProfile p, uint32_t iterations)
         : AdaptedLpv(std::move(p),
@@ -58,7 +59,7 @@ struct AdaptedLpv {
     }
     // One frame; the GI cost the scheduler will see next.
     std::optional<gi::GiFrameCost> frame() {
-        gi::updateFromConfig(lpv, config, renderer, camera, &profiler);
+        lastUpdate = gi::updateFromConfig(lpv, config, renderer, camera, &profiler);
         rhi::CommandList& cmd = device->beginFrame();
         profiler.beginFrame(cmd);
         renderer.render(cmd, camera, config, &profiler, &lpv);

@@ -196,7 +196,7 @@ TEST_CASE("gi: coarse cascades updated in two halves on two frames match a whole
                 uint64_t stableSince = 0;
                 uint32_t steps = ~0u;
                 for (int f = 0; f < 200 && device->frameIndex() < stableSince + 12; ++f) {
-                    gi::updateFromConfig(lpv, config, renderer, camera, &profiler);
+                    REQUIRE(gi::updateFromConfig(lpv, config, renderer, camera, &profiler).accepted);
                     if (lpv.schedule().stepsInEffect != steps) {
                         steps = lpv.schedule().stepsInEffect;
                         stableSince = device->frameIndex();

@@ -509,31 +509,28 @@ TEST_CASE("gi: configurations that do not fit are refused with a clear message")
     s.gridSize = 64;
     s.shFormat = gi::ShFormat::Rgba16f;
     const auto x360 = platforms::loadPlatformProfile("x360");
-    std::string message;
-    try {
-        gi::checkGiBudget(s, x360);
-    } catch (const gi::GiBudgetError& e) {
-        message = e.what();
-    }
-    CHECK(message == "gi.sh_format 'rgba16f' is not allowed by platform 'x360' (allowed: rgba8)");
+    gi::GiConfigResult refused = gi::checkGiBudget(s, x360);
+    CHECK(!refused.accepted);
+    CHECK(refused.setting == "gi.sh_format");
+    CHECK(refused.message() == "gi.sh_format 'rgba16f' is not allowed by platform 'x360' (allowed: rgba8)");
     s.shFormat = gi::ShFormat::Rgba8;
-    message.clear();
-    try {
-        gi::checkGiBudget(s, x360);
-    } catch (const gi::GiBudgetError& e) {
-        message = e.what();
-    }
+    refused = gi::checkGiBudget(s, x360);
     // 64^3 fits the grid limit but not the 3 MiB budget: every resource is listed with its bytes.
+    CHECK(!refused.accepted);
+    const std::string message = refused.message();
     CHECK(message.find("over platform 'x360' GI memory budget of 3145728 bytes by") != std::string::npos);
     CHECK(message.find("gi.lpv accumulation (3 SH textures): 3145728 bytes") != std::string::npos);
     CHECK(message.find("gi.rsm rsm depth: 262144 bytes") != std::string::npos);
+    CHECK(std::any_of(refused.resources.begin(), refused.resources.end(), [](const gi::GiResource& r) {
+        return r.name == "accumulation (3 SH textures)" && r.bytes == 3145728;
+    }));
     // The CryEngine 3 console setup (one cascade, the sun's RSM alone) fits.
     s.cascades = 1;
     s.lightRsms = 0;
     s.gridSize = 32;
     s.rsmSize = 128;
     s.vplCount = 1024;
-    CHECK_NOTHROW(gi::checkGiBudget(s, x360));
+    CHECK(gi::checkGiBudget(s, x360).accepted);
     // Grid size out of range is a config error.
     engine::Config config;
     CHECK_THROWS_WITH_AS(config.applyOverride("gi.grid_size=128"),
@@ -541,6 +538,11 @@ TEST_CASE("gi: configurations that do not fit are refused with a clear message")
                          engine::ConfigError);
     config.applyOverride("gi.vpl_count=1000");
     CHECK_THROWS_AS(gi::readLpvSettings(config), engine::ConfigError);
+    // The GI's own check says the same of the plain settings, as a value.
+    const std::optional<gi::LpvSettingsError> error = gi::validateLpvSettings(gi::lpvSettingsFrom(config));
+    REQUIRE(error);
+    CHECK(error->setting == "gi.vpl_count");
+    CHECK(error->message.find("such as 1024") != std::string::npos);
 }
 
 TEST_CASE("gi: rgba8 volumes refuse to propagate before anything was injected") {

@@ -46,7 +46,7 @@ ClippingRun runClippingCheck(rhi::Device& device, const engine::Scene& scene,
     const engine::CameraMatrices camera = engine::cameraMatrices(*scene.camera, float(width) / float(height));
     // The first frame's records come back framesInFlight frames later.
     for (uint32_t f = 0; f < device.caps().framesInFlight + 2; ++f) {
-        gi::updateFromConfig(lpv, config, renderer, camera, &profiler);
+        REQUIRE(gi::updateFromConfig(lpv, config, renderer, camera, &profiler).accepted);
         rhi::CommandList& cmd = device.beginFrame();
         profiler.beginFrame(cmd);
         renderer.render(cmd, camera, config, &profiler, &lpv);

@@ -44,7 +44,7 @@ void oneFrame(rhi::Device& device, const engine::Scene& scene, const std::vector
     engine::Camera camera = *scene.camera;
     camera.position += cameraOffset;
     const engine::CameraMatrices m = engine::cameraMatrices(camera, 320.0f / 240.0f);
-    gi::updateFromConfig(lpv, config, renderer, m);
+    REQUIRE(gi::updateFromConfig(lpv, config, renderer, m).accepted);
     rhi::CommandList& cmd = device.beginFrame();
     renderer.render(cmd, m, config, nullptr, &lpv);
     device.endFrame();

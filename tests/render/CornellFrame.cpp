@@ -109,7 +109,8 @@ CornellFrame renderSceneFrame(rhi::Device& device, engine::Scene scene,
         camera.position += cameraOffset;
         f.camera = engine::cameraMatrices(camera, float(width) / float(height));
         for (int i = 0; i < frames; ++i) {
-            gi::updateFromConfig(lpv, config, renderer, f.camera);
+            if (const gi::GiConfigResult r = gi::updateFromConfig(lpv, config, renderer, f.camera); !r)
+                throw std::runtime_error(r.message());
             rhi::CommandList& cmd = device.beginFrame();
             // The LPV is always the indirect provider here, so GI off means no indirect light at all.
             renderer.render(cmd, f.camera, config, nullptr, &lpv);
@@ -146,7 +147,8 @@ Image renderHdrAfterFrames(rhi::Device& device, const engine::Scene& scene, int 
     const engine::CameraMatrices camera = engine::cameraMatrices(*scene.camera, 320.0f / 240.0f);
     for (int i = 0; i < frames; ++i) {
         const engine::Config& config = configFor(i);
-        gi::updateFromConfig(lpv, config, renderer, camera);
+        if (const gi::GiConfigResult r = gi::updateFromConfig(lpv, config, renderer, camera); !r)
+            throw std::runtime_error(r.message());
         rhi::CommandList& cmd = device.beginFrame();
         renderer.render(cmd, camera, config, nullptr, &lpv);
         device.endFrame();

@@ -17,10 +17,10 @@ GiFrameInputs giFrameInputs(const engine::Renderer& renderer, const engine::Came
     return in;
 }
 
-void updateFromConfig(LightPropagationVolume& lpv, const engine::Config& config,
-                      const engine::Renderer& renderer, const engine::CameraMatrices& camera,
-                      engine::FrameProfiler* profiler) {
-    lpv.update(readLpvSettings(config), giFrameInputs(renderer, camera), profiler);
+GiConfigResult updateFromConfig(LightPropagationVolume& lpv, const engine::Config& config,
+                                const engine::Renderer& renderer, const engine::CameraMatrices& camera,
+                                engine::FrameProfiler* profiler) {
+    return lpv.update(lpvSettingsFrom(config), giFrameInputs(renderer, camera), profiler);
 }
 
 } // namespace lpv::gi

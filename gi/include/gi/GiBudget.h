@@ -3,31 +3,20 @@
 // overage (the frame profiler's memory figures later show the same numbers, measured).
 #pragma once
 
+#include "gi/GiConfigResult.h"
 #include "gi/LpvSettings.h"
 #include "platforms/PlatformProfile.h"
 
 #include <cstdint>
-#include <stdexcept>
-#include <string>
 #include <vector>
 
 namespace lpv::gi {
 
-struct GiResource {
-    std::string name;
-    std::string category; // gi.rsm, gi.vpl, gi.lpv
-    uint64_t bytes = 0;
-};
-
 std::vector<GiResource> giResources(const LpvSettings& settings);
 uint64_t giBytes(const std::vector<GiResource>& resources);
 
-class GiBudgetError : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
-};
-
-// Throws GiBudgetError when the format, the grid or the memory does not fit `profile`.
-void checkGiBudget(const LpvSettings& settings, const platforms::PlatformProfile& profile);
+// Refuses a format, a grid or a memory total that does not fit `profile`. Run when a configuration
+// changes the GI's resources, never in a steady-state frame (it lists them on the heap).
+GiConfigResult checkGiBudget(const LpvSettings& settings, const platforms::PlatformProfile& profile);
 
 } // namespace lpv::gi

@@ -35,7 +35,7 @@ public:
 
     // Draws the march over `target` (finest cascade first in `cascades`, 1 to 4 of them), which
     // holds the lookup's glossy radiance of the lobe's mean direction (the lobes from
-    // `specularAlbedoTable`, engine::Renderer::specularAlbedoTexture()): premultiplied by the march's
+    // `specularAlbedoTable`, engine::SpecularAlbedoTexture's table): premultiplied by the march's
     // share, its fade (gi.glossy_max_roughness: all of it up to 0.1 below `maxRoughness`, none from
     // it on, where the march does not run and the texel keeps the lookup's value). `rgba8Range` > 0:
     // the volumes are rgba8, encoded in gi.rgba8_range (a radiance; each cascade's range is it times

@@ -7,13 +7,14 @@
 // the frame's inputs (GiFrameInputs: camera, scene, lights, sun); a change of size or format
 // remakes the resources on that frame (not a steady-state frame), after checking the platform
 // profile's budget; a change of the RSM size or the bounces keeps the cascades' results. The
-// engine's adapter (gi/adapter/) reads the settings from gi.* and the inputs from engine::Renderer.
+// engine's adapter (gi/adapter/) reads the settings from gi.* and the inputs from its renderer.
 #pragma once
 
 #include "engine/render/IndirectLighting.h"
 #include "engine/scene/OpenSpace.h"
 #include "gi/CascadeClasses.h"
 #include "gi/GeometryVolume.h"
+#include "gi/GiConfigResult.h"
 #include "gi/GiFrameInputs.h"
 #include "gi/GiScheduler.h"
 #include "gi/GiWork.h"
@@ -47,15 +48,18 @@ public:
     // The scene's geometry, for gi.cell_size = auto (engine::OpenSpace; made here, at load, not in a
     // frame). Without it, auto sizes the finest cascade to the frame's scene bounds.
     void setScene(const engine::Scene& scene);
-    // Prepares the frame, before the device's beginFrame(): checks the budget (throws
-    // GiBudgetError; the previous configuration stays), remakes resources on a change, places the
-    // volume. The frame is the device's next (rhi::Device::frameIndex() + 1); `inputs` must stay
-    // valid until its renderIndirect().
+    // Prepares the frame, before the device's beginFrame(): takes `settings` when they hold
+    // together (validateLpvSettings) and fit the platform profile (checkGiBudget), remakes
+    // resources on a change, places the volume. Refused, it returns why and the frame runs the
+    // configuration accepted before (acceptedSettings(); GI off before the first), as do later
+    // frames until settings that fit come: give it acceptedSettings() back, or it checks the
+    // refused ones again every frame. The frame is the device's next (rhi::Device::frameIndex() +
+    // 1); `inputs` must stay valid until its renderIndirect().
     // With `profiler` (before its beginFrame), gi.budget_policy runs: the budget scheduler picks
     // this frame's iterations, RSM size and which coarse cascades update, from the profiler's
     // newest GI cost, and notes what it changed and why in the profiler's report.
-    void update(const LpvSettings& settings, const GiFrameInputs& inputs,
-                engine::FrameProfiler* profiler = nullptr);
+    [[nodiscard]] GiConfigResult update(const LpvSettings& settings, const GiFrameInputs& inputs,
+                                        engine::FrameProfiler* profiler = nullptr);
     // The scheduler's answer for the current frame (the configured load without a profiler).
     const GiSchedule& schedule() const { return schedule_; }
     // At the end of a run, once the device is idle: reports what the last frames' GPU work left to
@@ -85,7 +89,10 @@ public:
         return type == engine::LightType::Spot ? settings_.lightRsms : settings_.pointLightRsms;
     }
 
+    // This frame's settings: the accepted ones as the budget scheduler and the scene left them.
     const LpvSettings& settings() const { return settings_; }
+    // The last settings update() accepted, as given.
+    const LpvSettings& acceptedSettings() const { return lastConfigured_; }
     // The finest cascade's placement (cascade(c) for the others).
     const VolumeGrid& grid() const { return grid_; }
     uint32_t cascadeCount() const { return uint32_t(cascades_.size()); }
@@ -111,6 +118,9 @@ private:
     VolumeDraw volumeDraw() const {
         return device_.caps().vertexShaderLayer ? VolumeDraw::Layered : VolumeDraw::PerSlice;
     }
+    // update() for one configuration: refused before anything changes, or taken.
+    GiConfigResult prepare(const LpvSettings& configured, const GiFrameInputs& inputs,
+                           engine::FrameProfiler* profiler);
     void remake(const LpvSettings& settings);
     // The RSM size or the bounces changed (adapt's knobs): only the resources a cascade's update
     // uses on its way are made again; every cascade keeps its result, so the frame after the change

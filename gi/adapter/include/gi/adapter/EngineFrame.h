@@ -12,9 +12,11 @@ namespace lpv::gi {
 // The renderer's scene, lights, sun and specular table, seen from `camera`.
 GiFrameInputs giFrameInputs(const engine::Renderer& renderer, const engine::CameraMatrices& camera);
 
-// lpv.update(readLpvSettings(config), giFrameInputs(renderer, camera), profiler).
-void updateFromConfig(LightPropagationVolume& lpv, const engine::Config& config,
-                      const engine::Renderer& renderer, const engine::CameraMatrices& camera,
-                      engine::FrameProfiler* profiler = nullptr);
+// lpv.update(lpvSettingsFrom(config), giFrameInputs(renderer, camera), profiler): refused settings,
+// those that contradict each other included, are a returned result, and the GI keeps what it ran.
+[[nodiscard]] GiConfigResult updateFromConfig(LightPropagationVolume& lpv, const engine::Config& config,
+                                              const engine::Renderer& renderer,
+                                              const engine::CameraMatrices& camera,
+                                              engine::FrameProfiler* profiler = nullptr);
 
 } // namespace lpv::gi
