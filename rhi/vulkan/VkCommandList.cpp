@@ -30,6 +30,8 @@ void VulkanCommandList::begin(VkCommandBuffer cmd) {
     inPass_ = false;
     passTargetCount_ = 0;
     markerDepth_ = 0;
+    owed_ = false;
+    writtenCount_ = readCount_ = 0;
 }
 
 void VulkanCommandList::resetCounts() {
@@ -45,6 +47,7 @@ CommandCounts VulkanCommandList::counts() const {
 
 void VulkanCommandList::finish() {
     if (inPass_) throw Error("endFrame() inside a render pass: call endRenderPass() first");
+    payOwed();
     while (markerDepth_ > 0) {
         endLabel();
         --markerDepth_;
@@ -98,6 +101,7 @@ void VulkanCommandList::beginRenderPass(const RenderPassDesc& desc) {
     // allowed inside a dynamic rendering instance.
     std::array<VkRenderingAttachmentInfo, RenderPassDesc::kMaxColorTargets> colors{};
     BarrierBatch barriers(cmd_);
+    payOwed(&barriers); // what dispatches owe, in the same call as the attachments' moves
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     passTargetCount_ = 0;
     passExtent_ = {0, 0};
@@ -259,6 +263,7 @@ void VulkanCommandList::bindBuffer(uint32_t binding, BufferHandle buffer, uint64
         throw Error("buffer '" + b.desc.debugName + "': bound range exceeds its size");
     s.kind = storage ? BoundKind::StorageBuffer : BoundKind::UniformBuffer;
     s.buffer = {b.buffer, offset, size};
+    s.resource = uint64_t(b.buffer);
 }
 
 void VulkanCommandList::bindUniformBuffer(uint32_t binding, BufferHandle buffer, uint64_t offset,
@@ -285,6 +290,7 @@ void VulkanCommandList::bindTexture(uint32_t binding, TextureHandle texture, Sam
                     ") cannot be sampled with a linear filter");
     s.kind = BoundKind::Texture;
     s.image = {smp.sampler, t.sampledView, t.home};
+    s.resource = uint64_t(t.image);
 }
 
 void VulkanCommandList::bindStorageImage(uint32_t binding, TextureHandle texture, uint32_t mipLevel) {
@@ -297,6 +303,7 @@ void VulkanCommandList::bindStorageImage(uint32_t binding, TextureHandle texture
         throw Error("texture '" + t.desc.debugName + "' has no mip " + std::to_string(mipLevel));
     s.kind = BoundKind::StorageImage;
     s.image = {VK_NULL_HANDLE, t.mipViews[mipLevel], VK_IMAGE_LAYOUT_GENERAL};
+    s.resource = uint64_t(t.image);
 }
 
 void VulkanCommandList::pushUniforms(uint32_t binding, const void* data, uint32_t size) {
@@ -305,6 +312,7 @@ void VulkanCommandList::pushUniforms(uint32_t binding, const void* data, uint32_
     const uint64_t offset = device_.pushToRing(data, size);
     s.kind = BoundKind::UniformBuffer;
     s.buffer = {device_.ringBuffer(), offset, size};
+    s.resource = 0; // written by the host before the frame is submitted: no hazard
 }
 
 void VulkanCommandList::pushBindings(const VulkanPipeline& p) {
@@ -381,13 +389,62 @@ void VulkanCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount,
 void VulkanCommandList::dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) {
     requirePass(false, "dispatch");
     if (!compute_) throw Error("dispatch without a compute pipeline");
+    const VulkanPipeline& p = device_.computePipelines.get(compute_);
+    if (dispatchHazard(p)) payOwed();
     device_.flushNewTextures(cmd_);
-    pushBindings(device_.computePipelines.get(compute_));
+    pushBindings(p);
     vkCmdDispatch(cmd_, groupsX, groupsY, groupsZ);
     ++counts_.dispatches;
     countStage(pipelineBarrierCalls());
-    // Storage writes of the dispatch become visible to every later command.
-    fullBarrier(cmd_);
+    // Storage writes of the dispatch become visible to every later command that touches them: at
+    // once (conservative mode) or before the next one that needs it.
+    noteDispatchAccesses(p);
+    owed_ = true;
+    if (device_.conservativeBarriers()) payOwed();
+}
+
+bool VulkanCommandList::dispatchHazard(const VulkanPipeline& p) const {
+    if (!owed_) return false;
+    const auto in = [](const auto& set, uint32_t n, uint64_t r) {
+        return std::find(set.begin(), set.begin() + n, r) != set.begin() + n;
+    };
+    for (const PipelineBinding& pb : p.bindings) {
+        const Bound& b = bound_[pb.binding];
+        if (b.resource == 0) continue;
+        // Storage images and buffers may be written; the shader's reflection does not say.
+        const bool writes = b.kind == BoundKind::StorageImage || b.kind == BoundKind::StorageBuffer;
+        if (in(written_, writtenCount_, b.resource)) return true;
+        if (writes && in(read_, readCount_, b.resource)) return true;
+    }
+    return false;
+}
+
+void VulkanCommandList::noteDispatchAccesses(const VulkanPipeline& p) {
+    for (const PipelineBinding& pb : p.bindings) {
+        const Bound& b = bound_[pb.binding];
+        if (b.resource == 0) continue;
+        const bool writes = b.kind == BoundKind::StorageImage || b.kind == BoundKind::StorageBuffer;
+        auto& set = writes ? written_ : read_;
+        uint32_t& n = writes ? writtenCount_ : readCount_;
+        if (std::find(set.begin(), set.begin() + n, b.resource) != set.begin() + n) continue;
+        if (n == kMaxTracked) { // too many to track: pay now, start over
+            payOwed();
+            owed_ = true;
+            return noteDispatchAccesses(p);
+        }
+        set[n++] = b.resource;
+    }
+}
+
+bool VulkanCommandList::payOwed(BarrierBatch* batch) {
+    if (!owed_) return false;
+    if (batch)
+        batch->memory();
+    else
+        fullBarrier(cmd_);
+    owed_ = false;
+    writtenCount_ = readCount_ = 0;
+    return true;
 }
 
 void VulkanCommandList::clearTexture(TextureHandle texture, const std::array<float, 4>& value) {
@@ -398,7 +455,11 @@ void VulkanCommandList::clearTexture(TextureHandle texture, const std::array<flo
     // memory barrier for what it wrote (CommandList.h's rule), so only the clear's writes need one.
     const VkImageLayout layout =
         t.home == VK_IMAGE_LAYOUT_GENERAL ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    transition(cmd_, t, 0, t.desc.mipLevels, layout);
+    {
+        BarrierBatch before(cmd_);
+        payOwed(&before); // what dispatches owe, in the same call as the move
+        before.transition(t, 0, t.desc.mipLevels, layout);
+    }
     const VkImageSubresourceRange range{t.aspect, 0, t.desc.mipLevels, 0, t.arrayLayers()};
     if (isDepthFormat(t.desc.format)) {
         const VkClearDepthStencilValue v{value[0], 0};
@@ -427,6 +488,7 @@ void VulkanCommandList::updateBuffer(BufferHandle buffer, uint64_t offset, const
                     "': size must be 4..65536 and offset and size multiples of 4");
     if (offset + size > b.desc.size)
         throw Error("updateBuffer '" + b.desc.debugName + "': range exceeds its size");
+    payOwed();
     fullBarrier(cmd_); // earlier reads of the old contents finish first
     vkCmdUpdateBuffer(cmd_, b.buffer, offset, size, data);
     fullBarrier(cmd_);
@@ -443,6 +505,7 @@ void VulkanCommandList::copyTexture(TextureHandle src, TextureHandle dst) {
                     "' differ in kind, format or size");
     {
         BarrierBatch barriers(cmd_);
+        payOwed(&barriers);
         barriers.transition(s, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         barriers.transition(d, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     }

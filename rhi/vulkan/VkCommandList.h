@@ -3,6 +3,7 @@
 // automatic barriers around passes, dispatches and transfers.
 #pragma once
 
+#include "VkBarriers.h"
 #include "VkResources.h"
 
 #include "rhi/CommandList.h"
@@ -56,6 +57,7 @@ private:
     enum class BoundKind : uint8_t { None, UniformBuffer, StorageBuffer, Texture, StorageImage };
     struct Bound {
         BoundKind kind = BoundKind::None;
+        uint64_t resource = 0; // the VkImage or VkBuffer, for hazard tracking
         VkDescriptorBufferInfo buffer{};
         VkDescriptorImageInfo image{};
     };
@@ -71,6 +73,13 @@ private:
     void clearBindings();
     // Pushes the descriptors the bound pipeline of `bindPoint` declares; throws if one is missing.
     void pushBindings(const VulkanPipeline& pipeline);
+    // Dispatches leave their barrier owed: recorded before the next command that reads or writes
+    // what they wrote (or writes what they read), merged into that command's own barrier when it
+    // has one, and before anything else (passes, transfers, the frame's end).
+    bool dispatchHazard(const VulkanPipeline& p) const;
+    void noteDispatchAccesses(const VulkanPipeline& p);
+    // Records the owed barrier now (into `batch` when given). Returns whether one was owed.
+    bool payOwed(BarrierBatch* batch = nullptr);
     void beginLabel(const char* name);
     void endLabel();
 
@@ -84,6 +93,10 @@ private:
     VkExtent2D passExtent_{0, 0};
     bool inPass_ = false;
     uint32_t markerDepth_ = 0;
+    static constexpr uint32_t kMaxTracked = 64;
+    std::array<uint64_t, kMaxTracked> written_{}, read_{}; // since the owed barrier's dispatches
+    uint32_t writtenCount_ = 0, readCount_ = 0;
+    bool owed_ = false;
     uint64_t barrierBase_ = 0; // pipelineBarrierCalls() when the frame began
 };
 

@@ -12,6 +12,7 @@
 #include "platforms/Log.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 
 namespace lpv::rhi::vk {
@@ -38,6 +39,8 @@ const char* deviceTypeName(VkPhysicalDeviceType t) {
 } // namespace
 
 VulkanDevice::VulkanDevice(const DeviceConfig& config) : config_(config) {
+    const char* env = std::getenv("LPV_CONSERVATIVE_BARRIERS");
+    conservativeBarriers_ = config.conservativeBarriers || (env && env[0] == '1');
     if (config.framesInFlight == 0) throw Error("DeviceConfig::framesInFlight must be at least 1");
     ctx_ = std::make_unique<VulkanContext>(config); // throws BackendUnavailable with the reason
     try {

@@ -51,6 +51,7 @@ public:
     void endFrame(TextureHandle present) override;
     uint64_t frameIndex() const override { return frame_; }
     CommandCounts frameCounters() const override { return lastFrame_; }
+    bool conservativeBarriers() const { return conservativeBarriers_; }
     bool readTimestamps(uint64_t frame, std::span<uint64_t> nanoseconds) override;
     void waitIdle() override;
 
@@ -113,6 +114,7 @@ private:
     void recordPresent(VkCommandBuffer cmd, VulkanTexture& source, uint32_t imageIndex);
 
     DeviceConfig config_;
+    bool conservativeBarriers_ = false;
     Caps caps_;
     AllocationRecord allocations_;
     std::unique_ptr<VulkanContext> ctx_;

@@ -62,6 +62,11 @@ struct DeviceConfig {
     // Set: report at most this many fragment texture bindings (Caps::fragmentTextureBindings), so
     // what a caller does on a device with fewer can be run on any device.
     std::optional<uint32_t> fragmentTextureBindings;
+    // Vulkan: a full barrier after every dispatch (CommandList.h's old rule) instead of one before
+    // the next command that reads or writes what a dispatch wrote (or writes what it read). For
+    // ruling a suspected synchronization bug in or out in one run; the environment variable
+    // LPV_CONSERVATIVE_BARRIERS=1 sets it too.
+    bool conservativeBarriers = false;
 };
 
 // Throws BackendUnavailable when no allowed backend starts.

@@ -4,9 +4,13 @@
 // Barriers are the RHI's job, not the caller's: every texture has a home state derived from its
 // usage, render passes and transfers move it out and back (a storage image stays in its one state:
 // Vulkan's GENERAL), and every command is followed by a barrier that makes its writes visible to
-// every later command and orders it before them (what lets a storage image skip the moves). The
-// rule is conservative (like glMemoryBarrier(ALL)) but correct, and it keeps the validation layer
-// silent.
+// every later command and orders it before them (what lets a storage image skip the moves). On
+// Vulkan a dispatch's barrier is owed instead: recorded before the next dispatch that reads or
+// writes what it wrote (or writes what it read: the bound storage images and buffers count as
+// written, sampled textures and uniform buffers as read), and before any other command, in the
+// same vkCmdPipelineBarrier2 as that command's own when it has one; independent dispatches then
+// share one barrier (DeviceConfig::conservativeBarriers restores a barrier after every dispatch).
+// The rule keeps the validation layer, synchronization validation included, silent.
 #pragma once
 
 #include "rhi/Handle.h"
