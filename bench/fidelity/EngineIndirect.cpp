@@ -1,13 +1,12 @@
 // The engine's indirect light for one view (EngineIndirect.h).
 #include "EngineIndirect.h"
 
+#include "engine/Screenshot.h"
 #include "engine/render/CameraMatrices.h"
 #include "engine/render/Renderer.h"
 #include "gi/LightPropagationVolume.h"
 #include "gi/adapter/EngineFrame.h"
 #include "platforms/PlatformProfile.h"
-
-#include <glm/gtc/packing.hpp>
 
 #include <stdexcept>
 
@@ -31,13 +30,10 @@ std::vector<glm::vec3> renderEngineIndirect(rhi::Device& device, const engine::S
         renderer.render(cmd, m, config, nullptr, &lpv);
         device.endFrame();
     }
-    device.waitIdle();
-    std::vector<uint16_t> half(size_t(width) * height * 4);
-    device.readTexture(renderer.hdr(), 0, half.data(), half.size() * sizeof(uint16_t));
+    const std::vector<float> rgba = engine::readHdrFrame(device, renderer);
     std::vector<glm::vec3> out(size_t(width) * height);
     for (size_t i = 0; i < out.size(); ++i)
-        out[i] = {glm::unpackHalf1x16(half[4 * i]), glm::unpackHalf1x16(half[4 * i + 1]),
-                  glm::unpackHalf1x16(half[4 * i + 2])};
+        out[i] = {rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2]};
     return out;
 }
 
