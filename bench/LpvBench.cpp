@@ -233,7 +233,7 @@ void benchAnalyticLights(const BenchBackend& b, int runs) {
             for (rhi::TextureHandle t : volumes.accumulated())
                 cmd.clearTexture(t, {0, 0, 0, 0});
             cmd.writeTimestamp(0);
-            added = injection.inject(cmd, lights, volumes, grid, 1.0f);
+            added = injection.record(cmd, lights, volumes, grid, 1.0f);
             cmd.writeTimestamp(1);
             device->endFrame();
             device->waitIdle();
@@ -478,7 +478,7 @@ uint64_t atriumRsmTriangles(const NullAtrium& atrium, uint32_t rsmSize) {
     const glm::vec3 sun = atrium.scene.lights.at(0).direction;
     rsm.fit({atrium.scene.camera->position - glm::vec3(16.0f), 1.0f, 32}, sun);
     rhi::CommandList& cmd = atrium.device->beginFrame();
-    const uint64_t triangles = rsm.render(cmd, *atrium.gpu, atrium.specularAlbedo->texture(), sun,
+    const uint64_t triangles = rsm.record(cmd, *atrium.gpu, atrium.specularAlbedo->texture(), sun,
                                           glm::vec3(1.0f), 0.0f, gi::LpvSettings{}.rsmLodTexels);
     atrium.device->endFrame();
     return triangles;
@@ -498,10 +498,10 @@ LightRsmTriangles atriumLightRsmTriangles(const NullAtrium& atrium, uint32_t rsm
     const float lodTexels = gi::LpvSettings{}.rsmLodTexels;
     LightRsmTriangles out;
     rhi::CommandList& cmd = atrium.device->beginFrame();
-    out.spot = rsm.renderSpot(cmd, *atrium.gpu, atrium.specularAlbedo->texture(), light, reach, lodTexels);
+    out.spot = rsm.recordSpot(cmd, *atrium.gpu, atrium.specularAlbedo->texture(), light, reach, lodTexels);
     light.type = engine::LightType::Point;
     for (uint32_t f = 0; f < gi::kCubeFaces; ++f)
-        out.cube += rsm.renderCubeFace(cmd, *atrium.gpu, atrium.specularAlbedo->texture(), light, f, reach,
+        out.cube += rsm.recordCubeFace(cmd, *atrium.gpu, atrium.specularAlbedo->texture(), light, f, reach,
                                        lodTexels);
     atrium.device->endFrame();
     return out;

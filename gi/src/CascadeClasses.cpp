@@ -77,10 +77,10 @@ void CascadeClasses::configureGlossyDraw(rhi::GraphicsPipelineDesc& desc, uint32
     configureClassDraw(desc, kGlossyField, uint8_t(kMarched | cascade << 4));
 }
 
-void CascadeClasses::classify(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
-                              const engine::GBufferView& gbuffer, std::span<const VolumeGrid> cascades,
-                              float blendBand, float glossyMaxRoughness, uint32_t width, uint32_t height,
-                              uint32_t divisor) {
+void CascadeClasses::record(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
+                            const engine::GBufferView& gbuffer, std::span<const VolumeGrid> cascades,
+                            float blendBand, float glossyMaxRoughness, uint32_t width, uint32_t height,
+                            uint32_t divisor) {
     using namespace rhi;
     // Made on the first frame and when the lookup's size changes (a resize or gi.resolution), not
     // in a steady-state frame. Only devices that run both sides of every branch need it, and a

@@ -143,8 +143,8 @@ uint32_t GeometryVolume::cameraSampleCount(uint32_t width, uint32_t height) {
     return cols * rows;
 }
 
-void GeometryVolume::build(rhi::CommandList& cmd, const VolumeGrid& grid, const GeometrySources& src,
-                           uint32_t slot) {
+void GeometryVolume::record(rhi::CommandList& cmd, const VolumeGrid& grid, const GeometrySources& src,
+                            uint32_t slot) {
     using namespace rhi;
     const bool areas = src.depth && src.cameraAreas;
     if (areas && !cameraAreas_)

@@ -66,7 +66,7 @@ GlossyReflections::~GlossyReflections() {
     device_.destroy(linearSampler_);
 }
 
-void GlossyReflections::render(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
+void GlossyReflections::record(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                                const engine::GBufferView& gbuffer, std::span<const GlossyCascade> cascades,
                                float rgba8Range, float maxRoughness, rhi::TextureHandle target,
                                rhi::TextureHandle specularAlbedoTable, uint32_t divisor,

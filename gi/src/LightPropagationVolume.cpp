@@ -453,7 +453,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     if (const uint32_t lightRsms = spotRsms_->rsmCount()) {
         auto s = scope("lightrsm");
         const uint64_t triangles =
-            spotRsms_->render(cmd, *frame_.scene, frame_.specularAlbedo, frame_.punctualLights);
+            spotRsms_->record(cmd, *frame_.scene, frame_.specularAlbedo, frame_.punctualLights);
         work(lightRsmWork(settings_, lightRsms, triangles));
     }
     // Coarsest first: each finer cascade takes the light from beyond its border from the one
@@ -477,7 +477,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                 rsm_->fit(cascade.lit, lightDir);
                 // Objects smaller than a cell of this cascade are left to the finer ones.
                 const uint64_t triangles =
-                    rsm_->render(cmd, *frame_.scene, frame_.specularAlbedo, lightDir, frame_.sunRadiance,
+                    rsm_->record(cmd, *frame_.scene, frame_.specularAlbedo, lightDir, frame_.sunRadiance,
                                  c == 0 ? 0.0f : cascade.lit.cellSize, settings_.rsmLodTexels);
                 work(rsmWork(settings_, triangles));
             }
@@ -534,7 +534,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             // Cascade c's faces go to its own slot, or to the one slot all share (the finest builds
             // last, so the lookup reads its faces there).
             const bool shared = geometry_->faceSlots() == 1;
-            geometry_->build(cmd, grid, src, shared ? 0 : c);
+            geometry_->record(cmd, grid, src, shared ? 0 : c);
             facesValid_ = (shared ? 0u : facesValid_) | (1u << c);
             const uint64_t cameraSamples =
                 src.depth ? geometry_->cameraSampleCount(gbuffer.width, gbuffer.height) : 0;
@@ -562,8 +562,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         }
         if (bounces_ && settings_.bouncesIn(c) && !(deferredBounces_ && c == 0)) {
             auto s = scope("bounces");
-            bounces_->add(cmd, *volumes_, *geometry_, settings_.bounces, settings_.iterations,
-                          cascades_[c].result);
+            bounces_->record(cmd, *volumes_, *geometry_, settings_.bounces, settings_.iterations,
+                             cascades_[c].result);
             work(bounceWork(settings_));
         }
     }
@@ -579,7 +579,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             // counted them twice (the lights hall 12% brighter with gi.coarse_update_interval=2).
             if (!(propagated & (1u << c))) continue;
             const uint32_t n =
-                pointLights_->inject(cmd, frame_.punctualLights, *volumes_, cascades_[c].grid,
+                pointLights_->record(cmd, frame_.punctualLights, *volumes_, cascades_[c].grid,
                                      settings_.intensity, &cascades_[c].result, c, spotRsms_->selection());
             lightsWork += analyticLightsWork(settings_, n, pointLights_->cellEvaluations());
         }
@@ -604,9 +604,9 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     // draws' depth tests add nothing to them.
     if (classified) {
         auto s = scope("classify");
-        classes_->classify(cmd, camera, gbuffer, std::span(grids.data(), cascades_.size()), blendBand,
-                           settings_.glossy ? settings_.glossyMaxRoughness : 0.0f, targetDesc.width,
-                           targetDesc.height, divisor);
+        classes_->record(cmd, camera, gbuffer, std::span(grids.data(), cascades_.size()), blendBand,
+                         settings_.glossy ? settings_.glossyMaxRoughness : 0.0f, targetDesc.width,
+                         targetDesc.height, divisor);
     }
     if (allocationCheckDue_) {
         allocationCheckDue_ = false;
@@ -679,7 +679,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         std::array<GlossyCascade, 4> glossyCascades;
         for (size_t c = 0; c < cascades_.size(); ++c)
             glossyCascades[c] = {cascades_[c].grid, cascades_[c].result};
-        glossy_.render(cmd, camera, gbuffer, std::span(glossyCascades.data(), cascades_.size()),
+        glossy_.record(cmd, camera, gbuffer, std::span(glossyCascades.data(), cascades_.size()),
                        volumes_->encoded() ? settings_.rgba8Range : 0.0f, settings_.glossyMaxRoughness,
                        glossyTarget, frame_.specularAlbedo, divisor, classified ? classes_.get() : nullptr);
         work(glossyWork(lookupPixels));

@@ -53,9 +53,9 @@ MultipleBounces::~MultipleBounces() {
     device_.destroy(pointSampler_);
 }
 
-void MultipleBounces::add(rhi::CommandList& cmd, LpvVolumes& volumes, const GeometryVolume& geometry,
-                          uint32_t bounces, uint32_t iterations,
-                          const std::array<rhi::TextureHandle, 3>& result) {
+void MultipleBounces::record(rhi::CommandList& cmd, LpvVolumes& volumes, const GeometryVolume& geometry,
+                             uint32_t bounces, uint32_t iterations,
+                             const std::array<rhi::TextureHandle, 3>& result) {
     const uint32_t n = settings_.gridSize;
     const uint32_t groups = (n + 3) / 4;
     BounceUniforms u;

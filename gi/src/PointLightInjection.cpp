@@ -73,7 +73,7 @@ PointLightInjection::~PointLightInjection() {
     device_.destroy(pipeline_);
 }
 
-uint32_t PointLightInjection::inject(rhi::CommandList& cmd, std::span<const engine::Light> lights,
+uint32_t PointLightInjection::record(rhi::CommandList& cmd, std::span<const engine::Light> lights,
                                      LpvVolumes& volumes, const VolumeGrid& grid, float intensityScale,
                                      const std::array<rhi::TextureHandle, 3>* result, uint32_t cascade,
                                      std::span<const uint32_t> skip) {

@@ -129,10 +129,10 @@ glm::mat4 ReflectiveShadowMap::fit(const VolumeGrid& grid, glm::vec3 lightDirect
     return viewProjection_;
 }
 
-uint64_t ReflectiveShadowMap::render(rhi::CommandList& cmd, const engine::GpuScene& scene,
+uint64_t ReflectiveShadowMap::record(rhi::CommandList& cmd, const engine::GpuScene& scene,
                                      rhi::TextureHandle specularAlbedo, glm::vec3 lightDirection,
                                      glm::vec3 sunIrradiance, float minObjectSize, float lodTexels) {
-    if (light_ != RsmLight::Sun) throw rhi::Error("ReflectiveShadowMap::render() on a spot light's RSM");
+    if (light_ != RsmLight::Sun) throw rhi::Error("ReflectiveShadowMap::record() on a spot light's RSM");
     RsmUniforms u;
     u.lightViewProjection = viewProjection_;
     u.lightDirection = glm::vec4(glm::normalize(lightDirection), 0.0f);
@@ -143,27 +143,27 @@ uint64_t ReflectiveShadowMap::render(rhi::CommandList& cmd, const engine::GpuSce
                 [maxError](const engine::GpuDraw&) { return maxError; });
 }
 
-uint64_t ReflectiveShadowMap::renderSpot(rhi::CommandList& cmd, const engine::GpuScene& scene,
+uint64_t ReflectiveShadowMap::recordSpot(rhi::CommandList& cmd, const engine::GpuScene& scene,
                                          rhi::TextureHandle specularAlbedo, const engine::Light& spot,
                                          float reach, float lodTexels) {
-    if (light_ != RsmLight::Spot) throw rhi::Error("ReflectiveShadowMap::renderSpot() on the sun's RSM");
+    if (light_ != RsmLight::Spot) throw rhi::Error("ReflectiveShadowMap::recordSpot() on the sun's RSM");
     // As the analytic lights (gi/AnalyticLight.cpp): smoothstep needs edge0 < edge1.
     const float cosOuter = std::cos(spot.outerConeAngle);
-    return renderPerspective(cmd, scene, specularAlbedo, spot, spotAxis(spot), fitSpotRsm(spot, reach),
+    return recordPerspective(cmd, scene, specularAlbedo, spot, spotAxis(spot), fitSpotRsm(spot, reach),
                              cosOuter, std::max(std::cos(spot.innerConeAngle), cosOuter + 1e-4f), lodTexels);
 }
 
-uint64_t ReflectiveShadowMap::renderCubeFace(rhi::CommandList& cmd, const engine::GpuScene& scene,
+uint64_t ReflectiveShadowMap::recordCubeFace(rhi::CommandList& cmd, const engine::GpuScene& scene,
                                              rhi::TextureHandle specularAlbedo, const engine::Light& point,
                                              uint32_t face, float reach, float lodTexels) {
-    if (light_ != RsmLight::Spot) throw rhi::Error("ReflectiveShadowMap::renderCubeFace() on the sun's RSM");
+    if (light_ != RsmLight::Spot) throw rhi::Error("ReflectiveShadowMap::recordCubeFace() on the sun's RSM");
     // No cone: every direction of the face gets the light's intensity (smoothstep from -1 is 1
     // over the whole face, whose directions are within 55 degrees of its axis).
-    return renderPerspective(cmd, scene, specularAlbedo, point, cubeFaceAxis(face),
+    return recordPerspective(cmd, scene, specularAlbedo, point, cubeFaceAxis(face),
                              fitCubeFace(point, face, reach), -1.0f, -1.0f + 1e-4f, lodTexels);
 }
 
-uint64_t ReflectiveShadowMap::renderPerspective(rhi::CommandList& cmd, const engine::GpuScene& scene,
+uint64_t ReflectiveShadowMap::recordPerspective(rhi::CommandList& cmd, const engine::GpuScene& scene,
                                                 rhi::TextureHandle specularAlbedo, const engine::Light& light,
                                                 glm::vec3 axis, const SpotRsmFit& fit, float cosOuter,
                                                 float cosInner, float lodTexels) {

@@ -109,7 +109,7 @@ void SpotLightRsms::select(std::span<const engine::Light> lights, const VolumeGr
             sources_[rsmCount_] = {vpls_[rsmCount_], spotLightVplSlots(settings_),
                                    glm::vec4(light.position, 1.0f)};
             reach_[rsmCount_] = analyticLight(light, 1.0f);
-            // As render() fits it.
+            // As record() fits it.
             const SpotRsmFit fit = k < count_ ? fitSpotRsm(light, far) : fitCubeFace(light, f, far);
             frusta_[rsmCount_] = fit.viewProjection;
             // A VPL's block of texels: (size / side)^2 texels of (2 tan / size)^2 sr each on the axis.
@@ -156,7 +156,7 @@ bool SpotLightRsms::selected(uint32_t index) const {
     return false;
 }
 
-uint64_t SpotLightRsms::render(rhi::CommandList& cmd, const engine::GpuScene& scene,
+uint64_t SpotLightRsms::record(rhi::CommandList& cmd, const engine::GpuScene& scene,
                                rhi::TextureHandle specularAlbedo, std::span<const engine::Light> lights) {
     uint64_t triangles = 0;
     uint32_t slot = 0;
@@ -167,8 +167,8 @@ uint64_t SpotLightRsms::render(rhi::CommandList& cmd, const engine::GpuScene& sc
             ReflectiveShadowMap& rsm = *rsms_[slot];
             triangles +=
                 k < count_
-                    ? rsm.renderSpot(cmd, scene, specularAlbedo, light, reach, settings_.rsmLodTexels)
-                    : rsm.renderCubeFace(cmd, scene, specularAlbedo, light, f, reach, settings_.rsmLodTexels);
+                    ? rsm.recordSpot(cmd, scene, specularAlbedo, light, reach, settings_.rsmLodTexels)
+                    : rsm.recordCubeFace(cmd, scene, specularAlbedo, light, f, reach, settings_.rsmLodTexels);
             cluster(cmd, slot);
         }
     }

@@ -143,7 +143,7 @@ TEST_CASE("gi: analytic lights on the GPU match the CPU formula") {
                     device->waitIdle();
                     before = readVolumes(*device, volumes);
                     rhi::CommandList& cmd2 = device->beginFrame();
-                    CHECK(injection.inject(cmd2, lights, volumes, grid, 1.0f) == packed.size());
+                    CHECK(injection.record(cmd2, lights, volumes, grid, 1.0f) == packed.size());
                     device->endFrame();
                     device->waitIdle();
                     after = readVolumes(*device, volumes);

@@ -74,7 +74,7 @@ WallRun runWall(rhi::Device& device, gi::LpvVolumes& volumes, gi::GeometryVolume
     WallRun run;
     for (bool occlusion : {false, true}) {
         rhi::CommandList& cmd = device.beginFrame();
-        geometry.build(cmd, grid, surfels);
+        geometry.record(cmd, grid, surfels);
         volumes.inject(cmd, light, count, grid, direction, 1.0f);
         volumes.propagate(cmd, 8, occlusion ? geometry.faceTransmittance() : rhi::TextureHandle{});
         device.endFrame();

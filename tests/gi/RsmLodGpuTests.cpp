@@ -38,7 +38,7 @@ RsmImages renderRsm(rhi::Device& device, const engine::Scene& scene, float lodTe
     rsm.fit(kGrid, sun);
     RsmImages out;
     rhi::CommandList& cmd = device.beginFrame();
-    out.triangles = rsm.render(cmd, gpu, specularAlbedo.texture(), sun, glm::vec3(1.0f), 0.0f, lodTexels);
+    out.triangles = rsm.record(cmd, gpu, specularAlbedo.texture(), sun, glm::vec3(1.0f), 0.0f, lodTexels);
     device.endFrame();
     device.waitIdle();
     out.flux = readImage(device, rsm.flux());
@@ -98,7 +98,7 @@ TEST_CASE("gi: a spot light's RSM draws levels of detail by distance and keeps i
             for (RsmImages* out : {&full, &lod, &coarse}) {
                 rhi::CommandList& cmd = device->beginFrame();
                 const float lodTexels = out == &full ? 0.0f : out == &lod ? 0.5f : 4.0f;
-                out->triangles = rsm.renderSpot(cmd, gpu, specularAlbedo.texture(), spot, 30.0f, lodTexels);
+                out->triangles = rsm.recordSpot(cmd, gpu, specularAlbedo.texture(), spot, 30.0f, lodTexels);
                 device->endFrame();
                 device->waitIdle();
                 out->flux = readImage(*device, rsm.flux());

@@ -93,7 +93,7 @@ TEST_CASE("gi: an RSM texel reflects the diffuse share glTF's fresnel mix leaves
                     gi::ReflectiveShadowMap rsm(*device, 128);
                     rsm.fit(grid, sun);
                     rhi::CommandList& cmd = device->beginFrame();
-                    rsm.render(cmd, scene, specularAlbedo.texture(), sun, sunIrradiance);
+                    rsm.record(cmd, scene, specularAlbedo.texture(), sun, sunIrradiance);
                     device->endFrame();
                     device->waitIdle();
                     flux = readImage(*device, rsm.flux());
@@ -177,9 +177,9 @@ TEST_CASE("gi: an RSM keeps the face turned to the light where two faces lie bac
                     rhi::CommandList& cmd = device->beginFrame();
                     if (light == gi::RsmLight::Sun) {
                         rsm.fit(grid, sun);
-                        rsm.render(cmd, gpuScene, specularAlbedo.texture(), sun, glm::vec3(1.0f));
+                        rsm.record(cmd, gpuScene, specularAlbedo.texture(), sun, glm::vec3(1.0f));
                     } else {
-                        rsm.renderSpot(cmd, gpuScene, specularAlbedo.texture(), spot, 20.0f);
+                        rsm.recordSpot(cmd, gpuScene, specularAlbedo.texture(), spot, 20.0f);
                     }
                     device->endFrame();
                     device->waitIdle();

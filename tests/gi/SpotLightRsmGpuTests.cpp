@@ -281,7 +281,7 @@ TEST_CASE("gi: a spot light's RSM reflects the flux its cone delivers, times the
                 rsms.select(lights, gi::VolumeGrid{{-8.0f, -8.0f, -8.0f}, 0.5f, 32});
                 REQUIRE(rsms.selection().size() == 1);
                 rhi::CommandList& cmd = device->beginFrame();
-                rsms.render(cmd, scene, specularAlbedo.texture(), lights);
+                rsms.record(cmd, scene, specularAlbedo.texture(), lights);
                 device->endFrame();
                 device->waitIdle();
                 REQUIRE(rsms.sources().size() == 1);
@@ -394,7 +394,7 @@ TEST_CASE("gi: a point light's cube RSM reflects all the flux it sends, times th
                 REQUIRE(rsms.rsmCount() == gi::kCubeFaces);
                 CHECK(rsms.selected(0));
                 rhi::CommandList& cmd = device->beginFrame();
-                rsms.render(cmd, scene, specularAlbedo.texture(), lights);
+                rsms.record(cmd, scene, specularAlbedo.texture(), lights);
                 device->endFrame();
                 device->waitIdle();
                 REQUIRE(rsms.sources().size() == gi::kCubeFaces);

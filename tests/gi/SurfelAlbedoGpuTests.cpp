@@ -58,7 +58,7 @@ TEST_CASE("gi: a cell's surfel albedo is the mean of its surfels', however many 
                 src.vplArea = 0.01f;
                 src.whiteTexelFlux = glm::vec3(1.0f);
                 rhi::CommandList& cmd = device->beginFrame();
-                geometry.build(cmd, {{0.0f, 0.0f, 0.0f}, kCell, kCells}, src);
+                geometry.record(cmd, {{0.0f, 0.0f, 0.0f}, kCell, kCells}, src);
                 device->endFrame();
                 device->waitIdle();
                 const Image albedo = readImage(*device, geometry.surfelAlbedo());

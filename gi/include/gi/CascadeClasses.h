@@ -45,11 +45,11 @@ public:
     // Writes every texel's class into target(), made (or remade) at `width` x `height`, the lookup
     // target's size: texel t classifies G-buffer pixel t x divisor, as the lookup reads it.
     // `cascades`: finest first, 2 to 4; `blendBand`: the band's width as a fraction of a cascade's
-    // half-extent; `glossyMaxRoughness`: the glossy march's (GlossyReflections::render), 0 when
+    // half-extent; `glossyMaxRoughness`: the glossy march's (GlossyReflections::record), 0 when
     // there is no march.
-    void classify(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
-                  const engine::GBufferView& gbuffer, std::span<const VolumeGrid> cascades, float blendBand,
-                  float glossyMaxRoughness, uint32_t width, uint32_t height, uint32_t divisor);
+    void record(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
+                const engine::GBufferView& gbuffer, std::span<const VolumeGrid> cascades, float blendBand,
+                float glossyMaxRoughness, uint32_t width, uint32_t height, uint32_t divisor);
     // The classes: a D32FS8 target whose stencil holds each lookup texel's class (sky: 0, which
     // no draw matches). Its depth is unused.
     rhi::TextureHandle target() const { return target_; }

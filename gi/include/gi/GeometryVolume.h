@@ -46,7 +46,7 @@ struct GeometrySources {
     // (gv_camera_areas.comp) instead of marking its cell as holding a surface, as the finest
     // cascade's do (gv_camera_marks.comp). Needs a volume made with cameraAreas.
     bool cameraAreas = false;
-    // With a volume made with keepAlbedo: gather the surfels' albedo (surfelAlbedo()) in this build.
+    // With a volume made with keepAlbedo: gather the surfels' albedo (surfelAlbedo()) in this pass.
     // Only a cascade that multiple bounces reflect in reads it.
     bool surfelAlbedo = true;
 };
@@ -63,7 +63,7 @@ public:
     // keepAlbedo: also gather the surfels' albedo (surfelAlbedo()), which only multiple bounces
     // read (gi.bounces > 1); it costs 8 bytes per GV cell and 4 per LPV cell (GiBudget.cpp), more
     // than the console setup's budget has left.
-    // faceSlots: how many face transmittance volumes it keeps, one per cascade (build()'s slot),
+    // faceSlots: how many face transmittance volumes it keeps, one per cascade (record()'s slot),
     // so that the lookup can read every cascade's after all were built.
     // cameraAreas: keep the volume the coarse cascades' camera samples add their areas into
     // (GeometrySources::cameraAreas; 12 bytes per GV cell).
@@ -75,10 +75,10 @@ public:
 
     // Clears and refills the volume for `grid` (the LPV's placement), then computes the face
     // transmittance into face slot `slot`.
-    void build(rhi::CommandList& cmd, const VolumeGrid& grid, const GeometrySources& sources,
-               uint32_t slot = 0);
+    void record(rhi::CommandList& cmd, const VolumeGrid& grid, const GeometrySources& sources,
+                uint32_t slot = 0);
 
-    // Per LPV cell: transmittance of its -x, -y, -z faces (RGBA8, xyz), of the last build()
+    // Per LPV cell: transmittance of its -x, -y, -z faces (RGBA8, xyz), of the last record()
     // (propagation and bounces read it), or of a slot's (the lookup, for each cascade).
     rhi::TextureHandle faceTransmittance() const { return faces_[lastSlot_]; }
     rhi::TextureHandle faceTransmittance(uint32_t slot) const { return faces_.at(slot); }

@@ -13,7 +13,7 @@ namespace lpv::gi {
 // pass, or the consoles' volume unwrapped into one 2D target), or each once per slice.
 enum class VolumeDraw : uint8_t { Layered, PerSlice };
 
-// `triangles`: those drawn into the RSM (ReflectiveShadowMap::render culls to the light's view).
+// `triangles`: those drawn into the RSM (ReflectiveShadowMap::record culls to the light's view).
 engine::WorkCounts rsmWork(const LpvSettings& s, uint64_t triangles);
 engine::WorkCounts vplClusterWork(const LpvSettings& s);
 // `extraVpls`: VPLs of further lights in the same pass (spot and point lights with an RSM).

@@ -43,7 +43,7 @@ public:
     // t marches from G-buffer pixel t x divisor. With `classes` (classified this frame for these
     // cascades and the target's size, glossy on) each cascade marches only its own glossy classes'
     // texels (CascadeClasses.h); only where CascadeClasses::wanted(device).
-    void render(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
+    void record(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                 const engine::GBufferView& gbuffer, std::span<const GlossyCascade> cascades, float rgba8Range,
                 float maxRoughness, rhi::TextureHandle target, rhi::TextureHandle specularAlbedoTable,
                 uint32_t divisor = 1, const CascadeClasses* classes = nullptr);

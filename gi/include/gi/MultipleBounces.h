@@ -27,8 +27,8 @@ public:
 
     // Adds bounces 2..`bounces` to `result` (the cascade's first-bounce light, just propagated in
     // `volumes` with `geometry`'s faces). Overwrites the injection volume.
-    void add(rhi::CommandList& cmd, LpvVolumes& volumes, const GeometryVolume& geometry, uint32_t bounces,
-             uint32_t iterations, const std::array<rhi::TextureHandle, 3>& result);
+    void record(rhi::CommandList& cmd, LpvVolumes& volumes, const GeometryVolume& geometry, uint32_t bounces,
+                uint32_t iterations, const std::array<rhi::TextureHandle, 3>& result);
 
 private:
     rhi::Device& device_;

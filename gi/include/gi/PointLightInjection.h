@@ -39,14 +39,14 @@ public:
     // coarse cascade kept from an earlier frame does, see LightPropagationVolume::renderIndirect).
     // `skip`: indices into `lights` left out (spot and point lights with an RSM of their own, SpotLightRsms).
     // Returns the lights added.
-    uint32_t inject(rhi::CommandList& cmd, std::span<const engine::Light> lights, LpvVolumes& volumes,
+    uint32_t record(rhi::CommandList& cmd, std::span<const engine::Light> lights, LpvVolumes& volumes,
                     const VolumeGrid& grid, float intensityScale,
                     const std::array<rhi::TextureHandle, 3>* result = nullptr, uint32_t cascade = 0,
                     std::span<const uint32_t> skip = {});
 
-    // What the last inject() uploaded.
+    // What the last record() uploaded.
     std::span<const AnalyticLight> lights() const { return {staged_.data(), count_}; }
-    // About how many (cell, light) pairs the last inject() evaluates: per light, the cells of the
+    // About how many (cell, light) pairs the last record() evaluates: per light, the cells of the
     // shader's 4x4x4 blocks that its range's bounding box overlaps (the shader tests the sphere).
     uint64_t cellEvaluations() const { return cellEvaluations_; }
 
@@ -60,7 +60,7 @@ private:
     uint64_t cellEvaluations_ = 0;
 };
 
-// Work of one inject() that added `lightCount` lights in `cellEvaluations` (cell, light) pairs.
+// Work of one record() that added `lightCount` lights in `cellEvaluations` (cell, light) pairs.
 engine::WorkCounts analyticLightsWork(const LpvSettings& s, uint32_t lightCount, uint64_t cellEvaluations);
 
 } // namespace lpv::gi

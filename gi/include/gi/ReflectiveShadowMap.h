@@ -55,18 +55,18 @@ public:
     // (the pass's work).
     // `specularAlbedo` (engine::SpecularAlbedoTexture) gives the share of the light the materials'
     // specular layer leaves to their diffuse base (gi/shaders/rsm_diffuse.glsl).
-    uint64_t render(rhi::CommandList& cmd, const engine::GpuScene& scene, rhi::TextureHandle specularAlbedo,
+    uint64_t record(rhi::CommandList& cmd, const engine::GpuScene& scene, rhi::TextureHandle specularAlbedo,
                     glm::vec3 lightDirection, glm::vec3 sunIrradiance, float minObjectSize = 0.0f,
                     float lodTexels = 0.0f);
     // A spot RSM (RsmLight::Spot): fits it to `spot` (fitSpotRsm) and draws the scene in its view,
-    // with levels of detail as render() (a texel measured at the object's nearest point to the
+    // with levels of detail as record() (a texel measured at the object's nearest point to the
     // light). Returns the triangles drawn.
-    uint64_t renderSpot(rhi::CommandList& cmd, const engine::GpuScene& scene,
+    uint64_t recordSpot(rhi::CommandList& cmd, const engine::GpuScene& scene,
                         rhi::TextureHandle specularAlbedo, const engine::Light& spot, float reach,
                         float lodTexels = 0.0f);
     // Face `face` of a point light's cube RSM (RsmLight::Spot maps; fitCubeFace): the light's
     // intensity through every texel of the face, no cone edge. Returns the triangles drawn.
-    uint64_t renderCubeFace(rhi::CommandList& cmd, const engine::GpuScene& scene,
+    uint64_t recordCubeFace(rhi::CommandList& cmd, const engine::GpuScene& scene,
                             rhi::TextureHandle specularAlbedo, const engine::Light& point, uint32_t face,
                             float reach, float lodTexels = 0.0f);
 
@@ -79,7 +79,7 @@ public:
 private:
     // A perspective RSM of `light` (spot or point) through `fit` along `axis`, weighted by the cone
     // from cosOuter to cosInner (smoothstep of the cosine to the axis).
-    uint64_t renderPerspective(rhi::CommandList& cmd, const engine::GpuScene& scene,
+    uint64_t recordPerspective(rhi::CommandList& cmd, const engine::GpuScene& scene,
                                rhi::TextureHandle specularAlbedo, const engine::Light& light, glm::vec3 axis,
                                const SpotRsmFit& fit, float cosOuter, float cosInner, float lodTexels);
     // `maxError(draw)`: the error (m) the draw's level of detail may have.

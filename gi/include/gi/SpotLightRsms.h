@@ -48,10 +48,10 @@ public:
     uint32_t rsmCount() const { return rsmCount_; }
 
     // Draws every selected light's RSM(s) and clusters each into its VPLs; returns the triangles
-    // drawn. `specularAlbedo`: as ReflectiveShadowMap::render().
-    uint64_t render(rhi::CommandList& cmd, const engine::GpuScene& scene, rhi::TextureHandle specularAlbedo,
+    // drawn. `specularAlbedo`: as ReflectiveShadowMap::record().
+    uint64_t record(rhi::CommandList& cmd, const engine::GpuScene& scene, rhi::TextureHandle specularAlbedo,
                     std::span<const engine::Light> lights);
-    // The VPL buffers of the RSMs drawn, for LpvVolumes::inject with the sun's (render() fills them).
+    // The VPL buffers of the RSMs drawn, for LpvVolumes::inject with the sun's (record() fills them).
     std::span<const VplSource> sources() const { return {sources_.data(), rsmCount_}; }
     // Those of sources() whose RSM can hold part of `grid` (a cascade: the light's range sphere and
     // the RSM's frustum, a spot's or a cube face's, both meet the box), copied to `out`; returns how
