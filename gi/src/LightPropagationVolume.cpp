@@ -25,11 +25,6 @@ namespace {
 // lpv_lookup.glsl's highest texture binding (faceTransmittance3) plus one.
 constexpr uint32_t kLookupTextureBindings = 21;
 
-struct ClusterUniforms {
-    glm::mat4 invLightViewProjection;
-    glm::ivec4 sizes;
-};
-
 struct LookupUniforms {
     glm::mat4 invViewProjection;
     glm::vec4 gridOrigin[4];
@@ -70,7 +65,7 @@ VolumeGrid placeVolume(const LpvSettings& s, glm::vec3 cameraPosition, glm::vec3
 }
 
 LightPropagationVolume::LightPropagationVolume(rhi::Device& device, platforms::PlatformProfile profile)
-    : device_(device), profile_(std::move(profile)), glossy_(device) {
+    : device_(device), profile_(std::move(profile)), vplClustering_(device, "vpl cluster"), glossy_(device) {
     using namespace rhi;
     // lpv_lookup.glsl samples the G-buffer, every cascade's volumes and faces and the lobes' tables
     // in one fragment shader, at bindings up to kLookupTextureBindings - 1: said here, not as a
@@ -81,7 +76,6 @@ LightPropagationVolume::LightPropagationVolume(rhi::Device& device, platforms::P
                          " in one fragment shader, and this device (" + device.caps().deviceName +
                          ") allows " + std::to_string(device.caps().fragmentTextureBindings) +
                          " (OpenGL's GL_MAX_TEXTURE_IMAGE_UNITS, Vulkan's per-stage samplers)");
-    clusterPipeline_ = device.createPipeline(ComputePipelineDesc{&shaders::vpl_cluster_comp, "vpl cluster"});
     GraphicsPipelineDesc lookup;
     lookup.vertex = &engine::shaders::fullscreen_vert;
     lookup.colorFormats = {Format::RGBA16F, Format::RGBA16F}; // irradiance, glossy radiance
@@ -140,7 +134,6 @@ LightPropagationVolume::~LightPropagationVolume() {
             if (p) device_.destroy(p);
     for (auto p : {slicePipeline_, pointsPipeline_})
         device_.destroy(p);
-    device_.destroy(clusterPipeline_);
     device_.destroy(pointSampler_);
     device_.destroy(linearSampler_);
 }
@@ -482,16 +475,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                 work(rsmWork(settings_, triangles));
             }
             auto s = scope("vpl");
-            ClusterUniforms u;
-            u.invLightViewProjection = glm::inverse(rsm_->lightViewProjection());
-            u.sizes = glm::ivec4(int(rsm_->size()), int(side), int(rsm_->size() / side), 0);
-            cmd.bindPipeline(clusterPipeline_);
-            cmd.pushUniforms(0, &u, sizeof(u));
-            cmd.bindTexture(1, rsm_->depth(), pointSampler_);
-            cmd.bindTexture(2, rsm_->normal(), pointSampler_);
-            cmd.bindTexture(3, rsm_->flux(), pointSampler_);
-            cmd.bindStorageBuffer(4, cascade.vpls);
-            cmd.dispatch((side + 7) / 8, (side + 7) / 8, 1);
+            vplClustering_.record(cmd, *rsm_, side, cascade.vpls);
             work(vplClusterWork(settings_));
             const float texelsPerVpl = float(rsm_->size() / side) * float(rsm_->size() / side);
             cascade.lightDirection = lightDir;

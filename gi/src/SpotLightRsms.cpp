@@ -1,23 +1,14 @@
 // Spot and point lights with their own RSM: the choice of lights, their RSMs and VPL clustering.
 #include "gi/SpotLightRsms.h"
 
-#include "GiShaders.h"
-
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
-#include <glm/matrix.hpp>
 
 #include <algorithm>
 #include <string>
 
 namespace lpv::gi {
 namespace {
-
-// std140 block `Params` of vpl_cluster.comp.
-struct ClusterUniforms {
-    glm::mat4 invLightViewProjection;
-    glm::ivec4 sizes;
-};
 
 float importance(const engine::Light& l, const VolumeGrid& grid) {
     const float half = 0.5f * grid.cellSize * float(grid.size);
@@ -80,18 +71,13 @@ SpotLightRsms::SpotLightRsms(rhi::Device& device, const LpvSettings& settings)
             device.createBuffer({uint64_t(spotLightVplSlots(settings)) * 48, kBufferStorage | kBufferTransfer,
                                  MemoryAccess::GpuOnly, "light rsm vpls " + std::to_string(k), "gi.vpl"});
     }
-    if (capacity_ + pointCapacity_ > 0)
-        clusterPipeline_ =
-            device.createPipeline(ComputePipelineDesc{&shaders::vpl_cluster_comp, "spot light vpl cluster"});
-    pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
+    if (capacity_ + pointCapacity_ > 0) clustering_.emplace(device, "spot light vpl cluster");
 }
 
 SpotLightRsms::~SpotLightRsms() {
     device_.waitIdle();
     for (rhi::BufferHandle b : vpls_)
         if (b) device_.destroy(b);
-    if (clusterPipeline_) device_.destroy(clusterPipeline_);
-    device_.destroy(pointSampler_);
 }
 
 void SpotLightRsms::select(std::span<const engine::Light> lights, const VolumeGrid& reach) {
@@ -169,26 +155,10 @@ uint64_t SpotLightRsms::record(rhi::CommandList& cmd, const engine::GpuScene& sc
                 k < count_
                     ? rsm.recordSpot(cmd, scene, specularAlbedo, light, reach, settings_.rsmLodTexels)
                     : rsm.recordCubeFace(cmd, scene, specularAlbedo, light, f, reach, settings_.rsmLodTexels);
-            cluster(cmd, slot);
+            clustering_->record(cmd, rsm, spotLightVplSide(settings_), vpls_[slot]);
         }
     }
     return triangles;
-}
-
-void SpotLightRsms::cluster(rhi::CommandList& cmd, uint32_t slot) {
-    // The sun's clustering (vpl_cluster.comp): its unprojection holds for a perspective map.
-    const uint32_t side = spotLightVplSide(settings_);
-    const ReflectiveShadowMap& rsm = *rsms_[slot];
-    ClusterUniforms u;
-    u.invLightViewProjection = glm::inverse(rsm.lightViewProjection());
-    u.sizes = glm::ivec4(int(rsm.size()), int(side), int(rsm.size() / side), 0);
-    cmd.bindPipeline(clusterPipeline_);
-    cmd.pushUniforms(0, &u, sizeof(u));
-    cmd.bindTexture(1, rsm.depth(), pointSampler_);
-    cmd.bindTexture(2, rsm.normal(), pointSampler_);
-    cmd.bindTexture(3, rsm.flux(), pointSampler_);
-    cmd.bindStorageBuffer(4, vpls_[slot]);
-    cmd.dispatch((side + 7) / 8, (side + 7) / 8, 1);
 }
 
 } // namespace lpv::gi

@@ -26,6 +26,7 @@
 #include "gi/PointLightInjection.h"
 #include "gi/ReflectiveShadowMap.h"
 #include "gi/SpotLightRsms.h"
+#include "gi/VplClustering.h"
 #include "platforms/PlatformProfile.h"
 
 #include <algorithm>
@@ -178,10 +179,10 @@ private:
     std::unique_ptr<MultipleBounces> bounces_; // gi.bounces > 1
     std::unique_ptr<PointLightInjection> pointLights_;
     std::unique_ptr<SpotLightRsms> spotRsms_;
+    VplClustering vplClustering_; // the sun's RSM, per cascade
     GlossyReflections glossy_;
     bool analyticLights_ = true;
     rhi::BufferHandle vpls_;
-    rhi::ComputePipelineHandle clusterPipeline_;
     std::array<rhi::GraphicsPipelineHandle, 4> lookupPipelines_{}; // for 1..4 cascades
     // CascadeClasses::wanted: the classification, and the lookup per cascade and band (the
     // coarsest has none).

@@ -16,10 +16,12 @@
 #include "gi/LpvSettings.h"
 #include "gi/LpvVolumes.h"
 #include "gi/ReflectiveShadowMap.h"
+#include "gi/VplClustering.h"
 #include "rhi/Device.h"
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <span>
 
 namespace lpv::gi {
@@ -61,8 +63,6 @@ public:
     uint32_t surfelsReaching(const VolumeGrid& grid, std::span<PointLightSurfels> out) const;
 
 private:
-    // Clusters RSM `slot` into its VPL buffer.
-    void cluster(rhi::CommandList& cmd, uint32_t slot);
     // Whether RSM `slot` can hold part of `grid`, whose box is `box`.
     bool reaches(uint32_t slot, const VolumeGrid& grid, const engine::Bounds& box) const;
     // Copies the entries of `all` (one per RSM slot) whose RSM reaches `grid` into `out`.
@@ -80,9 +80,8 @@ private:
     std::array<glm::mat4, kMaxRsms> frusta_{};    // each RSM's view-projection, for sourcesReaching()
     std::array<PointLightSurfels, kMaxRsms> surfels_{};
     uint32_t count_ = 0, pointCount_ = 0, rsmCount_ = 0;
-    VolumeGrid reachGrid_; // the volume the lights were chosen for
-    rhi::ComputePipelineHandle clusterPipeline_;
-    rhi::SamplerHandle pointSampler_;
+    VolumeGrid reachGrid_;                    // the volume the lights were chosen for
+    std::optional<VplClustering> clustering_; // with any RSM
 };
 
 // Side of a spot light RSM's VPL grid: half the sun's (blocks of twice the texels, a quarter of
