@@ -22,19 +22,6 @@
 namespace lpv::gi {
 namespace {
 
-// lpv_lookup.glsl's highest texture binding (faceTransmittance3) plus one.
-constexpr uint32_t kLookupTextureBindings = 21;
-
-struct LookupUniforms {
-    glm::mat4 invViewProjection;
-    glm::vec4 gridOrigin[4];
-    glm::ivec4 grid;
-    glm::vec4 encode;
-    glm::vec4 intensity;
-    glm::ivec4 pixels; // x: resolution divisor, yz: G-buffer size
-    glm::vec4 cameraPosition;
-};
-
 struct SliceUniforms {
     glm::vec4 params;
     glm::ivec4 flags;
@@ -65,49 +52,13 @@ VolumeGrid placeVolume(const LpvSettings& s, glm::vec3 cameraPosition, glm::vec3
 }
 
 LightPropagationVolume::LightPropagationVolume(rhi::Device& device, platforms::PlatformProfile profile)
-    : device_(device), profile_(std::move(profile)), vplClustering_(device, "vpl cluster"), glossy_(device) {
+    : device_(device), profile_(std::move(profile)), lookup_(device), vplClustering_(device, "vpl cluster"),
+      glossy_(device) {
     using namespace rhi;
-    // lpv_lookup.glsl samples the G-buffer, every cascade's volumes and faces and the lobes' tables
-    // in one fragment shader, at bindings up to kLookupTextureBindings - 1: said here, not as a
-    // driver's failure to build the pipeline.
-    if (device.caps().fragmentTextureBindings < kLookupTextureBindings)
-        throw rhi::Error("GI: the indirect light's lookup binds textures up to binding " +
-                         std::to_string(kLookupTextureBindings - 1) +
-                         " in one fragment shader, and this device (" + device.caps().deviceName +
-                         ") allows " + std::to_string(device.caps().fragmentTextureBindings) +
-                         " (OpenGL's GL_MAX_TEXTURE_IMAGE_UNITS, Vulkan's per-stage samplers)");
-    GraphicsPipelineDesc lookup;
-    lookup.vertex = &engine::shaders::fullscreen_vert;
-    lookup.colorFormats = {Format::RGBA16F, Format::RGBA16F}; // irradiance, glossy radiance
-    lookup.debugName = "lpv lookup";
-    const rhi::ShaderBinary* lookups[4] = {&shaders::lpv_lookup_1_frag, &shaders::lpv_lookup_2_frag,
-                                           &shaders::lpv_lookup_3_frag, &shaders::lpv_lookup_4_frag};
-    for (size_t c = 0; c < 4; ++c) {
-        lookup.fragment = lookups[c];
-        lookupPipelines_[c] = device.createPipeline(lookup);
-    }
-    GraphicsPipelineDesc slice = lookup;
-    if (CascadeClasses::wanted(device)) {
-        // Where a shader runs both sides of its branches: one draw per cascade class.
-        classes_ = std::make_unique<CascadeClasses>(device);
-        GraphicsPipelineDesc d = lookup;
-        d.debugName = "lpv lookup, one cascade class";
-        const rhi::ShaderBinary* interior[4] = {
-            &shaders::lpv_lookup_class0_frag, &shaders::lpv_lookup_class1_frag,
-            &shaders::lpv_lookup_class2_frag, &shaders::lpv_lookup_class3_frag};
-        const rhi::ShaderBinary* band[3] = {&shaders::lpv_lookup_class0_blend_frag,
-                                            &shaders::lpv_lookup_class1_blend_frag,
-                                            &shaders::lpv_lookup_class2_blend_frag};
-        for (uint32_t c = 0; c < 4; ++c) {
-            d.fragment = interior[c];
-            CascadeClasses::configureLookupDraw(d, c, false);
-            lookupClassPipelines_[c][0] = device.createPipeline(d);
-            if (c == 3) continue;
-            d.fragment = band[c];
-            CascadeClasses::configureLookupDraw(d, c, true);
-            lookupClassPipelines_[c][1] = device.createPipeline(d);
-        }
-    }
+    // Where a shader runs both sides of its branches: one draw per cascade class.
+    if (CascadeClasses::wanted(device)) classes_ = std::make_unique<CascadeClasses>(device);
+    GraphicsPipelineDesc slice;
+    slice.vertex = &engine::shaders::fullscreen_vert;
     slice.fragment = &shaders::lpv_slice_frag;
     slice.colorFormats = {Format::RGBA8Srgb};
     slice.debugName = "lpv slice view";
@@ -127,11 +78,6 @@ LightPropagationVolume::LightPropagationVolume(rhi::Device& device, platforms::P
 
 LightPropagationVolume::~LightPropagationVolume() {
     release();
-    for (auto p : lookupPipelines_)
-        device_.destroy(p);
-    for (const auto& byBand : lookupClassPipelines_)
-        for (auto p : byBand)
-            if (p) device_.destroy(p);
     for (auto p : {slicePipeline_, pointsPipeline_})
         device_.destroy(p);
     device_.destroy(pointSampler_);
@@ -598,64 +544,25 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     }
     {
         auto s = scope("lookup");
-        LookupUniforms u;
-        u.invViewProjection = camera.invViewProjection;
-        for (uint32_t c = 0; c < 4; ++c)
-            u.gridOrigin[c] = glm::vec4(grids[c].origin, grids[c].cellSize);
-        u.grid = glm::ivec4(int(grid_.size), volumes_->encoded() ? 1 : 0, settings_.damping ? 1 : 0,
-                            int(cascades_.size()));
-        // gi.rgba8_range, a radiance: the shader takes each cascade's range from its cell size.
-        // z, bit c: cascade c's lookup keeps to the faces its geometry volume leaves open (its
-        // faces are built: a coarse cascade skipped since the volume was remade has none yet).
-        u.encode = glm::vec4(settings_.rgba8Range, blendBand, geometry_ ? float(facesValid_) : 0.0f, 0);
-        // z: the glossy lobe's mean direction (gi.glossy), or the cosine lobe around n.
-        u.intensity = glm::vec4(settings_.intensity, 1.0f, settings_.glossy ? 1.0f : 0.0f, 0);
-        // w = 0: the first column of the camera matrix, read at an index lavapipe cannot fold.
-        u.pixels = glm::ivec4(int(divisor), int(gbuffer.width), int(gbuffer.height), 0);
-        u.cameraPosition = glm::vec4(camera.position, 1.0f);
-        RenderPassDesc pass;
-        // Classified, the sky's texels are drawn by no class: cleared to what the lookup writes there.
-        const LoadOp load = classified ? LoadOp::Clear : LoadOp::DontCare;
-        pass.colors[0] = {target, 0, 0, load};
-        // The glossy radiance of the lobe's mean direction, which the march then draws over where
-        // it runs.
-        pass.colors[1] = {glossyTarget, 0, 0, load};
-        pass.colorCount = 2;
-        if (classified) pass.depth = {classes_->target(), 0, LoadOp::Load};
-        pass.debugName = "lpv lookup";
-        cmd.beginRenderPass(pass);
-        std::array<std::array<rhi::TextureHandle, 3>, 4> volumes;
-        for (size_t c = 0; c < cascades_.size(); ++c)
-            volumes[c] = cascades_[c].result;
-        const auto bindInputs = [&] {
-            cmd.pushUniforms(0, &u, sizeof(u));
-            bindCascadeReads(cmd, gbuffer, std::span(volumes.data(), cascades_.size()), pointSampler_,
-                             linearSampler_);
-            cmd.bindTexture(15, gbuffer.albedo, pointSampler_);
-            cmd.bindTexture(16, frame_.specularAlbedo, linearSampler_);
-            // Without occlusion the bindings are unread; any 3D texture fills them.
-            for (uint32_t c = 0; c < 4; ++c) {
-                const uint32_t slot = std::min(
-                    {c, uint32_t(cascades_.size()) - 1, geometry_ ? geometry_->faceSlots() - 1 : 0u});
-                cmd.bindTexture(17 + c, geometry_ ? geometry_->faceTransmittance(slot) : volumes[0][0],
-                                pointSampler_);
-            }
-        };
-        if (!classified) {
-            cmd.bindPipeline(lookupPipelines_[cascades_.size() - 1]);
-            bindInputs();
-            cmd.draw(3);
-        } else {
-            for (uint32_t c = 0; c < cascades_.size(); ++c) {
-                for (const bool blend : {false, true}) {
-                    if (blend && c + 1 == cascades_.size()) continue; // the coarsest has no band
-                    cmd.bindPipeline(lookupClassPipelines_[c][blend ? 1 : 0]);
-                    bindInputs();
-                    cmd.draw(3);
-                }
-            }
+        std::array<LookupCascade, 4> lookupCascades;
+        for (uint32_t c = 0; c < cascades_.size(); ++c) {
+            // It keeps to the faces its geometry volume leaves open once they are built (a coarse
+            // cascade skipped since the volume was remade has none yet).
+            const rhi::TextureHandle faces =
+                geometry_ ? geometry_->faceTransmittance(std::min(c, geometry_->faceSlots() - 1))
+                          : rhi::TextureHandle{};
+            lookupCascades[c] = {cascades_[c].grid, cascades_[c].result, faces,
+                                 geometry_ && (facesValid_ & (1u << c)) != 0};
         }
-        cmd.endRenderPass();
+        LookupOptions options;
+        options.intensity = settings_.intensity;
+        options.rgba8Range = volumes_->encoded() ? settings_.rgba8Range : 0.0f;
+        options.damping = settings_.damping;
+        options.glossyLobe = settings_.glossy;
+        options.blendBand = blendBand;
+        options.divisor = divisor;
+        lookup_.record(cmd, camera, gbuffer, std::span(lookupCascades.data(), cascades_.size()), options,
+                       target, glossyTarget, frame_.specularAlbedo, classified ? classes_.get() : nullptr);
         work(lookupWork(settings_, lookupPixels));
     }
     if (settings_.glossy) {

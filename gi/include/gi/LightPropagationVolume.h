@@ -19,6 +19,7 @@
 #include "gi/GiScheduler.h"
 #include "gi/GiWork.h"
 #include "gi/GlossyReflections.h"
+#include "gi/IndirectLookup.h"
 #include "gi/LpvReference.h"
 #include "gi/LpvSettings.h"
 #include "gi/LpvVolumes.h"
@@ -179,15 +180,13 @@ private:
     std::unique_ptr<MultipleBounces> bounces_; // gi.bounces > 1
     std::unique_ptr<PointLightInjection> pointLights_;
     std::unique_ptr<SpotLightRsms> spotRsms_;
+    IndirectLookup lookup_;       // first: it refuses a device that binds too few textures
     VplClustering vplClustering_; // the sun's RSM, per cascade
     GlossyReflections glossy_;
     bool analyticLights_ = true;
     rhi::BufferHandle vpls_;
-    std::array<rhi::GraphicsPipelineHandle, 4> lookupPipelines_{}; // for 1..4 cascades
-    // CascadeClasses::wanted: the classification, and the lookup per cascade and band (the
-    // coarsest has none).
+    // CascadeClasses::wanted: the classification.
     std::unique_ptr<CascadeClasses> classes_;
-    std::array<std::array<rhi::GraphicsPipelineHandle, 2>, 4> lookupClassPipelines_{};
     rhi::GraphicsPipelineHandle slicePipeline_, pointsPipeline_;
     rhi::SamplerHandle pointSampler_, linearSampler_;
 };
