@@ -1,18 +1,14 @@
 // The LPV frame: RSM, VPL clustering, injection, propagation, lookup, glossy, debug views.
 #include "gi/LightPropagationVolume.h"
 
-#include "EngineShaders.h"
-#include "GiShaders.h"
 #include "engine/profiler/FrameProfiler.h"
 #include "gi/GiBudget.h"
 #include "gi/GiWork.h"
 #include "platforms/Log.h"
-#include "rhi/Error.h"
 
 #include <cmath>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
-#include <glm/matrix.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -20,14 +16,7 @@
 #include <string>
 
 namespace lpv::gi {
-namespace {
-
-struct SliceUniforms {
-    glm::vec4 params;
-    glm::ivec4 flags;
-};
-
-} // namespace
+namespace {} // namespace
 
 VolumeGrid placeVolume(const LpvSettings& s, glm::vec3 cameraPosition, glm::vec3 cameraForward,
                        const engine::Bounds& bounds) {
@@ -53,35 +42,13 @@ VolumeGrid placeVolume(const LpvSettings& s, glm::vec3 cameraPosition, glm::vec3
 
 LightPropagationVolume::LightPropagationVolume(rhi::Device& device, platforms::PlatformProfile profile)
     : device_(device), profile_(std::move(profile)), lookup_(device), vplClustering_(device, "vpl cluster"),
-      glossy_(device) {
-    using namespace rhi;
+      glossy_(device), debugViews_(device) {
     // Where a shader runs both sides of its branches: one draw per cascade class.
     if (CascadeClasses::wanted(device)) classes_ = std::make_unique<CascadeClasses>(device);
-    GraphicsPipelineDesc slice;
-    slice.vertex = &engine::shaders::fullscreen_vert;
-    slice.fragment = &shaders::lpv_slice_frag;
-    slice.colorFormats = {Format::RGBA8Srgb};
-    slice.debugName = "lpv slice view";
-    slicePipeline_ = device.createPipeline(slice);
-    GraphicsPipelineDesc points;
-    points.vertex = &shaders::vpl_points_vert;
-    points.fragment = &shaders::vpl_points_frag;
-    points.topology = PrimitiveTopology::PointList;
-    points.colorFormats = {Format::RGBA8Srgb};
-    points.debugName = "vpl view";
-    pointsPipeline_ = device.createPipeline(points);
-    pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
-    SamplerDesc linear;
-    linear.mipFilter = Filter::Nearest;
-    linearSampler_ = device.createSampler(linear);
 }
 
 LightPropagationVolume::~LightPropagationVolume() {
     release();
-    for (auto p : {slicePipeline_, pointsPipeline_})
-        device_.destroy(p);
-    device_.destroy(pointSampler_);
-    device_.destroy(linearSampler_);
 }
 
 void LightPropagationVolume::release() {
@@ -580,41 +547,14 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
 
 void LightPropagationVolume::renderDebugOverlay(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                                                 rhi::TextureHandle output) {
-    using namespace rhi;
-    if (!settings_.enabled || !made_ || settings_.debugView == GiDebugView::None ||
-        settings_.debugView == GiDebugView::Indirect)
-        return;
-    const TextureDesc& d = device_.desc(output);
-    RenderPassDesc pass;
-    pass.colors[0] = {output, 0, 0, LoadOp::Load};
-    pass.colorCount = 1;
-    pass.debugName = "gi debug view";
-    cmd.beginRenderPass(pass);
-    if (settings_.debugView == GiDebugView::VolumeSlice) {
-        // The slice in the top-left corner, one square of half the frame height.
-        const float side = float(d.height) * 0.5f;
-        cmd.setViewport({0, 0, side, side, 0, 1});
-        SliceUniforms u;
-        const uint32_t slice = std::min(settings_.debugSlice.value_or(16u), grid_.size - 1);
-        u.params = glm::vec4((float(slice) + 0.5f) / float(grid_.size),
-                             1.0f / (grid_.cellSize * grid_.cellSize), volumes_->encodeRange(grid_), 0);
-        u.flags = glm::ivec4(volumes_->encoded() ? 1 : 0, 0, 0, 0);
-        cmd.bindPipeline(slicePipeline_);
-        cmd.pushUniforms(0, &u, sizeof(u));
-        for (uint32_t c = 0; c < 3; ++c)
-            cmd.bindTexture(1 + c, volumes_->accumulated()[c], pointSampler_);
-        cmd.draw(3);
-    } else {
-        cmd.bindPipeline(pointsPipeline_);
-        cmd.pushUniforms(0, &camera.viewProjection, sizeof(camera.viewProjection));
-        cmd.bindStorageBuffer(1, vpls_);
-        cmd.draw(settings_.vplSlots());
-        for (const VplSource& spot : spotRsms_->sources()) { // and the lights' with an RSM
-            cmd.bindStorageBuffer(1, spot.vpls);
-            cmd.draw(spot.count);
-        }
-    }
-    cmd.endRenderPass();
+    if (!settings_.enabled || !made_) return;
+    // The sun's VPLs of the finest cascade, then the lights' with an RSM.
+    std::array<VplSource, 1 + SpotLightRsms::kMaxRsms> vpls;
+    vpls[0] = {vpls_, settings_.vplSlots()};
+    const std::span<const VplSource> lights = spotRsms_->sources();
+    std::copy(lights.begin(), lights.end(), vpls.begin() + 1);
+    debugViews_.record(cmd, settings_.debugView, camera, output, *volumes_, grid_,
+                       settings_.debugSlice.value_or(16u), std::span(vpls.data(), 1 + lights.size()));
 }
 
 } // namespace lpv::gi

@@ -15,6 +15,7 @@
 #include "gi/CascadeClasses.h"
 #include "gi/GeometryVolume.h"
 #include "gi/GiConfigResult.h"
+#include "gi/GiDebugViews.h"
 #include "gi/GiFrameInputs.h"
 #include "gi/GiScheduler.h"
 #include "gi/GiWork.h"
@@ -183,12 +184,11 @@ private:
     IndirectLookup lookup_;       // first: it refuses a device that binds too few textures
     VplClustering vplClustering_; // the sun's RSM, per cascade
     GlossyReflections glossy_;
+    GiDebugViews debugViews_;
     bool analyticLights_ = true;
     rhi::BufferHandle vpls_;
     // CascadeClasses::wanted: the classification.
     std::unique_ptr<CascadeClasses> classes_;
-    rhi::GraphicsPipelineHandle slicePipeline_, pointsPipeline_;
-    rhi::SamplerHandle pointSampler_, linearSampler_;
 };
 
 } // namespace lpv::gi
