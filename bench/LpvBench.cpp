@@ -35,6 +35,8 @@
 #include "gi/GiWork.h"
 #include "gi/GlossyReflections.h"
 #include "gi/LightPropagationVolume.h"
+#include "gi/LpvInjection.h"
+#include "gi/LpvPropagation.h"
 #include "gi/LpvSettings.h"
 #include "gi/LpvVolumes.h"
 #include "gi/PointLightInjection.h"
@@ -115,9 +117,12 @@ void benchPropagation(const BenchBackend& b, int runs) {
         vpls.data());
     s.cascades = 1;
     gi::LpvVolumes volumes(*device, s); // bounded partial sums
+    gi::LpvInjection injection(*device, s);
+    gi::LpvPropagation propagation(*device, s);
     gi::LpvSettings cascaded = s;
     cascaded.cascades = 3;
     gi::LpvVolumes shellVolumes(*device, cascaded); // with the shell (seeded with nothing here)
+    gi::LpvPropagation shellPropagation(*device, cascaded);
     // Baseline volumes: per channel a ping, a pong and an accumulation, RGBA16F.
     std::array<TextureHandle, 3> start{}, ping{}, pong{}, acc{};
     for (int c = 0; c < 3; ++c) {
@@ -141,17 +146,17 @@ void benchPropagation(const BenchBackend& b, int runs) {
     for (int run = 0; run < runs + 1; ++run) {
         CommandList& cmd = device->beginFrame();
         const uint64_t frame = device->frameIndex();
-        volumes.inject(cmd, vplBuffer, uint32_t(vpls.size()), grid, {0, -1, 0}, 1.0f);
-        shellVolumes.inject(cmd, vplBuffer, uint32_t(vpls.size()), grid, {0, -1, 0}, 1.0f);
+        injection.record(cmd, volumes, vplBuffer, uint32_t(vpls.size()), grid, {0, -1, 0}, 1.0f);
+        injection.record(cmd, shellVolumes, vplBuffer, uint32_t(vpls.size()), grid, {0, -1, 0}, 1.0f);
         // The baseline reads images: it starts from copies of the injected volume.
         for (int c = 0; c < 3; ++c) {
             cmd.copyTexture(volumes.injected()[size_t(c)], acc[size_t(c)]);
             cmd.copyTexture(volumes.injected()[size_t(c)], start[size_t(c)]);
         }
         cmd.writeTimestamp(0);
-        volumes.propagate(cmd, s.iterations);
+        propagation.record(cmd, volumes, s.iterations);
         cmd.writeTimestamp(1);
-        shellVolumes.propagate(cmd, s.iterations);
+        shellPropagation.record(cmd, shellVolumes, s.iterations);
         cmd.writeTimestamp(2);
         const std::array<TextureHandle, 3>* src = &start;
         for (uint32_t i = 0; i < s.iterations; ++i) {

@@ -61,6 +61,8 @@ void LightPropagationVolume::release() {
     cascades_.clear();
     rsm_.reset();
     volumes_.reset();
+    injection_.reset();
+    propagation_.reset();
     bounces_.reset();
     geometry_.reset();
     pointLights_.reset();
@@ -76,6 +78,8 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     madeWith_ = s;
     rsm_ = std::make_unique<ReflectiveShadowMap>(device_, s.rsmSize);
     volumes_ = std::make_unique<LpvVolumes>(device_, s);
+    injection_ = std::make_unique<LpvInjection>(device_, s);
+    propagation_ = std::make_unique<LpvPropagation>(device_, s);
     cascades_.resize(s.cascades);
     cascades_[0].result = volumes_->accumulated();
     for (uint32_t c = 1; c < s.cascades; ++c)
@@ -445,22 +449,22 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
             std::array<VplSource, 1 + SpotLightRsms::kMaxRsms> sources;
             sources[0] = {cascade.vpls, settings_.vplSlots(), glm::vec4(cascade.lightDirection, 0.0f)};
             const uint32_t n = 1 + spotRsms_->sourcesReaching(grid, std::span(sources).subspan(1));
-            volumes_->inject(cmd, std::span(sources.data(), n), grid, settings_.intensity, c);
+            injection_->record(cmd, *volumes_, std::span(sources.data(), n), grid, settings_.intensity, c);
             work(injectWork(settings_, uint64_t(n - 1) * spotLightVplSlots(settings_), volumeDraw()));
         }
         {
             auto s = scope("propagate");
             CascadeHandoff handoff;
             if (c + 1 < cascades_.size()) handoff = {cascades_[c + 1].result, cascades_[c + 1].grid, grid};
-            volumes_->propagate(cmd, settings_.iterations,
-                                geometry_ ? geometry_->faceTransmittance() : rhi::TextureHandle{},
-                                &cascades_[c].result, c + 1 < cascades_.size() ? &handoff : nullptr);
+            propagation_->record(cmd, *volumes_, settings_.iterations,
+                                 geometry_ ? geometry_->faceTransmittance() : rhi::TextureHandle{},
+                                 &cascades_[c].result, c + 1 < cascades_.size() ? &handoff : nullptr);
             work(propagateWork(settings_));
         }
         if (bounces_ && settings_.bouncesIn(c) && !(deferredBounces_ && c == 0)) {
             auto s = scope("bounces");
-            bounces_->record(cmd, *volumes_, *geometry_, settings_.bounces, settings_.iterations,
-                             cascades_[c].result);
+            bounces_->record(cmd, *volumes_, *propagation_, *geometry_, settings_.bounces,
+                             settings_.iterations, cascades_[c].result);
             work(bounceWork(settings_));
         }
     }

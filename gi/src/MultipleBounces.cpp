@@ -53,8 +53,8 @@ MultipleBounces::~MultipleBounces() {
     device_.destroy(pointSampler_);
 }
 
-void MultipleBounces::record(rhi::CommandList& cmd, LpvVolumes& volumes, const GeometryVolume& geometry,
-                             uint32_t bounces, uint32_t iterations,
+void MultipleBounces::record(rhi::CommandList& cmd, LpvVolumes& volumes, LpvPropagation& propagation,
+                             const GeometryVolume& geometry, uint32_t bounces, uint32_t iterations,
                              const std::array<rhi::TextureHandle, 3>& result) {
     const uint32_t n = settings_.gridSize;
     const uint32_t groups = (n + 3) / 4;
@@ -75,7 +75,7 @@ void MultipleBounces::record(rhi::CommandList& cmd, LpvVolumes& volumes, const G
         cmd.bindTexture(8, geometry.surfelAlbedo(), pointSampler_);
         cmd.dispatch(groups, groups, groups);
 
-        volumes.propagate(cmd, iterations, geometry.faceTransmittance(), &bounce_);
+        propagation.record(cmd, volumes, iterations, geometry.faceTransmittance(), &bounce_);
 
         cmd.bindPipeline(addPipeline_);
         cmd.pushUniforms(0, &u, sizeof(u));

@@ -7,6 +7,8 @@
 #include "engine/config/Config.h"
 #include "engine/scene/MeshBuilder.h"
 #include "gi/GiBudget.h"
+#include "gi/LpvInjection.h"
+#include "gi/LpvPropagation.h"
 #include "gi/LpvReference.h"
 #include "gi/LpvVolumes.h"
 #include "gi/ShEncoding.h"
@@ -184,10 +186,12 @@ TEST_CASE("gi: GPU injection and propagation match the CPU reference") {
                     }();
                     const rhi::BufferHandle buffer = uploadVpls(*device, vpls);
                     {
-                        gi::LpvVolumes volumes(*device, s, shape.columnLength);
+                        gi::LpvVolumes volumes(*device, s);
+                        gi::LpvInjection injection(*device, s);
+                        gi::LpvPropagation propagation(*device, s, shape.columnLength);
                         rhi::CommandList& cmd = device->beginFrame();
-                        volumes.inject(cmd, buffer, uint32_t(vpls.size()), grid, light, 1.0f);
-                        volumes.propagate(cmd, uint32_t(shape.iterations));
+                        injection.record(cmd, volumes, buffer, uint32_t(vpls.size()), grid, light, 1.0f);
+                        propagation.record(cmd, volumes, uint32_t(shape.iterations));
                         device->endFrame();
                         device->waitIdle();
                         std::array<Image, 3> inj, acc;
@@ -319,11 +323,13 @@ TEST_CASE("gi: propagation takes in a coarser cascade's light beyond its border 
                     }
                     const rhi::BufferHandle buffer = uploadVpls(*device, vpls);
                     {
-                        gi::LpvVolumes volumes(*device, s, shape.columnLength);
+                        gi::LpvVolumes volumes(*device, s);
+                        gi::LpvInjection injection(*device, s);
+                        gi::LpvPropagation propagation(*device, s, shape.columnLength);
                         const gi::CascadeHandoff handoff{coarseResult, coarse, fine};
                         rhi::CommandList& cmd = device->beginFrame();
-                        volumes.inject(cmd, buffer, uint32_t(vpls.size()), fine, light, 1.0f);
-                        volumes.propagate(cmd, uint32_t(shape.iterations), {}, nullptr, &handoff);
+                        injection.record(cmd, volumes, buffer, uint32_t(vpls.size()), fine, light, 1.0f);
+                        propagation.record(cmd, volumes, uint32_t(shape.iterations), {}, nullptr, &handoff);
                         device->endFrame();
                         device->waitIdle();
                         std::array<Image, 3> acc;
@@ -426,7 +432,7 @@ TEST_CASE("gi: one layered draw per volume builds what one draw per slice does")
 
 TEST_CASE("gi: with OpenGL's minimum of 8 storage image bindings the volumes hold the same light") {
     // Propagation then reads the injection volume through texelFetch instead of imageLoad
-    // (LpvVolumes, Caps::storageImageBindings): NVIDIA's GL driver has only 8. Every kernel role:
+    // (LpvPropagation, Caps::storageImageBindings): NVIDIA's GL driver has only 8. Every kernel role:
     // bounded partial sums with one cascade, the shell and the handoff with three; occlusion and a
     // bounce in both; each volume format, whose kernels are variants of their own. On Vulkan the
     // narrow device also rejects any pipeline of the frame that puts a storage image at binding 8
@@ -547,7 +553,7 @@ TEST_CASE("gi: configurations that do not fit are refused with a clear message")
 
 TEST_CASE("gi: rgba8 volumes refuse to propagate before anything was injected") {
     // They encode in the range of the grid last injected (LpvVolumes::encodeRange): before the
-    // first inject() there is none, and a zero range would write NaN codes.
+    // first injection there is none, and a zero range would write NaN codes.
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
             TestDevice device(backend);
@@ -555,9 +561,10 @@ TEST_CASE("gi: rgba8 volumes refuse to propagate before anything was injected") 
             s.gridSize = 8;
             s.shFormat = gi::ShFormat::Rgba8;
             gi::LpvVolumes volumes(*device, s);
+            gi::LpvPropagation propagation(*device, s);
             rhi::CommandList& cmd = device->beginFrame();
-            CHECK_THROWS_WITH_AS(volumes.propagate(cmd, 2),
-                                 "LpvVolumes::propagate: rgba8 volumes propagate after an inject()",
+            CHECK_THROWS_WITH_AS(propagation.record(cmd, volumes, 2),
+                                 "LpvPropagation::record: rgba8 volumes propagate after an injection",
                                  std::logic_error);
             device->endFrame();
             device.expectSilent();

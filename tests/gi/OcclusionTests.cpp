@@ -4,6 +4,8 @@
 #include "../support/Image.h"
 #include "../support/TestDevice.h"
 #include "gi/GeometryVolume.h"
+#include "gi/LpvInjection.h"
+#include "gi/LpvPropagation.h"
 #include "gi/LpvVolumes.h"
 
 #include <doctest/doctest.h>
@@ -61,22 +63,26 @@ rhi::BufferHandle upload(rhi::Device& device, const std::vector<GpuVpl>& vpls) {
 }
 
 // The scene's light (`light`, its VPLs travelling along `direction`) propagated 8 times through
-// the geometry volume built from `surfels`, without occlusion and with it.
+// the geometry volume built from `surfels`, in volumes made with `settings`, without occlusion and
+// with it.
 struct WallRun {
     float open = 0.0f, walled = 0.0f;
     float wallCoverage = 0.0f; // of the faces in the wall's plane, away from the volume's edges
     Image faces;               // face transmittance
 };
-WallRun runWall(rhi::Device& device, gi::LpvVolumes& volumes, gi::GeometryVolume& geometry,
+WallRun runWall(rhi::Device& device, const gi::LpvSettings& settings, gi::GeometryVolume& geometry,
                 rhi::BufferHandle light, uint32_t count, glm::vec3 direction,
                 const gi::GeometrySources& surfels) {
     const gi::VolumeGrid grid{{0.0f, 0.0f, 0.0f}, kCell, kCells};
+    gi::LpvVolumes volumes(device, settings);
+    gi::LpvInjection injection(device, settings);
+    gi::LpvPropagation propagation(device, settings);
     WallRun run;
     for (bool occlusion : {false, true}) {
         rhi::CommandList& cmd = device.beginFrame();
         geometry.record(cmd, grid, surfels);
-        volumes.inject(cmd, light, count, grid, direction, 1.0f);
-        volumes.propagate(cmd, 8, occlusion ? geometry.faceTransmittance() : rhi::TextureHandle{});
+        injection.record(cmd, volumes, light, count, grid, direction, 1.0f);
+        propagation.record(cmd, volumes, 8, occlusion ? geometry.faceTransmittance() : rhi::TextureHandle{});
         device.endFrame();
         device.waitIdle();
         (occlusion ? run.walled : run.open) = roomLight(device, volumes);
@@ -108,7 +114,6 @@ TEST_CASE("gi: a thin wall keeps the light of a lit area out of a dark room (occ
                 const rhi::BufferHandle buffer = upload(*device, vpls);
                 WallRun run;
                 {
-                    gi::LpvVolumes volumes(*device, s);
                     gi::GeometryVolume geometry(*device, kCells, false);
                     gi::GeometrySources src;
                     src.vpls = buffer;
@@ -116,7 +121,7 @@ TEST_CASE("gi: a thin wall keeps the light of a lit area out of a dark room (occ
                     // Every surfel stands for kSpacing^2 of surface; the wall faces the light's x.
                     src.vplArea = kSpacing * kSpacing * std::abs(glm::dot(light, glm::vec3(1, 0, 0)));
                     src.lightDirection = light;
-                    run = runWall(*device, volumes, geometry, buffer, uint32_t(vpls.size()), light, src);
+                    run = runWall(*device, s, geometry, buffer, uint32_t(vpls.size()), light, src);
                 }
                 // Faces elsewhere are open (the floor surfels only cover faces along y).
                 CHECK(run.faces.at(4, 5, 5).x == doctest::Approx(1.0f));
@@ -157,7 +162,6 @@ TEST_CASE("gi: the surfels of a spot or point light's RSM block like the sun's (
             WallRun run;
             float albedoWeight = 0.0f;
             {
-                gi::LpvVolumes volumes(*device, s);
                 gi::GeometryVolume geometry(*device, kCells, true);
                 const gi::PointLightSurfels point{surfels,
                                                   uint32_t(wall.size()),
@@ -166,7 +170,7 @@ TEST_CASE("gi: the surfels of a spot or point light's RSM block like the sun's (
                                                   kSpacing * kSpacing / (distance * distance)};
                 gi::GeometrySources src;
                 src.pointLights = std::span(&point, 1);
-                run = runWall(*device, volumes, geometry, light, uint32_t(vpls.size()), sunLight, src);
+                run = runWall(*device, s, geometry, light, uint32_t(vpls.size()), sunLight, src);
                 // Coverage only: the light's flux holds its falloff, so these surfels give no albedo.
                 const Image albedo = readImage(*device, geometry.surfelAlbedo());
                 for (const glm::vec4& t : albedo.texels)

@@ -15,6 +15,7 @@
 #include "engine/render/SpecularAlbedoTexture.h"
 #include "engine/scene/BuiltinScenes.h"
 #include "engine/scene/MeshBuilder.h"
+#include "gi/LpvInjection.h"
 #include "gi/LpvReference.h"
 #include "gi/LpvVolumes.h"
 #include "gi/SpotLightRsms.h"
@@ -211,11 +212,12 @@ TEST_CASE("gi: VPLs of a light at a point shift along the line from it; lights s
             float worst = 0.0f, peak = 0.0f;
             {
                 gi::LpvVolumes volumes(*device, s);
+                gi::LpvInjection injection(*device, s);
                 const gi::VplSource sources[] = {
                     {sun, uint32_t(sunVpls.size()), glm::vec4(sunDirection, 0.0f)},
                     {spot, uint32_t(spotVpls.size()), glm::vec4(spotPosition, 1.0f)}};
                 rhi::CommandList& cmd = device->beginFrame();
-                volumes.inject(cmd, sources, grid, 1.0f);
+                injection.record(cmd, volumes, sources, grid, 1.0f);
                 device->endFrame();
                 device->waitIdle();
                 for (uint32_t ch = 0; ch < 3; ++ch) {

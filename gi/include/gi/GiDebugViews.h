@@ -4,6 +4,7 @@
 #pragma once
 
 #include "engine/render/CameraMatrices.h"
+#include "gi/LpvInjection.h"
 #include "gi/LpvReference.h"
 #include "gi/LpvSettings.h"
 #include "gi/LpvVolumes.h"

@@ -21,6 +21,8 @@
 #include "gi/GiWork.h"
 #include "gi/GlossyReflections.h"
 #include "gi/IndirectLookup.h"
+#include "gi/LpvInjection.h"
+#include "gi/LpvPropagation.h"
 #include "gi/LpvReference.h"
 #include "gi/LpvSettings.h"
 #include "gi/LpvVolumes.h"
@@ -117,7 +119,7 @@ public:
     rhi::BufferHandle vplBuffer() const { return vpls_; }
 
 private:
-    // How the volume passes (GeometryVolume, LpvVolumes) draw their points on this device.
+    // How the volume passes (GeometryVolume, LpvInjection) draw their points on this device.
     VolumeDraw volumeDraw() const {
         return device_.caps().vertexShaderLayer ? VolumeDraw::Layered : VolumeDraw::PerSlice;
     }
@@ -177,6 +179,8 @@ private:
     bool haveFrame_ = false;
     std::unique_ptr<ReflectiveShadowMap> rsm_;
     std::unique_ptr<LpvVolumes> volumes_;
+    std::unique_ptr<LpvInjection> injection_;     // into volumes_, made with them
+    std::unique_ptr<LpvPropagation> propagation_; // in volumes_, made with them
     std::unique_ptr<GeometryVolume> geometry_;
     std::unique_ptr<MultipleBounces> bounces_; // gi.bounces > 1
     std::unique_ptr<PointLightInjection> pointLights_;

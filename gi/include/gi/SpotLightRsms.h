@@ -13,8 +13,8 @@
 #include "engine/scene/Scene.h"
 #include "gi/AnalyticLight.h"
 #include "gi/GeometryVolume.h"
+#include "gi/LpvInjection.h"
 #include "gi/LpvSettings.h"
-#include "gi/LpvVolumes.h"
 #include "gi/ReflectiveShadowMap.h"
 #include "gi/VplClustering.h"
 #include "rhi/Device.h"
@@ -53,7 +53,7 @@ public:
     // drawn. `specularAlbedo`: as ReflectiveShadowMap::record().
     uint64_t record(rhi::CommandList& cmd, const engine::GpuScene& scene, rhi::TextureHandle specularAlbedo,
                     std::span<const engine::Light> lights);
-    // The VPL buffers of the RSMs drawn, for LpvVolumes::inject with the sun's (record() fills them).
+    // The VPL buffers of the RSMs drawn, for LpvInjection with the sun's (record() fills them).
     std::span<const VplSource> sources() const { return {sources_.data(), rsmCount_}; }
     // Those of sources() whose RSM can hold part of `grid` (a cascade: the light's range sphere and
     // the RSM's frustum, a spot's or a cube face's, both meet the box), copied to `out`; returns how

@@ -1,0 +1,67 @@
+// Propagation (Kaplanyan & Dachsbacher 2010): N iterations of the 6-neighbour, 5-face scheme,
+// each adding the injected light to the previous iteration's propagated light (y(k+1) = x + P y(k)),
+// so the last writes the accumulated result. The partial sums ping-pong between the volumes'
+// packed textures; with several cascades they carry a one-cell shell of what lies beyond the
+// border (the coarser cascade's light). The kernel is gi/shaders/propagate_body.glsl.
+#pragma once
+
+#include "gi/LpvReference.h"
+#include "gi/LpvSettings.h"
+#include "gi/LpvVolumes.h"
+#include "rhi/Device.h"
+
+#include <array>
+#include <cstdint>
+
+namespace lpv::gi {
+
+// Cells per propagation thread along z for an n^3 volume: a CPU rasterizer runs one workgroup per
+// host thread and pays for every fetch, so there each thread walks a long column (its z
+// neighbours then come from registers) with just enough workgroups to keep every thread busy; a
+// GPU (concurrentWorkgroups 0) wants many short ones.
+uint32_t propagationColumnLength(uint32_t n, uint32_t concurrentWorkgroups);
+
+// Light from beyond a cascade's border: the next coarser cascade's result and both placements.
+struct CascadeHandoff {
+    std::array<rhi::TextureHandle, 3> coarse;
+    VolumeGrid coarseGrid, fineGrid;
+};
+
+class LpvPropagation {
+public:
+    // For volumes made with `settings` (their size, format and partial-sum layout).
+    // `columnLength`: cells each thread walks along z; 0 picks it from the device
+    // (propagationColumnLength). Tests pin it to cover the shapes other devices get.
+    LpvPropagation(rhi::Device& device, const LpvSettings& settings, uint32_t columnLength = 0);
+    ~LpvPropagation();
+    LpvPropagation(const LpvPropagation&) = delete;
+    LpvPropagation& operator=(const LpvPropagation&) = delete;
+
+    // Propagates `iterations` (>= 1) times from the injection volume of `volumes`, in the units of
+    // the grid last injected (rgba8: LpvVolumes::injectedEncodeRange(); std::logic_error before any
+    // injection); the result then holds the injected volume plus every iteration's propagated
+    // light. With `faceTransmittance` (GeometryVolume), the flux through every face is attenuated
+    // by it. `result`: where the last iteration writes (a set from LpvVolumes::createResult(), e.g.
+    // another cascade's); volumes.accumulated() when null. `handoff`: outside the volume,
+    // neighbours read the coarser cascade's result (in this volume's units) instead of nothing;
+    // only for volumes with a shell (partialSumShell), std::logic_error otherwise.
+    void record(rhi::CommandList& cmd, LpvVolumes& volumes, uint32_t iterations,
+                rhi::TextureHandle faceTransmittance = {},
+                const std::array<rhi::TextureHandle, 3>* result = nullptr,
+                const CascadeHandoff* handoff = nullptr);
+
+private:
+    rhi::Device& device_;
+    LpvSettings settings_;
+    uint32_t columnLength_;
+    // The kernels read the injection volume through texelFetch: the device has too few storage
+    // image bindings for it (rhi Caps::storageImageBindings).
+    bool injectedAsTexture_;
+    bool shell_; // partialSumShell
+    // By kernel role (LpvPropagation.cpp's Role); those of the other layout stay null.
+    std::array<rhi::ComputePipelineHandle, 14> pipelines_{};
+    rhi::SamplerHandle linearSampler_; // the coarse cascade's result (handoff)
+    rhi::SamplerHandle pointSampler_;  // the injection volume, read texel by texel
+};
+
+} // namespace lpv::gi

@@ -1,0 +1,204 @@
+// The propagation pass: the kernel's roles and its iterations.
+#include "gi/LpvPropagation.h"
+
+#include "GiShaders.h"
+
+#include <glm/vec4.hpp>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace lpv::gi {
+namespace {
+
+// std140 block `Propagate` of propagate_body.glsl.
+struct PropagateUniforms {
+    glm::ivec4 grid;
+    glm::vec4 encode;
+    glm::vec4 handoff;
+};
+
+// Kernel roles (propagate_body.glsl, gi/CMakeLists.txt). Bounded partial sums: the first
+// iteration reads the injection, the last writes the result, `only` does both; with or without
+// occlusion. With a shell: the seed (with or without the coarser cascade around), then iterations
+// and the last one, with or without occlusion.
+enum Role {
+    kFirst,
+    kNext,
+    kLast,
+    kOnly,
+    kFirstOccluded,
+    kNextOccluded,
+    kLastOccluded,
+    kOnlyOccluded,
+    kSeed,
+    kSeedHandoff,
+    kShellNext,
+    kShellLast,
+    kShellNextOccluded,
+    kShellLastOccluded,
+    kRoles
+};
+const char* const kRoleNames[kRoles] = {"lpv propagate first",
+                                        "lpv propagate",
+                                        "lpv propagate last",
+                                        "lpv propagate once",
+                                        "lpv propagate first (occluded)",
+                                        "lpv propagate (occluded)",
+                                        "lpv propagate last (occluded)",
+                                        "lpv propagate once (occluded)",
+                                        "lpv propagate seed",
+                                        "lpv propagate seed (handoff)",
+                                        "lpv propagate (shell)",
+                                        "lpv propagate last (shell)",
+                                        "lpv propagate (shell, occluded)",
+                                        "lpv propagate last (shell, occluded)"};
+
+bool shellRole(int role) {
+    return role >= kSeed;
+}
+
+// The kernels' images take bindings up to kInjectedBindings (the injection volume's, 8-10);
+// `fetch` variants read that volume through texelFetch and keep to the portable 8.
+constexpr uint32_t kInjectedBindings = 11;
+
+const rhi::ShaderBinary& propagateShader(ShFormat f, int role, bool fetch) {
+    using namespace shaders;
+#define LPV_ROLES(format, suffix)                                                                            \
+    {                                                                                                        \
+        &propagate_##format##_first##suffix##_comp, &propagate_##format##_next##suffix##_comp,               \
+            &propagate_##format##_last##suffix##_comp, &propagate_##format##_only##suffix##_comp,            \
+            &propagate_##format##_first_occluded##suffix##_comp,                                             \
+            &propagate_##format##_next_occluded##suffix##_comp,                                              \
+            &propagate_##format##_last_occluded##suffix##_comp,                                              \
+            &propagate_##format##_only_occluded##suffix##_comp, &propagate_##format##_seed##suffix##_comp,   \
+            &propagate_##format##_seed_handoff##suffix##_comp,                                               \
+            &propagate_##format##_shell_next##suffix##_comp,                                                 \
+            &propagate_##format##_shell_last##suffix##_comp,                                                 \
+            &propagate_##format##_shell_next_occluded##suffix##_comp,                                        \
+            &propagate_##format##_shell_last_occluded##suffix##_comp                                         \
+    }
+    static const rhi::ShaderBinary* const table[2][3][kRoles] = {
+        {LPV_ROLES(rgba8, ), LPV_ROLES(rgba16f, ), LPV_ROLES(rgba32f, )},
+        {LPV_ROLES(rgba8, _fetch), LPV_ROLES(rgba16f, _fetch), LPV_ROLES(rgba32f, _fetch)}};
+#undef LPV_ROLES
+    const int row = f == ShFormat::Rgba8 ? 0 : f == ShFormat::Rgba16f ? 1 : 2;
+    return *table[fetch ? 1 : 0][row][role];
+}
+
+} // namespace
+
+uint32_t propagationColumnLength(uint32_t n, uint32_t concurrentWorkgroups) {
+    if (concurrentWorkgroups == 0) return 1;
+    const uint32_t columnGroups = ((n + 15) / 16) * ((n + 15) / 16);
+    const uint32_t slabs = std::max(1u, (2 * concurrentWorkgroups + columnGroups - 1) / columnGroups);
+    return std::max(1u, (n + slabs - 1) / slabs);
+}
+
+LpvPropagation::LpvPropagation(rhi::Device& device, const LpvSettings& settings, uint32_t columnLength)
+    : device_(device), settings_(settings),
+      columnLength_(columnLength
+                        ? columnLength
+                        : propagationColumnLength(settings.gridSize, device.caps().concurrentWorkgroups)),
+      injectedAsTexture_(device.caps().storageImageBindings < kInjectedBindings),
+      shell_(partialSumShell(settings)) {
+    using namespace rhi;
+    for (int role = 0; role < kRoles; ++role)
+        if (shellRole(role) == shell_)
+            pipelines_[size_t(role)] = device.createPipeline(ComputePipelineDesc{
+                &propagateShader(settings.shFormat, role, injectedAsTexture_), kRoleNames[role]});
+    SamplerDesc linear;
+    linear.mipFilter = Filter::Nearest;
+    linearSampler_ = device.createSampler(linear);
+    pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
+}
+
+LpvPropagation::~LpvPropagation() {
+    for (rhi::ComputePipelineHandle p : pipelines_)
+        if (p) device_.destroy(p);
+    device_.destroy(linearSampler_);
+    device_.destroy(pointSampler_);
+}
+
+void LpvPropagation::record(rhi::CommandList& cmd, LpvVolumes& volumes, uint32_t iterations,
+                            rhi::TextureHandle faceTransmittance,
+                            const std::array<rhi::TextureHandle, 3>* result, const CascadeHandoff* handoff) {
+    // Bounded partial sums have nowhere to keep the coarser cascade's light (partialSumShell).
+    if (handoff && !shell_)
+        throw std::logic_error(
+            "LpvPropagation::record: a cascade handoff needs volumes made for several cascades");
+    // rgba8 propagates in the range of the grid last injected (encodeRange): there is none before.
+    const bool encoded = volumes.encoded();
+    if (encoded && volumes.injectedEncodeRange() <= 0.0f)
+        throw std::logic_error("LpvPropagation::record: rgba8 volumes propagate after an injection");
+    const std::array<rhi::TextureHandle, 3>& target = result ? *result : volumes.accumulated();
+    const std::array<rhi::TextureHandle, 3>& injected = volumes.injected();
+    const std::array<std::array<rhi::TextureHandle, 3>, 2>& partial = volumes.partialSums();
+    Rgba8Clipping* const clipping = volumes.clipping();
+    const uint32_t n = settings_.gridSize;
+    const uint32_t column = columnLength_;
+    const uint32_t texels = packedTexelCount(settings_.shFormat);
+    PropagateUniforms u;
+    u.grid = glm::ivec4(int(n), int(column), 0, 0);
+    u.encode = glm::vec4(volumes.injectedEncodeRange(), 0, encoded ? 1 : 0, 0);
+    if (handoff) {
+        const float coarseExtent = handoff->coarseGrid.cellSize * float(handoff->coarseGrid.size);
+        const glm::vec3 firstCentre = handoff->fineGrid.origin + 0.5f * handoff->fineGrid.cellSize;
+        u.handoff = glm::vec4((firstCentre - handoff->coarseGrid.origin) / coarseExtent,
+                              handoff->fineGrid.cellSize / coarseExtent);
+        const float ratio = handoff->fineGrid.cellSize / handoff->coarseGrid.cellSize;
+        u.encode.y = ratio * ratio;
+    }
+    const int occluded = faceTransmittance ? 1 : 0;
+    const auto bindInjected = [&] {
+        for (uint32_t c = 0; c < 3; ++c)
+            if (injectedAsTexture_)
+                cmd.bindTexture(8 + c, injected[c], pointSampler_);
+            else
+                cmd.bindStorageImage(8 + c, injected[c]);
+    };
+    const auto bindIteration = [&](int role, uint32_t i, bool fromInjection, bool last) {
+        cmd.bindPipeline(pipelines_[size_t(role)]);
+        cmd.pushUniforms(0, &u, sizeof(u));
+        if (faceTransmittance) cmd.bindStorageImage(7, faceTransmittance);
+        bindInjected();
+        for (uint32_t c = 0; c < 3; ++c)
+            if (last) cmd.bindStorageImage(4 + c, target[c]);
+        for (uint32_t t = 0; t < texels; ++t) {
+            if (!fromInjection) cmd.bindStorageImage(1 + t, partial[(i + 1) % 2][t]);
+            if (!last) cmd.bindStorageImage(4 + t, partial[i % 2][t]);
+        }
+        if (last && clipping) clipping->bind(cmd, volumes.injectedCascade());
+        cmd.dispatch((n + 15) / 16, (n + 15) / 16, (n + column - 1) / column);
+    };
+    if (!shell_) {
+        // y(0) is the injection volume; y(k+1) = x + P y(k) goes to partial[k % 2]; the last
+        // iteration writes y(N), the accumulated result, into target.
+        for (uint32_t i = 0; i < iterations; ++i) {
+            const bool first = i == 0, last = i + 1 == iterations;
+            const int role = (first && last ? kOnly : first ? kFirst : last ? kLast : kNext) + 4 * occluded;
+            bindIteration(role, i, first, last);
+        }
+        return;
+    }
+    // y(0) = x and the shell go to partial[1] (the shell to partial[0] too); y(k+1) = x + P y(k)
+    // goes to partial[k % 2]; the last iteration writes y(N), the accumulated result, into target.
+    const uint32_t padded = partialSumSize(settings_);
+    cmd.bindPipeline(pipelines_[size_t(handoff ? kSeedHandoff : kSeed)]);
+    cmd.pushUniforms(0, &u, sizeof(u));
+    if (handoff)
+        for (uint32_t c = 0; c < 3; ++c)
+            cmd.bindTexture(20 + c, handoff->coarse[c], linearSampler_);
+    bindInjected();
+    for (uint32_t t = 0; t < texels; ++t) {
+        cmd.bindStorageImage(1 + t, partial[0][t]);
+        cmd.bindStorageImage(4 + t, partial[1][t]);
+    }
+    cmd.dispatch((padded + 7) / 8, (padded + 7) / 8, padded);
+    for (uint32_t i = 0; i < iterations; ++i) {
+        const bool last = i + 1 == iterations;
+        bindIteration((last ? kShellLast : kShellNext) + 2 * occluded, i, false, last);
+    }
+}
+
+} // namespace lpv::gi
