@@ -2,6 +2,9 @@
 // irradiance is sampled with cosine-weighted directions (pdf cos / pi, so each path's weight is the
 // product of the albedos met), with next-event estimation (DirectLighting) at every later vertex:
 // E_indirect ~ sum over k = 1..bounces of (albedo_1 x ... x albedo_k) E_direct(x_k).
+// A medium adds, per camera ray, distances drawn in proportion to sigma_t x transmittance, so each
+// carries the weight albedo x (1 - T(surface)) times the light scattered there: the sun's, shadowed,
+// times the phase function, and the radiance of the surface met by a phase-sampled ray.
 #include "reference/PathTracer.h"
 
 #include "Sampling.h"
@@ -17,7 +20,10 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <mutex>
+#include <optional>
+#include <span>
 #include <thread>
 
 namespace lpv::reference {
@@ -63,6 +69,90 @@ struct Ray {
     glm::vec3 origin, direction;
 };
 
+// How far a camera ray that meets no surface goes through the medium (Medium::missAtSceneBounds).
+float missDistance(const RayScene& scene, const Medium& medium, glm::vec3 origin, glm::vec3 direction) {
+    if (!medium.missAtSceneBounds) return medium.missDistance;
+    const engine::Bounds& box = scene.bounds();
+    if (box.empty()) return 0.0f;
+    float near = 0.0f, far = std::numeric_limits<float>::infinity();
+    for (int c = 0; c < 3; ++c) {
+        if (direction[c] == 0.0f) {
+            if (origin[c] < box.min[c] || origin[c] > box.max[c]) return 0.0f;
+            continue;
+        }
+        const float a = (box.min[c] - origin[c]) / direction[c], b = (box.max[c] - origin[c]) / direction[c];
+        near = std::max(near, std::min(a, b));
+        far = std::min(far, std::max(a, b));
+    }
+    return far >= near ? far : 0.0f;
+}
+
+struct InScatter {
+    glm::vec3 sun{0.0f}, indirect{0.0f};
+};
+
+// The medium samples of one pixel: `passes` camera samples of `count` each. Sample m of pass p has
+// index k = m x passes + p of count x passes: it takes the k-th stratum of the distance distribution
+// and the order[k]-th cell of the directions (stratified() over as many), so both spread evenly
+// over the pixel; the order is a random permutation, which keeps each sample's direction cell
+// independent of its distance and the estimate unbiased.
+struct MediumStrata {
+    uint32_t count = 0, pass = 0, passes = 1;
+    std::span<const uint32_t> order;
+};
+
+// A uniformly random permutation of 0..n-1 (Fisher-Yates).
+void shuffle(std::vector<uint32_t>& order, uint32_t n, Random& random) {
+    order.resize(n);
+    for (uint32_t i = 0; i < n; ++i)
+        order[i] = i;
+    for (uint32_t i = n; i > 1; --i)
+        std::swap(order[i - 1], order[uint32_t((uint64_t(random.next()) * i) >> 32)]);
+}
+
+// The mean of strata.count estimates of the light the medium scatters toward `origin` from the
+// segment origin + [0, distance] x direction, before the transmittance from the camera (which the
+// distance sampling folds in).
+InScatter inScatter(const RayScene& scene, const DirectLighting& lights, const std::optional<Sun>& sun,
+                    const Medium& medium, glm::vec3 origin, glm::vec3 direction, float distance,
+                    uint32_t bounces, const MediumStrata& strata, Random& random) {
+    InScatter sum;
+    const float opacity = 1.0f - transmittance(medium, origin, direction, distance);
+    if (!(opacity > 0.0f) || strata.count == 0) return sum;
+    const float sunPhase =
+        sun ? henyeyGreenstein(glm::dot(sun->direction, -direction), medium.anisotropy) : 0.0f;
+    const uint32_t total = strata.count * strata.passes;
+    for (uint32_t m = 0; m < strata.count; ++m) {
+        const uint32_t k = m * strata.passes + strata.pass;
+        const float u = (float(k) + random.uniform()) / float(total);
+        const glm::vec3 x = origin + sampleDistance(medium, origin, direction, distance, u) * direction;
+        if (sunPhase > 0.0f && !scene.occluded(x, -sun->direction)) {
+            const float toSun =
+                medium.attenuateSunlight
+                    ? transmittance(medium, x, -sun->direction, std::numeric_limits<double>::infinity())
+                    : 1.0f;
+            sum.sun += sun->irradiance * (sunPhase * toSun);
+        }
+        if (bounces == 0) continue;
+        // Where the light that leaves toward the camera came from: the phase function is symmetric,
+        // so a direction drawn around the outgoing one serves as the incident one.
+        const glm::vec2 cell = stratified(strata.order[k], total, random);
+        const glm::vec3 incident = sampleHenyeyGreenstein(-direction, medium.anisotropy, cell.x, cell.y);
+        const std::optional<SurfacePoint> q = scene.intersect(x, -incident);
+        if (!q) continue;
+        glm::vec3 e = lights.irradiance(*q, scene);
+        if (bounces > 1) {
+            const float v1 = random.uniform(), v2 = random.uniform();
+            e += indirectSample(scene, lights, *q, bounces - 1, {v1, v2}, random);
+        }
+        sum.indirect += q->albedo / kPi * e;
+    }
+    const glm::vec3 weight = medium.albedo * (opacity / float(strata.count));
+    sum.sun *= weight;
+    sum.indirect *= weight;
+    return sum;
+}
+
 Ray cameraRay(const glm::mat4& invViewProjection, float x, float y, uint32_t width, uint32_t height) {
     // Row 0 at the top is NDC y = -1 (the projection's y is flipped); depth 0 is the near plane.
     const float nx = 2.0f * x / float(width) - 1.0f, ny = 2.0f * y / float(height) - 1.0f;
@@ -83,14 +173,34 @@ glm::vec3 indirectIrradiance(const RayScene& scene, const DirectLighting& lights
     return samples ? sum / float(samples) : sum;
 }
 
+MediumRadiance scatteredAlongRay(const RayScene& scene, const DirectLighting& lights, const Medium& medium,
+                                 glm::vec3 origin, glm::vec3 direction, uint32_t bounces, uint32_t samples,
+                                 uint64_t seed) {
+    MediumRadiance r;
+    const std::optional<SurfacePoint> hit = scene.intersect(origin, direction);
+    r.distance = hit ? glm::length(hit->position - origin) : missDistance(scene, medium, origin, direction);
+    if (!medium.present()) return r;
+    r.transmittance = transmittance(medium, origin, direction, r.distance);
+    Random random(seed, 0);
+    std::vector<uint32_t> order;
+    shuffle(order, samples, random);
+    const InScatter f = inScatter(scene, lights, lights.sun(), medium, origin, direction, r.distance, bounces,
+                                  {samples, 0, 1, order}, random);
+    r.sun = f.sun;
+    r.indirect = f.indirect;
+    return r;
+}
+
 TracedImage trace(const RayScene& scene, const DirectLighting& lights, const engine::Camera& camera,
                   const TraceSettings& settings) {
     TracedImage image;
     image.width = settings.width;
     image.height = settings.height;
     const size_t count = size_t(settings.width) * settings.height;
-    for (auto* v : {&image.indirect, &image.direct, &image.combined, &image.position, &image.normal})
+    for (auto* v : {&image.indirect, &image.direct, &image.combined, &image.position, &image.normal,
+                    &image.fogSun, &image.fogIndirect, &image.fog, &image.fogged})
         v->assign(count, glm::vec3(0.0f));
+    image.transmittance.assign(count, glm::vec3(1.0f));
     image.hit.assign(count, 0);
     if (count == 0) return image;
 
@@ -98,11 +208,15 @@ TracedImage trace(const RayScene& scene, const DirectLighting& lights, const eng
         engine::cameraMatrices(camera, float(settings.width) / float(settings.height)).invViewProjection;
     const uint32_t spp = std::max(1u, settings.samplesPerPixel);
     const uint32_t bounces = std::clamp(settings.bounces, 0u, 16u);
+    const Medium& medium = settings.medium;
+    const bool fog = medium.present();
+    const std::optional<Sun> sun = lights.sun();
 
     std::atomic<uint32_t> nextRow{0}, rowsDone{0};
     std::mutex progressMutex;
     int shownPercent = -1;
     const auto renderRows = [&] {
+        std::vector<uint32_t> order; // the pixel's direction cells (MediumStrata)
         for (uint32_t y; (y = nextRow.fetch_add(1)) < settings.height;) {
             for (uint32_t x = 0; x < settings.width; ++x) {
                 const size_t i = size_t(y) * settings.width + x;
@@ -113,24 +227,56 @@ TracedImage trace(const RayScene& scene, const DirectLighting& lights, const eng
                     image.position[i] = s->position;
                     image.normal[i] = s->normal;
                 }
-                // The pixel's own stream: the same image from any number of threads.
+                // The pixel's own stream: the same image from any number of threads. The medium has
+                // another, so that it leaves the surfaces' images as they were.
                 Random random(settings.seed, i);
-                glm::vec3 direct(0.0f), indirect(0.0f);
+                Random mediumRandom(settings.seed, i | (uint64_t(1) << 63));
+                if (fog) shuffle(order, settings.mediumSamples * spp, mediumRandom);
+                glm::vec3 direct(0.0f), indirect(0.0f), fogSun(0.0f), fogIndirect(0.0f), fogged(0.0f);
+                float transmittance = 0.0f;
                 for (uint32_t s = 0; s < spp; ++s) {
                     const float jx = random.uniform(), jy = random.uniform();
                     const Ray ray = cameraRay(invViewProjection, float(x) + jx, float(y) + jy, settings.width,
                                               settings.height);
                     const std::optional<SurfacePoint> p = scene.intersect(ray.origin, ray.direction);
-                    if (!p) continue;
-                    const glm::vec3 diffuse = p->albedo / kPi;
-                    direct += diffuse * lights.irradiance(*p, scene);
-                    const glm::vec2 first = stratified(s, spp, random);
-                    if (bounces > 0)
-                        indirect += diffuse * indirectSample(scene, lights, *p, bounces, first, random);
+                    glm::vec3 surface(0.0f);
+                    if (p) {
+                        const glm::vec3 diffuse = p->albedo / kPi;
+                        const glm::vec3 d = diffuse * lights.irradiance(*p, scene);
+                        direct += d;
+                        surface = d;
+                        const glm::vec2 first = stratified(s, spp, random);
+                        if (bounces > 0) {
+                            const glm::vec3 b =
+                                diffuse * indirectSample(scene, lights, *p, bounces, first, random);
+                            indirect += b;
+                            surface += b;
+                        }
+                    }
+                    if (!fog) continue;
+                    // From the eye, which the ray from the near plane passes through.
+                    const float distance = p ? glm::length(p->position - camera.position)
+                                             : missDistance(scene, medium, camera.position, ray.direction);
+                    const float t =
+                        reference::transmittance(medium, camera.position, ray.direction, distance);
+                    const InScatter f =
+                        inScatter(scene, lights, sun, medium, camera.position, ray.direction, distance,
+                                  bounces, {settings.mediumSamples, s, spp, order}, mediumRandom);
+                    transmittance += t;
+                    fogSun += f.sun;
+                    fogIndirect += f.indirect;
+                    fogged += surface * t + f.sun + f.indirect;
                 }
                 image.direct[i] = direct / float(spp);
                 image.indirect[i] = indirect / float(spp);
                 image.combined[i] = image.direct[i] + image.indirect[i];
+                if (fog) {
+                    image.fogSun[i] = fogSun / float(spp);
+                    image.fogIndirect[i] = fogIndirect / float(spp);
+                    image.fog[i] = image.fogSun[i] + image.fogIndirect[i];
+                    image.transmittance[i] = glm::vec3(transmittance / float(spp));
+                    image.fogged[i] = fogged / float(spp);
+                }
             }
             const uint32_t done = rowsDone.fetch_add(1) + 1;
             if (settings.progress) {
@@ -155,6 +301,7 @@ TracedImage trace(const RayScene& scene, const DirectLighting& lights, const eng
     for (std::thread& t : pool)
         t.join();
     if (settings.progress) std::fprintf(stderr, "\n");
+    if (!fog) image.fogged = image.combined;
     return image;
 }
 

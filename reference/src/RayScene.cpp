@@ -225,14 +225,21 @@ std::optional<SurfacePoint> RayScene::intersect(glm::vec3 origin, glm::vec3 dire
     return s;
 }
 
+const engine::Bounds& RayScene::bounds() const {
+    return impl_->scene->bounds;
+}
+
 glm::vec3 RayScene::rayOrigin(const SurfacePoint& from, glm::vec3 direction) const {
     const float side = glm::dot(direction, from.geometricNormal) >= 0.0f ? 1.0f : -1.0f;
     return from.position + side * impl_->offsetScale * from.geometricNormal;
 }
 
 bool RayScene::occluded(const SurfacePoint& from, glm::vec3 direction, float distance) const {
-    const Impl& m = *impl_;
-    const glm::vec3 origin = rayOrigin(from, direction);
+    return occluded(rayOrigin(from, direction), direction,
+                    std::isinf(distance) ? distance : std::max(0.0f, distance - 2.0f * impl_->offsetScale));
+}
+
+bool RayScene::occluded(glm::vec3 origin, glm::vec3 direction, float distance) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray{};
@@ -243,9 +250,9 @@ bool RayScene::occluded(const SurfacePoint& from, glm::vec3 direction, float dis
     ray.dir_y = direction.y;
     ray.dir_z = direction.z;
     ray.tnear = 0.0f;
-    ray.tfar = std::isinf(distance) ? distance : std::max(0.0f, distance - 2.0f * m.offsetScale);
+    ray.tfar = distance;
     ray.mask = 0xffffffffu;
-    rtcOccluded1(m.rtcScene, &context, &ray);
+    rtcOccluded1(impl_->rtcScene, &context, &ray);
     return ray.tfar < 0.0f; // Embree sets -inf on a hit
 }
 

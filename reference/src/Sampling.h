@@ -43,14 +43,20 @@ private:
     uint64_t state_ = 0, increment_ = 1;
 };
 
-// A cosine-weighted direction around the unit normal n (pdf = cos / pi), through an orthonormal
-// basis without branches on n (Duff et al. 2017).
-inline glm::vec3 cosineDirection(glm::vec3 n, float u1, float u2) {
+// Two unit vectors that make an orthonormal basis with the unit n, without branches on n (Duff et
+// al. 2017).
+inline void orthonormalBasis(glm::vec3 n, glm::vec3& t, glm::vec3& bt) {
     const float sign = std::copysign(1.0f, n.z);
     const float a = -1.0f / (sign + n.z);
     const float b = n.x * n.y * a;
-    const glm::vec3 t(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
-    const glm::vec3 bt(b, sign + n.y * n.y * a, -n.y);
+    t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    bt = glm::vec3(b, sign + n.y * n.y * a, -n.y);
+}
+
+// A cosine-weighted direction around the unit normal n (pdf = cos / pi).
+inline glm::vec3 cosineDirection(glm::vec3 n, float u1, float u2) {
+    glm::vec3 t, bt;
+    orthonormalBasis(n, t, bt);
     const float r = std::sqrt(u1), phi = 6.28318530718f * u2;
     const float z = std::sqrt(std::max(0.0f, 1.0f - u1));
     return glm::normalize(r * std::cos(phi) * t + r * std::sin(phi) * bt + z * n);

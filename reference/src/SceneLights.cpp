@@ -35,6 +35,11 @@ SceneLights::SceneLights(const engine::Scene& scene) {
     }
 }
 
+std::optional<Sun> SceneLights::sun() const {
+    if (!hasSun_) return std::nullopt;
+    return Sun{sunDirection_, sunIrradiance_};
+}
+
 glm::vec3 SceneLights::irradiance(const SurfacePoint& p, const RayScene& scene) const {
     glm::vec3 e(0.0f);
     if (hasSun_) {

@@ -1,6 +1,8 @@
 // The path-traced reference against closed forms: a white furnace (the geometric series per
 // bounce), the form factor of two parallel squares, the sun's and the punctual lights' direct
-// terms (exact), determinism across thread counts, and PFM round trips.
+// terms (exact), determinism across thread counts, and PFM round trips; the fog medium (issue 48)
+// against its closed forms: transmittance, the sun's single scattering (with and without shadow),
+// the in-scattering of a uniform radiance field, and the Henyey-Greenstein phase function.
 //
 // Noise and bounds: the furnace is noise-free (every path in a closed box of one albedo under a
 // uniform source carries the same value), and so are the direct terms (no sampling in them). The
@@ -8,6 +10,10 @@
 // probability F ~ 0.2, so one path's relative standard deviation is sqrt((1 - F) / F) = 2.0; with
 // 32 x 32 points x 512 paths (524288 paths) the standard error is 2.0 / 724 = 0.28%, and the 1%
 // bound is 3.6 standard errors (the points are cell centres, whose quadrature error is ~1e-4).
+// The medium's estimates are noise-free where the light scattered is the same all along a ray (an
+// unshadowed sun, a uniform radiance field): distances are drawn in proportion to sigma_t x
+// transmittance, so every sample carries albedo x (1 - T) x the same light.
+#include "reference/Medium.h"
 #include "reference/PathTracer.h"
 #include "reference/Pfm.h"
 
@@ -22,8 +28,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <optional>
+#include <random>
 #include <string>
+#include <tuple>
+#include <vector>
 
 using namespace lpv;
 using namespace lpv::reference;
@@ -276,6 +286,8 @@ TEST_CASE("reference: the same seed gives the same image on 1 and 2 threads") {
     settings.width = settings.height = 32;
     settings.samplesPerPixel = 4;
     settings.bounces = 2;
+    settings.medium.density = 0.1f;
+    settings.medium.anisotropy = 0.4f;
     settings.threads = 1;
     const TracedImage one = trace(scene, camera, settings);
     settings.threads = 2;
@@ -283,9 +295,14 @@ TEST_CASE("reference: the same seed gives the same image on 1 and 2 threads") {
     CHECK(one.indirect == two.indirect);
     CHECK(one.direct == two.direct);
     CHECK(one.hit == two.hit);
+    CHECK(one.fogSun == two.fogSun);
+    CHECK(one.fogIndirect == two.fogIndirect);
+    CHECK(one.transmittance == two.transmittance);
+    CHECK(one.fogged == two.fogged);
     settings.seed = 2;
     const TracedImage other = trace(scene, camera, settings);
     CHECK(other.indirect != one.indirect);
+    CHECK(other.fogIndirect != one.fogIndirect);
     double indirect = 0.0;
     for (const glm::vec3& v : one.indirect)
         indirect += v.r;
@@ -306,4 +323,386 @@ TEST_CASE("reference: PFM files round-trip") {
     CHECK(back.pixels == pixels);
     std::filesystem::remove(path);
     CHECK_THROWS(readPfm(path));
+}
+
+namespace {
+
+// Henyey-Greenstein's cumulative distribution of the cosine: P(cos <= mu).
+double henyeyGreensteinCdf(double mu, double g) {
+    if (g == 0.0) return (mu + 1.0) / 2.0;
+    return (1.0 - g * g) / (2.0 * g) * (1.0 / std::sqrt(1.0 + g * g - 2.0 * g * mu) - 1.0 / (1.0 + g));
+}
+
+// The optical depth of the engine's height fog (constant at and below the base height) by the
+// midpoint rule, independent of the closed form under test.
+double integratedDepth(const Medium& medium, glm::vec3 origin, glm::vec3 direction, double distance) {
+    constexpr int kSteps = 20000;
+    double sum = 0.0;
+    for (int k = 0; k < kSteps; ++k) {
+        const double y = origin.y + (k + 0.5) * distance / kSteps * direction.y;
+        sum += medium.density * std::exp(-medium.heightFalloff * std::max(y - medium.baseHeight, 0.0));
+    }
+    return sum * distance / kSteps;
+}
+
+// A wall in the plane z = -depth, facing the origin, far wider than any ray here reaches.
+engine::Scene wallAt(float depth) {
+    engine::Scene scene = sceneWith(glm::vec3(0.5f));
+    engine::MeshBuilder builder(scene);
+    builder.begin("wall", 0);
+    builder.quad({-100.0f, -100.0f, -depth}, {200.0f, 0.0f, 0.0f}, {0.0f, 200.0f, 0.0f});
+    builder.finish();
+    return scene;
+}
+
+engine::Light sunLight(glm::vec3 direction, glm::vec3 irradiance) {
+    engine::Light sun;
+    sun.type = engine::LightType::Directional;
+    sun.direction = glm::normalize(direction);
+    sun.color = irradiance;
+    sun.intensity = 1.0f;
+    return sun;
+}
+
+} // namespace
+
+TEST_CASE("reference: the Henyey-Greenstein phase function integrates to 1 and is sampled by its pdf") {
+    const glm::vec3 incident = glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f));
+    for (float g : {0.0f, 0.3f, 0.6f, -0.5f, 0.9f}) {
+        CAPTURE(g);
+        // 2 pi x the integral over the cosine (midpoint rule; the peak at g = 0.9 is 0.01 wide).
+        constexpr int kSteps = 100000;
+        double integral = 0.0;
+        for (int k = 0; k < kSteps; ++k)
+            integral += henyeyGreenstein(float(-1.0 + (k + 0.5) * 2.0 / kSteps), g);
+        integral *= 2.0 * kPi * 2.0 / kSteps;
+        CHECK(integral == doctest::Approx(1.0).epsilon(1e-4));
+
+        // A histogram of the sampled cosines against the distribution's bins, within 5 standard
+        // errors per bin; the mean cosine of Henyey-Greenstein is g.
+        constexpr int kSamples = 100000, kBins = 20;
+        std::vector<int> bins(kBins, 0);
+        double meanCosine = 0.0, meanSide = 0.0;
+        std::mt19937 random(7);
+        const auto uniform = [&] { return float(random() >> 8) / 16777216.0f; };
+        const glm::vec3 side = glm::normalize(glm::cross(incident, glm::vec3(0.0f, 1.0f, 0.0f)));
+        for (int k = 0; k < kSamples; ++k) {
+            const float u1 = uniform(), u2 = uniform();
+            const glm::vec3 w = sampleHenyeyGreenstein(incident, g, u1, u2);
+            REQUIRE(glm::length(w) == doctest::Approx(1.0f).epsilon(1e-5));
+            const double c = glm::dot(w, incident);
+            bins[std::clamp(int((c + 1.0) / 2.0 * kBins), 0, kBins - 1)]++;
+            meanCosine += c / kSamples;
+            meanSide += glm::dot(w, side) / kSamples;
+        }
+        for (int b = 0; b < kBins; ++b) {
+            const double p = henyeyGreensteinCdf(-1.0 + 2.0 * (b + 1) / kBins, g) -
+                             henyeyGreensteinCdf(-1.0 + 2.0 * b / kBins, g);
+            CAPTURE(b);
+            CHECK(std::abs(bins[size_t(b)] / double(kSamples) - p) <
+                  5.0 * std::sqrt(p * (1.0 - p) / kSamples));
+        }
+        // Var(cos) = (1 - g^2) / 3, as the second Legendre moment of Henyey-Greenstein is g^2.
+        CHECK(std::abs(meanCosine - g) < 5.0 * std::sqrt((1.0 - g * g) / 3.0 / kSamples));
+        CHECK(std::abs(meanSide) < 5.0 / std::sqrt(double(kSamples)));
+    }
+}
+
+TEST_CASE("reference: transmittance to a wall is exp(-sigma_t d); distances are drawn in proportion to it") {
+    const float depth = 6.0f, sigma = 0.15f;
+    const engine::Scene scene = wallAt(depth); // RayScene keeps a reference to it
+    const RayScene rays(scene);
+    const UniformIrradiance dark{glm::vec3(0.0f)};
+    Medium medium;
+    medium.density = sigma;
+    for (float angle : {0.0f, 0.4f, -0.9f}) {
+        CAPTURE(angle);
+        const glm::vec3 w(std::sin(angle), 0.0f, -std::cos(angle));
+        const double d = depth / std::cos(double(angle));
+        const MediumRadiance r = scatteredAlongRay(rays, dark, medium, glm::vec3(0.0f), w, 1, 4, 1);
+        CHECK(r.distance == doctest::Approx(d).epsilon(1e-5));
+        CHECK(r.transmittance == doctest::Approx(std::exp(-sigma * d)).epsilon(1e-5));
+        CHECK(r.sun == glm::vec3(0.0f));
+        CHECK(r.indirect == glm::vec3(0.0f)); // the wall is dark
+    }
+    // A ray that meets nothing goes on to Medium::missDistance: through infinite fog, no light.
+    const glm::vec3 away(0.0f, 0.0f, 1.0f);
+    CHECK(scatteredAlongRay(rays, dark, medium, glm::vec3(0.0f), away, 1, 1, 1).transmittance == 0.0f);
+    medium.missDistance = 10.0f;
+    CHECK(scatteredAlongRay(rays, dark, medium, glm::vec3(0.0f), away, 1, 1, 1).transmittance ==
+          doctest::Approx(std::exp(-sigma * 10.0)).epsilon(1e-6));
+
+    // Or, as the engine's march, it stops where it leaves the scene's bounds: here x and z in
+    // [-5, 5], y in [0, 3] (a floor and a small square above it), nothing from outside them.
+    engine::Scene room = sceneWith(glm::vec3(0.5f));
+    engine::MeshBuilder builder(room);
+    builder.begin("floor", 0);
+    builder.quad({-5.0f, 0.0f, 5.0f}, {10.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -10.0f});
+    builder.quad({0.0f, 3.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 1.0f});
+    builder.finish();
+    const RayScene roomRays(room);
+    medium.missAtSceneBounds = true;
+    for (auto [origin, w, d] : {std::tuple{glm::vec3(-2.0f, 1.0f, 0.0f), glm::vec3(1.0f, 0.0f, 0.0f), 7.0},
+                                {glm::vec3(-2.0f, 1.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f), 2.0},
+                                {glm::vec3(-2.0f, 4.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f), 0.0}}) {
+        const MediumRadiance r = scatteredAlongRay(roomRays, dark, medium, origin, w, 1, 1, 1);
+        CHECK(r.distance == doctest::Approx(d));
+        CHECK(r.transmittance == doctest::Approx(std::exp(-sigma * d)).epsilon(1e-6));
+    }
+
+    // Height fog: the closed form against the midpoint rule, from above and below the base height,
+    // up, down (crossing it both ways) and level; and the inverse that draws distances:
+    // 1 - T(t(u)) = u (1 - T(d)).
+    Medium fog;
+    fog.density = 0.3f;
+    fog.heightFalloff = 0.7f;
+    fog.baseHeight = 1.0f;
+    for (glm::vec3 origin : {glm::vec3(0.5f, 2.0f, -1.0f), glm::vec3(0.5f, 0.2f, -1.0f)})
+        for (glm::vec3 w : {glm::vec3(0.0f, 0.0f, -1.0f), glm::normalize(glm::vec3(0.3f, 0.8f, -1.0f)),
+                            glm::normalize(glm::vec3(-0.2f, -0.5f, 1.0f))}) {
+            CAPTURE(origin.y);
+            CAPTURE(w.y);
+            const double d = 7.0;
+            const double depthThere = integratedDepth(fog, origin, w, d);
+            CHECK(opticalDepth(fog, origin, w, d) == doctest::Approx(depthThere).epsilon(1e-6));
+            for (float u : {0.0f, 0.1f, 0.5f, 0.9f, 0.999f}) {
+                CAPTURE(u);
+                const float t = sampleDistance(fog, origin, w, d, u);
+                REQUIRE(t >= 0.0f);
+                REQUIRE(t <= d);
+                CHECK(-std::expm1(-integratedDepth(fog, origin, w, t)) ==
+                      doctest::Approx(u * -std::expm1(-depthThere)).epsilon(1e-5));
+            }
+        }
+    // Upward to infinity: sigma_t(origin) / (falloff x w.y), plus the constant layer's share from
+    // below; downward forever: opaque.
+    const glm::vec3 up = glm::normalize(glm::vec3(0.3f, 0.8f, -1.0f)), high(0.0f, 2.0f, 0.0f),
+                    low(0.0f, 0.2f, 0.0f);
+    const double inf = std::numeric_limits<double>::infinity();
+    CHECK(extinction(fog, high) == doctest::Approx(0.3 * std::exp(-0.7)).epsilon(1e-6));
+    CHECK(extinction(fog, low) == doctest::Approx(0.3).epsilon(1e-6));
+    CHECK(opticalDepth(fog, high, up, inf) ==
+          doctest::Approx(0.3 * std::exp(-0.7) / (0.7 * up.y)).epsilon(1e-6));
+    CHECK(opticalDepth(fog, low, up, inf) ==
+          doctest::Approx(0.3 * 0.8 / up.y + 0.3 / (0.7 * up.y)).epsilon(1e-6));
+    CHECK(transmittance(fog, high, -up, inf) == 0.0f);
+}
+
+TEST_CASE("reference: the sun's single scattering in a homogeneous medium") {
+    const float depth = 5.0f, sigma = 0.2f;
+    engine::Scene scene = wallAt(depth);
+    const glm::vec3 e(3.0f, 2.0f, 1.0f);
+    // Travelling along the wall and slightly toward it, so that the wall never shadows the medium.
+    scene.lights.push_back(sunLight({-1.0f, 0.0f, -0.2f}, e));
+    const RayScene rays(scene);
+    const SceneLights lights(scene);
+    const glm::vec3 sunDirection = scene.lights[0].direction;
+    Medium medium;
+    medium.density = sigma;
+    medium.albedo = {0.9f, 0.8f, 0.7f};
+    for (float g : {0.0f, 0.6f}) {
+        medium.anisotropy = g;
+        for (float angle : {-1.0f, -0.5f, 0.0f, 0.5f, 1.0f}) {
+            CAPTURE(g);
+            CAPTURE(angle);
+            const glm::vec3 w(std::sin(angle), 0.0f, -std::cos(angle));
+            const double d = depth / std::cos(double(angle));
+            const MediumRadiance r = scatteredAlongRay(rays, lights, medium, glm::vec3(0.0f), w, 0, 8, 1);
+            // sigma_s E p(cos) (1 - exp(-sigma_t d)) / sigma_t, cos between the sun's and the view's
+            // directions of travel.
+            const double phase = henyeyGreenstein(glm::dot(sunDirection, -w), g);
+            for (int c = 0; c < 3; ++c)
+                CHECK(
+                    r.sun[c] ==
+                    doctest::Approx(medium.albedo[c] * e[c] * phase * -std::expm1(-sigma * d)).epsilon(1e-5));
+            CHECK(r.indirect == glm::vec3(0.0f)); // no bounces asked for
+        }
+    }
+    const glm::vec3 w(std::sin(0.5f), 0.0f, -std::cos(0.5f));
+    const double expected = 0.9 * 3.0 * henyeyGreenstein(glm::dot(sunDirection, -w), 0.6f) *
+                            -std::expm1(-sigma * depth / std::cos(0.5));
+    std::printf("sun in fog, g = 0.6, 0.5 rad off the wall's normal: in-scatter %.6f, expected %.6f\n",
+                scatteredAlongRay(rays, lights, medium, glm::vec3(0.0f), w, 0, 8, 1).sun.r, expected);
+}
+
+TEST_CASE("reference: the sun's single scattering is shadowed by the scene, and optionally by the fog") {
+    const float depth = 4.0f, sigma = 0.25f, e = 2.0f;
+    engine::Scene scene = wallAt(depth);
+    scene.lights.push_back(sunLight({0.0f, -1.0f, 0.0f}, glm::vec3(e)));
+    // A roof over the far half of the ray z = 0 .. -depth at y = 0.
+    engine::MeshBuilder builder(scene);
+    builder.begin("roof", 0);
+    builder.quad({-50.0f, 1.0f, -depth}, {100.0f, 0.0f, 0.0f}, {0.0f, 0.0f, depth / 2.0f});
+    builder.finish();
+    const RayScene rays(scene);
+    const SceneLights lights(scene);
+    Medium medium;
+    medium.density = sigma;
+    medium.albedo = glm::vec3(1.0f);
+    medium.anisotropy = 0.0f;
+    const glm::vec3 w(0.0f, 0.0f, -1.0f);
+    const double weight = e * henyeyGreenstein(0.0f, 0.0f);
+    // Only the near half is lit. Of N strata one straddles the shadow's edge: an error of at most
+    // one sample's weight, e p (1 - T(d)) / N.
+    constexpr uint32_t kSamples = 2048;
+    const MediumRadiance r = scatteredAlongRay(rays, lights, medium, glm::vec3(0.0f), w, 0, kSamples, 1);
+    const double expected = weight * -std::expm1(-sigma * depth / 2.0);
+    CHECK(std::abs(r.sun.r - expected) <= weight * -std::expm1(-sigma * depth) / kSamples + 1e-5 * expected);
+    std::printf("sun in fog, half shadowed: %.6f, expected %.6f\n", r.sun.r, expected);
+
+    // Height fog, seen level at y = 1 under the sun overhead (no roof): with attenuateSunlight the
+    // sun arrives through optical depth sigma_t(y) / falloff above the ray.
+    engine::Scene open = wallAt(depth);
+    open.lights = scene.lights;
+    const RayScene openRays(open);
+    const SceneLights openLights(open);
+    Medium fog = medium;
+    fog.density = 0.4f;
+    fog.heightFalloff = 0.5f;
+    fog.baseHeight = -1.0f;
+    const glm::vec3 origin(0.0f, 1.0f, 0.0f);
+    const double sigmaThere = 0.4 * std::exp(-0.5 * 2.0);
+    const double unattenuated = weight * -std::expm1(-sigmaThere * depth);
+    CHECK(scatteredAlongRay(openRays, openLights, fog, origin, w, 0, 4, 1).sun.r ==
+          doctest::Approx(unattenuated).epsilon(1e-5));
+    fog.attenuateSunlight = true;
+    CHECK(scatteredAlongRay(openRays, openLights, fog, origin, w, 0, 4, 1).sun.r ==
+          doctest::Approx(unattenuated * std::exp(-sigmaThere / 0.5)).epsilon(1e-5));
+    fog.heightFalloff = 0.0f; // homogeneous and endless above: the sun is gone
+    CHECK(scatteredAlongRay(openRays, openLights, fog, origin, w, 0, 4, 1).sun.r == 0.0f);
+}
+
+TEST_CASE("reference: fog in a uniform radiance field scatters albedo x L x (1 - T)") {
+    // A closed box of albedo a under uniform irradiance E0: every wall leaves L = a E0 / pi, and
+    // a E0 (1 + a) / pi with a second bounce (the furnace), from every direction.
+    const float a = 0.5f, e0 = 2.0f;
+    engine::Scene scene = sceneWith(glm::vec3(a));
+    engine::MeshBuilder builder(scene);
+    builder.begin("box", 0);
+    const glm::vec3 lo(-2.0f, -1.0f, -3.0f), hi(3.0f, 2.0f, 1.0f);
+    builder.box(lo, hi, true);
+    builder.finish();
+    const RayScene rays(scene);
+    const UniformIrradiance source{glm::vec3(e0)};
+    Medium medium;
+    medium.density = 0.3f;
+    medium.albedo = {0.9f, 0.6f, 0.3f};
+    medium.anisotropy = 0.6f;
+    const glm::vec3 origin(0.1f, 0.2f, 0.3f);
+    for (uint32_t bounces = 1; bounces <= 2; ++bounces) {
+        const double radiance = a * e0 / kPi * (bounces == 2 ? 1.0 + a : 1.0);
+        for (glm::vec3 w : {glm::vec3(0.0f, 0.0f, -1.0f), glm::normalize(glm::vec3(0.7f, 0.3f, 0.2f)),
+                            glm::normalize(glm::vec3(-0.2f, -0.9f, 0.4f))}) {
+            CAPTURE(bounces);
+            CAPTURE(w.x);
+            // The box's exit distance along w.
+            double d = std::numeric_limits<double>::infinity();
+            for (int c = 0; c < 3; ++c)
+                if (w[c] != 0.0f) d = std::min(d, double(((w[c] > 0.0f ? hi[c] : lo[c]) - origin[c]) / w[c]));
+            const MediumRadiance r = scatteredAlongRay(rays, source, medium, origin, w, bounces, 16, 3);
+            CHECK(r.distance == doctest::Approx(d).epsilon(1e-5));
+            for (int c = 0; c < 3; ++c)
+                CHECK(r.indirect[c] ==
+                      doctest::Approx(medium.albedo[c] * radiance * -std::expm1(-0.3 * d)).epsilon(1e-5));
+            CHECK(r.sun == glm::vec3(0.0f));
+        }
+    }
+
+    // The same per pixel: fog_indirect = albedo L (1 - transmittance), and the camera sees the walls'
+    // uniform radiance through the fog: fogged = combined x transmittance + fog.
+    medium.heightFalloff = 0.4f;
+    TraceSettings settings;
+    settings.width = settings.height = 12;
+    settings.samplesPerPixel = 4;
+    settings.medium = medium;
+    settings.mediumSamples = 2;
+    const TracedImage image = trace(rays, source, lookingAt(origin, {1.0f, -0.5f, -2.0f}, 100.0f), settings);
+    const double radiance = a * e0 / kPi;
+    for (size_t i = 0; i < image.fog.size(); ++i) {
+        CAPTURE(i);
+        const double t = image.transmittance[i].r;
+        REQUIRE(t > 0.0);
+        REQUIRE(t < 1.0);
+        for (int c = 0; c < 3; ++c) {
+            CHECK(image.fogIndirect[i][c] ==
+                  doctest::Approx(medium.albedo[c] * radiance * (1.0 - t)).epsilon(1e-5));
+            CHECK(image.fogged[i][c] ==
+                  doctest::Approx(image.combined[i][c] * t + image.fog[i][c]).epsilon(1e-5));
+        }
+        CHECK(image.fogSun[i] == glm::vec3(0.0f));
+    }
+}
+
+TEST_CASE("reference: fog before a lit wall scatters its light by the phase function's lobe") {
+    // A wall wide enough to fill the half space beyond it, leaving L = a E0 / pi. Looking straight at
+    // it, the light it sends travels toward the camera's side: the share of the phase function
+    // scattering it toward the camera is P(cos > 0), large forward (g > 0), small backward.
+    const float a = 0.5f, e0 = 2.0f, depth = 3.0f, sigma = 0.3f;
+    engine::Scene scene = sceneWith(glm::vec3(a));
+    engine::MeshBuilder builder(scene);
+    builder.begin("wall", 0);
+    builder.quad({-1e4f, -1e4f, -depth}, {2e4f, 0.0f, 0.0f}, {0.0f, 2e4f, 0.0f});
+    builder.finish();
+    const RayScene rays(scene);
+    const UniformIrradiance source{glm::vec3(e0)};
+    Medium medium;
+    medium.density = sigma;
+    medium.albedo = glm::vec3(1.0f);
+    constexpr uint32_t kSamples = 4096;
+    for (float g : {0.6f, -0.6f}) {
+        CAPTURE(g);
+        medium.anisotropy = g;
+        const double share = 1.0 - henyeyGreensteinCdf(0.0, g);
+        const MediumRadiance r =
+            scatteredAlongRay(rays, source, medium, glm::vec3(0.0f), {0.0f, 0.0f, -1.0f}, 1, kSamples, 5);
+        // Each sample sees the wall or not: a binomial estimate of the share, to 5 standard errors.
+        const double scale = a * e0 / kPi * -std::expm1(-sigma * depth);
+        CHECK(std::abs(r.indirect.g / scale - share) < 5.0 * std::sqrt(share * (1.0 - share) / kSamples));
+        std::printf("fog before a lit wall, g = %+.1f: share seen %.4f, P(cos > 0) %.4f\n", g,
+                    r.indirect.g / scale, share);
+    }
+}
+
+TEST_CASE("reference: fog of zero density changes nothing, and fog leaves the surfaces' images alone") {
+    const engine::Scene scene = engine::loadScene("cornell");
+    const engine::Camera camera = engine::defaultCamera(scene);
+    TraceSettings settings;
+    settings.width = settings.height = 24;
+    settings.samplesPerPixel = 4;
+    settings.bounces = 2;
+    const TracedImage plain = trace(scene, camera, settings);
+    settings.medium.albedo = glm::vec3(0.5f);
+    settings.medium.anisotropy = 0.5f;
+    settings.medium.heightFalloff = 0.3f;
+    settings.mediumSamples = 3;
+    const TracedImage zero = trace(scene, camera, settings);
+    settings.medium.density = 0.2f;
+    const TracedImage foggy = trace(scene, camera, settings);
+    for (const TracedImage* image : {&zero, &foggy}) {
+        CHECK(image->direct == plain.direct);
+        CHECK(image->indirect == plain.indirect);
+        CHECK(image->combined == plain.combined);
+        CHECK(image->position == plain.position);
+        CHECK(image->normal == plain.normal);
+        CHECK(image->hit == plain.hit);
+    }
+    for (const TracedImage* image : {&plain, &zero}) {
+        CHECK(image->fogged == plain.combined);
+        for (size_t i = 0; i < image->fog.size(); ++i) {
+            REQUIRE(image->fog[i] == glm::vec3(0.0f));
+            REQUIRE(image->fogSun[i] == glm::vec3(0.0f));
+            REQUIRE(image->fogIndirect[i] == glm::vec3(0.0f));
+            REQUIRE(image->transmittance[i] == glm::vec3(1.0f));
+        }
+    }
+    double sun = 0.0, indirect = 0.0;
+    for (size_t i = 0; i < foggy.fog.size(); ++i) {
+        CHECK(foggy.fog[i] == foggy.fogSun[i] + foggy.fogIndirect[i]);
+        CHECK(foggy.transmittance[i].r < 1.0f);
+        CHECK(foggy.transmittance[i].r > 0.0f);
+        sun += foggy.fogSun[i].r;
+        indirect += foggy.fogIndirect[i].r;
+    }
+    CHECK(sun > 0.0);
+    CHECK(indirect > 0.0);
 }

@@ -9,9 +9,16 @@
 
 #include <glm/vec3.hpp>
 
+#include <optional>
 #include <vector>
 
 namespace lpv::reference {
+
+// A directional light: what a medium scatters toward the camera directly (see Medium.h).
+struct Sun {
+    glm::vec3 direction{0.0f, -1.0f, 0.0f}; // unit, where the light travels
+    glm::vec3 irradiance{0.0f};             // on a surface facing it, unshadowed
+};
 
 class DirectLighting {
 public:
@@ -19,6 +26,8 @@ public:
     // Irradiance (W/m^2 per channel, cosine included) arriving directly at `p` on the side its
     // normal faces; shadow rays through `scene`. Called from many threads at once.
     virtual glm::vec3 irradiance(const SurfacePoint& p, const RayScene& scene) const = 0;
+    // The sun whose single scattering a medium adds, if any.
+    virtual std::optional<Sun> sun() const { return std::nullopt; }
 };
 
 // The engine's lights with the engine's units and falloffs (engine/shaders/lighting_body.glsl):
@@ -32,6 +41,7 @@ class SceneLights : public DirectLighting {
 public:
     explicit SceneLights(const engine::Scene& scene);
     glm::vec3 irradiance(const SurfacePoint& p, const RayScene& scene) const override;
+    std::optional<Sun> sun() const override;
 
 private:
     struct Punctual {

@@ -39,6 +39,11 @@ public:
     // `direction`; the far end is shortened by the same offset so a light on a surface still counts.
     bool occluded(const SurfacePoint& from, glm::vec3 direction,
                   float distance = std::numeric_limits<float>::infinity()) const;
+    // The same from a point off any surface (in a medium): no offset at either end.
+    bool occluded(glm::vec3 origin, glm::vec3 direction,
+                  float distance = std::numeric_limits<float>::infinity()) const;
+    // The scene's world bounds (engine::Scene::bounds, of all instances).
+    const engine::Bounds& bounds() const;
     // Where a ray leaving `from` toward `direction`'s side of its surface starts.
     glm::vec3 rayOrigin(const SurfacePoint& from, glm::vec3 direction) const;
 
