@@ -1,4 +1,6 @@
-// The LPV frame: RSM, VPL clustering, injection, propagation, lookup, glossy, debug views.
+// The GI orchestrator: the configuration and its resources (update), the cascades' schedule, and
+// the frame's passes in the pipeline's order (renderIndirect); each pass records in a file of its
+// own (LightPropagationVolume.h lists them).
 #include "gi/LightPropagationVolume.h"
 
 #include "engine/profiler/FrameProfiler.h"
@@ -14,9 +16,20 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 namespace lpv::gi {
-namespace {} // namespace
+namespace {
+
+// The blend band between a cascade and the next coarser one: a quarter of a cascade's half-extent
+// (CryEngine's e_GIBlendRatio 0.25).
+constexpr float kBlendBand = 0.25f;
+
+uint64_t pixelsOf(const rhi::TextureDesc& d) {
+    return uint64_t(d.width) * d.height;
+}
+
+} // namespace
 
 VolumeGrid placeVolume(const LpvSettings& s, glm::vec3 cameraPosition, glm::vec3 cameraForward,
                        const engine::Bounds& bounds) {
@@ -336,40 +349,54 @@ GiConfigResult LightPropagationVolume::prepare(const LpvSettings& configured, co
     return {};
 }
 
+// What one renderIndirect records with, and how the report sees each of its passes: a profiler
+// scope (its GPU time) under the name the report lists, with the work counts the pass returns for
+// the console cost model; without a profiler, neither.
+struct LightPropagationVolume::FrameRecording {
+    rhi::CommandList& cmd;
+    engine::FrameProfiler* profiler;
+    const engine::CameraMatrices& camera;
+    const engine::GBufferView& gbuffer;
+    rhi::TextureHandle target, glossyTarget; // the lookup's, 1/divisor of the G-buffer per axis
+    glm::vec3 sunDirection;                  // normalised
+
+    std::optional<engine::FrameProfiler::Scope> scope(const char* name) const {
+        return profiler ? std::optional<engine::FrameProfiler::Scope>(profiler->scope(name, &cmd))
+                        : std::nullopt;
+    }
+    // `record` returns the pass's work counts, or nothing for a pass that adds none.
+    template <class Record> void pass(const char* name, Record&& record) const {
+        const auto s = scope(name);
+        if constexpr (std::is_void_v<std::invoke_result_t<Record>>) {
+            record();
+        } else {
+            const engine::WorkCounts work = record();
+            if (profiler) profiler->setWork(work);
+        }
+    }
+};
+
 void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                                             const engine::GBufferView& gbuffer, rhi::TextureHandle target,
                                             rhi::TextureHandle glossyTarget,
                                             engine::FrameProfiler* profiler) {
-    using namespace rhi;
     if (!settings_.enabled || !made_ || !haveFrame_ || !frame_.scene) {
         cmd.clearTexture(target, {0, 0, 0, 0}); // GI off: no indirect light at all
         cmd.clearTexture(glossyTarget, {0, 0, 0, 0});
         return;
     }
-    const auto scope = [&](const char* name) {
-        return profiler ? std::optional<engine::FrameProfiler::Scope>(profiler->scope(name, &cmd))
-                        : std::nullopt;
-    };
-    const auto work = [&](const engine::WorkCounts& w) {
-        if (profiler) profiler->setWork(w);
-    };
-    const glm::vec3 lightDir = glm::normalize(frame_.sunDirection);
-    auto giScope = scope("gi");
+    const FrameRecording f{
+        cmd, profiler, camera, gbuffer, target, glossyTarget, glm::normalize(frame_.sunDirection)};
+    const auto giScope = f.scope("gi");
     cmd.beginMarker("gi");
-    static const char* const kCascadeScopes[4] = {"cascade0", "cascade1", "cascade2", "cascade3"};
-    const uint32_t side = settings_.vplGridSide();
-    // The spot and point lights' RSMs follow the lights, not the cascades: drawn once, injected into each
-    // cascade they reach.
-    if (const uint32_t lightRsms = spotRsms_->rsmCount()) {
-        auto s = scope("lightrsm");
-        const uint64_t triangles =
-            spotRsms_->record(cmd, *frame_.scene, frame_.specularAlbedo, frame_.punctualLights);
-        work(lightRsmWork(settings_, lightRsms, triangles));
-    }
+    // The spot and point lights' RSMs follow the lights, not the cascades: drawn once, injected into
+    // each cascade they reach.
+    if (spotRsms_->rsmCount() > 0) f.pass("lightrsm", [&] { return recordLightRsms(f); });
     // Coarsest first: each finer cascade takes the light from beyond its border from the one
     // around it (CascadeHandoff).
+    static const char* const kCascadeScopes[4] = {"cascade0", "cascade1", "cascade2", "cascade3"};
     uint32_t propagated = 0; // bit c: cascade c's result is made anew this frame
-    for (uint32_t c = uint32_t(cascades_.size()); c-- > 0;) {
+    for (uint32_t c = cascadeCount(); c-- > 0;) {
         // A coarse cascade the scheduler skips this frame keeps last frame's result (a cascade
         // that never had one updates regardless); its update may run in two halves on two frames.
         const bool valid = (cascadesValid_ & (1u << c)) != 0;
@@ -377,176 +404,206 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         const bool volumeHalf = !valid || (volumeUpdates_ & (1u << c));
         if (!lightHalf && !volumeHalf) continue;
         cascadesValid_ |= 1u << c;
-        auto cascadeScope = scope(kCascadeScopes[c]);
-        Cascade& cascade = cascades_[c];
-        if (lightHalf) {
-            // A skipped cascade keeps the placement its result was computed at; this one moves now.
-            cascade.lit = cascade.placement;
-            {
-                auto s = scope("rsm");
-                rsm_->fit(cascade.lit, lightDir);
-                // Objects smaller than a cell of this cascade are left to the finer ones.
-                const uint64_t triangles =
-                    rsm_->record(cmd, *frame_.scene, frame_.specularAlbedo, lightDir, frame_.sunRadiance,
-                                 c == 0 ? 0.0f : cascade.lit.cellSize, settings_.rsmLodTexels);
-                work(rsmWork(settings_, triangles));
-            }
-            auto s = scope("vpl");
-            vplClustering_.record(cmd, *rsm_, side, cascade.vpls);
-            work(vplClusterWork(settings_));
-            const float texelsPerVpl = float(rsm_->size() / side) * float(rsm_->size() / side);
-            cascade.lightDirection = lightDir;
-            cascade.vplArea = rsm_->texelArea() * texelsPerVpl;
-            cascade.whiteTexelFlux = frame_.sunRadiance * rsm_->texelArea();
-        }
-        if (!volumeHalf) continue;
-        propagated |= 1u << c;
-        cascade.grid = cascade.lit;
-        const VolumeGrid& grid = cascade.grid;
-        if (geometry_) {
-            auto s = scope("occlusion");
-            GeometrySources src;
-            src.vpls = cascade.vpls;
-            src.vplCount = settings_.vplSlots();
-            src.vplArea = cascade.vplArea;
-            src.lightDirection = cascade.lightDirection;
-            src.whiteTexelFlux = cascade.whiteTexelFlux;
-            // Camera surfels: in the finest cascade a G-buffer sample is small next to a cell and
-            // marks it; in a coarse cell one sample of a small or partly seen surface would mark
-            // the whole cell, and whether one lands there changes with every camera move, so a
-            // coarse cascade's samples add the area they stand for (gi.coarse_camera_occlusion).
-            if (c == 0 || settings_.cameraAreas()) {
-                src.depth = gbuffer.depth;
-                src.normal = gbuffer.normal;
-                src.albedo = gbuffer.albedo;
-                src.cameraAreas = c > 0;
-            }
-            src.viewProjection = camera.viewProjection;
-            src.invViewProjection = camera.invViewProjection;
-            src.cameraPosition = camera.position;
-            // The surfels' albedo only where the further bounces read it (gi.bounce_cascades).
-            src.surfelAlbedo = settings_.bouncesIn(c);
-            // The spot and point lights' RSM surfels that can land in this cascade.
-            std::array<PointLightSurfels, SpotLightRsms::kMaxRsms> lights;
-            src.pointLights = std::span(lights.data(), spotRsms_->surfelsReaching(grid, lights));
-            uint64_t lightSurfels = 0;
-            for (const PointLightSurfels& l : src.pointLights)
-                lightSurfels += l.count;
-            // Cascade c's faces go to its own slot, or to the one slot all share (the finest builds
-            // last, so the lookup reads its faces there).
-            const bool shared = geometry_->faceSlots() == 1;
-            geometry_->record(cmd, grid, src, shared ? 0 : c);
-            facesValid_ = (shared ? 0u : facesValid_) | (1u << c);
-            const uint64_t cameraSamples =
-                src.depth ? geometry_->cameraSampleCount(gbuffer.width, gbuffer.height) : 0;
-            engine::WorkCounts occlusion =
-                occlusionWork(settings_, src.cameraAreas ? 0 : cameraSamples, volumeDraw(), lightSurfels);
-            if (src.cameraAreas) occlusion += cameraAreasWork(settings_, cameraSamples);
-            work(occlusion);
-        }
-        {
-            auto s = scope("inject");
-            std::array<VplSource, 1 + SpotLightRsms::kMaxRsms> sources;
-            sources[0] = {cascade.vpls, settings_.vplSlots(), glm::vec4(cascade.lightDirection, 0.0f)};
-            const uint32_t n = 1 + spotRsms_->sourcesReaching(grid, std::span(sources).subspan(1));
-            injection_->record(cmd, *volumes_, std::span(sources.data(), n), grid, settings_.intensity, c);
-            work(injectWork(settings_, uint64_t(n - 1) * spotLightVplSlots(settings_), volumeDraw()));
-        }
-        {
-            auto s = scope("propagate");
-            CascadeHandoff handoff;
-            if (c + 1 < cascades_.size()) handoff = {cascades_[c + 1].result, cascades_[c + 1].grid, grid};
-            propagation_->record(cmd, *volumes_, settings_.iterations,
-                                 geometry_ ? geometry_->faceTransmittance() : rhi::TextureHandle{},
-                                 &cascades_[c].result, c + 1 < cascades_.size() ? &handoff : nullptr);
-            work(propagateWork(settings_));
-        }
-        if (bounces_ && settings_.bouncesIn(c) && !(deferredBounces_ && c == 0)) {
-            auto s = scope("bounces");
-            bounces_->record(cmd, *volumes_, *propagation_, *geometry_, settings_.bounces,
-                             settings_.iterations, cascades_[c].result);
-            work(bounceWork(settings_));
+        const auto cascadeScope = f.scope(kCascadeScopes[c]);
+        if (lightHalf) recordLightHalf(f, c);
+        if (volumeHalf) {
+            recordVolumeHalf(f, c);
+            propagated |= 1u << c;
         }
     }
-    if (analyticLights_) {
-        // Point and spot lights, added already propagated (gi/AnalyticLight.h) to every cascade
-        // made this frame, after all propagation so that a coarse cascade made this frame does not
-        // hand them on to a finer one (a kept one does, across the finer one's border: +0.1% in
-        // the lights hall at gi.coarse_update_interval=2).
-        auto s = scope("lights");
-        engine::WorkCounts lightsWork;
-        for (uint32_t c = 0; c < cascades_.size(); ++c) {
-            // A cascade kept from an earlier frame holds the lights added then: adding them again
-            // counted them twice (the lights hall 12% brighter with gi.coarse_update_interval=2).
-            if (!(propagated & (1u << c))) continue;
-            const uint32_t n =
-                pointLights_->record(cmd, frame_.punctualLights, *volumes_, cascades_[c].grid,
-                                     settings_.intensity, &cascades_[c].result, c, spotRsms_->selection());
-            lightsWork += analyticLightsWork(settings_, n, pointLights_->cellEvaluations());
-        }
-        work(lightsWork);
-    }
+    if (analyticLights_) f.pass("lights", [&] { return recordAnalyticLights(f, propagated); });
     reportRgba8Clipping(profiler);
-    // The targets are 1/divisor of the G-buffer per axis (resolutionDivisor()); each texel looks
-    // up the G-buffer pixel at texel x divisor, and the lighting pass rebuilds the rest.
-    const uint32_t divisor = settings_.resolutionDivisor;
-    const rhi::TextureDesc& targetDesc = device_.desc(target);
-    const uint64_t lookupPixels = uint64_t(targetDesc.width) * targetDesc.height;
-    // With several cascades on a device that runs both sides of every branch, each texel's cascade
-    // class is found first and each class drawn on its own (CascadeClasses.h).
-    const bool classified = classes_ && cascades_.size() > 1;
-    std::array<VolumeGrid, 4> grids;
-    for (uint32_t c = 0; c < 4; ++c)
-        grids[c] = cascades_[std::min<size_t>(c, cascades_.size() - 1)].grid;
-    // Blend band: a quarter of a cascade's half-extent (CryEngine's e_GIBlendRatio 0.25).
-    const float blendBand = 0.25f;
-    // The work counts feed the console prediction (and adapt's budget): a console's GPU branches
-    // per texel, so they count that path, here as on a GPU; the classification and the class
-    // draws' depth tests add nothing to them.
-    if (classified) {
-        auto s = scope("classify");
-        classes_->record(cmd, camera, gbuffer, std::span(grids.data(), cascades_.size()), blendBand,
-                         settings_.glossy ? settings_.glossyMaxRoughness : 0.0f, targetDesc.width,
-                         targetDesc.height, divisor);
-    }
+    if (classified()) f.pass("classify", [&] { recordClasses(f); });
     if (allocationCheckDue_) {
         allocationCheckDue_ = false;
         warnIfAllocatedOverBudget();
     }
-    {
-        auto s = scope("lookup");
-        std::array<LookupCascade, 4> lookupCascades;
-        for (uint32_t c = 0; c < cascades_.size(); ++c) {
-            // It keeps to the faces its geometry volume leaves open once they are built (a coarse
-            // cascade skipped since the volume was remade has none yet).
-            const rhi::TextureHandle faces =
-                geometry_ ? geometry_->faceTransmittance(std::min(c, geometry_->faceSlots() - 1))
-                          : rhi::TextureHandle{};
-            lookupCascades[c] = {cascades_[c].grid, cascades_[c].result, faces,
-                                 geometry_ && (facesValid_ & (1u << c)) != 0};
-        }
-        LookupOptions options;
-        options.intensity = settings_.intensity;
-        options.rgba8Range = volumes_->encoded() ? settings_.rgba8Range : 0.0f;
-        options.damping = settings_.damping;
-        options.glossyLobe = settings_.glossy;
-        options.blendBand = blendBand;
-        options.divisor = divisor;
-        lookup_.record(cmd, camera, gbuffer, std::span(lookupCascades.data(), cascades_.size()), options,
-                       target, glossyTarget, frame_.specularAlbedo, classified ? classes_.get() : nullptr);
-        work(lookupWork(settings_, lookupPixels));
-    }
-    if (settings_.glossy) {
-        auto s = scope("glossy");
-        std::array<GlossyCascade, 4> glossyCascades;
-        for (size_t c = 0; c < cascades_.size(); ++c)
-            glossyCascades[c] = {cascades_[c].grid, cascades_[c].result};
-        glossy_.record(cmd, camera, gbuffer, std::span(glossyCascades.data(), cascades_.size()),
-                       volumes_->encoded() ? settings_.rgba8Range : 0.0f, settings_.glossyMaxRoughness,
-                       glossyTarget, frame_.specularAlbedo, divisor, classified ? classes_.get() : nullptr);
-        work(glossyWork(lookupPixels));
-    }
+    f.pass("lookup", [&] { return recordLookup(f); });
+    if (settings_.glossy) f.pass("glossy", [&] { return recordGlossy(f); });
     cmd.endMarker();
+}
+
+// A cascade's light half (GiScheduler.h's CascadeWork): the sun's RSM where the cascade is now and
+// its VPLs, kept for the volume half.
+void LightPropagationVolume::recordLightHalf(const FrameRecording& f, uint32_t c) {
+    // A skipped cascade keeps the placement its result was computed at; this one moves now.
+    cascades_[c].lit = cascades_[c].placement;
+    f.pass("rsm", [&] { return recordRsm(f, c); });
+    f.pass("vpl", [&] { return recordVpls(f, c); });
+}
+
+// A cascade's volume half, this frame or a later one: its result made anew from the VPLs of its
+// light half, where they were lit.
+void LightPropagationVolume::recordVolumeHalf(const FrameRecording& f, uint32_t c) {
+    cascades_[c].grid = cascades_[c].lit;
+    if (geometry_) f.pass("occlusion", [&] { return recordOcclusion(f, c); });
+    f.pass("inject", [&] { return recordInjection(f, c); });
+    f.pass("propagate", [&] { return recordPropagation(f, c); });
+    if (bounces_ && settings_.bouncesIn(c) && !(deferredBounces_ && c == 0))
+        f.pass("bounces", [&] { return recordBounces(f, c); });
+}
+
+engine::WorkCounts LightPropagationVolume::recordLightRsms(const FrameRecording& f) {
+    const uint64_t triangles =
+        spotRsms_->record(f.cmd, *frame_.scene, frame_.specularAlbedo, frame_.punctualLights);
+    return lightRsmWork(settings_, spotRsms_->rsmCount(), triangles);
+}
+
+engine::WorkCounts LightPropagationVolume::recordRsm(const FrameRecording& f, uint32_t c) {
+    const Cascade& cascade = cascades_[c];
+    rsm_->fit(cascade.lit, f.sunDirection);
+    // Objects smaller than a cell of this cascade are left to the finer ones.
+    const uint64_t triangles =
+        rsm_->record(f.cmd, *frame_.scene, frame_.specularAlbedo, f.sunDirection, frame_.sunRadiance,
+                     c == 0 ? 0.0f : cascade.lit.cellSize, settings_.rsmLodTexels);
+    return rsmWork(settings_, triangles);
+}
+
+engine::WorkCounts LightPropagationVolume::recordVpls(const FrameRecording& f, uint32_t c) {
+    Cascade& cascade = cascades_[c];
+    const uint32_t side = settings_.vplGridSide();
+    vplClustering_.record(f.cmd, *rsm_, side, cascade.vpls);
+    // What the volume half needs of the light these VPLs carry.
+    const float texelsPerVpl = float(rsm_->size() / side) * float(rsm_->size() / side);
+    cascade.lightDirection = f.sunDirection;
+    cascade.vplArea = rsm_->texelArea() * texelsPerVpl;
+    cascade.whiteTexelFlux = frame_.sunRadiance * rsm_->texelArea();
+    return vplClusterWork(settings_);
+}
+
+engine::WorkCounts LightPropagationVolume::recordOcclusion(const FrameRecording& f, uint32_t c) {
+    const Cascade& cascade = cascades_[c];
+    GeometrySources src;
+    src.vpls = cascade.vpls;
+    src.vplCount = settings_.vplSlots();
+    src.vplArea = cascade.vplArea;
+    src.lightDirection = cascade.lightDirection;
+    src.whiteTexelFlux = cascade.whiteTexelFlux;
+    // Camera surfels: in the finest cascade a G-buffer sample is small next to a cell and marks it;
+    // in a coarse cell one sample of a small or partly seen surface would mark the whole cell, and
+    // whether one lands there changes with every camera move, so a coarse cascade's samples add the
+    // area they stand for (gi.coarse_camera_occlusion).
+    if (c == 0 || settings_.cameraAreas()) {
+        src.depth = f.gbuffer.depth;
+        src.normal = f.gbuffer.normal;
+        src.albedo = f.gbuffer.albedo;
+        src.cameraAreas = c > 0;
+    }
+    src.viewProjection = f.camera.viewProjection;
+    src.invViewProjection = f.camera.invViewProjection;
+    src.cameraPosition = f.camera.position;
+    // The surfels' albedo only where the further bounces read it (gi.bounce_cascades).
+    src.surfelAlbedo = settings_.bouncesIn(c);
+    // The spot and point lights' RSM surfels that can land in this cascade.
+    std::array<PointLightSurfels, SpotLightRsms::kMaxRsms> lights;
+    src.pointLights = std::span(lights.data(), spotRsms_->surfelsReaching(cascade.grid, lights));
+    uint64_t lightSurfels = 0;
+    for (const PointLightSurfels& l : src.pointLights)
+        lightSurfels += l.count;
+    // Cascade c's faces go to its own slot, or to the one slot all share (the finest builds last,
+    // so the lookup reads its faces there).
+    const bool shared = geometry_->faceSlots() == 1;
+    geometry_->record(f.cmd, cascade.grid, src, shared ? 0 : c);
+    facesValid_ = (shared ? 0u : facesValid_) | (1u << c);
+    const uint64_t cameraSamples =
+        src.depth ? geometry_->cameraSampleCount(f.gbuffer.width, f.gbuffer.height) : 0;
+    engine::WorkCounts work =
+        occlusionWork(settings_, src.cameraAreas ? 0 : cameraSamples, volumeDraw(), lightSurfels);
+    if (src.cameraAreas) work += cameraAreasWork(settings_, cameraSamples);
+    return work;
+}
+
+engine::WorkCounts LightPropagationVolume::recordInjection(const FrameRecording& f, uint32_t c) {
+    const Cascade& cascade = cascades_[c];
+    // The sun's VPLs, then those of the spot and point lights' RSMs that can land in this cascade.
+    std::array<VplSource, 1 + SpotLightRsms::kMaxRsms> sources;
+    sources[0] = {cascade.vpls, settings_.vplSlots(), glm::vec4(cascade.lightDirection, 0.0f)};
+    const uint32_t n = 1 + spotRsms_->sourcesReaching(cascade.grid, std::span(sources).subspan(1));
+    injection_->record(f.cmd, *volumes_, std::span(sources.data(), n), cascade.grid, settings_.intensity, c);
+    return injectWork(settings_, uint64_t(n - 1) * spotLightVplSlots(settings_), volumeDraw());
+}
+
+engine::WorkCounts LightPropagationVolume::recordPropagation(const FrameRecording& f, uint32_t c) {
+    const bool coarser = c + 1 < cascades_.size();
+    CascadeHandoff handoff;
+    if (coarser) handoff = {cascades_[c + 1].result, cascades_[c + 1].grid, cascades_[c].grid};
+    propagation_->record(f.cmd, *volumes_, settings_.iterations,
+                         geometry_ ? geometry_->faceTransmittance() : rhi::TextureHandle{},
+                         &cascades_[c].result, coarser ? &handoff : nullptr);
+    return propagateWork(settings_);
+}
+
+engine::WorkCounts LightPropagationVolume::recordBounces(const FrameRecording& f, uint32_t c) {
+    bounces_->record(f.cmd, *volumes_, *propagation_, *geometry_, settings_.bounces, settings_.iterations,
+                     cascades_[c].result);
+    return bounceWork(settings_);
+}
+
+engine::WorkCounts LightPropagationVolume::recordAnalyticLights(const FrameRecording& f,
+                                                                uint32_t propagated) {
+    // Point and spot lights, added already propagated (gi/AnalyticLight.h) to every cascade made
+    // this frame, after all propagation so that a coarse cascade made this frame does not hand them
+    // on to a finer one (a kept one does, across the finer one's border: +0.1% in the lights hall at
+    // gi.coarse_update_interval=2).
+    engine::WorkCounts work;
+    for (uint32_t c = 0; c < cascades_.size(); ++c) {
+        // A cascade kept from an earlier frame holds the lights added then: adding them again
+        // counted them twice (the lights hall 12% brighter with gi.coarse_update_interval=2).
+        if (!(propagated & (1u << c))) continue;
+        const uint32_t n =
+            pointLights_->record(f.cmd, frame_.punctualLights, *volumes_, cascades_[c].grid,
+                                 settings_.intensity, &cascades_[c].result, c, spotRsms_->selection());
+        work += analyticLightsWork(settings_, n, pointLights_->cellEvaluations());
+    }
+    return work;
+}
+
+// The work counts feed the console prediction (and adapt's budget): a console's GPU branches per
+// texel, so the lookup and the march count that path, here as on a GPU; the classification and the
+// class draws' depth tests add nothing to them.
+void LightPropagationVolume::recordClasses(const FrameRecording& f) {
+    std::array<VolumeGrid, 4> grids;
+    for (uint32_t c = 0; c < cascades_.size(); ++c)
+        grids[c] = cascades_[c].grid;
+    const rhi::TextureDesc& target = device_.desc(f.target);
+    classes_->record(f.cmd, f.camera, f.gbuffer, std::span(grids.data(), cascades_.size()), kBlendBand,
+                     settings_.glossy ? settings_.glossyMaxRoughness : 0.0f, target.width, target.height,
+                     settings_.resolutionDivisor);
+}
+
+engine::WorkCounts LightPropagationVolume::recordLookup(const FrameRecording& f) {
+    std::array<LookupCascade, 4> cascades;
+    for (uint32_t c = 0; c < cascades_.size(); ++c) {
+        // It keeps to the faces its geometry volume leaves open once they are built (a coarse
+        // cascade skipped since the volume was remade has none yet).
+        const rhi::TextureHandle faces =
+            geometry_ ? geometry_->faceTransmittance(std::min(c, geometry_->faceSlots() - 1))
+                      : rhi::TextureHandle{};
+        cascades[c] = {cascades_[c].grid, cascades_[c].result, faces,
+                       geometry_ && (facesValid_ & (1u << c)) != 0};
+    }
+    LookupOptions options;
+    options.intensity = settings_.intensity;
+    options.rgba8Range = volumes_->encoded() ? settings_.rgba8Range : 0.0f;
+    options.damping = settings_.damping;
+    options.glossyLobe = settings_.glossy;
+    options.blendBand = kBlendBand;
+    // Each texel looks up the G-buffer pixel at texel x divisor; the lighting pass rebuilds the rest.
+    options.divisor = settings_.resolutionDivisor;
+    lookup_.record(f.cmd, f.camera, f.gbuffer, std::span(cascades.data(), cascades_.size()), options,
+                   f.target, f.glossyTarget, frame_.specularAlbedo, classified() ? classes_.get() : nullptr);
+    return lookupWork(settings_, pixelsOf(device_.desc(f.target)));
+}
+
+engine::WorkCounts LightPropagationVolume::recordGlossy(const FrameRecording& f) {
+    std::array<GlossyCascade, 4> cascades;
+    for (size_t c = 0; c < cascades_.size(); ++c)
+        cascades[c] = {cascades_[c].grid, cascades_[c].result};
+    glossy_.record(f.cmd, f.camera, f.gbuffer, std::span(cascades.data(), cascades_.size()),
+                   volumes_->encoded() ? settings_.rgba8Range : 0.0f, settings_.glossyMaxRoughness,
+                   f.glossyTarget, frame_.specularAlbedo, settings_.resolutionDivisor,
+                   classified() ? classes_.get() : nullptr);
+    return glossyWork(pixelsOf(device_.desc(f.target)));
 }
 
 void LightPropagationVolume::renderDebugOverlay(rhi::CommandList& cmd, const engine::CameraMatrices& camera,

@@ -1,8 +1,14 @@
 // Dynamic diffuse GI with a light propagation volume (Kaplanyan 2009; Kaplanyan & Dachsbacher
-// 2010), plugged into the renderer as its IndirectLighting:
-//   rsm -> vpl (intensity-aware clustering) -> inject -> propagate -> (classify) -> lookup -> glossy
-//   (+ debug views)
-// each a profiler scope under "gi" with its work counts. The volume follows the camera, snapped to
+// 2010), plugged into the renderer as its IndirectLighting. This is the orchestrator: it owns the
+// passes and the cascades, and renderIndirect records the passes in the pipeline's order, each a
+// profiler scope under "gi" with its work counts and each a class of its own with a record():
+//   lightrsm (SpotLightRsms), then per cascade, coarsest first,
+//     the light half:  rsm (ReflectiveShadowMap) -> vpl (VplClustering)
+//     the volume half: occlusion (GeometryVolume) -> inject (LpvInjection)
+//                      -> propagate (LpvPropagation) -> bounces (MultipleBounces)
+//   then lights (PointLightInjection) -> classify (CascadeClasses) -> lookup (IndirectLookup)
+//   -> glossy (GlossyReflections); renderDebugOverlay draws GiDebugViews.
+// The volumes the passes record into are LpvVolumes. The volume follows the camera, snapped to
 // whole cells and kept inside the scene. Each frame update() takes the settings (a plain struct) and
 // the frame's inputs (GiFrameInputs: camera, scene, lights, sun); a change of size or format
 // remakes the resources on that frame (not a steady-state frame), after checking the platform
@@ -10,6 +16,7 @@
 // engine's adapter (gi/adapter/) reads the settings from gi.* and the inputs from its renderer.
 #pragma once
 
+#include "engine/profiler/WorkCounts.h"
 #include "engine/render/IndirectLighting.h"
 #include "engine/scene/OpenSpace.h"
 #include "gi/CascadeClasses.h"
@@ -123,6 +130,27 @@ private:
     VolumeDraw volumeDraw() const {
         return device_.caps().vertexShaderLayer ? VolumeDraw::Layered : VolumeDraw::PerSlice;
     }
+    // renderIndirect's passes (LightPropagationVolume.cpp), each recording one pass of the frame and
+    // returning its work counts; FrameRecording holds the frame's command list, profiler, camera,
+    // G-buffer and targets.
+    struct FrameRecording;
+    void recordLightHalf(const FrameRecording& f, uint32_t c);  // rsm, vpl
+    void recordVolumeHalf(const FrameRecording& f, uint32_t c); // occlusion, inject, propagate, bounces
+    engine::WorkCounts recordLightRsms(const FrameRecording& f);
+    engine::WorkCounts recordRsm(const FrameRecording& f, uint32_t c);
+    engine::WorkCounts recordVpls(const FrameRecording& f, uint32_t c);
+    engine::WorkCounts recordOcclusion(const FrameRecording& f, uint32_t c);
+    engine::WorkCounts recordInjection(const FrameRecording& f, uint32_t c);
+    engine::WorkCounts recordPropagation(const FrameRecording& f, uint32_t c);
+    engine::WorkCounts recordBounces(const FrameRecording& f, uint32_t c);
+    // Into every cascade whose bit is set in `propagated` (made anew this frame).
+    engine::WorkCounts recordAnalyticLights(const FrameRecording& f, uint32_t propagated);
+    void recordClasses(const FrameRecording& f);
+    engine::WorkCounts recordLookup(const FrameRecording& f);
+    engine::WorkCounts recordGlossy(const FrameRecording& f);
+    // With several cascades on a device that runs both sides of every branch, each texel's cascade
+    // class is found first and each class drawn on its own (CascadeClasses.h).
+    bool classified() const { return classes_ && cascades_.size() > 1; }
     // update() for one configuration: refused before anything changes, or taken.
     GiConfigResult prepare(const LpvSettings& configured, const GiFrameInputs& inputs,
                            engine::FrameProfiler* profiler);
@@ -177,22 +205,24 @@ private:
     GiSchedule scheduleBefore_; // this frame leaves its further bounces to the next (update())
     GiFrameInputs frame_;       // the last update()'s
     bool haveFrame_ = false;
+    bool analyticLights_ = true;
+    // The passes and resources made for a configuration (remake), in the frame's order.
+    std::unique_ptr<SpotLightRsms> spotRsms_;
     std::unique_ptr<ReflectiveShadowMap> rsm_;
+    rhi::BufferHandle vpls_;                   // cascade 0's
+    std::unique_ptr<GeometryVolume> geometry_; // gi.occlusion
     std::unique_ptr<LpvVolumes> volumes_;
     std::unique_ptr<LpvInjection> injection_;     // into volumes_, made with them
     std::unique_ptr<LpvPropagation> propagation_; // in volumes_, made with them
-    std::unique_ptr<GeometryVolume> geometry_;
-    std::unique_ptr<MultipleBounces> bounces_; // gi.bounces > 1
+    std::unique_ptr<MultipleBounces> bounces_;    // gi.bounces > 1
     std::unique_ptr<PointLightInjection> pointLights_;
-    std::unique_ptr<SpotLightRsms> spotRsms_;
-    IndirectLookup lookup_;       // first: it refuses a device that binds too few textures
-    VplClustering vplClustering_; // the sun's RSM, per cascade
+    // The passes made once, with the LPV; the lookup first, as it refuses a device that binds too
+    // few textures for it.
+    IndirectLookup lookup_;
+    VplClustering vplClustering_;             // the sun's RSM, per cascade
+    std::unique_ptr<CascadeClasses> classes_; // CascadeClasses::wanted
     GlossyReflections glossy_;
     GiDebugViews debugViews_;
-    bool analyticLights_ = true;
-    rhi::BufferHandle vpls_;
-    // CascadeClasses::wanted: the classification.
-    std::unique_ptr<CascadeClasses> classes_;
 };
 
 } // namespace lpv::gi
