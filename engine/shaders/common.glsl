@@ -14,6 +14,7 @@ layout(binding = 0, std140) uniform Frame {
     vec4 viewport;           // width, height, 1/width, 1/height
     vec4 params;             // x: exposure, y: ssao radius (m), z: ssao strength, w: debug view
     ivec4 counts;            // x: punctual light count, y: ssao enabled, z: shadow map size, w: indirect targets' resolution divisor
+    ivec4 medium;            // x: the medium target's resolution divisor, 0: no medium (IndirectLighting::mediumDivisor)
 } frame;
 
 const float PI = 3.14159265358979;

@@ -32,6 +32,8 @@ layout(binding = 8, std430) readonly buffer Lights {
 layout(binding = 9) uniform sampler2D glossyTexture;
 // engine/render/SpecularAlbedo.h's table (specular_albedo.glsl): the weight's scale and bias.
 layout(binding = 12) uniform sampler2D specularAlbedoTexture;
+// The medium's in-scattered radiance (rgb) and transmittance (a), IndirectLighting::renderMedium.
+layout(binding = 13) uniform sampler2D mediumTexture;
 #ifdef LIGHT_SHADOWS
 // Spot and point lights with a shadow map this frame (LightShadows): views in tiles of one atlas.
 layout(binding = 10, std140) uniform LightShadows {
@@ -99,6 +101,53 @@ IndirectLight indirectAt(vec3 p, vec3 n) {
     // No neighbour on this surface (a sliver thinner than a texel): plain bilinear filtering.
     if (sum <= 1e-4) return IndirectLight(plainIrradiance, plainGlossy);
     return IndirectLight(sumIrradiance / sum, sumGlossy / sum);
+}
+
+// The medium along this pixel's ray (rgb: in-scattered radiance, a: transmittance). From a smaller
+// target (frame.medium.x = divisor > 1) it is rebuilt from the four nearest texels: bilinear weights
+// times how well each texel's pixel's distance from the camera matches this pixel's, so fog in
+// front of a near object does not take the far wall's thicker fog. The sky matches only the sky.
+vec4 mediumAt(float depth) {
+    int divisor = frame.medium.x;
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    if (divisor <= 1) return texelFetch(mediumTexture, pixel, 0);
+    ivec2 lowSize = textureSize(mediumTexture, 0);
+    ivec2 fullSize = ivec2(frame.viewport.xy);
+    ivec2 base = pixel / divisor;
+    vec2 f = vec2(pixel - base * divisor) / float(divisor);
+    bool sky = depth >= 1.0;
+    float distance = sky ? 0.0 : length(worldFromDepth(vUv, depth) - frame.cameraPosition.xyz);
+    vec4 sum = vec4(0.0), plain = vec4(0.0);
+    float weights = 0.0;
+    for (int i = 0; i < 4; ++i) {
+        ivec2 o = ivec2(i & 1, i >> 1);
+        ivec2 t = min(base + o, lowSize - 1);
+        ivec2 source = min(t * divisor, fullSize - 1);
+        float bilinear = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        vec4 m = texelFetch(mediumTexture, t, 0);
+        plain += bilinear * m;
+        float d = texelFetch(depthTexture, source, 0).r;
+        float match;
+        if (sky || d >= 1.0) {
+            match = (sky && d >= 1.0) ? 1.0 : 0.0;
+        } else {
+            vec2 uv = (vec2(source) + 0.5) * frame.viewport.zw;
+            float e = (length(worldFromDepth(uv, d) - frame.cameraPosition.xyz) - distance) / (0.02 * distance + 1e-4);
+            match = exp(-e * e);
+        }
+        float w = bilinear * match;
+        sum += w * m;
+        weights += w;
+    }
+    // No neighbour at this distance (a sliver thinner than a texel): plain bilinear filtering.
+    return weights > 1e-4 ? sum / weights : plain;
+}
+
+// The lit surface (or sky) seen through the medium; with render.debug_view=fog, the medium's light alone.
+vec3 throughMedium(vec3 color, float depth, int debugView) {
+    if (frame.medium.x <= 0) return debugView == 9 ? vec3(0.0) : color;
+    vec4 m = mediumAt(depth);
+    return debugView == 9 ? m.rgb : color * m.a + m.rgb;
 }
 
 float sunShadow(vec3 p, vec3 n) {
@@ -210,7 +259,8 @@ void main() {
     float depth = textureLod(depthTexture, vUv, 0.0).r;
     int debugView = int(frame.params.w);
     if (depth >= 1.0) {
-        outColor = vec4(debugView == 0 ? vec3(0.02, 0.025, 0.03) : vec3(0.0), 1.0);
+        vec3 sky = debugView == 0 ? vec3(0.02, 0.025, 0.03) : vec3(0.0);
+        outColor = vec4(debugView == 0 || debugView == 9 ? throughMedium(sky, depth, debugView) : sky, 1.0);
         return;
     }
     vec3 p = worldFromDepth(vUv, depth);
@@ -285,5 +335,6 @@ void main() {
     else if (debugView == 6) color = indirect;  // linear indirect diffuse alone, as added above
     else if (debugView == 7) color = glossy;    // linear glossy reflection alone, as added above
     else if (debugView == 8) color = specular;  // linear direct specular alone (sun and lights)
+    if (debugView == 0 || debugView == 9) color = throughMedium(color, depth, debugView);
     outColor = vec4(color, 1.0);
 }

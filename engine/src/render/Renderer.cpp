@@ -50,10 +50,12 @@ const EnumSetting<DebugView> kDebugView{"render.debug_view",
                                          {DebugView::Shadow, "shadow"},
                                          {DebugView::Indirect, "indirect"},
                                          {DebugView::Glossy, "glossy"},
-                                         {DebugView::Specular, "specular"}},
+                                         {DebugView::Specular, "specular"},
+                                         {DebugView::Fog, "fog"}},
                                         "What the frame shows; indirect = linear indirect diffuse only, "
                                         "glossy = linear glossy reflection only, specular = linear direct "
-                                        "specular only (sun and lights)"};
+                                        "specular only (sun and lights), fog = linear light the fog scatters "
+                                        "toward the camera only (fog.enabled)"};
 
 rhi::GraphicsPipelineHandle fullscreenPipeline(rhi::Device& device, const rhi::ShaderBinary& fragment,
                                                rhi::Format format, const char* name) {
@@ -164,6 +166,7 @@ void Renderer::createTargets(uint32_t shadowSize) {
     targets_.aoRaw = target(Format::R32F, 0, "ssao raw", "render.ssao");
     targets_.ao = target(Format::R32F, kTextureTransfer, "ssao", "render.ssao");
     if (indirectDivisor_ > 0) createIndirectTargets(indirectDivisor_);
+    createMediumTarget(mediumDivisor_);
     targets_.hdr = target(Format::RGBA16F, kTextureTransfer, "hdr", "render.lighting");
     targets_.output = target(Format::RGBA8Srgb, kTextureTransfer, "output", "render.output");
     shadowSize_ = shadowSize;
@@ -187,10 +190,22 @@ void Renderer::createIndirectTargets(uint32_t divisor) {
     targets_.glossy = target("glossy radiance");
 }
 
+void Renderer::createMediumTarget(uint32_t divisor) {
+    using namespace rhi;
+    // The provider's medium is one of its passes (its time is in the provider's "gi" scopes), so
+    // its target counts in the GI's memory too.
+    mediumDivisor_ = divisor;
+    if (divisor == 0) return;
+    const uint32_t w = (width_ + divisor - 1) / divisor, h = (height_ + divisor - 1) / divisor;
+    targets_.medium =
+        device_.createTexture({TextureKind::Tex2D, Format::RGBA16F, w, h, 1, 1,
+                               kTextureColorTarget | kTextureSampled | kTextureTransfer, "medium", "gi.fog"});
+}
+
 void Renderer::destroyTargets() {
-    for (auto t :
-         {targets_.albedo, targets_.normal, targets_.emissive, targets_.depth, targets_.aoRaw, targets_.ao,
-          targets_.indirect, targets_.glossy, targets_.hdr, targets_.output, targets_.shadow})
+    for (auto t : {targets_.albedo, targets_.normal, targets_.emissive, targets_.depth, targets_.aoRaw,
+                   targets_.ao, targets_.indirect, targets_.glossy, targets_.hdr, targets_.output,
+                   targets_.shadow, targets_.medium})
         if (t) device_.destroy(t);
     targets_ = {};
 }
@@ -342,6 +357,13 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         if (targets_.glossy) device_.destroy(targets_.glossy);
         createIndirectTargets(divisor);
     }
+    const uint32_t mediumDivisor = indirect ? std::min(indirect->mediumDivisor(), 8u) : 0u;
+    if (mediumDivisor != mediumDivisor_) {
+        // The provider's fog turned on or off or changed resolution: a settings change.
+        if (targets_.medium) device_.destroy(targets_.medium);
+        targets_.medium = {};
+        createMediumTarget(mediumDivisor);
+    }
 
     // As many light shadow maps as asked for, but for no more lights than the scene has and the
     // lighting pass can be left to light (memory): the atlas is remade on a settings or scene
@@ -378,6 +400,7 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
     const uint32_t directLights = this->directLights(cmd, indirect, lightBuffer);
     frame_.counts =
         glm::ivec4(int(directLights), config.get(kSsao) ? 1 : 0, int(shadowSize_), int(indirectDivisor_));
+    frame_.medium = glm::ivec4(int(mediumDivisor_), 0, 0, 0);
 
     const uint64_t pixels = uint64_t(width_) * height_;
     const auto scope = [&](const char* name, bool gpuTimed = true) {
@@ -482,6 +505,15 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         const glm::vec3 sky = ambient / std::numbers::pi_v<float>;
         cmd.clearTexture(targets_.glossy, {sky.x, sky.y, sky.z, 0.0f});
     }
+    if (mediumDivisor_ > 0) {
+        SunShadowView sun;
+        sun.shadowMap = targets_.shadow;
+        sun.viewProjection = frame_.sunViewProjection;
+        sun.direction = glm::vec3(frame_.sunDirection);
+        sun.radiance = glm::vec3(frame_.sunRadiance);
+        sun.depthBias = frame_.sunDirection.w;
+        indirect->renderMedium(cmd, camera, gbuffer(), sun, targets_.medium, profiler);
+    }
     {
         auto s = scope("render.lighting");
         cmd.beginMarker("lighting");
@@ -499,6 +531,9 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
                            cmd.bindStorageBuffer(8, lightBuffer);
                            cmd.bindTexture(9, targets_.glossy, pointClamp_);
                            cmd.bindTexture(12, specularAlbedo_->texture(), linearClamp_);
+                           // Without a medium the binding is unread (frame.medium.x = 0).
+                           cmd.bindTexture(13, mediumDivisor_ > 0 ? targets_.medium : targets_.indirect,
+                                           pointClamp_);
                            if (!lightShadows) return;
                            cmd.pushUniforms(10, &lightShadows_->uniforms(), sizeof(LightShadowUniforms));
                            cmd.bindTexture(11, lightShadows_->atlas(targets_.shadow), shadowCompare_);
@@ -507,8 +542,14 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         // Each shadowed light adds its 3x3 compares where it lights (counted as every pixel); the
         // specular albedo is a bilinear fetch of four texels; GGX specular takes about 40
         // operations for the sun and for each light.
-        work(fullscreenWork(pixels, 12 + 9 * 4 + 9 * uint64_t(lightShadows_->activeCount()),
-                            180 + 80 * uint64_t(directLights), 4 * 12 + 8));
+        WorkCounts w = fullscreenWork(pixels, 12 + 9 * 4 + 9 * uint64_t(lightShadows_->activeCount()),
+                                      180 + 80 * uint64_t(directLights), 4 * 12 + 8);
+        // The medium's rebuild: four texels and their pixels' depths, a weight each.
+        if (mediumDivisor_ > 1)
+            w += fullscreenWork(pixels, 8, 4 * 30, 4 * 8 + 4 * 4);
+        else if (mediumDivisor_ == 1)
+            w += fullscreenWork(pixels, 1, 4, 8);
+        work(w);
     }
     if (indirectDivisor_ > 1) {
         // The bilateral rebuild of the pixels the GI lookup skipped runs inside the lighting pass,

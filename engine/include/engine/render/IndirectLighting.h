@@ -1,12 +1,17 @@
 // The renderer's hook for global illumination. Between the G-buffer and the lighting pass, the
 // renderer asks the provider (the LPV in gi/) to fill the indirect-irradiance target and the glossy
-// radiance target; without a provider they hold the constant render.ambient as a uniform sky.
+// radiance target; without a provider they hold the constant render.ambient as a uniform sky. A
+// provider may also light a participating medium (fog) with what it holds: the renderer then gives
+// it the sun's shadow map and composes the medium over the lit frame.
 #pragma once
 
 #include "engine/render/CameraMatrices.h"
 #include "engine/scene/Scene.h"
 #include "rhi/CommandList.h"
 #include "rhi/Handle.h"
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
 
 #include <cstdint>
 #include <limits>
@@ -21,6 +26,15 @@ struct GBufferView {
     rhi::TextureHandle depth;  // D32F, sampled
     rhi::TextureHandle ao;     // R32F, 1 = unoccluded
     uint32_t width = 0, height = 0;
+};
+
+// The sun as the renderer's shadow pass left it, for a provider that lights a medium with it.
+struct SunShadowView {
+    rhi::TextureHandle shadowMap;   // D32F, sampled with a compare sampler; null: no shadow
+    glm::mat4 viewProjection{1.0f}; // world to shadow map space: xy in [-1, 1], depth in [0, 1]
+    glm::vec3 direction{0, -1, 0};  // where the light travels (normalized)
+    glm::vec3 radiance{0.0f};       // irradiance on a surface facing the sun
+    float depthBias = 0.0f;         // subtracted from a point's depth before the compare
 };
 
 class IndirectLighting {
@@ -46,6 +60,19 @@ public:
     // light does not bleed across silhouettes. Asked every frame before renderIndirect(); a change
     // remakes the targets on that frame.
     virtual uint32_t resolutionDivisor() const { return 1; }
+    // Per axis, how much smaller than the frame the provider wants the medium's target, or 0 when
+    // it lights no medium this frame (then renderMedium() is not called and the lighting pass
+    // composes nothing). Asked every frame before renderMedium(); a change remakes the target.
+    virtual uint32_t mediumDivisor() const { return 0; }
+    // Fills `target` (RGBA16F, 1/mediumDivisor() of the G-buffer per axis, rounded up): texel t, for
+    // G-buffer pixel t x divisor, holds in rgb the radiance the medium scatters toward the camera
+    // along that pixel's ray up to its surface (or out of the scene), and in alpha the medium's
+    // transmittance along it. The lighting pass writes surface x alpha + rgb, rebuilding the pixels
+    // between texels with a depth-aware filter. Called after renderIndirect().
+    virtual void renderMedium(rhi::CommandList& cmd, const CameraMatrices& camera, const GBufferView& gbuffer,
+                              const SunShadowView& sun, rhi::TextureHandle target, FrameProfiler* profiler) {
+        (void)cmd, (void)camera, (void)gbuffer, (void)sun, (void)target, (void)profiler;
+    }
     // Draws debug views over the tone-mapped output (RGBA8 sRGB color target); none by default.
     virtual void renderDebugOverlay(rhi::CommandList& cmd, const CameraMatrices& camera,
                                     rhi::TextureHandle output) {

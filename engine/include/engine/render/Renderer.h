@@ -24,7 +24,7 @@ namespace lpv::engine {
 
 class FrameProfiler;
 
-enum class DebugView { Final, Albedo, Normals, Depth, Ssao, Shadow, Indirect, Glossy, Specular };
+enum class DebugView { Final, Albedo, Normals, Depth, Ssao, Shadow, Indirect, Glossy, Specular, Fog };
 
 struct SunLight {
     glm::vec3 direction{0.25f, -1.0f, -0.15f}; // where the light travels
@@ -44,6 +44,7 @@ struct FrameUniforms {
     glm::vec4 viewport;
     glm::vec4 params;
     glm::ivec4 counts;
+    glm::ivec4 medium; // x: the medium target's divisor (IndirectLighting::mediumDivisor), 0: none
 };
 
 // What the lighting pass adds per frame to rebuild every pixel's indirect and glossy light from
@@ -89,6 +90,10 @@ public:
     // from the first render() on (indirectDivisor() is 0 before).
     rhi::TextureHandle indirect() const { return targets_.indirect; }
     uint32_t indirectDivisor() const { return indirectDivisor_; }
+    // RGBA16F linear: what the provider's medium scatters toward the camera (rgb) and lets through
+    // (alpha), at 1/mediumDivisor() of the frame per axis; null while the provider lights no medium.
+    rhi::TextureHandle medium() const { return targets_.medium; }
+    uint32_t mediumDivisor() const { return mediumDivisor_; }
     GBufferView gbuffer() const;
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
@@ -99,11 +104,14 @@ public:
 
 private:
     struct Targets {
-        rhi::TextureHandle albedo, normal, emissive, depth, aoRaw, ao, indirect, glossy, hdr, output, shadow;
+        rhi::TextureHandle albedo, normal, emissive, depth, aoRaw, ao, indirect, glossy, hdr, output, shadow,
+            medium;
     };
     void createTargets(uint32_t shadowSize);
     // The indirect and glossy targets at 1/divisor of the frame per axis (IndirectLighting).
     void createIndirectTargets(uint32_t divisor);
+    // The medium's target at 1/divisor of the frame per axis (none for 0).
+    void createMediumTarget(uint32_t divisor);
     void destroyTargets();
     void createPipelines();
     // The G-buffer pass without or with metallic-roughness and emissive maps (gbuffer_body.glsl).
@@ -116,6 +124,7 @@ private:
     rhi::Device& device_;
     uint32_t width_, height_, shadowSize_ = 0;
     uint32_t indirectDivisor_ = 0; // 0: no indirect targets yet (the first frame makes them)
+    uint32_t mediumDivisor_ = 0;   // 0: no medium target
     Targets targets_;
     rhi::GraphicsPipelineHandle gbufferPipeline_, gbufferMappedPipeline_, shadowPipeline_, ssaoPipeline_,
         ssaoBlurPipeline_, lightingPipeline_, lightingShadowedPipeline_, tonemapPipeline_;
