@@ -55,7 +55,7 @@ VolumeGrid placeVolume(const LpvSettings& s, glm::vec3 cameraPosition, glm::vec3
 
 LightPropagationVolume::LightPropagationVolume(rhi::Device& device, platforms::PlatformProfile profile)
     : device_(device), profile_(std::move(profile)), lookup_(device), vplClustering_(device, "vpl cluster"),
-      glossy_(device), debugViews_(device) {
+      glossy_(device), fog_(device), debugViews_(device) {
     // Where a shader runs both sides of its branches: one draw per cascade class.
     if (CascadeClasses::wanted(device)) classes_ = std::make_unique<CascadeClasses>(device);
 }
@@ -604,6 +604,32 @@ engine::WorkCounts LightPropagationVolume::recordGlossy(const FrameRecording& f)
                    f.glossyTarget, frame_.specularAlbedo, settings_.resolutionDivisor,
                    classified() ? classes_.get() : nullptr);
     return glossyWork(pixelsOf(device_.desc(f.target)));
+}
+
+void LightPropagationVolume::renderMedium(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
+                                          const engine::GBufferView& gbuffer,
+                                          const engine::SunShadowView& sun, rhi::TextureHandle target,
+                                          engine::FrameProfiler* profiler) {
+    const auto scope = profiler ? std::optional<engine::FrameProfiler::Scope>(profiler->scope("gi.fog", &cmd))
+                                : std::nullopt;
+    cmd.beginMarker("fog");
+    // The cascades with a result (after renderIndirect this frame, every one of them while GI is on).
+    std::array<FogCascade, 4> cascades;
+    size_t n = 0;
+    if (settings_.enabled && made_ && haveFrame_)
+        for (uint32_t c = 0; c < cascadeCount(); ++c)
+            if (cascadesValid_ & (1u << c)) cascades[n++] = {cascades_[c].grid, cascades_[c].result};
+    FogInputs in;
+    in.camera = camera;
+    in.gbuffer = gbuffer;
+    in.sun = sun;
+    in.cascades = std::span(cascades.data(), n);
+    in.rgba8Range = n > 0 && volumes_->encoded() ? settings_.rgba8Range : 0.0f;
+    in.sceneBounds = frame_.sceneBounds;
+    fog_.record(cmd, settings_.fog, in, target);
+    cmd.endMarker();
+    const rhi::TextureDesc& d = device_.desc(target);
+    if (profiler) profiler->setWork(fogWork(settings_.fog, uint64_t(d.width) * d.height, n > 0));
 }
 
 void LightPropagationVolume::renderDebugOverlay(rhi::CommandList& cmd, const engine::CameraMatrices& camera,

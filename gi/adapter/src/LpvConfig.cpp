@@ -1,4 +1,4 @@
-// The gi.* settings: their declarations (registered when this library is linked: TOML, --set and
+// The gi.* and fog.* settings: their declarations (registered when this library is linked: TOML, --set and
 // --help-config know them) and their reading into gi::LpvSettings.
 #include "gi/adapter/LpvConfig.h"
 
@@ -120,6 +120,37 @@ const engine::EnumSetting<GiBudgetPolicy> kBudgetPolicy{
     "GI over the platform budget: fixed only reports it; adapt updates coarse cascades less often, then "
     "lowers iterations, then the RSM size, then gi.resolution, then gi.bounces"};
 
+// The participating medium (FogSettings, gi/FogMarch.h).
+const engine::BoolSetting kFogEnabled{
+    "fog.enabled", false,
+    "Fog lit by the sun (light shafts through its shadow map) and by the GI's indirect light"};
+const engine::FloatSetting kFogDensity{"fog.density", 0.02, 0.0, 10.0,
+                                       "Fog extinction per metre at and below fog.base_height"};
+const engine::Vec3Setting kFogAlbedo{
+    "fog.albedo",
+    {0.9f, 0.9f, 0.9f},
+    0.0,
+    1.0,
+    "Fog single-scattering albedo per channel (scattered over extinguished)"};
+const engine::FloatSetting kFogHeightFalloff{
+    "fog.height_falloff", 0.0, 0.0, 100.0,
+    "Exponential height fog: above fog.base_height the density falls by exp(-falloff x metres above); 0: "
+    "homogeneous"};
+const engine::FloatSetting kFogBaseHeight{"fog.base_height", 0.0, -1.0e6, 1.0e6,
+                                          "Height (metres) up to which the fog has fog.density"};
+const engine::FloatSetting kFogAnisotropy{
+    "fog.anisotropy", 0.2, -0.95, 0.95,
+    "Henyey-Greenstein g of the fog's phase function: 0 scatters alike every way, > 0 forward (bright "
+    "toward the sun)"};
+const engine::EnumSetting<uint32_t> kFogResolution{
+    "fog.resolution",
+    2u,
+    {{1u, "full"}, {2u, "half"}, {4u, "quarter"}},
+    "Pixels per axis given a fog march (full, half, quarter); the lighting pass rebuilds the others with a "
+    "depth-aware filter. gi.budget_policy=adapt may lower it"};
+const engine::IntSetting kFogSteps{"fog.steps", 24, 2, 128,
+                                   "Fog march steps per ray. gi.budget_policy=adapt may lower it"};
+
 } // namespace
 
 LpvSettings lpvSettingsFrom(const engine::Config& config) {
@@ -154,6 +185,14 @@ LpvSettings lpvSettingsFrom(const engine::Config& config) {
     s.resolutionDivisor = config.get(kResolution);
     s.budgetPolicy = config.get(kBudgetPolicy);
     s.analyticLights = config.get(kAnalyticLights);
+    s.fog.enabled = config.get(kFogEnabled);
+    s.fog.density = float(config.get(kFogDensity));
+    s.fog.albedo = config.get(kFogAlbedo);
+    s.fog.heightFalloff = float(config.get(kFogHeightFalloff));
+    s.fog.baseHeight = float(config.get(kFogBaseHeight));
+    s.fog.anisotropy = float(config.get(kFogAnisotropy));
+    s.fog.resolutionDivisor = config.get(kFogResolution);
+    s.fog.steps = uint32_t(config.get(kFogSteps));
     return s;
 }
 

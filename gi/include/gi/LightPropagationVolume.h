@@ -7,7 +7,8 @@
 //     the volume half: occlusion (GeometryVolume) -> inject (LpvInjection)
 //                      -> propagate (LpvPropagation) -> bounces (MultipleBounces)
 //   then lights (PointLightInjection) -> classify (CascadeClasses) -> lookup (IndirectLookup)
-//   -> glossy (GlossyReflections); renderDebugOverlay draws GiDebugViews.
+//   -> glossy (GlossyReflections); renderMedium marches the fog (FogMarch, "gi.fog") and
+//   renderDebugOverlay draws GiDebugViews.
 // The volumes the passes record into are LpvVolumes. The volume follows the camera, snapped to
 // whole cells and kept inside the scene. Each frame update() takes the settings (a plain struct) and
 // the frame's inputs (GiFrameInputs: camera, scene, lights, sun); a change of size or format
@@ -20,6 +21,7 @@
 #include "engine/render/IndirectLighting.h"
 #include "engine/scene/OpenSpace.h"
 #include "gi/CascadeClasses.h"
+#include "gi/FogMarch.h"
 #include "gi/GeometryVolume.h"
 #include "gi/GiConfigResult.h"
 #include "gi/GiDebugViews.h"
@@ -84,6 +86,14 @@ public:
                         rhi::TextureHandle glossyTarget, engine::FrameProfiler* profiler) override;
     void renderDebugOverlay(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                             rhi::TextureHandle output) override;
+    // fog.resolution while fog.enabled (with GI on or off: off, the sun alone lights it), else none.
+    uint32_t mediumDivisor() const override {
+        return settings_.fog.enabled ? settings_.fog.resolutionDivisor : 0;
+    }
+    // The fog march (FogMarch) through every cascade with a result, a top-level "gi.fog" scope.
+    void renderMedium(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
+                      const engine::GBufferView& gbuffer, const engine::SunShadowView& sun,
+                      rhi::TextureHandle target, engine::FrameProfiler* profiler) override;
     // gi.resolution while GI is on; every pixel (the ambient constant) while it is off.
     uint32_t resolutionDivisor() const override {
         return settings_.enabled ? settings_.resolutionDivisor : 1;
@@ -222,6 +232,7 @@ private:
     VplClustering vplClustering_;             // the sun's RSM, per cascade
     std::unique_ptr<CascadeClasses> classes_; // CascadeClasses::wanted
     GlossyReflections glossy_;
+    FogMarch fog_;
     GiDebugViews debugViews_;
 };
 

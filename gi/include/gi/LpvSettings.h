@@ -4,6 +4,7 @@
 // --set; the names in the comments are those keys.
 #pragma once
 
+#include "gi/FogSettings.h"
 #include "gi/GiBudgetPolicy.h"
 #include "rhi/Format.h"
 
@@ -67,6 +68,8 @@ struct LpvSettings {
     // Per axis, 1/resolutionDivisor of the frame's pixels get a lookup and a glossy march; the
     // lighting pass rebuilds the rest (engine::IndirectLighting::resolutionDivisor).
     uint32_t resolutionDivisor = 2;
+    // The participating medium the volume lights (fog.*); it runs with GI off too, lit by the sun.
+    FogSettings fog;
 
     // Face transmittance volumes the geometry volume keeps (GeometryVolume's face slots): one per
     // cascade when every cascade's lookup reads its own, else the one the finest cascade builds last.
