@@ -34,7 +34,7 @@ __attribute__((format(printf, 2, 3))) void writeText(GiChange& change, const cha
 struct KnobValue {
     std::array<char, 24> text{};
     KnobValue(GiKnob knob, uint32_t value) {
-        if (knob == GiKnob::Resolution)
+        if (knob == GiKnob::Resolution || knob == GiKnob::FogResolution)
             std::snprintf(text.data(), text.size(), "%s",
                           value <= 1   ? "full"
                           : value == 2 ? "half"
@@ -55,6 +55,8 @@ struct KnobText {
                               : knob == GiKnob::RsmSize            ? "gi.rsm_size"
                               : knob == GiKnob::Resolution         ? "gi.resolution"
                               : knob == GiKnob::Bounces            ? "gi.bounces"
+                              : knob == GiKnob::FogResolution      ? "fog.resolution"
+                              : knob == GiKnob::FogSteps           ? "fog.steps"
                                                                    : "";
         if (*setting)
             std::snprintf(text.data(), text.size(), "%s=%s", setting, KnobValue(knob, value).c_str());
@@ -79,6 +81,12 @@ void setKnob(GiLoad& load, GiKnob knob, uint32_t value) {
     case GiKnob::Bounces:
         load.bounces = value;
         break;
+    case GiKnob::FogResolution:
+        load.fogResolutionDivisor = value;
+        break;
+    case GiKnob::FogSteps:
+        load.fogSteps = value;
+        break;
     case GiKnob::None:
         break;
     }
@@ -99,6 +107,10 @@ GiLoad giLoadOf(const LpvSettings& settings, uint32_t cascades) {
     load.resolutionDivisor = settings.resolutionDivisor;
     load.bounces = std::max(settings.bounces, 1u);
     load.vplGridSide = std::max(settings.vplGridSide(), 1u);
+    if (settings.fog.enabled) {
+        load.fogResolutionDivisor = std::max(settings.fog.resolutionDivisor, 1u);
+        load.fogSteps = settings.fog.steps;
+    }
     return load;
 }
 
@@ -107,6 +119,10 @@ void applyGiLoad(const GiLoad& load, LpvSettings& settings) {
     settings.rsmSize = load.rsmSize;
     settings.resolutionDivisor = load.resolutionDivisor;
     settings.bounces = load.bounces;
+    if (load.fogSteps > 0) {
+        settings.fog.resolutionDivisor = load.fogResolutionDivisor;
+        settings.fog.steps = load.fogSteps;
+    }
 }
 
 uint32_t cascadeWorkOn(const GiLoad& load, uint32_t cascade, uint64_t frame) {
@@ -369,7 +385,21 @@ bool GiBudgetScheduler::nextTimeStep(Step& step) const {
         step = {GiKnob::Iterations, load_.iterations, to};
         return true;
     }
-    return rsmStep(step) || resolutionStep(step) || bouncesStep(step);
+    return rsmStep(step) || resolutionStep(step) || bouncesStep(step) || fogStep(step);
+}
+
+bool GiBudgetScheduler::fogStep(Step& step) const {
+    // After the GI's own knobs: the fog's cost is its march, first over fewer pixels (the rebuild
+    // keeps its edges at depth steps), then in fewer, longer steps (coarser shafts).
+    if (load_.fogSteps == 0) return false;
+    const uint32_t d = std::max(load_.fogResolutionDivisor, 1u);
+    if (d * 2 <= limits_.maxFogResolutionDivisor) {
+        step = {GiKnob::FogResolution, d, d * 2};
+        return true;
+    }
+    if (load_.fogSteps / 2 < limits_.minFogSteps) return false;
+    step = {GiKnob::FogSteps, load_.fogSteps, load_.fogSteps / 2};
+    return true;
 }
 
 bool GiBudgetScheduler::bouncesStep(Step& step) const {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "engine/profiler/CostModel.h"
+#include "gi/FogMarch.h"
 #include "gi/GiBudget.h"
 #include "gi/GiScheduler.h"
 #include "gi/GiWork.h"
@@ -63,6 +64,12 @@ struct ConsoleGiCost {
     // Predicted ms of GI on `frame`: the halves of cascade updates due that frame, and the lookup.
     double frameMs(const gi::GiLoad& load, uint64_t frame) const {
         double ms = passMs(lookupPass(load));
+        // With fog on: its march through every cascade, at fog.resolution.
+        if (load.fogSteps > 0) {
+            const gi::LpvSettings s = settingsOf(load);
+            const uint64_t d = load.fogResolutionDivisor;
+            ms += passMs(gi::fogWork(s.fog, pixels / (d * d), true));
+        }
         for (uint32_t c = 0; c < load.cascades; ++c)
             ms += cascadeMs(load, c, gi::cascadeWorkOn(load, c, frame));
         return ms;

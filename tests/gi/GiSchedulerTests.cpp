@@ -58,7 +58,9 @@ int rank(GiKnob k) {
            : k == GiKnob::Iterations         ? 1
            : k == GiKnob::RsmSize            ? 2
            : k == GiKnob::Resolution         ? 3
-                                             : 4;
+           : k == GiKnob::Bounces            ? 4
+           : k == GiKnob::FogResolution      ? 5
+                                             : 6;
 }
 
 bool contains(std::string_view text, std::string_view part) {
@@ -230,6 +232,46 @@ TEST_CASE("gi budget: adapt brings 3 cascades under the x360 budget in the docum
         if (l.change.knob == GiKnob::Bounces) CHECK(contains(t, "gi.bounces=1 (was 2)"));
         CHECK(contains(t, "ms budget"));
     }
+}
+
+TEST_CASE("gi budget: with fog on, adapt lowers fog.resolution, then fog.steps, after the GI's own knobs") {
+    Run run;
+    const test::ConsoleGiCost cost = test::x360Cascades(run.configured);
+    run.configured.fogResolutionDivisor = 1;
+    run.configured.fogSteps = 32;
+    const uint64_t bytes = cost.bytes(run.configured);
+    const auto costOf = [&](const GiLoad& l, uint64_t f) { return std::pair(cost.frameMs(l, f), bytes); };
+    // Every GI knob at its floor, the fog as configured, then the fog at half and quarter resolution.
+    GiLoad floor = run.configured;
+    floor.coarseUpdateInterval = 4;
+    floor.iterations = run.scheduler.limits().minIterations;
+    floor.rsmSize = run.scheduler.limits().minRsmSize;
+    floor.resolutionDivisor = run.scheduler.limits().maxResolutionDivisor;
+    GiLoad quarterFog = floor;
+    quarterFog.fogResolutionDivisor = 4;
+    GiLoad fewerSteps = quarterFog;
+    fewerSteps.fogSteps = 16;
+    MESSAGE("GI knobs at their floor: " << cost.peakMs(floor) << " ms with full-resolution fog, "
+                                        << cost.peakMs(quarterFog) << " at quarter, "
+                                        << cost.peakMs(fewerSteps) << " with 16 steps");
+    REQUIRE(cost.peakMs(fewerSteps) < cost.peakMs(quarterFog));
+    const GiBudget budget{0.5 * (cost.peakMs(quarterFog) + cost.peakMs(fewerSteps)), bytes};
+    const GiSchedule& s = run.frames(600, budget, costOf);
+    CHECK(cost.peakMs(s.load) <= budget.ms);
+    CHECK(s.load.fogResolutionDivisor == 4);
+    CHECK(s.load.fogSteps == 16);
+    const auto steps = run.steps(false);
+    REQUIRE(steps.size() >= 3);
+    for (size_t i = 1; i < steps.size(); ++i)
+        CHECK(rank(steps[i - 1].change.knob) <= rank(steps[i].change.knob));
+    CHECK(steps.back().change.knob == GiKnob::FogSteps);
+    CHECK(contains(steps.back().change.text(), "fog.steps=16 (was 32)"));
+    // What the scheduler lowered reaches the settings the frame runs.
+    LpvSettings settings;
+    settings.fog.enabled = true;
+    applyGiLoad(s.load, settings);
+    CHECK(settings.fog.resolutionDivisor == 4);
+    CHECK(settings.fog.steps == 16);
 }
 
 TEST_CASE("gi budget: fixed changes nothing and reports the overage once") {

@@ -7,6 +7,8 @@
 //   4. the pixels looked up (gi.resolution: full -> half -> quarter per axis; the lighting pass
 //      rebuilds the rest),
 //   5. the bounces (gi.bounces: one fewer per step, down to the first bounce),
+//   6. with fog on, the pixels marched through it (fog.resolution, as gi.resolution), then its
+//      steps (fog.steps, halved per step down to a floor),
 // and gives steps back in reverse order once GI has stayed well under budget for a while and the
 // step is expected to fit. Memory over budget is helped only by a smaller RSM; past that it is
 // reported, since no time knob frees memory. Under fixed it changes nothing and reports.
@@ -59,6 +61,9 @@ struct GiLoad {
     uint32_t rsmSize = 256;
     uint32_t resolutionDivisor = 1; // per axis: the lookup and glossy march run on 1 in d^2 pixels
     uint32_t bounces = 1;           // gi.bounces: the first is the propagated light itself
+    // fog.resolution and fog.steps; 0 while fog is off (nothing to lower).
+    uint32_t fogResolutionDivisor = 0;
+    uint32_t fogSteps = 0;
     // Not a knob: the RSM size must stay a multiple of the VPL grid side (gi.vpl_count's rule).
     uint32_t vplGridSide = 1;
     bool operator==(const GiLoad&) const = default;
@@ -99,7 +104,16 @@ struct GiFrameCost {
 // the measured GI ms otherwise, and the GI bytes allocated now. Empty until a frame is checked.
 std::optional<GiFrameCost> giFrameCost(const engine::FrameProfiler& profiler);
 
-enum class GiKnob { None, CoarseUpdateInterval, Iterations, RsmSize, Resolution, Bounces };
+enum class GiKnob {
+    None,
+    CoarseUpdateInterval,
+    Iterations,
+    RsmSize,
+    Resolution,
+    Bounces,
+    FogResolution,
+    FogSteps
+};
 
 inline constexpr size_t kGiChangeTextBytes = 256;
 
@@ -138,7 +152,9 @@ struct GiSchedulerLimits {
     uint32_t maxCoarseUpdateInterval = 4;
     uint32_t minIterations = 4;
     uint32_t minRsmSize = 64;
-    uint32_t maxResolutionDivisor = 4; // gi.resolution=quarter
+    uint32_t maxResolutionDivisor = 4;    // gi.resolution=quarter
+    uint32_t maxFogResolutionDivisor = 4; // fog.resolution=quarter
+    uint32_t minFogSteps = 8;
     // A cycle over budget is the worst frame of one coarse update cycle (interval frames). This
     // many such cycles in a row take a step: more than one rides out a single noisy measurement.
     uint32_t overBudgetCycles = 2;
@@ -173,8 +189,9 @@ private:
         bool afterKnown = false;
         bool forMemory = false;
     };
-    // Two interval steps, up to 60 iteration steps (64 -> 4), a few RSM halvings, two resolutions.
-    static constexpr size_t kMaxSteps = 74;
+    // Two interval steps, up to 60 iteration steps (64 -> 4), a few RSM halvings, two resolutions,
+    // two bounces, two fog resolutions and four fog step halvings (128 -> 8).
+    static constexpr size_t kMaxSteps = 84;
 
     void start(uint64_t frame, const GiLoad& configured, GiBudgetPolicy policy);
     void judge(uint64_t frame, double ms, uint64_t bytes, const GiBudget& budget);
@@ -184,6 +201,7 @@ private:
     bool rsmStep(Step& step) const;
     bool resolutionStep(Step& step) const;
     bool bouncesStep(Step& step) const;
+    bool fogStep(Step& step) const;
     void take(uint64_t frame, Step step, double ms, uint64_t bytes, const GiBudget& budget);
     void giveBack(uint64_t frame, double ms, double expectedMs, const GiBudget& budget);
     void setLoad(uint64_t frame, const GiLoad& load);
