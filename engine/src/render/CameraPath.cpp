@@ -21,11 +21,16 @@ Camera cameraOnPath(std::string_view name, const Bounds& bounds, const Camera& s
     Camera cam = start;
     const glm::vec3 c = bounds.center(), size = bounds.size();
     if (name == "orbit") {
-        // Once around the scene at 60% of its height, looking at its centre.
-        const float a = glm::two_pi<float>() * t;
-        const float r = 0.75f * std::max(size.x, size.z);
-        cam.position = c + glm::vec3(std::sin(a) * r, 0.1f * size.y, std::cos(a) * r);
-        cam.forward = glm::normalize(c - cam.position);
+        // The scene's camera carried once around the vertical axis through the scene's centre, its
+        // distance, height and view turning with it, so that a run's first and last frames (the
+        // screenshot) show the view the scene chose: a camera looking at the centre keeps looking
+        // at it, one on the axis turns on the spot.
+        const float a = glm::two_pi<float>() * t, ca = std::cos(a), sa = std::sin(a);
+        const auto turn = [&](glm::vec3 v) {
+            return glm::vec3(ca * v.x + sa * v.z, v.y, ca * v.z - sa * v.x);
+        };
+        cam.position = c + turn(start.position - c);
+        cam.forward = glm::normalize(turn(start.forward));
     } else if (name == "flythrough") {
         // Along the longer horizontal axis at eye height, swaying side to side.
         const bool alongX = size.x >= size.z;
