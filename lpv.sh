@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The project's entry point for people and CI.
-#   ./lpv.sh run    install missing packages, build, render 12 frames of the default scene with GI (game/lpv_game.toml)
-#                   to out/screenshot.png and its profile report to out/profile/
+#   ./lpv.sh run    install missing packages, build, render 24 frames at 320x180 once around the default scene
+#                   with GI (game/lpv_game.toml), the last to out/screenshot.png, the report to out/profile/
 #   ./lpv.sh test   install missing packages, build with warnings as errors, run every test (ctest);
 #                   then, given no ctest arguments, the CPU suites and game.cli built with ASan + UBSan
 #                   (clang, build-asan/) and a minute of each fuzzer (fuzz/run.sh): any report fails
@@ -19,12 +19,14 @@ cmake --build "$build" --parallel "$(nproc)"
 
 case "$cmd" in
 run)
-  # The sample game's config (GI on) first: the caller's --config and --set apply after it. Twelve
-  # frames around the orbit: the first compiles the pipelines and makes the resources (warm-up,
-  # left out of the report), the other eleven give the steady-state median; --frames overrides.
+  # The sample game's config (GI on) first; the caller's arguments come after these and win. 24
+  # frames once around the scene, ending at its own camera (the screenshot): the first compiles the
+  # pipelines and makes the resources (warm-up, left out of the report), the other 23 give the
+  # steady-state median. At 320x180 because on a software driver a 1280x720 frame's cost is mostly
+  # its pixels; the times, and what larger frames cost: docs/benchmarks.md#the-quick-start-run.
   mkdir -p "$root/out"
   "$build/game/lpv_game" --config "$root/game/lpv_game.toml" --screenshot "$root/out/screenshot.png" \
-    --profile-out "$root/out/profile" --frames 12 --camera-path orbit "$@"
+    --profile-out "$root/out/profile" --frames 24 --camera-path orbit --width 320 --height 180 "$@"
   ;;
 test)
   cd "$build"
