@@ -12,12 +12,9 @@
 
 namespace lpv::bench {
 
-std::vector<glm::vec3> renderEngineIndirect(rhi::Device& device, const engine::Scene& scene,
-                                            const engine::Camera& camera, uint32_t width, uint32_t height,
-                                            engine::Config config, int frames) {
-    config.applyOverride("render.debug_view=indirect", "the fidelity benchmark");
-    // The reference has no ambient occlusion term: SSAO would darken corners it already traces.
-    config.applyOverride("render.ssao=false", "the fidelity benchmark");
+std::vector<glm::vec3> renderEngineFrame(rhi::Device& device, const engine::Scene& scene,
+                                         const engine::Camera& camera, uint32_t width, uint32_t height,
+                                         const engine::Config& config, int frames) {
     engine::Renderer renderer(device, width, height);
     renderer.setScene(scene);
     gi::LightPropagationVolume lpv(device, platforms::loadPlatformProfile("pc"));
@@ -35,6 +32,15 @@ std::vector<glm::vec3> renderEngineIndirect(rhi::Device& device, const engine::S
     for (size_t i = 0; i < out.size(); ++i)
         out[i] = {rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2]};
     return out;
+}
+
+std::vector<glm::vec3> renderEngineIndirect(rhi::Device& device, const engine::Scene& scene,
+                                            const engine::Camera& camera, uint32_t width, uint32_t height,
+                                            engine::Config config, int frames) {
+    config.applyOverride("render.debug_view=indirect", "the fidelity benchmark");
+    // The reference has no ambient occlusion term: SSAO would darken corners it already traces.
+    config.applyOverride("render.ssao=false", "the fidelity benchmark");
+    return renderEngineFrame(device, scene, camera, width, height, config, frames);
 }
 
 } // namespace lpv::bench

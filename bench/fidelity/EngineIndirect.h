@@ -14,9 +14,15 @@
 
 namespace lpv::bench {
 
-// Renders `frames` frames of `scene` from `camera` at width x height with `config` (GI settings;
-// the view and SSAO are set here) and returns the last frame's indirect radiance, row 0 at the top.
-// Throws what the GI throws for a configuration the pc profile refuses.
+// Renders `frames` frames of `scene` from `camera` at width x height with `config` as it is (the
+// LPV as the renderer's indirect light, GI on or off as `config` says) and returns the last HDR
+// frame, row 0 at the top. Throws what the GI throws for a configuration the pc profile refuses.
+std::vector<glm::vec3> renderEngineFrame(rhi::Device& device, const engine::Scene& scene,
+                                         const engine::Camera& camera, uint32_t width, uint32_t height,
+                                         const engine::Config& config, int frames = 3);
+
+// renderEngineFrame with `config` (GI settings) plus render.debug_view=indirect and SSAO off: the
+// last frame's indirect radiance.
 std::vector<glm::vec3> renderEngineIndirect(rhi::Device& device, const engine::Scene& scene,
                                             const engine::Camera& camera, uint32_t width, uint32_t height,
                                             engine::Config config, int frames = 3);

@@ -45,6 +45,7 @@ FidelityFigures compareIndirect(std::span<const glm::vec3> engine, std::span<con
     }
     if (f.pixels == 0 || sumRefLum <= 0.0) return f;
     const double n = f.pixels, meanRef = sumRefLum / n;
+    f.referenceMean = float(meanRef);
     f.meanRatio = glm::vec3(ratioOf(sumEngine.r, sumReference.r), ratioOf(sumEngine.g, sumReference.g),
                             ratioOf(sumEngine.b, sumReference.b));
     // sum (s e - r)^2 = s^2 sum e^2 - 2 s sum e r + sum r^2, least at s = sum e r / sum e^2.

@@ -1,7 +1,8 @@
 // How close the engine's indirect light is to a path-traced reference of the same view: the
 // figures the fidelity benchmark prints and the fidelity test bounds. Both images are linear
 // radiance per pixel (the engine's render.debug_view=indirect, the reference's diffuse-indirect
-// pass); pixels without geometry in the reference are left out.
+// pass; or the fog's in-scattered light, render.debug_view=fog, and the reference's fog images);
+// pixels without geometry in the reference are left out.
 #pragma once
 
 #include <glm/vec3.hpp>
@@ -31,6 +32,7 @@ struct FidelityFigures {
     float relativeRmse = 0.0f;       // RMSE of luminance / mean reference luminance
     float bestScale = 1.0f;          // the single factor on the engine's image that minimises RMSE
     float relativeRmseScaled = 0.0f; // relativeRmse after that factor: the error in shape alone
+    float referenceMean = 0.0f;      // the reference's mean luminance
     OrientationRatios orientation;
     float shareOver3x = 0.0f; // share of pixels whose luminance is over 3x the reference's
 };

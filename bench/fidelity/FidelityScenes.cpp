@@ -29,6 +29,18 @@ std::vector<FidelityScene> fidelityScenes(const std::string& sceneDir) {
     };
 }
 
+FidelityFog fidelityFog() {
+    // The standard box with the sun through its front, homogeneous fog of 0.05/m (about half the
+    // light crossing the 13.7 m from the camera to the back wall is scattered or absorbed), the
+    // engine's default albedo and Henyey-Greenstein g.
+    FidelityFog f{"cornell-sun", {}, 128, 128};
+    f.medium.density = 0.05f;
+    f.medium.albedo = glm::vec3(0.9f);
+    f.medium.anisotropy = 0.2f;
+    f.medium.missAtSceneBounds = true;
+    return f;
+}
+
 std::vector<std::string> fidelitySceneNames() {
     std::vector<std::string> names;
     for (const FidelityScene& s : fidelityScenes(""))

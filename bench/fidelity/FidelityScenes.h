@@ -1,6 +1,9 @@
 // The scenes the fidelity benchmark and test compare with the path tracer, each with the view and
-// the GI settings it is judged at (the finest cascade sized to the room).
+// the GI settings it is judged at (the finest cascade sized to the room), and the fog comparison's
+// medium (issue 48).
 #pragma once
+
+#include "reference/Medium.h"
 
 #include <cstdint>
 #include <string>
@@ -20,5 +23,14 @@ struct FidelityScene {
 std::vector<FidelityScene> fidelityScenes(const std::string& sceneDir);
 // Their names, for --scenes.
 std::vector<std::string> fidelitySceneNames();
+
+// The fog comparison: the engine's fog (EngineFog.h) against the reference's medium in one of the
+// scenes above, with that scene's GI settings, at a smaller size (the indirect part is noisy).
+struct FidelityFog {
+    std::string scene;        // a FidelityScene's name
+    reference::Medium medium; // missAtSceneBounds on, as the engine's march
+    uint32_t width = 128, height = 128;
+};
+FidelityFog fidelityFog();
 
 } // namespace lpv::bench

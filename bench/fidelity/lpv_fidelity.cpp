@@ -4,10 +4,16 @@
 // ratio on ceilings, floors and walls, and the share of pixels over 3x the reference; with --out,
 // writes each view as engine | reference side by side (PNG, one exposure for both).
 //
+// Then, when its scene (cornell-sun) is among --scenes, the fog (issue 48): the engine's
+// render.debug_view=fog against the reference's medium (FidelityScenes.h, fidelityFog), the same
+// figures for the fog, its sun part and its indirect part (EngineFog.h), and with --out the three
+// side by side. --fog-spp 0 leaves it out.
+//
 //   lpv_fidelity [--backends=vulkan,gl-egl] [--scenes=cornell,...] [--spp=N] [--bounces=1..3]
-//                [--out=DIR] [--set key=value ...]
+//                [--fog-spp=N] [--fog-density=D] [--fog-anisotropy=G] [--out=DIR] [--set key=value ...]
 #include "../BenchBackends.h"
 #include "../BenchCommandLine.h"
+#include "EngineFog.h"
 #include "EngineIndirect.h"
 #include "FidelityMetrics.h"
 #include "FidelityScenes.h"
@@ -15,6 +21,7 @@
 #include "engine/ImageFile.h"
 #include "engine/config/Config.h"
 #include "engine/scene/SceneLoading.h"
+#include "gi/adapter/LpvConfig.h"
 #include "platforms/Clock.h"
 #include "platforms/Platform.h"
 #include "reference/PathTracer.h"
@@ -64,6 +71,65 @@ std::string ratio(float r) {
     return buf;
 }
 
+// The scene's GI settings, then the caller's.
+engine::Config sceneConfig(const FidelityScene& fs, uint32_t bounces,
+                           const std::vector<std::string>& assignments) {
+    engine::Config config;
+    config.applyOverride("gi.enabled=true", "lpv_fidelity");
+    config.applyOverride("gi.bounces=" + std::to_string(bounces), "lpv_fidelity");
+    for (const std::string& s : fs.settings)
+        config.applyOverride(s, "lpv_fidelity's scene " + fs.name);
+    for (const std::string& s : assignments)
+        config.applyOverride(s);
+    return config;
+}
+
+// The fog, its sun part and its indirect part against the reference's, per backend.
+void compareFog(const FidelityScene& fs, const FidelityFog& fog, const std::vector<BenchBackend>& backends,
+                uint32_t spp, uint32_t bounces, int frames, const engine::Config& config,
+                const std::string& outDir) {
+    const engine::Scene scene = engine::loadScene(fs.source);
+    const engine::Camera camera = scene.camera.value_or(engine::Camera{});
+    reference::TraceSettings ts;
+    ts.width = fog.width, ts.height = fog.height, ts.samplesPerPixel = spp, ts.bounces = bounces;
+    ts.medium = fog.medium;
+    const uint64_t t0 = platforms::nowNanoseconds();
+    const reference::TracedImage ref = reference::trace(scene, camera, ts);
+    const double traceMs = double(platforms::nowNanoseconds() - t0) / 1e6;
+    const reference::Medium& m = fog.medium;
+    std::printf(
+        "\n## Fog in %s against the path tracer (%ux%u, %u spp, %u bounce%s)\n\ndensity %.3g/m, albedo "
+        "%.2g/%.2g/%.2g, g %.2g, height falloff %.3g; fog.steps %u, fog.resolution=full; sun part: "
+        "gi.enabled=false, indirect part: the difference\n\n",
+        fs.name.c_str(), fog.width, fog.height, spp, bounces, bounces > 1 ? "s" : "", m.density, m.albedo.r,
+        m.albedo.g, m.albedo.b, m.anisotropy, m.heightFalloff, gi::lpvSettingsFrom(config).fog.steps);
+    std::printf("| part | backend | mean ratio r/g/b | rel. RMSE | after scale (x) | reference mean |\n"
+                "|---|---|---|---|---|---|\n");
+    for (const BenchBackend& b : backends) {
+        auto device = makeDevice(b);
+        const EngineFogParts e =
+            renderEngineFogParts(*device, scene, camera, fog.width, fog.height, config, fog.medium, frames);
+        const struct {
+            const char *name, *image; // as printed; the side-by-side image's suffix
+            const std::vector<glm::vec3>& engine;
+            const std::vector<glm::vec3>& reference;
+        } parts[] = {{"fog", "fog", e.total, ref.fog},
+                     {"sun", "fog-sun", e.sun, ref.fogSun},
+                     {"indirect", "fog-indirect", e.indirect, ref.fogIndirect}};
+        for (const auto& p : parts) {
+            const FidelityFigures f = compareIndirect(p.engine, p.reference, {ref.normal, ref.hit});
+            std::printf("| %s | %s | %.2f/%.2f/%.2f | %.3f | %.3f (%.2f) | %.4f |\n", p.name, b.name.c_str(),
+                        f.meanRatio.r, f.meanRatio.g, f.meanRatio.b, f.relativeRmse, f.relativeRmseScaled,
+                        f.bestScale, f.referenceMean);
+            if (!outDir.empty())
+                writeSideBySide(outDir + "/" + fs.name + "-" + p.image + "-" + b.name + ".png", fog.width,
+                                fog.height, p.engine, p.reference);
+        }
+        std::fflush(stdout);
+    }
+    std::fprintf(stderr, "%s fog: reference traced in %.1f s\n", fs.name.c_str(), traceMs / 1000.0);
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -89,6 +155,19 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 3))
         ->capture_default_str();
     app.add_option("--frames", frames, "Engine frames before the read-back")->check(CLI::Range(1, 100));
+    FidelityFog fog = fidelityFog();
+    uint32_t fogSpp = 256;
+    app.add_option("--fog-spp", fogSpp,
+                   "Reference samples per pixel for the fog comparison (run when its scene, " + fog.scene +
+                       ", is among --scenes; 0: not run)")
+        ->check(CLI::Range(0, 1 << 20))
+        ->capture_default_str();
+    app.add_option("--fog-density", fog.medium.density, "The fog comparison's fog.density (1/m)")
+        ->check(CLI::Range(0.001f, 10.0f))
+        ->capture_default_str();
+    app.add_option("--fog-anisotropy", fog.medium.anisotropy, "The fog comparison's fog.anisotropy (g)")
+        ->check(CLI::Range(-0.95f, 0.95f))
+        ->capture_default_str();
     std::string outDir;
     app.add_option("--out", outDir, "Folder for the side-by-side images (engine | reference)");
     std::vector<std::string> assignments;
@@ -117,13 +196,7 @@ int main(int argc, char** argv) {
             const reference::TracedImage ref = reference::trace(scene, camera, ts);
             const double traceMs = double(platforms::nowNanoseconds() - t0) / 1e6;
             for (const BenchBackend& b : backends) {
-                engine::Config config;
-                config.applyOverride("gi.enabled=true", "lpv_fidelity");
-                config.applyOverride("gi.bounces=" + std::to_string(bounces), "lpv_fidelity");
-                for (const std::string& s : fs.settings)
-                    config.applyOverride(s, "lpv_fidelity's scene " + fs.name);
-                for (const std::string& s : assignments)
-                    config.applyOverride(s);
+                const engine::Config config = sceneConfig(fs, bounces, assignments);
                 auto device = makeDevice(b);
                 const std::vector<glm::vec3> engineImage =
                     renderEngineIndirect(*device, scene, camera, fs.width, fs.height, config, frames);
@@ -141,6 +214,18 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "%s: reference traced in %.1f s\n", fs.name.c_str(), traceMs / 1000.0);
         } catch (const std::exception& e) {
             std::printf("| %s | failed: %s |\n", fs.name.c_str(), e.what());
+            ++failures;
+        }
+    }
+    for (const FidelityScene& fs : all) {
+        if (fogSpp == 0 || fs.name != fog.scene ||
+            std::find(names.begin(), names.end(), fs.name) == names.end())
+            continue;
+        try {
+            compareFog(fs, fog, backends, fogSpp, bounces, frames, sceneConfig(fs, bounces, assignments),
+                       outDir);
+        } catch (const std::exception& e) {
+            std::printf("| fog | failed: %s |\n", e.what());
             ++failures;
         }
     }
