@@ -52,7 +52,8 @@ float sunVisibility(vec3 x) {
     vec3 c = s.xyz / s.w;
     vec2 uv = c.xy * 0.5 + 0.5;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || c.z > 1.0) return 1.0;
-    return texture(sunShadowMap, vec3(uv, c.z - fog.cameraPosition.w));
+    // An explicit LOD: the map has one level, and inside the march implicit derivatives are undefined.
+    return textureLod(sunShadowMap, vec3(uv, c.z - fog.cameraPosition.w), 0.0);
 }
 
 #if CASCADES > 0
