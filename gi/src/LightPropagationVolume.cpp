@@ -619,6 +619,13 @@ void LightPropagationVolume::renderMedium(rhi::CommandList& cmd, const engine::C
     if (settings_.enabled && made_ && haveFrame_)
         for (uint32_t c = 0; c < cascadeCount(); ++c)
             if (cascadesValid_ & (1u << c)) cascades[n++] = {cascades_[c].grid, cascades_[c].result};
+    // CPU-rasterizer workaround (Caps::maskedBranches): such a device runs every cascade's branch at
+    // every step, so there the fog reads the coarsest cascade alone, which holds every other; the
+    // fog's indirect light is smooth enough that its coarser cells cost little in the image.
+    if (device_.caps().maskedBranches && n > 1) {
+        cascades[0] = cascades[n - 1];
+        n = 1;
+    }
     FogInputs in;
     in.camera = camera;
     in.gbuffer = gbuffer;
