@@ -32,6 +32,8 @@ public:
     }
     // All earlier writes visible to every later stage and access.
     void memory() { memory_ = true; }
+    // Nothing to record yet.
+    bool empty() const { return imageCount_ == 0 && !memory_; }
     void flush();
 
 private:

@@ -403,36 +403,42 @@ void VulkanCommandList::dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t gr
     if (device_.conservativeBarriers()) payOwed();
 }
 
-bool VulkanCommandList::dispatchHazard(const VulkanPipeline& p) const {
-    if (!owed_) return false;
+bool VulkanCommandList::owedHazard(uint64_t resource, bool writes) const {
+    if (!owed_ || resource == 0) return false;
     const auto in = [](const auto& set, uint32_t n, uint64_t r) {
         return std::find(set.begin(), set.begin() + n, r) != set.begin() + n;
     };
+    return in(written_, writtenCount_, resource) || (writes && in(read_, readCount_, resource));
+}
+
+bool VulkanCommandList::dispatchHazard(const VulkanPipeline& p) const {
     for (const PipelineBinding& pb : p.bindings) {
         const Bound& b = bound_[pb.binding];
-        if (b.resource == 0) continue;
         // Storage images and buffers may be written; the shader's reflection does not say.
         const bool writes = b.kind == BoundKind::StorageImage || b.kind == BoundKind::StorageBuffer;
-        if (in(written_, writtenCount_, b.resource)) return true;
-        if (writes && in(read_, readCount_, b.resource)) return true;
+        if (owedHazard(b.resource, writes)) return true;
     }
     return false;
+}
+
+void VulkanCommandList::owe(uint64_t resource, bool writes) {
+    owed_ = true;
+    if (resource == 0) return;
+    auto& set = writes ? written_ : read_;
+    uint32_t& n = writes ? writtenCount_ : readCount_;
+    if (std::find(set.begin(), set.begin() + n, resource) != set.begin() + n) return;
+    if (n == kMaxTracked) { // too many to track: pay now, start over
+        payOwed();
+        owed_ = true;
+        return owe(resource, writes);
+    }
+    set[n++] = resource;
 }
 
 void VulkanCommandList::noteDispatchAccesses(const VulkanPipeline& p) {
     for (const PipelineBinding& pb : p.bindings) {
         const Bound& b = bound_[pb.binding];
-        if (b.resource == 0) continue;
-        const bool writes = b.kind == BoundKind::StorageImage || b.kind == BoundKind::StorageBuffer;
-        auto& set = writes ? written_ : read_;
-        uint32_t& n = writes ? writtenCount_ : readCount_;
-        if (std::find(set.begin(), set.begin() + n, b.resource) != set.begin() + n) continue;
-        if (n == kMaxTracked) { // too many to track: pay now, start over
-            payOwed();
-            owed_ = true;
-            return noteDispatchAccesses(p);
-        }
-        set[n++] = b.resource;
+        owe(b.resource, b.kind == BoundKind::StorageImage || b.kind == BoundKind::StorageBuffer);
     }
 }
 
@@ -450,15 +456,17 @@ bool VulkanCommandList::payOwed(BarrierBatch* batch) {
 void VulkanCommandList::clearTexture(TextureHandle texture, const std::array<float, 4>& value) {
     requirePass(false, "clearTexture");
     VulkanTexture& t = device_.textures.get(texture);
-    // A storage image (home GENERAL) is cleared where it is: every earlier command was followed by
-    // a barrier from all commands to all commands, which orders it before the clear, and by a
-    // memory barrier for what it wrote (CommandList.h's rule), so only the clear's writes need one.
-    const VkImageLayout layout =
-        t.home == VK_IMAGE_LAYOUT_GENERAL ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    // A storage image (home GENERAL) is cleared where it is: its barrier before the clear only where
+    // an owed command touched it (every other earlier command was followed by one), and after it owed
+    // like a dispatch's. Any other texture moves out and back, and those moves order its clear.
+    const bool inPlace = t.home == VK_IMAGE_LAYOUT_GENERAL;
+    const VkImageLayout layout = inPlace ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    const uint64_t resource = uint64_t(t.image);
     {
         BarrierBatch before(cmd_);
-        payOwed(&before); // what dispatches owe, in the same call as the move
         before.transition(t, 0, t.desc.mipLevels, layout);
+        // What dispatches owe, in the same call as the move (free then).
+        if (!before.empty() || owedHazard(resource, true) || device_.conservativeBarriers()) payOwed(&before);
     }
     const VkImageSubresourceRange range{t.aspect, 0, t.desc.mipLevels, 0, t.arrayLayers()};
     if (isDepthFormat(t.desc.format)) {
@@ -475,9 +483,10 @@ void VulkanCommandList::clearTexture(TextureHandle texture, const std::array<flo
         }
         vkCmdClearColorImage(cmd_, t.image, layout, &v, 1, &range);
     }
-    BarrierBatch barriers(cmd_);
-    barriers.transitionHome(t);
-    barriers.memory();
+    owe(resource, true);
+    BarrierBatch after(cmd_);
+    after.transitionHome(t);
+    if (!after.empty() || device_.conservativeBarriers()) payOwed(&after);
 }
 
 void VulkanCommandList::updateBuffer(BufferHandle buffer, uint64_t offset, const void* data, uint32_t size) {
@@ -488,10 +497,16 @@ void VulkanCommandList::updateBuffer(BufferHandle buffer, uint64_t offset, const
                     "': size must be 4..65536 and offset and size multiples of 4");
     if (offset + size > b.desc.size)
         throw Error("updateBuffer '" + b.desc.debugName + "': range exceeds its size");
-    payOwed();
-    fullBarrier(cmd_); // earlier reads of the old contents finish first
+    // Earlier reads of the old contents, and writes, finish first: only owed commands can still be
+    // touching it.
+    const uint64_t resource = uint64_t(b.buffer);
+    if (device_.conservativeBarriers())
+        fullBarrier(cmd_);
+    else if (owedHazard(resource, true))
+        payOwed();
     vkCmdUpdateBuffer(cmd_, b.buffer, offset, size, data);
-    fullBarrier(cmd_);
+    owe(resource, true);
+    if (device_.conservativeBarriers()) payOwed();
 }
 
 void VulkanCommandList::copyTexture(TextureHandle src, TextureHandle dst) {
@@ -503,21 +518,33 @@ void VulkanCommandList::copyTexture(TextureHandle src, TextureHandle dst) {
         s.desc.height != d.desc.height || s.desc.depthOrLayers != d.desc.depthOrLayers)
         throw Error("copyTexture: '" + s.desc.debugName + "' and '" + d.desc.debugName +
                     "' differ in kind, format or size");
+    // Storage images (home GENERAL) are copied where they are, like clearTexture's (conservative
+    // mode moves them, as before issue 46).
+    const bool conservative = device_.conservativeBarriers();
+    const VkImageLayout srcLayout = s.home == VK_IMAGE_LAYOUT_GENERAL && !conservative
+                                        ? VK_IMAGE_LAYOUT_GENERAL
+                                        : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    const VkImageLayout dstLayout = d.home == VK_IMAGE_LAYOUT_GENERAL && !conservative
+                                        ? VK_IMAGE_LAYOUT_GENERAL
+                                        : VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
     {
-        BarrierBatch barriers(cmd_);
-        payOwed(&barriers);
-        barriers.transition(s, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-        barriers.transition(d, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        BarrierBatch before(cmd_);
+        before.transition(s, 0, 1, srcLayout);
+        before.transition(d, 0, 1, dstLayout);
+        if (!before.empty() || owedHazard(uint64_t(s.image), false) || owedHazard(uint64_t(d.image), true))
+            payOwed(&before);
     }
     VkImageCopy region{};
     region.srcSubresource = {s.aspect, 0, 0, s.arrayLayers()};
     region.dstSubresource = region.srcSubresource;
     region.extent = {s.width(0), s.height(0), s.depth(0)};
-    vkCmdCopyImage(cmd_, s.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.image,
-                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-    BarrierBatch barriers(cmd_);
-    barriers.transitionHome(s);
-    barriers.transitionHome(d);
+    vkCmdCopyImage(cmd_, s.image, srcLayout, d.image, dstLayout, 1, &region);
+    owe(uint64_t(s.image), false);
+    owe(uint64_t(d.image), true);
+    BarrierBatch after(cmd_);
+    after.transitionHome(s);
+    after.transitionHome(d);
+    if (!after.empty() || conservative) payOwed(&after);
 }
 
 void VulkanCommandList::writeTimestamp(uint32_t slotIndex) {

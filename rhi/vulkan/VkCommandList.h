@@ -73,10 +73,13 @@ private:
     void clearBindings();
     // Pushes the descriptors the bound pipeline of `bindPoint` declares; throws if one is missing.
     void pushBindings(const VulkanPipeline& pipeline);
-    // Dispatches leave their barrier owed: recorded before the next command that reads or writes
-    // what they wrote (or writes what they read), merged into that command's own barrier when it
-    // has one, and before anything else (passes, transfers, the frame's end).
+    // Dispatches and transfers leave their barrier owed: recorded before the next command that reads
+    // or writes what they wrote (or writes what they read), merged into that command's own barrier
+    // when it has one, and before anything else (passes, the frame's end).
+    bool owedHazard(uint64_t resource, bool writes) const;
     bool dispatchHazard(const VulkanPipeline& p) const;
+    // Adds `resource` to what the owed barrier covers (0: no resource, only the ordering).
+    void owe(uint64_t resource, bool writes);
     void noteDispatchAccesses(const VulkanPipeline& p);
     // Records the owed barrier now (into `batch` when given). Returns whether one was owed.
     bool payOwed(BarrierBatch* batch = nullptr);
