@@ -518,33 +518,23 @@ void VulkanCommandList::copyTexture(TextureHandle src, TextureHandle dst) {
         s.desc.height != d.desc.height || s.desc.depthOrLayers != d.desc.depthOrLayers)
         throw Error("copyTexture: '" + s.desc.debugName + "' and '" + d.desc.debugName +
                     "' differ in kind, format or size");
-    // Storage images (home GENERAL) are copied where they are, like clearTexture's (conservative
-    // mode moves them, as before issue 46).
-    const bool conservative = device_.conservativeBarriers();
-    const VkImageLayout srcLayout = s.home == VK_IMAGE_LAYOUT_GENERAL && !conservative
-                                        ? VK_IMAGE_LAYOUT_GENERAL
-                                        : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    const VkImageLayout dstLayout = d.home == VK_IMAGE_LAYOUT_GENERAL && !conservative
-                                        ? VK_IMAGE_LAYOUT_GENERAL
-                                        : VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    // Both move to their transfer layouts and back (the validation layer warns of a copy in
+    // GENERAL), so the moves order the copy; what dispatches owe goes into the same two calls.
     {
         BarrierBatch before(cmd_);
-        before.transition(s, 0, 1, srcLayout);
-        before.transition(d, 0, 1, dstLayout);
-        if (!before.empty() || owedHazard(uint64_t(s.image), false) || owedHazard(uint64_t(d.image), true))
-            payOwed(&before);
+        before.transition(s, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        before.transition(d, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        payOwed(&before);
     }
     VkImageCopy region{};
     region.srcSubresource = {s.aspect, 0, 0, s.arrayLayers()};
     region.dstSubresource = region.srcSubresource;
     region.extent = {s.width(0), s.height(0), s.depth(0)};
-    vkCmdCopyImage(cmd_, s.image, srcLayout, d.image, dstLayout, 1, &region);
-    owe(uint64_t(s.image), false);
-    owe(uint64_t(d.image), true);
+    vkCmdCopyImage(cmd_, s.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.image,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     BarrierBatch after(cmd_);
     after.transitionHome(s);
     after.transitionHome(d);
-    if (!after.empty() || conservative) payOwed(&after);
 }
 
 void VulkanCommandList::writeTimestamp(uint32_t slotIndex) {
