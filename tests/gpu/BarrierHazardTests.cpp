@@ -1,6 +1,7 @@
-// Barriers only where a hazard is (issue 46): one frame whose commands depend on each other with
+// Barriers only where a hazard is (issue 46): frames whose commands depend on each other with
 // nothing between them, so a missing barrier shows as wrong values read back, and as a hazard that
-// synchronization validation reports (TestDevice fails on any message).
+// synchronization validation reports (TestDevice fails on any message). Every backend, with the
+// RHI's barriers and with the conservative ones.
 #include "RhiScenarios.h"
 #include "TestShaders.h"
 
@@ -13,6 +14,66 @@
 
 using namespace lpv;
 using namespace lpv::test;
+
+namespace {
+
+constexpr uint32_t kVolumeTexels = kVolumeSize * kVolumeSize * kVolumeSize;
+
+// Runs `body` on a device of every selected backend, once with each barrier rule.
+template <typename Body> void inEveryBarrierMode(Body body) {
+    for (const auto& backend : selectedBackends()) {
+        for (const bool conservative : {false, true}) {
+            SUBCASE((backend.name + (conservative ? ", conservative barriers" : "")).c_str()) {
+                rhi::DeviceConfig base;
+                base.conservativeBarriers = conservative;
+                TestDevice device(backend, base);
+                body(*device);
+                device.expectSilent();
+            }
+        }
+    }
+}
+
+rhi::TextureDesc volumeDesc(uint32_t usage, const char* name) {
+    return {rhi::TextureKind::Tex3D,
+            rhi::Format::RGBA16F,
+            kVolumeSize,
+            kVolumeSize,
+            kVolumeSize,
+            1,
+            usage,
+            name,
+            "test"};
+}
+
+rhi::BufferHandle createResult(rhi::Device& device, const char* name) {
+    return device.createBuffer({kVolumeTexels * 16ull, rhi::kBufferStorage | rhi::kBufferTransfer,
+                                rhi::MemoryAccess::GpuOnly, name, "test"});
+}
+
+std::vector<glm::vec4> readResult(rhi::Device& device, rhi::BufferHandle buffer) {
+    std::vector<glm::vec4> got(kVolumeTexels);
+    device.readBuffer(buffer, 0, got.data(), kVolumeTexels * 16ull);
+    return got;
+}
+
+bool near(glm::vec4 got, glm::vec4 want) {
+    for (int c = 0; c < 4; ++c)
+        if (std::fabs(got[c] - want[c]) > 2e-3f + 1e-3f * std::fabs(want[c])) return false;
+    return true;
+}
+
+// Texels of a 32^3 volume read back (x fastest) that differ from want(x, y, z).
+template <typename Want> uint32_t wrongTexels(const std::vector<glm::vec4>& got, Want want) {
+    uint32_t bad = 0;
+    for (uint32_t z = 0; z < kVolumeSize; ++z)
+        for (uint32_t y = 0; y < kVolumeSize; ++y)
+            for (uint32_t x = 0; x < kVolumeSize; ++x)
+                if (!near(got[x + kVolumeSize * (y + kVolumeSize * z)], want(x, y, z))) ++bad;
+    return bad;
+}
+
+} // namespace
 
 TEST_CASE("rhi: a dispatch reads what the previous one wrote; a buffer is updated while read") {
     for (const auto& backend : selectedBackends()) {
@@ -92,4 +153,165 @@ TEST_CASE("rhi: a dispatch reads what the previous one wrote; a buffer is update
             }
         }
     }
+}
+
+TEST_CASE("rhi: a clear and a copy are read by the next dispatch; a copy's source is cleared after it") {
+    inEveryBarrierMode([](rhi::Device& device) {
+        using namespace rhi;
+        const uint32_t storage = kTextureStorage | kTextureSampled | kTextureTransfer;
+        const TextureHandle first = device.createTexture(volumeDesc(storage, "first"));
+        const TextureHandle second = device.createTexture(volumeDesc(storage, "second"));
+        // Not a storage image: the copy moves it (TRANSFER_DST and back on Vulkan).
+        const TextureHandle third =
+            device.createTexture(volumeDesc(kTextureSampled | kTextureTransfer, "third"));
+        const BufferHandle cleared = createResult(device, "cleared"), copied = createResult(device, "copied"),
+                           zeroed = createResult(device, "zeroed");
+        const glm::vec4 scale{0.1f, 0.2f, 0.05f, 0.0f}, clearValue{0.5f, -0.25f, 2.0f, 1.0f};
+        const glm::vec4 marker{7.0f, 8.0f, 9.0f, 10.0f};
+        const BufferHandle params = device.createBuffer(
+            {sizeof(scale), kBufferUniform | kBufferTransfer, MemoryAccess::GpuOnly, "params", "test"},
+            &scale);
+        const ComputePipelineHandle fill =
+            device.createPipeline(ComputePipelineDesc{&shaders::fill_volume_comp, "fill"});
+        const ComputePipelineHandle sample =
+            device.createPipeline(ComputePipelineDesc{&shaders::sample_volume_comp, "sample"});
+        const SamplerHandle point = device.createSampler({});
+        const auto fillVolume = [&](CommandList& cmd, TextureHandle t) {
+            cmd.bindPipeline(fill);
+            cmd.bindStorageImage(0, t);
+            cmd.bindUniformBuffer(1, params);
+            cmd.dispatch(kVolumeSize / 8, kVolumeSize / 8, kVolumeSize);
+        };
+        const auto sampleVolume = [&](CommandList& cmd, TextureHandle t, BufferHandle result) {
+            cmd.bindPipeline(sample);
+            cmd.bindTexture(0, t, point);
+            cmd.bindStorageBuffer(1, result);
+            cmd.dispatch(kVolumeTexels / 64);
+        };
+
+        CommandList& cmd = device.beginFrame();
+        fillVolume(cmd, first);
+        cmd.clearTexture(first, {clearValue.x, clearValue.y, clearValue.z, clearValue.w}); // after the fill
+        sampleVolume(cmd, first, cleared);                                                 // reads the clear
+        fillVolume(cmd, second);
+        cmd.copyTexture(second, third);                       // reads what the fill wrote
+        cmd.clearTexture(second, {0, 0, 0, 0});               // writes what the copy read
+        sampleVolume(cmd, third, copied);                     // reads the copy
+        sampleVolume(cmd, second, zeroed);                    // reads the clear
+        cmd.updateBuffer(zeroed, 0, &marker, sizeof(marker)); // writes over what the dispatch wrote
+        device.endFrame();
+        device.waitIdle();
+
+        CHECK(wrongTexels(readResult(device, cleared),
+                          [&](uint32_t, uint32_t, uint32_t) { return clearValue; }) == 0);
+        CHECK(wrongTexels(readResult(device, copied), expectedVolumeTexel) == 0);
+        CHECK(wrongTexels(readResult(device, zeroed), [&](uint32_t x, uint32_t y, uint32_t z) {
+                  return x + y + z == 0 ? marker : glm::vec4(0.0f);
+              }) == 0);
+        for (const ComputePipelineHandle p : {fill, sample})
+            device.destroy(p);
+        device.destroy(point);
+        for (const BufferHandle b : {params, cleared, copied, zeroed})
+            device.destroy(b);
+        for (const TextureHandle t : {first, second, third})
+            device.destroy(t);
+    });
+}
+
+TEST_CASE("rhi: a render target is sampled by the next pass; a dispatch reads what a pass drew") {
+    inEveryBarrierMode([](rhi::Device& device) {
+        using namespace rhi;
+        constexpr uint32_t kSize = 16, kSlice = 5;
+        const TextureDesc td{TextureKind::Tex2D,
+                             Format::RGBA16F,
+                             kSize,
+                             kSize,
+                             1,
+                             1,
+                             kTextureColorTarget | kTextureSampled | kTextureTransfer,
+                             "drawn",
+                             "test"};
+        const TextureHandle drawn = device.createTexture(td), summed = device.createTexture(td);
+        const TextureHandle volume = device.createTexture(
+            volumeDesc(kTextureStorage | kTextureColorTarget | kTextureSampled | kTextureTransfer, "volume"));
+        const BufferHandle result = createResult(device, "result");
+        const glm::vec4 scale{0.1f, 0.2f, 0.05f, 0.0f};
+        const BufferHandle params = device.createBuffer(
+            {sizeof(scale), kBufferUniform | kBufferTransfer, MemoryAccess::GpuOnly, "params", "test"},
+            &scale);
+        GraphicsPipelineDesc pd;
+        pd.vertex = &shaders::fullscreen_vert;
+        pd.fragment = &shaders::constant_frag;
+        pd.colorFormats = {Format::RGBA16F};
+        pd.debugName = "constant";
+        const GraphicsPipelineHandle constant = device.createPipeline(pd);
+        pd.fragment = &shaders::sample_target_frag;
+        pd.debugName = "sample target";
+        const GraphicsPipelineHandle sampleTarget = device.createPipeline(pd);
+        const ComputePipelineHandle fill =
+            device.createPipeline(ComputePipelineDesc{&shaders::fill_volume_comp, "fill"});
+        const ComputePipelineHandle sample =
+            device.createPipeline(ComputePipelineDesc{&shaders::sample_volume_comp, "sample"});
+        const SamplerHandle point = device.createSampler({});
+        const glm::vec4 a{0.25f, 0.5f, 0.75f, 1.0f}, b{1.0f, 2.0f, 3.0f, 4.0f}, c{-1.0f, 0.5f, 0.0f, 2.0f};
+        const auto pass = [&](TextureHandle t, uint32_t layer, LoadOp load) {
+            RenderPassDesc rp;
+            rp.colors[0] = {t, 0, layer, load};
+            rp.colorCount = 1;
+            rp.debugName = "hazard pass";
+            return rp;
+        };
+
+        CommandList& cmd = device.beginFrame();
+        cmd.beginRenderPass(pass(drawn, 0, LoadOp::Clear));
+        cmd.bindPipeline(constant);
+        cmd.pushUniforms(0, &a, sizeof(a));
+        cmd.draw(3);
+        cmd.endRenderPass();
+        cmd.beginRenderPass(pass(summed, 0, LoadOp::Clear)); // samples what the pass before drew
+        cmd.bindPipeline(sampleTarget);
+        cmd.pushUniforms(0, &b, sizeof(b));
+        cmd.bindTexture(1, drawn, point);
+        cmd.draw(3);
+        cmd.endRenderPass();
+        cmd.beginRenderPass(pass(drawn, 0, LoadOp::Load)); // draws over what the pass before sampled
+        cmd.bindPipeline(constant);
+        cmd.pushUniforms(0, &c, sizeof(c));
+        cmd.draw(3);
+        cmd.endRenderPass();
+        cmd.bindPipeline(fill);
+        cmd.bindStorageImage(0, volume);
+        cmd.bindUniformBuffer(1, params);
+        cmd.dispatch(kVolumeSize / 8, kVolumeSize / 8, kVolumeSize);
+        cmd.beginRenderPass(pass(volume, kSlice, LoadOp::Load)); // draws over one slice of the fill
+        cmd.bindPipeline(constant);
+        cmd.pushUniforms(0, &a, sizeof(a));
+        cmd.draw(3);
+        cmd.endRenderPass();
+        cmd.bindPipeline(sample); // reads what the fill and the pass wrote
+        cmd.bindTexture(0, volume, point);
+        cmd.bindStorageBuffer(1, result);
+        cmd.dispatch(kVolumeTexels / 64);
+        device.endFrame();
+        device.waitIdle();
+
+        const Image drawnImage = readImage(device, drawn), summedImage = readImage(device, summed);
+        uint32_t bad = 0;
+        for (uint32_t y = 0; y < kSize; ++y)
+            for (uint32_t x = 0; x < kSize; ++x)
+                bad += (near(drawnImage.at(x, y), c) ? 0 : 1) + (near(summedImage.at(x, y), a + b) ? 0 : 1);
+        CHECK(bad == 0);
+        CHECK(wrongTexels(readResult(device, result), [&](uint32_t x, uint32_t y, uint32_t z) {
+                  return z == kSlice ? a : expectedVolumeTexel(x, y, z);
+              }) == 0);
+        for (const GraphicsPipelineHandle p : {constant, sampleTarget})
+            device.destroy(p);
+        for (const ComputePipelineHandle p : {fill, sample})
+            device.destroy(p);
+        device.destroy(point);
+        device.destroy(params);
+        device.destroy(result);
+        for (const TextureHandle t : {drawn, summed, volume})
+            device.destroy(t);
+    });
 }
