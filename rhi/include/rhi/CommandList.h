@@ -5,11 +5,12 @@
 // usage, render passes and transfers move it out and back (a storage image stays in its one state:
 // Vulkan's GENERAL), and every command is followed by a barrier that makes its writes visible to
 // every later command and orders it before them (what lets a storage image skip the moves). On
-// Vulkan a dispatch's barrier is owed instead: recorded before the next dispatch that reads or
-// writes what it wrote (or writes what it read: the bound storage images and buffers count as
-// written, sampled textures and uniform buffers as read), and before any other command, in the
-// same vkCmdPipelineBarrier2 as that command's own when it has one; independent dispatches then
-// share one barrier (DeviceConfig::conservativeBarriers restores a barrier after every dispatch).
+// Vulkan the barrier of a dispatch, of a clear of a storage image and of a buffer update is owed
+// instead: recorded before the next dispatch or transfer that reads or writes what it wrote (or
+// writes what it read: the bound storage images and buffers count as written, sampled textures and
+// uniform buffers as read), and before any render pass, in the same vkCmdPipelineBarrier2 as that
+// command's own when it has one; independent commands then share one barrier
+// (DeviceConfig::conservativeBarriers restores a barrier after every command).
 // The rule keeps the validation layer, synchronization validation included, silent.
 #pragma once
 
