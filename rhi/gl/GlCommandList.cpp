@@ -25,6 +25,22 @@ GLuint clearUint(float v) {
     return GLuint(std::max(0.0f, v));
 }
 
+// The barrier bit that orders a shader's access through a binding of this kind after earlier
+// shader stores.
+GLbitfield accessBit(BindingKind kind) {
+    switch (kind) {
+    case BindingKind::UniformBuffer:
+        return GL_UNIFORM_BARRIER_BIT;
+    case BindingKind::StorageBuffer:
+        return GL_SHADER_STORAGE_BARRIER_BIT;
+    case BindingKind::Texture:
+        return GL_TEXTURE_FETCH_BARRIER_BIT;
+    case BindingKind::StorageImage:
+        return GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
+    }
+    return GL_ALL_BARRIER_BITS;
+}
+
 } // namespace
 
 void GlCommandList::begin() {
@@ -38,12 +54,50 @@ void GlCommandList::begin() {
     vertexBuffers_ = {};
     indexBuffer_ = 0;
     indexOffset_ = 0;
+    bound_ = {};
 }
 
-void GlCommandList::finish() {
+bool GlCommandList::finish() {
     if (inPass_) throw Error("endFrame() inside a render pass: call endRenderPass() first");
     for (; markerDepth_ > 0; --markerDepth_)
         device_.gl().glPopDebugGroup();
+    if (hazards_.empty()) return false;
+    barrier(GL_ALL_BARRIER_BITS);
+    return true;
+}
+
+void GlCommandList::barrier(GLbitfield bits) {
+    if (!bits) return;
+    device_.gl().glMemoryBarrier(bits);
+    ++counts_.barriers;
+    hazards_.paid(bits);
+}
+
+void GlCommandList::conservativeBarrier() {
+    if (device_.conservativeBarriers()) barrier(GL_ALL_BARRIER_BITS);
+}
+
+GLbitfield GlCommandList::shaderHazards(const std::vector<ShaderBinding>& bindings) const {
+    GLbitfield bits = 0;
+    for (const ShaderBinding& b : bindings) {
+        const uint64_t key = bound_[b.binding];
+        bits |= b.writable ? hazards_.beforeShaderWrite(key, accessBit(b.kind))
+                           : hazards_.beforeRead(key, accessBit(b.kind));
+    }
+    return bits;
+}
+
+void GlCommandList::noteShaderAccesses(const std::vector<ShaderBinding>& bindings) {
+    for (const ShaderBinding& b : bindings) {
+        const uint64_t key = bound_[b.binding];
+        const bool incoherent = b.kind == BindingKind::StorageImage || b.kind == BindingKind::StorageBuffer;
+        const auto note = [&] {
+            return b.writable ? hazards_.noteWrite(key) : hazards_.noteRead(key, incoherent);
+        };
+        if (note()) continue;
+        barrier(GL_ALL_BARRIER_BITS); // too many to track: pay now, start over
+        note();
+    }
 }
 
 void GlCommandList::requireFrame(const char* what) const {
@@ -122,6 +176,15 @@ void GlCommandList::beginRenderPass(const RenderPassDesc& desc) {
         depth = {t.id, t.desc.kind != TextureKind::Tex2D, 0, desc.depth.layer, hasStencil(t.desc.format)};
     }
 
+    // The targets are written (and loaded) through the framebuffer: after earlier shader stores to
+    // them, or image loads of them, a barrier first.
+    GLbitfield bits = 0;
+    for (uint32_t i = 0; i < desc.colorCount; ++i)
+        bits |=
+            hazards_.beforeCommandWrite(GlHazards::textureKey(colors[i].texture), GL_FRAMEBUFFER_BARRIER_BIT);
+    if (desc.depth.texture)
+        bits |= hazards_.beforeCommandWrite(GlHazards::textureKey(depth.texture), GL_FRAMEBUFFER_BARRIER_BIT);
+    barrier(bits);
     const Functions& gl = device_.gl();
     const GLuint fbo = device_.framebuffers().get(colors, desc.colorCount,
                                                   desc.depth.texture ? &depth : nullptr, desc.debugName);
@@ -163,10 +226,10 @@ void GlCommandList::endRenderPass() {
     const Functions& gl = device_.gl();
     gl.glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
     gl.glPopDebugGroup();
-    // Storage writes of the pass's shaders become visible to everything recorded later.
-    gl.glMemoryBarrier(GL_ALL_BARRIER_BITS);
-    ++counts_.barriers;
+    // Storage writes of the pass's shaders were noted draw by draw; the conservative rule makes
+    // them visible to everything recorded later.
     inPass_ = false;
+    conservativeBarrier();
 }
 
 void GlCommandList::setViewport(const Viewport& vp) {
@@ -278,6 +341,7 @@ void GlCommandList::bindBuffer(GLenum target, uint32_t binding, BufferHandle buf
     if (size > b.desc.size - offset)
         throw Error("buffer '" + b.desc.debugName + "': bound range exceeds its size");
     device_.gl().glBindBufferRange(target, binding, b.id, GLintptr(offset), GLsizeiptr(size));
+    bound_[binding] = GlHazards::bufferKey(b.id);
 }
 
 void GlCommandList::bindUniformBuffer(uint32_t binding, BufferHandle buffer, uint64_t offset, uint64_t size) {
@@ -303,6 +367,7 @@ void GlCommandList::bindTexture(uint32_t binding, TextureHandle texture, Sampler
     const Functions& gl = device_.gl();
     gl.glBindTextureUnit(binding, t.id);
     gl.glBindSampler(binding, s.id);
+    bound_[binding] = GlHazards::textureKey(t.id);
 }
 
 void GlCommandList::bindStorageImage(uint32_t binding, TextureHandle texture, uint32_t mipLevel) {
@@ -317,6 +382,7 @@ void GlCommandList::bindStorageImage(uint32_t binding, TextureHandle texture, ui
     const GLboolean layered = t.desc.kind == TextureKind::Tex2D ? GL_FALSE : GL_TRUE;
     device_.gl().glBindImageTexture(binding, t.id, GLint(mipLevel), layered, 0, GL_READ_WRITE,
                                     glFormat(t.desc.format).internal);
+    bound_[binding] = GlHazards::textureKey(t.id);
 }
 
 void GlCommandList::pushUniforms(uint32_t binding, const void* data, uint32_t size) {
@@ -325,12 +391,20 @@ void GlCommandList::pushUniforms(uint32_t binding, const void* data, uint32_t si
     const uint64_t offset = device_.uniformRing().push(data, size);
     device_.gl().glBindBufferRange(GL_UNIFORM_BUFFER, binding, device_.uniformRing().buffer(),
                                    GLintptr(offset), GLsizeiptr(size));
+    bound_[binding] = 0; // written by the host, before the frame's commands run: no hazard
 }
 
-GlGraphicsPipeline& GlCommandList::prepareDraw(const char* what) {
+GlGraphicsPipeline& GlCommandList::prepareDraw(const char* what, bool indexed) {
     requirePass(true, what);
     if (!graphics_) throw Error(std::string(what) + " without a graphics pipeline");
     GlGraphicsPipeline& p = device_.graphicsPipelines.get(graphics_);
+    GLbitfield bits = shaderHazards(p.bindings);
+    for (size_t i = 0; i < p.desc.vertexBuffers.size(); ++i)
+        bits |= hazards_.beforeRead(GlHazards::bufferKey(vertexBuffers_[i].buffer),
+                                    GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+    if (indexed)
+        bits |= hazards_.beforeRead(GlHazards::bufferKey(indexBuffer_), GL_ELEMENT_ARRAY_BARRIER_BIT);
+    barrier(bits);
     useProgram(p.program);
     const Functions& gl = device_.gl();
     const auto& layouts = p.desc.vertexBuffers;
@@ -342,19 +416,20 @@ GlGraphicsPipeline& GlCommandList::prepareDraw(const char* what) {
 
 void GlCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex,
                          uint32_t firstInstance) {
-    const GlGraphicsPipeline& p = prepareDraw("draw");
+    const GlGraphicsPipeline& p = prepareDraw("draw", false);
     const Functions& gl = device_.gl();
     if (p.baseInstanceLocation >= 0) gl.glUniform1i(p.baseInstanceLocation, GLint(firstInstance));
     gl.glDrawArraysInstancedBaseInstance(primitiveMode(p.desc.topology), GLint(firstVertex),
                                          GLsizei(vertexCount), GLsizei(instanceCount), firstInstance);
     ++counts_.draws;
     countStage(counts_.barriers);
+    noteShaderAccesses(p.bindings);
 }
 
 void GlCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex,
                                 int32_t vertexOffset, uint32_t firstInstance) {
-    const GlGraphicsPipeline& p = prepareDraw("drawIndexed");
     if (!indexBuffer_) throw Error("drawIndexed without an index buffer");
+    const GlGraphicsPipeline& p = prepareDraw("drawIndexed", true);
     const Functions& gl = device_.gl();
     gl.glVertexArrayElementBuffer(p.vao, indexBuffer_);
     if (p.baseInstanceLocation >= 0) gl.glUniform1i(p.baseInstanceLocation, GLint(firstInstance));
@@ -366,24 +441,27 @@ void GlCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uin
                                                      GLsizei(instanceCount), vertexOffset, firstInstance);
     ++counts_.drawsIndexed;
     countStage(counts_.barriers);
+    noteShaderAccesses(p.bindings);
 }
 
 void GlCommandList::dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) {
     requirePass(false, "dispatch");
     if (!compute_) throw Error("dispatch without a compute pipeline");
-    useProgram(device_.computePipelines.get(compute_).program);
-    const Functions& gl = device_.gl();
-    gl.glDispatchCompute(groupsX, groupsY, groupsZ);
+    const GlComputePipeline& p = device_.computePipelines.get(compute_);
+    barrier(shaderHazards(p.bindings));
+    useProgram(p.program);
+    device_.gl().glDispatchCompute(groupsX, groupsY, groupsZ);
     ++counts_.dispatches;
     countStage(counts_.barriers);
-    // Storage writes of the dispatch become visible to every later command.
-    gl.glMemoryBarrier(GL_ALL_BARRIER_BITS);
-    ++counts_.barriers;
+    // Its stores become visible to the later commands that touch them, at their barrier.
+    noteShaderAccesses(p.bindings);
+    conservativeBarrier();
 }
 
 void GlCommandList::clearTexture(TextureHandle texture, const std::array<float, 4>& value) {
     requirePass(false, "clearTexture");
     const GlTexture& t = device_.textures.get(texture);
+    barrier(hazards_.beforeCommandWrite(GlHazards::textureKey(t.id), GL_TEXTURE_UPDATE_BARRIER_BIT));
     const Functions& gl = device_.gl();
     for (uint32_t mip = 0; mip < t.desc.mipLevels; ++mip) {
         if (isIntegerFormat(t.desc.format)) {
@@ -400,8 +478,7 @@ void GlCommandList::clearTexture(TextureHandle texture, const std::array<float, 
             gl.glClearTexImage(t.id, GLint(mip), GL_RGBA, GL_FLOAT, value.data());
         }
     }
-    gl.glMemoryBarrier(GL_ALL_BARRIER_BITS);
-    ++counts_.barriers;
+    conservativeBarrier();
 }
 
 void GlCommandList::updateBuffer(BufferHandle buffer, uint64_t offset, const void* data, uint32_t size) {
@@ -412,10 +489,11 @@ void GlCommandList::updateBuffer(BufferHandle buffer, uint64_t offset, const voi
                     "': size must be 4..65536 and offset and size multiples of 4");
     if (offset > b.desc.size || size > b.desc.size - offset)
         throw Error("updateBuffer '" + b.desc.debugName + "': range exceeds its size");
-    // In stream: GL orders the update after the draws and dispatches issued before it.
+    // In stream: GL orders the update after the draws and dispatches issued before it, once
+    // their stores to the buffer are complete.
+    barrier(hazards_.beforeCommandWrite(GlHazards::bufferKey(b.id), GL_BUFFER_UPDATE_BARRIER_BIT));
     device_.gl().glNamedBufferSubData(b.id, GLintptr(offset), GLsizeiptr(size), data);
-    device_.gl().glMemoryBarrier(GL_ALL_BARRIER_BITS);
-    ++counts_.barriers;
+    conservativeBarrier();
 }
 
 void GlCommandList::copyTexture(TextureHandle src, TextureHandle dst) {
@@ -427,11 +505,15 @@ void GlCommandList::copyTexture(TextureHandle src, TextureHandle dst) {
         s.desc.height != d.desc.height || s.desc.depthOrLayers != d.desc.depthOrLayers)
         throw Error("copyTexture: '" + s.desc.debugName + "' and '" + d.desc.debugName +
                     "' differ in kind, format or size");
+    // No barrier bit names glCopyImageSubData: after shader stores to either texture, every bit.
+    const uint64_t from = GlHazards::textureKey(s.id), to = GlHazards::textureKey(d.id);
+    if (hazards_.beforeRead(from, GL_ALL_BARRIER_BITS) ||
+        hazards_.beforeCommandWrite(to, GL_ALL_BARRIER_BITS))
+        barrier(GL_ALL_BARRIER_BITS);
     const Functions& gl = device_.gl();
     gl.glCopyImageSubData(s.id, s.target, 0, 0, 0, 0, d.id, d.target, 0, 0, 0, 0, GLsizei(s.desc.width),
                           GLsizei(s.desc.height), GLsizei(s.desc.depthOrLayers));
-    gl.glMemoryBarrier(GL_ALL_BARRIER_BITS);
-    ++counts_.barriers;
+    conservativeBarrier();
 }
 
 void GlCommandList::writeTimestamp(uint32_t slot) {

@@ -1,10 +1,14 @@
 // The GL backend's command list. Commands execute on the context as they are recorded: with one
 // context and one list per frame, recording order is execution order, which is exactly what a
 // later replay would produce, without a second copy of every argument. Barriers follow the RHI
-// rule with glMemoryBarrier(GL_ALL_BARRIER_BITS) after every dispatch, render pass and transfer.
+// rule: a command pays one glMemoryBarrier, with the bits its own accesses need, only where it
+// touches what earlier shaders stored to (or stores to what they read) since a barrier covered it
+// (GlHazards); DeviceConfig::conservativeBarriers restores glMemoryBarrier(GL_ALL_BARRIER_BITS)
+// after every dispatch, render pass and transfer.
 #pragma once
 
 #include "GlFunctions.h"
+#include "GlHazards.h"
 #include "GlResources.h"
 
 #include "rhi/CommandList.h"
@@ -19,8 +23,9 @@ class GlCommandList final : public CommandList {
 public:
     explicit GlCommandList(GlDevice& device) : device_(device) {}
     void begin();
-    // Closes what the frame left open (markers); throws inside a render pass.
-    void finish();
+    // Closes what the frame left open (markers) and makes every shader store visible to the host
+    // and the next frame: returns whether that took a barrier. Throws inside a render pass.
+    bool finish();
     // The device's own glMemoryBarrier at endFrame(), counted with the frame's.
     void countBarrier() { ++counts_.barriers; }
 
@@ -57,10 +62,18 @@ private:
     void requirePass(bool inside, const char* what) const;
     void checkBinding(uint32_t binding, const char* what) const;
     void bindBuffer(GLenum target, uint32_t binding, BufferHandle buffer, uint64_t offset, uint64_t size);
-    GlGraphicsPipeline& prepareDraw(const char* what);
+    GlGraphicsPipeline& prepareDraw(const char* what, bool indexed);
     void useProgram(GLuint program);
     // The bound pipeline's depth and stencil write masks, after a clear that needed them open.
     void restoreWriteMasks();
+    // glMemoryBarrier(bits), counted, when bits is not 0.
+    void barrier(GLbitfield bits);
+    // Before and after a draw or dispatch with these bindings (and, for a draw, its vertex and
+    // index buffers): the barrier it needs, then what its shaders read and may have stored.
+    GLbitfield shaderHazards(const std::vector<ShaderBinding>& bindings) const;
+    void noteShaderAccesses(const std::vector<ShaderBinding>& bindings);
+    // After a dispatch, render pass or transfer: the conservative rule's barrier, if it is on.
+    void conservativeBarrier();
 
     GlDevice& device_;
     bool inPass_ = false;
@@ -77,6 +90,9 @@ private:
     GLuint indexBuffer_ = 0;
     uint64_t indexOffset_ = 0;
     IndexType indexType_ = IndexType::Uint32;
+    // What each binding holds, as GlHazards keys (0: nothing to track, e.g. pushed uniforms).
+    std::array<uint64_t, kMaxBindings> bound_{};
+    GlHazards hazards_;
 };
 
 } // namespace lpv::rhi::gl

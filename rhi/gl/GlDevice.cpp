@@ -8,6 +8,7 @@
 #include "rhi/Error.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <string>
 #include <string_view>
 
@@ -38,6 +39,8 @@ bool hasExtension(const Functions& gl, std::string_view name) {
 
 GlDevice::GlDevice(const DeviceConfig& config, std::unique_ptr<platforms::GlContext> context)
     : config_(config), context_(std::move(context)), list_(*this) {
+    const char* env = std::getenv("LPV_CONSERVATIVE_BARRIERS");
+    conservativeBarriers_ = config.conservativeBarriers || (env && env[0] == '1');
     if (config.framesInFlight == 0) throw Error("DeviceConfig::framesInFlight must be at least 1");
     context_->makeCurrent();
     gl_.load(*context_); // throws BackendUnavailable naming a missing entry point

@@ -59,6 +59,7 @@ public:
     // For the command list.
     const Functions& gl() const { return gl_; }
     bool inFrame() const { return inFrame_; }
+    bool conservativeBarriers() const { return conservativeBarriers_; }
     GlFramebufferCache& framebuffers() { return framebuffers_; }
     GlUniformRing& uniformRing() { return uniformRing_; }
     GlTimestamps& timestamps() { return timestamps_; }
@@ -96,6 +97,7 @@ private:
     GLuint presentFramebuffer_ = 0;
     uint64_t frame_ = 0;
     bool inFrame_ = false;
+    bool conservativeBarriers_ = false; // DeviceConfig's, or LPV_CONSERVATIVE_BARRIERS=1
 };
 
 } // namespace lpv::rhi::gl

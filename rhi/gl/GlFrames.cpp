@@ -30,7 +30,7 @@ CommandList& GlDevice::beginFrame() {
 
 void GlDevice::endFrame(TextureHandle presentTexture) {
     if (!inFrame_) throw Error("endFrame() without beginFrame()");
-    list_.finish();
+    const bool paid = list_.finish();
     if (presentTexture) {
         const GlTexture& source = textures.get(presentTexture);
         if (isIntegerFormat(source.desc.format) || isDepthFormat(source.desc.format))
@@ -40,9 +40,12 @@ void GlDevice::endFrame(TextureHandle presentTexture) {
     }
     timestamps_.endFrame(frame_);
     // Shader writes to MemoryAccess::HostRead buffers reach their persistent mappings by the time
-    // the fence below signals, for beginFrame()'s wait to make them readable.
-    gl_.glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
-    list_.countBarrier();
+    // the fence below signals, for beginFrame()'s wait to make them readable (finish()'s barrier,
+    // when it paid one, had every bit).
+    if (!paid) {
+        gl_.glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
+        list_.countBarrier();
+    }
     lastFrame_ = list_.counts();
     fences_[frame_ % fences_.size()] = gl_.glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     gl_.glFlush(); // "submit": the driver starts on the frame now

@@ -127,6 +127,8 @@ GraphicsPipelineHandle GlDevice::createPipeline(const GraphicsPipelineDesc& desc
     // SPIRV-Cross turns gl_InstanceIndex into gl_InstanceID + this uniform on GL (no base instance
     // in GLSL 4.50); it is set per draw.
     p.baseInstanceLocation = gl_.glGetUniformLocation(p.program, "SPIRV_Cross_BaseInstance");
+    p.bindings = reflectShaderBindings(*desc.vertex, caps_);
+    if (desc.fragment) mergeShaderBindings(p.bindings, reflectShaderBindings(*desc.fragment, caps_), name);
     gl_.glCreateVertexArrays(1, &p.vao);
     for (const VertexAttribute& a : desc.attributes) {
         const GlVertexFormat f = vertexFormat(a.format);
@@ -143,7 +145,9 @@ GraphicsPipelineHandle GlDevice::createPipeline(const GraphicsPipelineDesc& desc
 ComputePipelineHandle GlDevice::createPipeline(const ComputePipelineDesc& desc) {
     if (!desc.compute) throw Error("compute pipeline '" + desc.debugName + "': no compute shader");
     requireStage(*desc.compute, ShaderStage::Compute, desc.debugName, "compute");
-    return computePipelines.insert({desc.debugName, linkProgram({desc.compute}, desc.debugName)});
+    std::vector<ShaderBinding> bindings = reflectShaderBindings(*desc.compute, caps_);
+    return computePipelines.insert(
+        {desc.debugName, linkProgram({desc.compute}, desc.debugName), std::move(bindings)});
 }
 
 void GlDevice::destroy(GraphicsPipelineHandle h) {

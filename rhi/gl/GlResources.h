@@ -1,6 +1,8 @@
 // What the GL backend keeps per RHI object: the descriptor it was made from and the GL names.
 #pragma once
 
+#include "../src/ShaderBindings.h"
+
 #include "rhi/Pipeline.h"
 #include "rhi/Resources.h"
 
@@ -8,6 +10,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace lpv::rhi::gl {
 
@@ -42,13 +45,15 @@ struct GlSampler {
 struct GlGraphicsPipeline {
     GraphicsPipelineDesc desc;
     GLuint program = 0;
-    GLuint vao = 0;                  // attribute formats; buffers are attached per draw
-    GLint baseInstanceLocation = -1; // SPIRV-Cross's stand-in for gl_InstanceIndex's base
+    GLuint vao = 0;                      // attribute formats; buffers are attached per draw
+    GLint baseInstanceLocation = -1;     // SPIRV-Cross's stand-in for gl_InstanceIndex's base
+    std::vector<ShaderBinding> bindings; // both stages': what a draw reads and writes
 };
 
 struct GlComputePipeline {
     std::string name;
     GLuint program = 0;
+    std::vector<ShaderBinding> bindings; // what a dispatch reads and writes
 };
 
 } // namespace lpv::rhi::gl

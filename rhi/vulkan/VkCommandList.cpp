@@ -413,10 +413,8 @@ bool VulkanCommandList::owedHazard(uint64_t resource, bool writes) const {
 
 bool VulkanCommandList::dispatchHazard(const VulkanPipeline& p) const {
     for (const PipelineBinding& pb : p.bindings) {
-        const Bound& b = bound_[pb.binding];
-        // Storage images and buffers may be written; the shader's reflection does not say.
-        const bool writes = b.kind == BoundKind::StorageImage || b.kind == BoundKind::StorageBuffer;
-        if (owedHazard(b.resource, writes)) return true;
+        // Storage images and buffers the shader does not declare readonly may be written.
+        if (owedHazard(bound_[pb.binding].resource, pb.writable)) return true;
     }
     return false;
 }
@@ -437,8 +435,7 @@ void VulkanCommandList::owe(uint64_t resource, bool writes) {
 
 void VulkanCommandList::noteDispatchAccesses(const VulkanPipeline& p) {
     for (const PipelineBinding& pb : p.bindings) {
-        const Bound& b = bound_[pb.binding];
-        owe(b.resource, b.kind == BoundKind::StorageImage || b.kind == BoundKind::StorageBuffer);
+        owe(bound_[pb.binding].resource, pb.writable);
     }
 }
 

@@ -62,14 +62,19 @@ uint32_t pointChunk(const VulkanContext& ctx, const GraphicsPipelineDesc& desc) 
 
 // Fills the layout objects of `p` from the reflected bindings; destroyPipeline cleans up on failure.
 void createLayout(const VulkanContext& ctx, VulkanPipeline& p,
-                  std::vector<VkDescriptorSetLayoutBinding>& bindings) {
+                  std::vector<VkDescriptorSetLayoutBinding>& bindings,
+                  const std::vector<ShaderBinding>& merged) {
     std::sort(bindings.begin(), bindings.end(),
               [](const auto& a, const auto& b) { return a.binding < b.binding; });
     if (bindings.size() > ctx.maxPushDescriptors)
         throw Error("pipeline '" + p.name + "' declares " + std::to_string(bindings.size()) +
                     " bindings; this device pushes at most " + std::to_string(ctx.maxPushDescriptors));
-    for (const auto& b : bindings)
-        p.bindings.push_back({b.binding, b.descriptorType});
+    for (const auto& b : bindings) {
+        bool writable = false;
+        for (const ShaderBinding& m : merged)
+            if (m.binding == b.binding) writable = m.writable;
+        p.bindings.push_back({b.binding, b.descriptorType, writable});
+    }
 
     VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
@@ -133,9 +138,11 @@ VulkanPipeline buildGraphicsPipeline(const VulkanContext& ctx, const Caps& caps,
     p.pointChunk = pointChunk(ctx, desc);
     try {
         std::vector<VkDescriptorSetLayoutBinding> bindings;
-        reflectBindings(*desc.vertex, VK_SHADER_STAGE_VERTEX_BIT, caps, bindings);
-        if (desc.fragment) reflectBindings(*desc.fragment, VK_SHADER_STAGE_FRAGMENT_BIT, caps, bindings);
-        createLayout(ctx, p, bindings);
+        std::vector<ShaderBinding> merged;
+        reflectBindings(*desc.vertex, VK_SHADER_STAGE_VERTEX_BIT, caps, bindings, merged);
+        if (desc.fragment)
+            reflectBindings(*desc.fragment, VK_SHADER_STAGE_FRAGMENT_BIT, caps, bindings, merged);
+        createLayout(ctx, p, bindings, merged);
 
         Modules modules{ctx};
         modules.list[0] = createModule(ctx, *desc.vertex);
@@ -268,8 +275,9 @@ VulkanPipeline buildComputePipeline(const VulkanContext& ctx, const Caps& caps,
     p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
     try {
         std::vector<VkDescriptorSetLayoutBinding> bindings;
-        reflectBindings(*desc.compute, VK_SHADER_STAGE_COMPUTE_BIT, caps, bindings);
-        createLayout(ctx, p, bindings);
+        std::vector<ShaderBinding> merged;
+        reflectBindings(*desc.compute, VK_SHADER_STAGE_COMPUTE_BIT, caps, bindings, merged);
+        createLayout(ctx, p, bindings, merged);
         Modules modules{ctx};
         modules.list[0] = createModule(ctx, *desc.compute);
         VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};

@@ -1,7 +1,7 @@
-// SPIR-V reflection through the SPIRV-Cross C API: the descriptor bindings a shader stage declares.
+// Descriptor set layout bindings from the shaders' reflected bindings (ShaderBindings.h).
 #pragma once
 
-#include "VkResources.h"
+#include "../src/ShaderBindings.h"
 
 #include "rhi/Device.h"
 #include "rhi/Shader.h"
@@ -12,11 +12,12 @@
 
 namespace lpv::rhi::vk {
 
+VkDescriptorType descriptorType(BindingKind kind);
+
 // Adds the bindings of `shader` to `bindings` (merging stage flags of a binding several stages
-// share). Throws rhi::Error for what the RHI does not support: a set other than 0, arrays of
-// resources, push constants, separate images/samplers, one binding number used with two types, or a
-// storage image at a binding the device's Caps::storageImageBindings does not reach.
+// share) and to `merged` (what the pipeline's commands access). Throws rhi::Error for what the RHI
+// does not support (reflectShaderBindings) or for one binding number used with two types.
 void reflectBindings(const ShaderBinary& shader, VkShaderStageFlags stage, const Caps& caps,
-                     std::vector<VkDescriptorSetLayoutBinding>& bindings);
+                     std::vector<VkDescriptorSetLayoutBinding>& bindings, std::vector<ShaderBinding>& merged);
 
 } // namespace lpv::rhi::vk

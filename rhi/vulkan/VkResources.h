@@ -61,6 +61,7 @@ struct VulkanSampler {
 struct PipelineBinding {
     uint32_t binding = 0;
     VkDescriptorType type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    bool writable = false; // a storage image or buffer not declared readonly
 };
 
 struct VulkanPipeline {

@@ -62,9 +62,9 @@ struct DeviceConfig {
     // Set: report at most this many fragment texture bindings (Caps::fragmentTextureBindings), so
     // what a caller does on a device with fewer can be run on any device.
     std::optional<uint32_t> fragmentTextureBindings;
-    // Vulkan: a full barrier after every dispatch (CommandList.h's old rule) instead of one before
-    // the next command that reads or writes what a dispatch wrote (or writes what it read). For
-    // ruling a suspected synchronization bug in or out in one run; the environment variable
+    // A full barrier after every dispatch, render pass and transfer (CommandList.h's old rule) on
+    // both APIs, instead of one only where a later command needs it. For ruling a suspected
+    // synchronization bug in or out in one run; the environment variable
     // LPV_CONSERVATIVE_BARRIERS=1 sets it too.
     bool conservativeBarriers = false;
 };

@@ -3,14 +3,19 @@
 //
 // Barriers are the RHI's job, not the caller's: every texture has a home state derived from its
 // usage, render passes and transfers move it out and back (a storage image stays in its one state:
-// Vulkan's GENERAL), and every command is followed by a barrier that makes its writes visible to
-// every later command and orders it before them (what lets a storage image skip the moves). On
-// Vulkan the barrier of a dispatch, of a clear of a storage image and of a buffer update is owed
-// instead: recorded before the next dispatch or transfer that reads or writes what it wrote (or
-// writes what it read: the bound storage images and buffers count as written, sampled textures and
-// uniform buffers as read), and before any render pass, in the same vkCmdPipelineBarrier2 as that
-// command's own when it has one; independent commands then share one barrier
-// (DeviceConfig::conservativeBarriers restores a barrier after every command).
+// Vulkan's GENERAL), and a barrier makes each command's writes visible to the later commands that
+// need them and orders it before them (what lets a storage image skip the moves). It is paid only
+// at a hazard, in one call with the next command's own:
+// - Vulkan: the barrier of a dispatch, of a clear of a storage image and of a buffer update is owed:
+//   recorded before the next dispatch or transfer that reads or writes what it wrote (or writes
+//   what it read: storage images and buffers a shader does not declare readonly count as written,
+//   the others and sampled textures and uniform buffers as read), and before any render pass, in the
+//   same vkCmdPipelineBarrier2 as that command's own when it has one.
+// - GL: a command pays one glMemoryBarrier, with the bits of its own accesses, where it touches
+//   what earlier shaders stored to or stores to what they read (GlHazards.h); GL orders
+//   everything else itself.
+// DeviceConfig::conservativeBarriers (or LPV_CONSERVATIVE_BARRIERS=1) restores a barrier after
+// every dispatch, render pass and transfer, to rule a synchronization bug in or out in one run.
 // The rule keeps the validation layer, synchronization validation included, silent.
 #pragma once
 
