@@ -31,6 +31,7 @@ void VulkanCommandList::begin(VkCommandBuffer cmd) {
     passTargetCount_ = 0;
     markerDepth_ = 0;
     owed_ = false;
+    passOwed_ = false;
     writtenCount_ = readCount_ = 0;
 }
 
@@ -47,7 +48,7 @@ CommandCounts VulkanCommandList::counts() const {
 
 void VulkanCommandList::finish() {
     if (inPass_) throw Error("endFrame() inside a render pass: call endRenderPass() first");
-    payOwed();
+    payAll();
     while (markerDepth_ > 0) {
         endLabel();
         --markerDepth_;
@@ -101,7 +102,15 @@ void VulkanCommandList::beginRenderPass(const RenderPassDesc& desc) {
     // allowed inside a dynamic rendering instance.
     std::array<VkRenderingAttachmentInfo, RenderPassDesc::kMaxColorTargets> colors{};
     BarrierBatch barriers(cmd_);
-    payOwed(&barriers); // what dispatches owe, in the same call as the attachments' moves
+    // What dispatches and the last pass owe, in the same call as the attachments' moves; the last
+    // pass's targets this one draws to stay where they are.
+    std::array<PassTarget, RenderPassDesc::kMaxColorTargets + 1> next{};
+    uint32_t nextCount = 0;
+    for (uint32_t i = 0; i < desc.colorCount && i < RenderPassDesc::kMaxColorTargets; ++i)
+        next[nextCount++] = {desc.colors[i].texture, desc.colors[i].mipLevel};
+    if (desc.depth.texture) next[nextCount++] = {desc.depth.texture, 0};
+    payPass(barriers, std::span(next.data(), nextCount));
+    payOwed(&barriers);
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     passTargetCount_ = 0;
     passExtent_ = {0, 0};
@@ -193,14 +202,37 @@ void VulkanCommandList::endRenderPass() {
     vkCmdEndRendering(cmd_);
     endLabel();
     inPass_ = false;
-    BarrierBatch barriers(cmd_);
-    for (uint32_t i = 0; i < passTargetCount_; ++i)
-        if (device_.textures.contains(passTargets_[i].texture))
-            barriers.transitionHome(device_.textures.get(passTargets_[i].texture));
+    // Its barrier is owed to the next command (payPass); at once under the conservative rule.
+    passOwed_ = true;
+    if (device_.conservativeBarriers()) {
+        BarrierBatch barriers(cmd_);
+        payPass(barriers);
+    }
+}
+
+bool VulkanCommandList::payPass(BarrierBatch& batch, std::span<const PassTarget> keep) {
+    if (!passOwed_) return false;
+    for (uint32_t i = 0; i < passTargetCount_; ++i) {
+        const PassTarget& t = passTargets_[i];
+        if (!device_.textures.contains(t.texture)) continue;
+        const bool kept = std::any_of(keep.begin(), keep.end(), [&](const PassTarget& k) {
+            return k.texture == t.texture && (k.mip == t.mip || k.mip == PassTarget::kAllMips);
+        });
+        if (!kept) batch.transitionHome(device_.textures.get(t.texture));
+    }
     passTargetCount_ = 0;
+    passOwed_ = false;
     // Writes of the pass (attachments and any storage writes of its shaders) become visible to
     // everything recorded later.
-    barriers.memory();
+    batch.memory();
+    return true;
+}
+
+void VulkanCommandList::payAll() {
+    if (!passOwed_ && !owed_) return;
+    BarrierBatch batch(cmd_);
+    payPass(batch);
+    payOwed(&batch);
 }
 
 void VulkanCommandList::setViewport(const Viewport& vp) {
@@ -390,7 +422,7 @@ void VulkanCommandList::dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t gr
     requirePass(false, "dispatch");
     if (!compute_) throw Error("dispatch without a compute pipeline");
     const VulkanPipeline& p = device_.computePipelines.get(compute_);
-    if (dispatchHazard(p)) payOwed();
+    if (passOwed_ || dispatchHazard(p)) payAll();
     device_.flushNewTextures(cmd_);
     pushBindings(p);
     vkCmdDispatch(cmd_, groupsX, groupsY, groupsZ);
@@ -461,9 +493,13 @@ void VulkanCommandList::clearTexture(TextureHandle texture, const std::array<flo
     const uint64_t resource = uint64_t(t.image);
     {
         BarrierBatch before(cmd_);
+        // The last pass's barrier, leaving this texture to its own move.
+        const PassTarget self{texture, PassTarget::kAllMips};
+        const bool pass = payPass(before, std::span(&self, 1));
         before.transition(t, 0, t.desc.mipLevels, layout);
         // What dispatches owe, in the same call as the move (free then).
-        if (!before.empty() || owedHazard(resource, true) || device_.conservativeBarriers()) payOwed(&before);
+        if (pass || !before.empty() || owedHazard(resource, true) || device_.conservativeBarriers())
+            payOwed(&before);
     }
     const VkImageSubresourceRange range{t.aspect, 0, t.desc.mipLevels, 0, t.arrayLayers()};
     if (isDepthFormat(t.desc.format)) {
@@ -499,8 +535,8 @@ void VulkanCommandList::updateBuffer(BufferHandle buffer, uint64_t offset, const
     const uint64_t resource = uint64_t(b.buffer);
     if (device_.conservativeBarriers())
         fullBarrier(cmd_);
-    else if (owedHazard(resource, true))
-        payOwed();
+    else if (passOwed_ || owedHazard(resource, true))
+        payAll();
     vkCmdUpdateBuffer(cmd_, b.buffer, offset, size, data);
     owe(resource, true);
     if (device_.conservativeBarriers()) payOwed();
@@ -519,6 +555,8 @@ void VulkanCommandList::copyTexture(TextureHandle src, TextureHandle dst) {
     // GENERAL), so the moves order the copy; what dispatches owe goes into the same two calls.
     {
         BarrierBatch before(cmd_);
+        const std::array<PassTarget, 2> selves{PassTarget{src, 0}, PassTarget{dst, 0}};
+        payPass(before, selves);
         before.transition(s, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         before.transition(d, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
         payOwed(&before);

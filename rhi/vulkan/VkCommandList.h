@@ -11,6 +11,7 @@
 #include <vulkan/vulkan.h>
 
 #include <array>
+#include <span>
 
 namespace lpv::rhi::vk {
 
@@ -64,6 +65,7 @@ private:
     struct PassTarget {
         TextureHandle texture;
         uint32_t mip = 0;
+        static constexpr uint32_t kAllMips = ~0u;
     };
 
     void requireFrame(const char* what) const;
@@ -83,6 +85,12 @@ private:
     void noteDispatchAccesses(const VulkanPipeline& p);
     // Records the owed barrier now (into `batch` when given). Returns whether one was owed.
     bool payOwed(BarrierBatch* batch = nullptr);
+    // A render pass owes its barrier too (its targets back home, its writes visible), to the next
+    // command, which pays it in its own: into `batch`, leaving in place the targets in `keep` that
+    // the next command moves itself (mip kAllMips: every mip). Returns whether one was owed.
+    bool payPass(BarrierBatch& batch, std::span<const PassTarget> keep = {});
+    // Both owed barriers, into one call, if either is owed.
+    void payAll();
     void beginLabel(const char* name);
     void endLabel();
 
@@ -93,6 +101,7 @@ private:
     ComputePipelineHandle compute_;
     std::array<PassTarget, RenderPassDesc::kMaxColorTargets + 1> passTargets_{};
     uint32_t passTargetCount_ = 0;
+    bool passOwed_ = false; // the last pass's barrier: its targets are still in passTargets_
     VkExtent2D passExtent_{0, 0};
     bool inPass_ = false;
     uint32_t markerDepth_ = 0;

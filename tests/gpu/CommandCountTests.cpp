@@ -82,11 +82,12 @@ Pinned pinnedFor(rhi::BackendKind kind) {
         // into a render pass's or a clear's own; the chain of dependent dispatches still needs one
         // each. A clear of a storage image owes its barrier too (92 -> 82: the injection's three
         // clears of each cascade share the render pass's barrier, and an occlusion clear its
-        // dispatch's). The conservative rule: a barrier after every command, as the issue counted
-        // at the loader (100 vkCmdPipelineBarrier2 calls). The GI's stages are its dependent-pass
-        // chain.
-        return {{50, 109, 852, 82, 68}, {50, 105, 418, 68, 62},  "gi/cascade0/inject",
-                {0, 16, 0, 2, 1},       {50, 109, 852, 100, 68}, {50, 105, 418, 86, 62}};
+        // dispatch's). A render pass owes its own (its targets back home) to the next command,
+        // which pays it in its own (82 -> 76). The conservative rule: a barrier after every
+        // command, as the issue counted at the loader (100 vkCmdPipelineBarrier2 calls). The
+        // GI's stages are its dependent-pass chain.
+        return {{50, 109, 852, 76, 68}, {50, 105, 418, 67, 62},  "gi/cascade0/inject",
+                {0, 16, 0, 1, 1},       {50, 109, 852, 100, 68}, {50, 105, 418, 86, 62}};
     // GL: a command pays one glMemoryBarrier, with the bits it needs, only where it touches what
     // earlier shaders stored to (or stores to what they read) since a barrier covered it
     // (GlHazards.h); GL orders framebuffer writes, clears and copies with later commands itself.

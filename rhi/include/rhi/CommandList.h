@@ -10,7 +10,8 @@
 //   recorded before the next dispatch or transfer that reads or writes what it wrote (or writes
 //   what it read: storage images and buffers a shader does not declare readonly count as written,
 //   the others and sampled textures and uniform buffers as read), and before any render pass, in the
-//   same vkCmdPipelineBarrier2 as that command's own when it has one.
+//   same vkCmdPipelineBarrier2 as that command's own when it has one. A render pass owes its
+//   barrier (its targets back home, its writes visible) to the next command, whatever it is.
 // - GL: a command pays one glMemoryBarrier, with the bits of its own accesses, where it touches
 //   what earlier shaders stored to or stores to what they read (GlHazards.h); GL orders
 //   everything else itself.
