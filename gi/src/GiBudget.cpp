@@ -36,11 +36,18 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
          s.cascades * PointLightInjection::kBufferBytes},
     };
     // Every further cascade keeps its own result, and its VPLs (its update may be split over two
-    // frames); the scratch volumes above serve them in turn.
+    // frames); the scratch volumes above serve them in turn, or (gi.cascades_together) each has
+    // its own, to propagate with the others.
     for (uint32_t c = 1; c < s.cascades; ++c) {
-        out.push_back({"accumulation, cascade " + std::to_string(c) + " (3 SH textures)", "gi.lpv",
-                       3 * cells * shBytes});
-        out.push_back({"vpl buffer, cascade " + std::to_string(c), "gi.vpl", uint64_t(s.vplSlots()) * 48});
+        const std::string cascade = ", cascade " + std::to_string(c);
+        out.push_back({"accumulation" + cascade + " (3 SH textures)", "gi.lpv", 3 * cells * shBytes});
+        out.push_back({"vpl buffer" + cascade, "gi.vpl", uint64_t(s.vplSlots()) * 48});
+        if (!s.propagateTogether()) continue;
+        out.push_back({"injection volume" + cascade + " (3 SH textures)", "gi.lpv", 3 * cells * injectBytes});
+        out.push_back(
+            {"propagation partial sums, ping" + cascade + " (packed)", "gi.lpv", partialCells * packedBytes});
+        out.push_back(
+            {"propagation partial sums, pong" + cascade + " (packed)", "gi.lpv", partialCells * packedBytes});
     }
     // Spot lights with their own RSM (SpotLightRsms): an RSM and a VPL buffer each; point lights
     // six of each, a cube.

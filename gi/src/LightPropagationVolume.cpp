@@ -67,13 +67,15 @@ LightPropagationVolume::~LightPropagationVolume() {
 void LightPropagationVolume::release() {
     device_.waitIdle();
     for (size_t c = 1; c < cascades_.size(); ++c) {
-        for (rhi::TextureHandle t : cascades_[c].result)
-            device_.destroy(t);
+        if (cascadeVolumes_.empty()) // together, each result is its volumes'
+            for (rhi::TextureHandle t : cascades_[c].result)
+                device_.destroy(t);
         device_.destroy(cascades_[c].vpls);
     }
     cascades_.clear();
     rsm_.reset();
     volumes_.reset();
+    cascadeVolumes_.clear();
     injection_.reset();
     propagation_.reset();
     bounces_.reset();
@@ -94,9 +96,14 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     injection_ = std::make_unique<LpvInjection>(device_, s);
     propagation_ = std::make_unique<LpvPropagation>(device_, s);
     cascades_.resize(s.cascades);
+    if (s.propagateTogether())
+        for (uint32_t c = 1; c < s.cascades; ++c)
+            cascadeVolumes_.push_back(std::make_unique<LpvVolumes>(device_, s));
     cascades_[0].result = volumes_->accumulated();
     for (uint32_t c = 1; c < s.cascades; ++c)
-        cascades_[c].result = volumes_->createResult("lpv cascade " + std::to_string(c));
+        cascades_[c].result = s.propagateTogether()
+                                  ? volumesOf(c).accumulated()
+                                  : volumes_->createResult("lpv cascade " + std::to_string(c));
     facesValid_ = 0;
     if (s.occlusion)
         geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize, s.bounces > 1, s.faceVolumes(),
@@ -284,6 +291,7 @@ GiConfigResult LightPropagationVolume::prepare(const LpvSettings& configured, co
     const bool resized = !made_ || s.vplCount != madeWith_.vplCount || !volumes_->matches(s) ||
                          s.occlusion != (geometry_ != nullptr) || s.cascades != madeWith_.cascades ||
                          s.lookupOcclusion != madeWith_.lookupOcclusion ||
+                         s.propagateTogether() != madeWith_.propagateTogether() ||
                          s.coarseCameraOcclusion != madeWith_.coarseCameraOcclusion ||
                          s.lightRsms != madeWith_.lightRsms || s.pointLightRsms != madeWith_.pointLightRsms;
     // What adapt turns (gi/GiScheduler.h) needs no cascade made again: the results stay (a kept
@@ -395,21 +403,31 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     // Coarsest first: each finer cascade takes the light from beyond its border from the one
     // around it (CascadeHandoff).
     static const char* const kCascadeScopes[4] = {"cascade0", "cascade1", "cascade2", "cascade3"};
+    // A coarse cascade the scheduler skips this frame keeps last frame's result (a cascade that
+    // never had one updates regardless); its update may run in two halves on two frames.
+    const uint32_t validBefore = cascadesValid_;
     uint32_t propagated = 0; // bit c: cascade c's result is made anew this frame
+    for (uint32_t c = 0; c < cascadeCount(); ++c)
+        if (!(validBefore & (1u << c)) || (volumeUpdates_ & (1u << c))) propagated |= 1u << c;
+    // Together, a finer cascade reads the coarser one's result of an earlier frame: one that has
+    // none yet (the first frame) is made first, the cascades then one after another.
+    bool together = settings_.propagateTogether();
+    for (uint32_t c = 0; c + 1 < cascadeCount(); ++c)
+        if ((propagated & (1u << c)) && !(validBefore & (2u << c))) together = false;
     for (uint32_t c = cascadeCount(); c-- > 0;) {
-        // A coarse cascade the scheduler skips this frame keeps last frame's result (a cascade
-        // that never had one updates regardless); its update may run in two halves on two frames.
-        const bool valid = (cascadesValid_ & (1u << c)) != 0;
+        const bool valid = (validBefore & (1u << c)) != 0;
         const bool lightHalf = !valid || (lightUpdates_ & (1u << c));
-        const bool volumeHalf = !valid || (volumeUpdates_ & (1u << c));
+        const bool volumeHalf = (propagated & (1u << c)) != 0;
         if (!lightHalf && !volumeHalf) continue;
         cascadesValid_ |= 1u << c;
         const auto cascadeScope = f.scope(kCascadeScopes[c]);
         if (lightHalf) recordLightHalf(f, c);
-        if (volumeHalf) {
-            recordVolumeHalf(f, c);
-            propagated |= 1u << c;
-        }
+        if (volumeHalf) recordVolumeHalf(f, c, !together);
+    }
+    if (together && propagated) {
+        f.pass("propagate", [&] { return recordPropagationTogether(f, propagated); });
+        if ((propagated & 1u) && bounces_ && settings_.bouncesIn(0) && !deferredBounces_)
+            f.pass("bounces", [&] { return recordBounces(f, 0); });
     }
     if (analyticLights_) f.pass("lights", [&] { return recordAnalyticLights(f, propagated); });
     reportRgba8Clipping(profiler);
@@ -433,11 +451,13 @@ void LightPropagationVolume::recordLightHalf(const FrameRecording& f, uint32_t c
 }
 
 // A cascade's volume half, this frame or a later one: its result made anew from the VPLs of its
-// light half, where they were lit.
-void LightPropagationVolume::recordVolumeHalf(const FrameRecording& f, uint32_t c) {
+// light half, where they were lit; with `propagate` false its propagation waits for the others'
+// (recordPropagationTogether).
+void LightPropagationVolume::recordVolumeHalf(const FrameRecording& f, uint32_t c, bool propagate) {
     cascades_[c].grid = cascades_[c].lit;
     if (geometry_) f.pass("occlusion", [&] { return recordOcclusion(f, c); });
     f.pass("inject", [&] { return recordInjection(f, c); });
+    if (!propagate) return;
     f.pass("propagate", [&] { return recordPropagation(f, c); });
     if (bounces_ && settings_.bouncesIn(c) && !(deferredBounces_ && c == 0))
         f.pass("bounces", [&] { return recordBounces(f, c); });
@@ -519,22 +539,51 @@ engine::WorkCounts LightPropagationVolume::recordInjection(const FrameRecording&
     std::array<VplSource, 1 + SpotLightRsms::kMaxRsms> sources;
     sources[0] = {cascade.vpls, settings_.vplSlots(), glm::vec4(cascade.lightDirection, 0.0f)};
     const uint32_t n = 1 + spotRsms_->sourcesReaching(cascade.grid, std::span(sources).subspan(1));
-    injection_->record(f.cmd, *volumes_, std::span(sources.data(), n), cascade.grid, settings_.intensity, c);
+    injection_->record(f.cmd, volumesOf(c), std::span(sources.data(), n), cascade.grid, settings_.intensity,
+                       c);
     return injectWork(settings_, uint64_t(n - 1) * spotLightVplSlots(settings_), volumeDraw());
+}
+
+CascadeHandoff LightPropagationVolume::handoffInto(uint32_t c) const {
+    return {cascades_[c + 1].result, cascades_[c + 1].resultGrid, cascades_[c].grid};
 }
 
 engine::WorkCounts LightPropagationVolume::recordPropagation(const FrameRecording& f, uint32_t c) {
     const bool coarser = c + 1 < cascades_.size();
     CascadeHandoff handoff;
-    if (coarser) handoff = {cascades_[c + 1].result, cascades_[c + 1].grid, cascades_[c].grid};
-    propagation_->record(f.cmd, *volumes_, settings_.iterations,
+    if (coarser) handoff = handoffInto(c);
+    propagation_->record(f.cmd, volumesOf(c), settings_.iterations,
                          geometry_ ? geometry_->faceTransmittance() : rhi::TextureHandle{},
                          &cascades_[c].result, coarser ? &handoff : nullptr);
+    cascades_[c].resultGrid = cascades_[c].grid;
     return propagateWork(settings_);
 }
 
+engine::WorkCounts LightPropagationVolume::recordPropagationTogether(const FrameRecording& f,
+                                                                     uint32_t cascades) {
+    std::array<CascadeHandoff, LpvPropagation::kMaxJobs> handoffs;
+    std::array<PropagationJob, LpvPropagation::kMaxJobs> jobs;
+    size_t count = 0;
+    engine::WorkCounts work;
+    // Each handoff reads the coarser cascade's result where it was computed before this frame:
+    // the propagations below write the results only at their last step.
+    for (uint32_t c = 0; c < cascadeCount(); ++c) {
+        if (!(cascades & (1u << c))) continue;
+        const bool coarser = c + 1 < cascades_.size();
+        if (coarser) handoffs[count] = handoffInto(c);
+        jobs[count] = {&volumesOf(c), geometry_ ? geometry_->faceTransmittance(c) : rhi::TextureHandle{},
+                       &cascades_[c].result, coarser ? &handoffs[count] : nullptr};
+        ++count;
+        work += propagateWork(settings_);
+    }
+    propagation_->recordTogether(f.cmd, std::span(jobs.data(), count), settings_.iterations);
+    for (uint32_t c = 0; c < cascadeCount(); ++c)
+        if (cascades & (1u << c)) cascades_[c].resultGrid = cascades_[c].grid;
+    return work;
+}
+
 engine::WorkCounts LightPropagationVolume::recordBounces(const FrameRecording& f, uint32_t c) {
-    bounces_->record(f.cmd, *volumes_, *propagation_, *geometry_, settings_.bounces, settings_.iterations,
+    bounces_->record(f.cmd, volumesOf(c), *propagation_, *geometry_, settings_.bounces, settings_.iterations,
                      cascades_[c].result);
     return bounceWork(settings_);
 }
@@ -551,7 +600,7 @@ engine::WorkCounts LightPropagationVolume::recordAnalyticLights(const FrameRecor
         // counted them twice (the lights hall 12% brighter with gi.coarse_update_interval=2).
         if (!(propagated & (1u << c))) continue;
         const uint32_t n =
-            pointLights_->record(f.cmd, frame_.punctualLights, *volumes_, cascades_[c].grid,
+            pointLights_->record(f.cmd, frame_.punctualLights, volumesOf(c), cascades_[c].grid,
                                  settings_.intensity, &cascades_[c].result, c, spotRsms_->selection());
         work += analyticLightsWork(settings_, n, pointLights_->cellEvaluations());
     }

@@ -123,82 +123,109 @@ LpvPropagation::~LpvPropagation() {
 void LpvPropagation::record(rhi::CommandList& cmd, LpvVolumes& volumes, uint32_t iterations,
                             rhi::TextureHandle faceTransmittance,
                             const std::array<rhi::TextureHandle, 3>* result, const CascadeHandoff* handoff) {
-    // Bounded partial sums have nowhere to keep the coarser cascade's light (partialSumShell).
-    if (handoff && !shell_)
-        throw std::logic_error(
-            "LpvPropagation::record: a cascade handoff needs volumes made for several cascades");
-    // rgba8 propagates in the range of the grid last injected (encodeRange): there is none before.
-    const bool encoded = volumes.encoded();
-    if (encoded && volumes.injectedEncodeRange() <= 0.0f)
-        throw std::logic_error("LpvPropagation::record: rgba8 volumes propagate after an injection");
-    const std::array<rhi::TextureHandle, 3>& target = result ? *result : volumes.accumulated();
-    const std::array<rhi::TextureHandle, 3>& injected = volumes.injected();
-    const std::array<std::array<rhi::TextureHandle, 3>, 2>& partial = volumes.partialSums();
-    Rgba8Clipping* const clipping = volumes.clipping();
+    const PropagationJob job{&volumes, faceTransmittance, result, handoff};
+    recordTogether(cmd, std::span(&job, 1), iterations);
+}
+
+void LpvPropagation::recordTogether(rhi::CommandList& cmd, std::span<const PropagationJob> jobs,
+                                    uint32_t iterations) {
+    if (jobs.size() > kMaxJobs) throw std::logic_error("LpvPropagation::recordTogether: more than 4 volumes");
     const uint32_t n = settings_.gridSize;
     const uint32_t column = columnLength_;
     const uint32_t texels = packedTexelCount(settings_.shFormat);
-    PropagateUniforms u;
-    u.grid = glm::ivec4(int(n), int(column), 0, 0);
-    u.encode = glm::vec4(volumes.injectedEncodeRange(), 0, encoded ? 1 : 0, 0);
-    if (handoff) {
-        const float coarseExtent = handoff->coarseGrid.cellSize * float(handoff->coarseGrid.size);
-        const glm::vec3 firstCentre = handoff->fineGrid.origin + 0.5f * handoff->fineGrid.cellSize;
-        u.handoff = glm::vec4((firstCentre - handoff->coarseGrid.origin) / coarseExtent,
-                              handoff->fineGrid.cellSize / coarseExtent);
-        const float ratio = handoff->fineGrid.cellSize / handoff->coarseGrid.cellSize;
-        u.encode.y = ratio * ratio;
+    std::array<PropagateUniforms, kMaxJobs> uniforms;
+    for (size_t j = 0; j < jobs.size(); ++j) {
+        const PropagationJob& job = jobs[j];
+        // Bounded partial sums have nowhere to keep the coarser cascade's light (partialSumShell).
+        if (job.handoff && !shell_)
+            throw std::logic_error(
+                "LpvPropagation::record: a cascade handoff needs volumes made for several cascades");
+        // rgba8 propagates in the range of the grid last injected (encodeRange): there is none before.
+        const bool encoded = job.volumes->encoded();
+        if (encoded && job.volumes->injectedEncodeRange() <= 0.0f)
+            throw std::logic_error("LpvPropagation::record: rgba8 volumes propagate after an injection");
+        PropagateUniforms& u = uniforms[j];
+        u = {};
+        u.grid = glm::ivec4(int(n), int(column), 0, 0);
+        u.encode = glm::vec4(job.volumes->injectedEncodeRange(), 0, encoded ? 1 : 0, 0);
+        if (const CascadeHandoff* handoff = job.handoff) {
+            const float coarseExtent = handoff->coarseGrid.cellSize * float(handoff->coarseGrid.size);
+            const glm::vec3 firstCentre = handoff->fineGrid.origin + 0.5f * handoff->fineGrid.cellSize;
+            u.handoff = glm::vec4((firstCentre - handoff->coarseGrid.origin) / coarseExtent,
+                                  handoff->fineGrid.cellSize / coarseExtent);
+            const float ratio = handoff->fineGrid.cellSize / handoff->coarseGrid.cellSize;
+            u.encode.y = ratio * ratio;
+        }
     }
-    const int occluded = faceTransmittance ? 1 : 0;
-    const auto bindInjected = [&] {
+    const auto bindInjected = [&](const PropagationJob& job) {
         for (uint32_t c = 0; c < 3; ++c)
             if (injectedAsTexture_)
-                cmd.bindTexture(8 + c, injected[c], pointSampler_);
+                cmd.bindTexture(8 + c, job.volumes->injected()[c], pointSampler_);
             else
-                cmd.bindStorageImage(8 + c, injected[c]);
+                cmd.bindStorageImage(8 + c, job.volumes->injected()[c]);
     };
-    const auto bindIteration = [&](int role, uint32_t i, bool fromInjection, bool last) {
+    const auto bindIteration = [&](size_t j, int role, uint32_t i, bool fromInjection, bool last) {
+        const PropagationJob& job = jobs[j];
+        const std::array<rhi::TextureHandle, 3>& target =
+            job.result ? *job.result : job.volumes->accumulated();
+        const auto& partial = job.volumes->partialSums();
         cmd.bindPipeline(pipelines_[size_t(role)]);
-        cmd.pushUniforms(0, &u, sizeof(u));
-        if (faceTransmittance) cmd.bindStorageImage(7, faceTransmittance);
-        bindInjected();
+        cmd.pushUniforms(0, &uniforms[j], sizeof(PropagateUniforms));
+        if (job.faceTransmittance) cmd.bindStorageImage(7, job.faceTransmittance);
+        bindInjected(job);
         for (uint32_t c = 0; c < 3; ++c)
             if (last) cmd.bindStorageImage(4 + c, target[c]);
         for (uint32_t t = 0; t < texels; ++t) {
             if (!fromInjection) cmd.bindStorageImage(1 + t, partial[(i + 1) % 2][t]);
             if (!last) cmd.bindStorageImage(4 + t, partial[i % 2][t]);
         }
-        if (last && clipping) clipping->bind(cmd, volumes.injectedCascade());
+        if (Rgba8Clipping* clipping = job.volumes->clipping(); last && clipping)
+            clipping->bind(cmd, job.volumes->injectedCascade());
         cmd.dispatch((n + 15) / 16, (n + 15) / 16, (n + column - 1) / column);
     };
+    // Step by step, every volume's step before the next step of any: the volumes do not depend on
+    // each other, so each step is one stage of the GPU's dependent chain however many there are.
     if (!shell_) {
         // y(0) is the injection volume; y(k+1) = x + P y(k) goes to partial[k % 2]; the last
-        // iteration writes y(N), the accumulated result, into target.
-        for (uint32_t i = 0; i < iterations; ++i) {
-            const bool first = i == 0, last = i + 1 == iterations;
-            const int role = (first && last ? kOnly : first ? kFirst : last ? kLast : kNext) + 4 * occluded;
-            bindIteration(role, i, first, last);
-        }
+        // iteration writes y(N), the accumulated result, into the target.
+        for (uint32_t i = 0; i < iterations; ++i)
+            for (size_t j = 0; j < jobs.size(); ++j) {
+                const bool first = i == 0, last = i + 1 == iterations;
+                const int occluded = jobs[j].faceTransmittance ? 4 : 0;
+                bindIteration(j,
+                              (first && last ? kOnly
+                               : first       ? kFirst
+                               : last        ? kLast
+                                             : kNext) +
+                                  occluded,
+                              i, first, last);
+            }
         return;
     }
     // y(0) = x and the shell go to partial[1] (the shell to partial[0] too); y(k+1) = x + P y(k)
-    // goes to partial[k % 2]; the last iteration writes y(N), the accumulated result, into target.
+    // goes to partial[k % 2]; the last iteration writes y(N), the accumulated result, into the target.
     const uint32_t padded = partialSumSize(settings_);
-    cmd.bindPipeline(pipelines_[size_t(handoff ? kSeedHandoff : kSeed)]);
-    cmd.pushUniforms(0, &u, sizeof(u));
-    if (handoff)
-        for (uint32_t c = 0; c < 3; ++c)
-            cmd.bindTexture(20 + c, handoff->coarse[c], linearSampler_);
-    bindInjected();
-    for (uint32_t t = 0; t < texels; ++t) {
-        cmd.bindStorageImage(1 + t, partial[0][t]);
-        cmd.bindStorageImage(4 + t, partial[1][t]);
+    for (size_t j = 0; j < jobs.size(); ++j) {
+        const PropagationJob& job = jobs[j];
+        const auto& partial = job.volumes->partialSums();
+        cmd.bindPipeline(pipelines_[size_t(job.handoff ? kSeedHandoff : kSeed)]);
+        cmd.pushUniforms(0, &uniforms[j], sizeof(PropagateUniforms));
+        if (job.handoff)
+            for (uint32_t c = 0; c < 3; ++c)
+                cmd.bindTexture(20 + c, job.handoff->coarse[c], linearSampler_);
+        bindInjected(job);
+        for (uint32_t t = 0; t < texels; ++t) {
+            cmd.bindStorageImage(1 + t, partial[0][t]);
+            cmd.bindStorageImage(4 + t, partial[1][t]);
+        }
+        cmd.dispatch((padded + 7) / 8, (padded + 7) / 8, padded);
     }
-    cmd.dispatch((padded + 7) / 8, (padded + 7) / 8, padded);
-    for (uint32_t i = 0; i < iterations; ++i) {
-        const bool last = i + 1 == iterations;
-        bindIteration((last ? kShellLast : kShellNext) + 2 * occluded, i, false, last);
-    }
+    for (uint32_t i = 0; i < iterations; ++i)
+        for (size_t j = 0; j < jobs.size(); ++j) {
+            const bool last = i + 1 == iterations;
+            bindIteration(j, (last ? kShellLast : kShellNext) + (jobs[j].faceTransmittance ? 2 : 0), i, false,
+                          last);
+        }
 }
 
 } // namespace lpv::gi

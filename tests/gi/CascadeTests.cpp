@@ -247,3 +247,50 @@ TEST_CASE("gi: coarse cascades updated in two halves on two frames match a whole
         }
     }
 }
+
+TEST_CASE("gi: cascades propagated together match cascades one after another in a still scene") {
+    // Together (gi.cascades_together), a finer cascade takes the coarser one's result of the frame
+    // before at its border; the first frame propagates them one after another, as they have none.
+    // In a still scene the result is the same from the second frame on, texel for texel.
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            const auto frameWith = [&](const char* together, int frames) {
+                std::vector<std::string> settings = kGi;
+                settings.push_back("gi.cascades=3");
+                settings.push_back("gi.bounces=2");
+                settings.push_back(together);
+                return renderSceneFrame(*device, engine::buildCornellBox(), settings, {}, 160, 120, frames);
+            };
+            const CornellFrame serial = frameWith("gi.cascades_together=false", 3);
+            const CornellFrame together = frameWith("gi.cascades_together=true", 3);
+            // One frame together changes nothing either: it has no coarse result to take yet.
+            const CornellFrame first = frameWith("gi.cascades_together=true", 1);
+            const CornellFrame firstSerial = frameWith("gi.cascades_together=false", 1);
+            REQUIRE(serial.cascadeVolumes.size() == 3);
+            REQUIRE(together.cascadeVolumes.size() == 3);
+            size_t differing = 0, differingFirst = 0;
+            float peak = 0.0f;
+            for (uint32_t c = 0; c < 3; ++c)
+                for (uint32_t ch = 0; ch < 3; ++ch) {
+                    const Image& a = serial.cascadeVolumes[c][ch];
+                    const Image& b = together.cascadeVolumes[c][ch];
+                    REQUIRE(a.texels.size() == b.texels.size());
+                    for (size_t i = 0; i < a.texels.size(); ++i) {
+                        peak = std::max(peak, std::fabs(a.texels[i].x));
+                        if (a.texels[i] != b.texels[i]) ++differing;
+                        if (first.cascadeVolumes[c][ch].texels[i] !=
+                            firstSerial.cascadeVolumes[c][ch].texels[i])
+                            ++differingFirst;
+                    }
+                }
+            MESSAGE(backend.name << ": " << differing << " differing texels after 3 frames, "
+                                 << differingFirst << " after 1; peak " << peak);
+            CHECK(peak > 0.0f);
+            CHECK(differing == 0);
+            CHECK(differingFirst == 0);
+            CHECK(serial.hdr.texels == together.hdr.texels);
+            device.expectSilent();
+        }
+    }
+}

@@ -69,6 +69,14 @@ const engine::BoolSetting kLookupOcclusion{
     "With gi.occlusion, the coarse cascades' lookups also keep to the faces their geometry volumes leave "
     "open (the finest cascade's always does), so light beyond a wall thinner than a cell is not read "
     "through it; a face volume per cascade (4 bytes a cell)"};
+// Off, the cascades share one injection volume and partial sums and propagate one after another,
+// each finer one taking the coarser one's light of this frame: the chain of dependent GPU passes
+// grows by the iterations with every cascade (issue 46).
+const engine::BoolSetting kCascadesTogether{
+    "gi.cascades_together", true,
+    "All cascades propagate in the same dependent steps, each with its own injection volume and partial "
+    "sums (with float volumes, gi.lookup_occlusion and gi.bounce_cascades=1; otherwise one after another); "
+    "a finer cascade takes the light from beyond its border from the coarser one's previous frame"};
 // Only the finest cascade took the camera until each sample added its area: marking a coarse cell
 // whole made every small object block it, and whether a sample landed in it changed with every
 // camera move. Without it the coarse cascades block only what the light sees, and the light of a
@@ -175,6 +183,7 @@ LpvSettings lpvSettingsFrom(const engine::Config& config) {
     s.damping = config.get(kDamping);
     s.occlusion = config.get(kOcclusion);
     s.lookupOcclusion = config.get(kLookupOcclusion);
+    s.cascadesTogether = config.get(kCascadesTogether);
     s.coarseCameraOcclusion = config.get(kCoarseCameraOcclusion);
     s.glossy = config.get(kGlossy);
     s.glossyMaxRoughness = float(config.get(kGlossyMaxRoughness));

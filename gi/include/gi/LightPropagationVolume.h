@@ -144,14 +144,22 @@ private:
     // returning its work counts; FrameRecording holds the frame's command list, profiler, camera,
     // G-buffer and targets.
     struct FrameRecording;
-    void recordLightHalf(const FrameRecording& f, uint32_t c);  // rsm, vpl
-    void recordVolumeHalf(const FrameRecording& f, uint32_t c); // occlusion, inject, propagate, bounces
+    void recordLightHalf(const FrameRecording& f, uint32_t c); // rsm, vpl
+    void recordVolumeHalf(const FrameRecording& f, uint32_t c,
+                          bool propagate); // occlusion, inject, propagate, bounces
     engine::WorkCounts recordLightRsms(const FrameRecording& f);
     engine::WorkCounts recordRsm(const FrameRecording& f, uint32_t c);
     engine::WorkCounts recordVpls(const FrameRecording& f, uint32_t c);
     engine::WorkCounts recordOcclusion(const FrameRecording& f, uint32_t c);
     engine::WorkCounts recordInjection(const FrameRecording& f, uint32_t c);
     engine::WorkCounts recordPropagation(const FrameRecording& f, uint32_t c);
+    // Every cascade whose bit is set in `cascades`, propagated together (gi.cascades_together).
+    engine::WorkCounts recordPropagationTogether(const FrameRecording& f, uint32_t cascades);
+    // The injection volume and partial sums cascade c uses (its own under gi.cascades_together).
+    LpvVolumes& volumesOf(uint32_t c) {
+        return c > 0 && !cascadeVolumes_.empty() ? *cascadeVolumes_[c - 1] : *volumes_;
+    }
+    CascadeHandoff handoffInto(uint32_t c) const;
     engine::WorkCounts recordBounces(const FrameRecording& f, uint32_t c);
     // Into every cascade whose bit is set in `propagated` (made anew this frame).
     engine::WorkCounts recordAnalyticLights(const FrameRecording& f, uint32_t propagated);
@@ -181,11 +189,14 @@ private:
     bool made_ = false;
     VolumeGrid grid_;
     // Cascade 0 is the finest; each further one has cells twice the size. Scratch (RSM, VPLs,
-    // geometry, injection and partial sums) is shared: cascades are built one after another.
+    // geometry, injection and partial sums) is shared: cascades are built one after another, but
+    // for the injection and partial sums under gi.cascades_together (cascadeVolumes_).
     struct Cascade {
-        VolumeGrid grid;      // where `result` was computed: what the lookup and handoff use
-        VolumeGrid placement; // where the camera wants it now; becomes `lit` when its light updates
-        std::array<rhi::TextureHandle, 3> result{}; // cascade 0: volumes_->accumulated()
+        VolumeGrid grid;       // where `result` is being or was computed: what the lookup uses
+        VolumeGrid resultGrid; // where `result`'s contents were computed: what the handoff reads
+        VolumeGrid placement;  // where the camera wants it now; becomes `lit` when its light updates
+        // Cascade 0's and, together, every cascade's: its volumes' accumulated(); else its own.
+        std::array<rhi::TextureHandle, 3> result{};
         // Its light half (GiScheduler.h's CascadeWork), kept for the volume half, which may run a
         // frame later: where the RSM was fitted, its VPLs (cascade 0: vpls_), the light then.
         VolumeGrid lit;
@@ -219,12 +230,13 @@ private:
     // The passes and resources made for a configuration (remake), in the frame's order.
     std::unique_ptr<SpotLightRsms> spotRsms_;
     std::unique_ptr<ReflectiveShadowMap> rsm_;
-    rhi::BufferHandle vpls_;                   // cascade 0's
-    std::unique_ptr<GeometryVolume> geometry_; // gi.occlusion
-    std::unique_ptr<LpvVolumes> volumes_;
-    std::unique_ptr<LpvInjection> injection_;     // into volumes_, made with them
-    std::unique_ptr<LpvPropagation> propagation_; // in volumes_, made with them
-    std::unique_ptr<MultipleBounces> bounces_;    // gi.bounces > 1
+    rhi::BufferHandle vpls_;                                  // cascade 0's
+    std::unique_ptr<GeometryVolume> geometry_;                // gi.occlusion
+    std::unique_ptr<LpvVolumes> volumes_;                     // cascade 0's, or every cascade's
+    std::vector<std::unique_ptr<LpvVolumes>> cascadeVolumes_; // gi.cascades_together: 1, 2, ...
+    std::unique_ptr<LpvInjection> injection_;                 // into volumes_, made with them
+    std::unique_ptr<LpvPropagation> propagation_;             // in volumes_, made with them
+    std::unique_ptr<MultipleBounces> bounces_;                // gi.bounces > 1
     std::unique_ptr<PointLightInjection> pointLights_;
     // The passes made once, with the LPV; the lookup first, as it refuses a device that binds too
     // few textures for it.

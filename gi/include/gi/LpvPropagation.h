@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 
 namespace lpv::gi {
 
@@ -27,8 +28,18 @@ struct CascadeHandoff {
     VolumeGrid coarseGrid, fineGrid;
 };
 
+// One volume's propagation, as record()'s arguments.
+struct PropagationJob {
+    LpvVolumes* volumes = nullptr;
+    rhi::TextureHandle faceTransmittance;
+    const std::array<rhi::TextureHandle, 3>* result = nullptr;
+    const CascadeHandoff* handoff = nullptr;
+};
+
 class LpvPropagation {
 public:
+    static constexpr size_t kMaxJobs = 4;
+
     // For volumes made with `settings` (their size, format and partial-sum layout).
     // `columnLength`: cells each thread walks along z; 0 picks it from the device
     // (propagationColumnLength). Tests pin it to cover the shapes other devices get.
@@ -49,6 +60,10 @@ public:
                 rhi::TextureHandle faceTransmittance = {},
                 const std::array<rhi::TextureHandle, 3>* result = nullptr,
                 const CascadeHandoff* handoff = nullptr);
+    // Several volumes (up to kMaxJobs, each made with these settings, none another's handoff
+    // source) propagated step by step together: each step of all of them is one stage of the
+    // dependent chain, not one per volume.
+    void recordTogether(rhi::CommandList& cmd, std::span<const PropagationJob> jobs, uint32_t iterations);
 
 private:
     rhi::Device& device_;

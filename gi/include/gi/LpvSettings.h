@@ -50,6 +50,17 @@ struct LpvSettings {
     bool coarseCameraOcclusion = true;
     // Whether the geometry volume keeps the coarse cascades' camera areas.
     bool cameraAreas() const { return occlusion && coarseCameraOcclusion && cascades > 1; }
+    // gi.cascades_together: every cascade gets an injection volume and partial sums of its own, so
+    // all cascades propagate in the same dependent steps; a finer one then takes the light from
+    // beyond its border from the coarser one's result of the frame before.
+    bool cascadesTogether = true;
+    // Whether they do: it also needs a face volume per cascade (the propagations run after every
+    // geometry volume is built), the further bounces in the finest cascade only (the surfels'
+    // albedo is the last built's), and float volumes (rgba8 notes clipping in one set).
+    bool propagateTogether() const {
+        return cascadesTogether && cascades > 1 && (!occlusion || lookupOcclusion) && bounceCascades <= 1 &&
+               shFormat != ShFormat::Rgba8;
+    }
     bool glossy = true; // glossy reflections marched through the volume
     // Surfaces this rough or rougher get no glossy march (lpv_glossy.glsl's glossyFade).
     float glossyMaxRoughness = 1.0f;
