@@ -18,6 +18,9 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0, std140) uniform Reflect {
     ivec4 grid;  // x: cells per axis
     vec4 encode; // x: the cascade's rgba8 range (LpvVolumes::injectedEncodeRange); y: 1 when encoded
+    // xyz: where cell c's light is in the source, c + shift (a source computed a frame earlier,
+    // where the volume was placed then; 0 otherwise); beyond it there is none.
+    ivec4 shift;
 } params;
 layout(binding = 4) uniform sampler3D sourceRed;
 layout(binding = 5) uniform sampler3D sourceGreen;
@@ -31,7 +34,9 @@ layout(binding = 3, INJECT_FORMAT) uniform writeonly image3D injectedBlue;
 
 
 vec4 source(sampler3D s, ivec3 c) {
-    vec4 v = texelFetch(s, c, 0);
+    const ivec3 k = c + params.shift.xyz;
+    if (any(lessThan(k, ivec3(0))) || any(greaterThanEqual(k, ivec3(params.grid.x)))) return vec4(0.0);
+    vec4 v = texelFetch(s, k, 0);
     return params.encode.y != 0.0 ? decodeShRange(v, params.encode.x) : v;
 }
 

@@ -76,6 +76,14 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
         out.push_back({"geometry volume albedo sums", "gi.gv", gvCells * 8});
         out.push_back({"surfel albedo", "gi.gv", cells * 4});
         out.push_back({"bounce scratch (3 SH textures)", "gi.lpv", 3 * cells * shBytes});
+        // gi.cascades_together: the finest cascade's further bounce propagates with the cascades,
+        // in volumes of its own, from its first bounce kept apart (MultipleBounces).
+        if (s.propagateTogether()) {
+            out.push_back({"bounce injection volume (3 SH textures)", "gi.lpv", 3 * cells * injectBytes});
+            out.push_back(
+                {"bounce partial sums, ping and pong (packed)", "gi.lpv", 2 * partialCells * packedBytes});
+            out.push_back({"first bounce, finest cascade (3 SH textures)", "gi.lpv", 3 * cells * shBytes});
+        }
     }
     return out;
 }

@@ -108,7 +108,9 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     if (s.occlusion)
         geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize, s.bounces > 1, s.faceVolumes(),
                                                      s.cameraAreas());
-    if (s.bounces > 1) bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_);
+    if (s.bounces > 1)
+        bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_, s.propagateTogether());
+    firstValid_ = false;
     pointLights_ = std::make_unique<PointLightInjection>(device_, s);
     spotRsms_ = std::make_unique<SpotLightRsms>(device_, s);
     vpls_ = device_.createBuffer({uint64_t(s.vplSlots()) * 48, rhi::kBufferStorage | rhi::kBufferTransfer,
@@ -142,7 +144,9 @@ void LightPropagationVolume::replaceUpdateResources(const LpvSettings& s) {
         if (s.occlusion)
             geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize, s.bounces > 1, s.faceVolumes(),
                                                          s.cameraAreas());
-        if (s.bounces > 1) bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_);
+        if (s.bounces > 1)
+            bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_, s.propagateTogether());
+        firstValid_ = false;
     }
 }
 
@@ -424,10 +428,30 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         if (lightHalf) recordLightHalf(f, c);
         if (volumeHalf) recordVolumeHalf(f, c, !together);
     }
+    // The finest cascade's further bounces run with it: after its propagation, or (together, one
+    // further bounce) from its first bounce of the frame before, propagated with the cascades.
+    const bool bounced = (propagated & 1u) && bounces_ && settings_.bouncesIn(0) && !deferredBounces_;
     if (together && propagated) {
-        f.pass("propagate", [&] { return recordPropagationTogether(f, propagated); });
-        if ((propagated & 1u) && bounces_ && settings_.bouncesIn(0) && !deferredBounces_)
+        const Cascade& finest = cascades_[0];
+        const bool ahead = bounced && bounces_->first() && settings_.bounces == 2 && firstValid_ &&
+                           firstGrid_.cellSize == finest.grid.cellSize && firstGrid_.size == finest.grid.size;
+        if (ahead) f.pass("bounces", [&] { return recordBounceReflect(f); });
+        f.pass("propagate", [&] { return recordPropagationTogether(f, propagated, ahead); });
+        if (ahead)
+            f.pass("bounces.add", [&] {
+                bounces_->recordAdd(f.cmd, *bounces_->ownVolumes(), finest.result, bounces_->first());
+            });
+        else if (bounced)
             f.pass("bounces", [&] { return recordBounces(f, 0); });
+    }
+    // With the first bounce kept apart, the finest cascade's result is it plus the further bounces,
+    // or (bounces left to the next frame) it alone.
+    if ((propagated & 1u) && bounces_ && bounces_->first()) {
+        if (!bounced)
+            for (uint32_t ch = 0; ch < 3; ++ch)
+                cmd.copyTexture((*bounces_->first())[ch], cascades_[0].result[ch]);
+        firstValid_ = true;
+        firstGrid_ = cascades_[0].grid;
     }
     if (analyticLights_) f.pass("lights", [&] { return recordAnalyticLights(f, propagated); });
     reportRgba8Clipping(profiler);
@@ -554,13 +578,13 @@ engine::WorkCounts LightPropagationVolume::recordPropagation(const FrameRecordin
     if (coarser) handoff = handoffInto(c);
     propagation_->record(f.cmd, volumesOf(c), settings_.iterations,
                          geometry_ ? geometry_->faceTransmittance() : rhi::TextureHandle{},
-                         &cascades_[c].result, coarser ? &handoff : nullptr);
+                         &propagationTarget(c), coarser ? &handoff : nullptr);
     cascades_[c].resultGrid = cascades_[c].grid;
     return propagateWork(settings_);
 }
 
 engine::WorkCounts LightPropagationVolume::recordPropagationTogether(const FrameRecording& f,
-                                                                     uint32_t cascades) {
+                                                                     uint32_t cascades, bool bounce) {
     std::array<CascadeHandoff, LpvPropagation::kMaxJobs> handoffs;
     std::array<PropagationJob, LpvPropagation::kMaxJobs> jobs;
     size_t count = 0;
@@ -572,10 +596,12 @@ engine::WorkCounts LightPropagationVolume::recordPropagationTogether(const Frame
         const bool coarser = c + 1 < cascades_.size();
         if (coarser) handoffs[count] = handoffInto(c);
         jobs[count] = {&volumesOf(c), geometry_ ? geometry_->faceTransmittance(c) : rhi::TextureHandle{},
-                       &cascades_[c].result, coarser ? &handoffs[count] : nullptr};
+                       &propagationTarget(c), coarser ? &handoffs[count] : nullptr};
         ++count;
         work += propagateWork(settings_);
     }
+    // The finest cascade's further bounce, reflected from its first bounce of the frame before.
+    if (bounce) jobs[count++] = bounces_->job(*bounces_->ownVolumes(), *geometry_);
     propagation_->recordTogether(f.cmd, std::span(jobs.data(), count), settings_.iterations);
     for (uint32_t c = 0; c < cascadeCount(); ++c)
         if (cascades & (1u << c)) cascades_[c].resultGrid = cascades_[c].grid;
@@ -584,8 +610,22 @@ engine::WorkCounts LightPropagationVolume::recordPropagationTogether(const Frame
 
 engine::WorkCounts LightPropagationVolume::recordBounces(const FrameRecording& f, uint32_t c) {
     bounces_->record(f.cmd, volumesOf(c), *propagation_, *geometry_, settings_.bounces, settings_.iterations,
-                     cascades_[c].result);
+                     cascades_[c].result, c == 0 ? bounces_->first() : nullptr);
     return bounceWork(settings_);
+}
+
+engine::WorkCounts LightPropagationVolume::recordBounceReflect(const FrameRecording& f) {
+    // The first bounce was computed where the finest cascade was placed then: its cell c + shift
+    // is this frame's cell c.
+    const Cascade& finest = cascades_[0];
+    const glm::ivec3 shift =
+        glm::ivec3(glm::round((finest.grid.origin - firstGrid_.origin) / finest.grid.cellSize));
+    bounces_->recordReflect(f.cmd, *bounces_->ownVolumes(), *geometry_, *bounces_->first(), shift);
+    return bounceWork(settings_);
+}
+
+const std::array<rhi::TextureHandle, 3>& LightPropagationVolume::propagationTarget(uint32_t c) const {
+    return c == 0 && bounces_ && bounces_->first() ? *bounces_->first() : cascades_[c].result;
 }
 
 engine::WorkCounts LightPropagationVolume::recordAnalyticLights(const FrameRecording& f,

@@ -6,12 +6,15 @@
 
 #include <glm/vec4.hpp>
 
+#include <stdexcept>
+
 namespace lpv::gi {
 namespace {
 
 struct BounceUniforms {
     glm::ivec4 grid;
     glm::vec4 encode;
+    glm::ivec4 shift; // the reflection's (lpv_reflect_body.glsl)
 };
 
 const rhi::ShaderBinary& reflectShader(ShFormat f) {
@@ -33,10 +36,23 @@ const rhi::ShaderBinary& addShader(ShFormat f) {
 
 } // namespace
 
-MultipleBounces::MultipleBounces(rhi::Device& device, const LpvSettings& settings, const LpvVolumes& volumes)
+MultipleBounces::MultipleBounces(rhi::Device& device, const LpvSettings& settings, const LpvVolumes& volumes,
+                                 bool keepFirst)
     : device_(device), settings_(settings) {
     using namespace rhi;
-    bounce_ = volumes.createResult("lpv bounce");
+    if (keepFirst) {
+        if (settings.shFormat == ShFormat::Rgba8)
+            throw std::logic_error("MultipleBounces: the first bounce is kept apart in float volumes only");
+        own_ = std::make_unique<LpvVolumes>(device, settings);
+        bounce_ = own_->accumulated();
+        first_ = volumes.createResult("lpv first bounce");
+        addFirstPipeline_ = device.createPipeline(ComputePipelineDesc{
+            settings.shFormat == ShFormat::Rgba32f ? &shaders::lpv_bounce_add_rgba32f_first_comp
+                                                   : &shaders::lpv_bounce_add_rgba16f_first_comp,
+            "lpv bounce add (first apart)"});
+    } else {
+        bounce_ = volumes.createResult("lpv bounce");
+    }
     reflectPipeline_ =
         device.createPipeline(ComputePipelineDesc{&reflectShader(settings.shFormat), "lpv bounce reflect"});
     addPipeline_ =
@@ -46,45 +62,73 @@ MultipleBounces::MultipleBounces(rhi::Device& device, const LpvSettings& setting
 
 MultipleBounces::~MultipleBounces() {
     device_.waitIdle();
-    for (rhi::TextureHandle t : bounce_)
-        device_.destroy(t);
+    if (!own_)
+        for (rhi::TextureHandle t : bounce_)
+            device_.destroy(t);
+    for (rhi::TextureHandle t : first_)
+        if (t) device_.destroy(t);
     device_.destroy(reflectPipeline_);
     device_.destroy(addPipeline_);
+    if (addFirstPipeline_) device_.destroy(addFirstPipeline_);
     device_.destroy(pointSampler_);
 }
 
-void MultipleBounces::record(rhi::CommandList& cmd, LpvVolumes& volumes, LpvPropagation& propagation,
-                             const GeometryVolume& geometry, uint32_t bounces, uint32_t iterations,
-                             const std::array<rhi::TextureHandle, 3>& result) {
+void MultipleBounces::recordReflect(rhi::CommandList& cmd, LpvVolumes& into, const GeometryVolume& geometry,
+                                    const std::array<rhi::TextureHandle, 3>& source, glm::ivec3 shift) {
     const uint32_t n = settings_.gridSize;
     const uint32_t groups = (n + 3) / 4;
     BounceUniforms u;
     u.grid = glm::ivec4(int(n), 0, 0, 0);
     // The cascade's own range: its light was injected last (LightPropagationVolume::renderIndirect).
+    u.encode = glm::vec4(into.injectedEncodeRange(), into.encoded() ? 1.0f : 0.0f, 0, 0);
+    u.shift = glm::ivec4(shift, 0);
+    cmd.bindPipeline(reflectPipeline_);
+    cmd.pushUniforms(0, &u, sizeof(u));
+    for (uint32_t c = 0; c < 3; ++c) {
+        cmd.bindTexture(4 + c, source[c], pointSampler_);
+        cmd.bindStorageImage(1 + c, into.injected()[c]);
+    }
+    cmd.bindTexture(7, geometry.faceTransmittance(), pointSampler_);
+    cmd.bindTexture(8, geometry.surfelAlbedo(), pointSampler_);
+    cmd.dispatch(groups, groups, groups);
+}
+
+PropagationJob MultipleBounces::job(LpvVolumes& volumes, const GeometryVolume& geometry) {
+    return {&volumes, geometry.faceTransmittance(), &bounce_, nullptr};
+}
+
+void MultipleBounces::recordAdd(rhi::CommandList& cmd, LpvVolumes& volumes,
+                                const std::array<rhi::TextureHandle, 3>& result,
+                                const std::array<rhi::TextureHandle, 3>* first) {
+    const uint32_t n = settings_.gridSize;
+    const uint32_t groups = (n + 3) / 4;
+    BounceUniforms u;
+    u.grid = glm::ivec4(int(n), 0, 0, 0);
     u.encode = glm::vec4(volumes.injectedEncodeRange(), volumes.encoded() ? 1.0f : 0.0f, 0, 0);
+    u.shift = glm::ivec4(0);
+    if (first && !addFirstPipeline_)
+        throw std::logic_error("MultipleBounces::recordAdd: made without keepFirst");
+    cmd.bindPipeline(first ? addFirstPipeline_ : addPipeline_);
+    cmd.pushUniforms(0, &u, sizeof(u));
+    for (uint32_t c = 0; c < 3; ++c) {
+        cmd.bindTexture(1 + c, bounce_[c], pointSampler_);
+        cmd.bindStorageImage(4 + c, result[c]);
+        if (first) cmd.bindTexture(7 + c, (*first)[c], pointSampler_);
+    }
+    if (Rgba8Clipping* clipping = volumes.clipping()) clipping->bind(cmd, volumes.injectedCascade());
+    cmd.dispatch(groups, groups, groups);
+}
+
+void MultipleBounces::record(rhi::CommandList& cmd, LpvVolumes& volumes, LpvPropagation& propagation,
+                             const GeometryVolume& geometry, uint32_t bounces, uint32_t iterations,
+                             const std::array<rhi::TextureHandle, 3>& result,
+                             const std::array<rhi::TextureHandle, 3>* first) {
     // The first further bounce reflects the cascade's light; each later one the previous bounce's.
-    const std::array<rhi::TextureHandle, 3>* source = &result;
+    const std::array<rhi::TextureHandle, 3>* source = first ? first : &result;
     for (uint32_t b = 1; b < bounces; ++b) {
-        cmd.bindPipeline(reflectPipeline_);
-        cmd.pushUniforms(0, &u, sizeof(u));
-        for (uint32_t c = 0; c < 3; ++c) {
-            cmd.bindTexture(4 + c, (*source)[c], pointSampler_);
-            cmd.bindStorageImage(1 + c, volumes.injected()[c]);
-        }
-        cmd.bindTexture(7, geometry.faceTransmittance(), pointSampler_);
-        cmd.bindTexture(8, geometry.surfelAlbedo(), pointSampler_);
-        cmd.dispatch(groups, groups, groups);
-
+        recordReflect(cmd, volumes, geometry, *source);
         propagation.record(cmd, volumes, iterations, geometry.faceTransmittance(), &bounce_);
-
-        cmd.bindPipeline(addPipeline_);
-        cmd.pushUniforms(0, &u, sizeof(u));
-        for (uint32_t c = 0; c < 3; ++c) {
-            cmd.bindTexture(1 + c, bounce_[c], pointSampler_);
-            cmd.bindStorageImage(4 + c, result[c]);
-        }
-        if (Rgba8Clipping* clipping = volumes.clipping()) clipping->bind(cmd, volumes.injectedCascade());
-        cmd.dispatch(groups, groups, groups);
+        recordAdd(cmd, volumes, result, b == 1 ? first : nullptr);
         source = &bounce_;
     }
 }

@@ -153,8 +153,12 @@ private:
     engine::WorkCounts recordOcclusion(const FrameRecording& f, uint32_t c);
     engine::WorkCounts recordInjection(const FrameRecording& f, uint32_t c);
     engine::WorkCounts recordPropagation(const FrameRecording& f, uint32_t c);
-    // Every cascade whose bit is set in `cascades`, propagated together (gi.cascades_together).
-    engine::WorkCounts recordPropagationTogether(const FrameRecording& f, uint32_t cascades);
+    // Every cascade whose bit is set in `cascades`, propagated together (gi.cascades_together), and
+    // with `bounce` the finest cascade's further bounce (recordBounceReflect).
+    engine::WorkCounts recordPropagationTogether(const FrameRecording& f, uint32_t cascades, bool bounce);
+    engine::WorkCounts recordBounceReflect(const FrameRecording& f);
+    // Where cascade c's propagation writes: its result, or the first bounce kept apart.
+    const std::array<rhi::TextureHandle, 3>& propagationTarget(uint32_t c) const;
     // The injection volume and partial sums cascade c uses (its own under gi.cascades_together).
     LpvVolumes& volumesOf(uint32_t c) {
         return c > 0 && !cascadeVolumes_.empty() ? *cascadeVolumes_[c - 1] : *volumes_;
@@ -215,6 +219,10 @@ private:
     uint32_t cascadesValid_ = 0;      // bit c: cascade c's result holds a solution
     uint32_t facesValid_ = 0;         // bit c: the geometry volume holds cascade c's faces (lookup)
     bool deferredBounces_ = false;
+    // The finest cascade's first bounce kept apart (MultipleBounces::first()) holds one, computed at
+    // firstGrid_.
+    bool firstValid_ = false;
+    VolumeGrid firstGrid_;
     // update()'s configuration last accepted, and the scheduler as it was before a changed one
     // (put back when the budget check refuses the change).
     LpvSettings lastConfigured_;

@@ -14,6 +14,10 @@
 #include "gi/LpvPropagation.h"
 #include "gi/LpvVolumes.h"
 
+#include <glm/vec3.hpp>
+
+#include <memory>
+
 namespace lpv::gi {
 
 class GeometryVolume;
@@ -21,23 +25,45 @@ class GeometryVolume;
 class MultipleBounces {
 public:
     // Scratch for one bounce's light (3 SH textures in gi.sh_format), shared by every cascade.
-    MultipleBounces(rhi::Device& device, const LpvSettings& settings, const LpvVolumes& volumes);
+    // `keepFirst` (gi.cascades_together): the finest cascade's first bounce is kept apart (first()),
+    // and the bounces have volumes of their own (ownVolumes()), so that a bounce can propagate with
+    // the cascades from the first bounce of the frame before (LightPropagationVolume).
+    MultipleBounces(rhi::Device& device, const LpvSettings& settings, const LpvVolumes& volumes,
+                    bool keepFirst = false);
     ~MultipleBounces();
     MultipleBounces(const MultipleBounces&) = delete;
     MultipleBounces& operator=(const MultipleBounces&) = delete;
 
     // Adds bounces 2..`bounces` to `result` (the cascade's first-bounce light, just propagated in
     // `volumes` with `geometry`'s faces), each propagated `iterations` times by `propagation`.
-    // Overwrites the injection volume.
+    // Overwrites the injection volume. With `first`: the first bounce is there, and `result`
+    // becomes first + the further bounces.
     void record(rhi::CommandList& cmd, LpvVolumes& volumes, LpvPropagation& propagation,
                 const GeometryVolume& geometry, uint32_t bounces, uint32_t iterations,
-                const std::array<rhi::TextureHandle, 3>& result);
+                const std::array<rhi::TextureHandle, 3>& result,
+                const std::array<rhi::TextureHandle, 3>* first = nullptr);
+
+    // The steps of one further bounce, for a caller that propagates it with other volumes:
+    // reflect `source` (its cell c + `shift` lighting cell c) into `into`'s injection volume...
+    void recordReflect(rhi::CommandList& cmd, LpvVolumes& into, const GeometryVolume& geometry,
+                       const std::array<rhi::TextureHandle, 3>& source, glm::ivec3 shift = glm::ivec3(0));
+    // ... propagate it (into bounce()) ...
+    PropagationJob job(LpvVolumes& volumes, const GeometryVolume& geometry);
+    // ... and add it to `result`, or make `result` `*first` + it.
+    void recordAdd(rhi::CommandList& cmd, LpvVolumes& volumes,
+                   const std::array<rhi::TextureHandle, 3>& result,
+                   const std::array<rhi::TextureHandle, 3>* first = nullptr);
+
+    // keepFirst: the finest cascade's first bounce, and the volumes the bounces propagate in.
+    const std::array<rhi::TextureHandle, 3>* first() const { return own_ ? &first_ : nullptr; }
+    LpvVolumes* ownVolumes() { return own_.get(); }
 
 private:
     rhi::Device& device_;
     LpvSettings settings_;
-    std::array<rhi::TextureHandle, 3> bounce_{};
-    rhi::ComputePipelineHandle reflectPipeline_, addPipeline_;
+    std::unique_ptr<LpvVolumes> own_; // keepFirst; its accumulated() is bounce_
+    std::array<rhi::TextureHandle, 3> bounce_{}, first_{};
+    rhi::ComputePipelineHandle reflectPipeline_, addPipeline_, addFirstPipeline_;
     rhi::SamplerHandle pointSampler_;
 };
 
