@@ -6,6 +6,7 @@
 #include <glm/vec4.hpp>
 
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 #include <string>
 
@@ -41,8 +42,9 @@ constexpr uint32_t kMaxAlbedoSurfels = 0x7fff;
 } // namespace
 
 GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepAlbedo, uint32_t faceSlots,
-                               bool cameraAreas)
-    : device_(device), lpvSize_(lpvSize), layered_(device.caps().vertexShaderLayer) {
+                               bool cameraAreas, bool scratchPerSlot)
+    : device_(device), lpvSize_(lpvSize), layered_(device.caps().vertexShaderLayer),
+      cameraAreas_(cameraAreas) {
     using namespace rhi;
     const uint32_t g = lpvSize + 1;
     // The light's coverage is rendered into (one layered draw, or one per slice), the camera's
@@ -55,9 +57,16 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepA
     // 8 bits are enough: the faces use coverage up to 1 (a cell face fully covered), and additive
     // blending into a unorm target saturates there by itself. The camera's marks keep the same 8
     // bits per axis, packed (gv_packed_atomics.glsl).
-    coverage_ = volume(Format::RGBA8Unorm, g, kTextureColorTarget | kTextureSampled, "gv coverage");
-    cameraMarks_ = volume(Format::R32UI, g, kTextureStorage, "gv camera marks");
     if (faceSlots == 0) throw std::invalid_argument("GeometryVolume: faceSlots must be at least 1");
+    scratch_.resize(scratchPerSlot ? faceSlots : 1);
+    for (Scratch& k : scratch_) {
+        k.coverage = volume(Format::RGBA8Unorm, g, kTextureColorTarget | kTextureSampled, "gv coverage");
+        k.cameraMarks = volume(Format::R32UI, g, kTextureStorage, "gv camera marks");
+        if (cameraAreas)
+            k.cameraAreas =
+                device.createTexture({TextureKind::Tex3D, Format::R32UI, 3 * g, g, g, 1,
+                                      kTextureStorage | kTextureTransfer, "gv camera areas", "gi.gv"});
+    }
     for (uint32_t slot = 0; slot < faceSlots; ++slot)
         faces_.push_back(volume(Format::RGBA8Unorm, lpvSize, kTextureStorage | kTextureSampled,
                                 slot == 0 ? std::string("gv face transmittance")
@@ -96,8 +105,6 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepA
             device.createPipeline(ComputePipelineDesc{&shaders::gv_faces_albedo_comp, "gv faces (albedo)"});
     }
     if (cameraAreas) {
-        cameraAreas_ = device.createTexture({TextureKind::Tex3D, Format::R32UI, 3 * g, g, g, 1,
-                                             kTextureStorage | kTextureTransfer, "gv camera areas", "gi.gv"});
         cameraAreasPipeline_ =
             device.createPipeline(ComputePipelineDesc{&shaders::gv_camera_areas_comp, "gv camera areas"});
         facesAreasPipeline_ = device.createPipeline(
@@ -111,8 +118,11 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepA
 
 GeometryVolume::~GeometryVolume() {
     device_.waitIdle();
-    device_.destroy(coverage_);
-    device_.destroy(cameraMarks_);
+    for (const Scratch& k : scratch_) {
+        device_.destroy(k.coverage);
+        device_.destroy(k.cameraMarks);
+        if (k.cameraAreas) device_.destroy(k.cameraAreas);
+    }
     for (rhi::TextureHandle t : faces_)
         device_.destroy(t);
     if (albedoSums_) {
@@ -129,7 +139,6 @@ GeometryVolume::~GeometryVolume() {
     device_.destroy(gapsPipeline_);
     device_.destroy(facesPipeline_);
     if (cameraAreas_) {
-        device_.destroy(cameraAreas_);
         device_.destroy(cameraAreasPipeline_);
         device_.destroy(facesAreasPipeline_);
         if (facesAreasAlbedoPipeline_) device_.destroy(facesAreasAlbedoPipeline_);
@@ -145,103 +154,142 @@ uint32_t GeometryVolume::cameraSampleCount(uint32_t width, uint32_t height) {
 
 void GeometryVolume::record(rhi::CommandList& cmd, const VolumeGrid& grid, const GeometrySources& src,
                             uint32_t slot) {
+    const Build build{grid, &src, slot};
+    recordTogether(cmd, std::span(&build, 1));
+}
+
+void GeometryVolume::recordTogether(rhi::CommandList& cmd, std::span<const Build> builds) {
     using namespace rhi;
-    const bool areas = src.depth && src.cameraAreas;
-    if (areas && !cameraAreas_)
-        throw std::invalid_argument("GeometryVolume: camera areas asked of a volume made without them");
-    lastSlot_ = std::min(slot, uint32_t(faces_.size()) - 1);
-    cmd.clearTexture(coverage_, {0, 0, 0, 0});
+    constexpr size_t kMaxBuilds = 4;
+    if (builds.size() > kMaxBuilds)
+        throw std::invalid_argument("GeometryVolume: more than 4 builds together");
+    if (builds.size() > 1 && scratch_.size() == 1)
+        throw std::invalid_argument("GeometryVolume: builds together need a volume made with scratchPerSlot");
     const uint32_t g = lpvSize_ + 1;
-    InjectUniforms u{};
-    u.gridOrigin = glm::vec4(grid.origin, grid.cellSize);
-    u.lightDirection = glm::vec4(src.lightDirection, src.vplArea);
-    u.invViewProjection = src.invViewProjection;
-    u.camera = glm::vec4(src.cameraPosition, 0.0f);
-    u.whiteTexelFlux = glm::vec4(src.whiteTexelFlux, 0.0f);
-    u.grid = glm::ivec4(int(g), 0, int(src.vplCount), int(kCameraSamplesPerRow));
-    uint32_t cameraSamples = 0;
-    if (src.depth) {
-        const TextureDesc& d = device_.desc(src.depth);
-        cameraSamples = cameraSampleCount(d.width, d.height);
+    std::array<Plan, kMaxBuilds> plans{};
+    std::array<InjectUniforms, kMaxBuilds> uniforms{};
+    for (size_t b = 0; b < builds.size(); ++b) {
+        const GeometrySources& src = *builds[b].sources;
+        Plan& p = plans[b];
+        p.areas = src.depth && src.cameraAreas;
+        if (p.areas && !cameraAreas_)
+            throw std::invalid_argument("GeometryVolume: camera areas asked of a volume made without them");
+        InjectUniforms& u = uniforms[b];
+        u.gridOrigin = glm::vec4(builds[b].grid.origin, builds[b].grid.cellSize);
+        u.lightDirection = glm::vec4(src.lightDirection, src.vplArea);
+        u.invViewProjection = src.invViewProjection;
+        u.camera = glm::vec4(src.cameraPosition, 0.0f);
+        u.whiteTexelFlux = glm::vec4(src.whiteTexelFlux, 0.0f);
+        u.grid = glm::ivec4(int(g), 0, int(src.vplCount), int(kCameraSamplesPerRow));
+        if (src.depth) {
+            const TextureDesc& d = device_.desc(src.depth);
+            p.cameraSamples = cameraSampleCount(d.width, d.height);
+        }
+        p.marks = p.cameraSamples > 0 && !p.areas;
     }
-    const bool marks = cameraSamples > 0 && !areas;
-    if (marks) {
-        // Where a hole in a wall's coverage is a real gap, asked of the camera's depth once per GV
-        // cell: each mark starts as its cell's gaps, in the top byte, with the marks' bytes clear
-        // (gv_gaps.comp), which is the marks' clear.
-        GapsUniforms gaps{};
-        gaps.gridOrigin = u.gridOrigin;
-        gaps.grid = glm::ivec4(int(g), 0, 0, 0);
-        gaps.viewProjection = src.viewProjection;
-        gaps.invDepthColumn = src.invViewProjection[2];
-        cmd.bindPipeline(gapsPipeline_);
-        cmd.pushUniforms(0, &gaps, sizeof(gaps));
-        cmd.bindTexture(1, src.depth, pointSampler_);
-        cmd.bindStorageImage(3, cameraMarks_);
-        cmd.dispatch((g + 3) / 4, (g + 3) / 4, (g + 3) / 4);
-    } else if (areas) {
-        cmd.clearTexture(cameraAreas_, {0, 0, 0, 0});
+    const auto slotOf = [&](size_t b) { return std::min(builds[b].slot, uint32_t(faces_.size()) - 1); };
+    // Clears, and where a hole in a wall's coverage is a real gap, asked of the camera's depth once
+    // per GV cell: each mark starts as its cell's gaps, in the top byte, with the marks' bytes clear
+    // (gv_gaps.comp), which is the marks' clear.
+    for (size_t b = 0; b < builds.size(); ++b) {
+        const GeometrySources& src = *builds[b].sources;
+        const Scratch& k = scratchOf(slotOf(b));
+        cmd.clearTexture(k.coverage, {0, 0, 0, 0});
+        if (plans[b].marks) {
+            GapsUniforms gaps{};
+            gaps.gridOrigin = uniforms[b].gridOrigin;
+            gaps.grid = glm::ivec4(int(g), 0, 0, 0);
+            gaps.viewProjection = src.viewProjection;
+            gaps.invDepthColumn = src.invViewProjection[2];
+            cmd.bindPipeline(gapsPipeline_);
+            cmd.pushUniforms(0, &gaps, sizeof(gaps));
+            cmd.bindTexture(1, src.depth, pointSampler_);
+            cmd.bindStorageImage(3, k.cameraMarks);
+            cmd.dispatch((g + 3) / 4, (g + 3) / 4, (g + 3) / 4);
+        } else if (plans[b].areas) {
+            cmd.clearTexture(k.cameraAreas, {0, 0, 0, 0});
+        }
     }
-    if (areas || marks) {
-        // A coarse cascade's samples add the areas they stand for (gv_camera_areas.comp); the
-        // finest cascade's each mark up to kCameraPointsPerSample cells (gv_camera_marks.comp).
-        cmd.bindPipeline(areas ? cameraAreasPipeline_ : cameraMarksPipeline_);
-        cmd.pushUniforms(0, &u, sizeof(u));
+    // A coarse cascade's samples add the areas they stand for (gv_camera_areas.comp); the finest
+    // cascade's each mark up to kCameraPointsPerSample cells (gv_camera_marks.comp).
+    for (size_t b = 0; b < builds.size(); ++b) {
+        const Plan& p = plans[b];
+        if (!p.areas && !p.marks) continue;
+        const GeometrySources& src = *builds[b].sources;
+        const Scratch& k = scratchOf(slotOf(b));
+        cmd.bindPipeline(p.areas ? cameraAreasPipeline_ : cameraMarksPipeline_);
+        cmd.pushUniforms(0, &uniforms[b], sizeof(InjectUniforms));
         cmd.bindTexture(1, src.depth, pointSampler_);
         cmd.bindTexture(2, src.normal, pointSampler_);
-        cmd.bindStorageImage(3, areas ? cameraAreas_ : cameraMarks_);
-        cmd.dispatch((cameraSamples + 63) / 64);
+        cmd.bindStorageImage(3, p.areas ? k.cameraAreas : k.cameraMarks);
+        cmd.dispatch((p.cameraSamples + 63) / 64);
+        (p.areas ? areasSlot_ : marksSlot_) = slotOf(b);
     }
     // The camera's albedo in the finest cascade only, as its marks: a coarse cascade's is the
-    // light's.
-    const bool albedo =
-        albedoSums_ && src.surfelAlbedo && addAlbedoSums(cmd, u, src, marks ? cameraSamples : 0);
-    // Asked for with no surfel to give it: none anywhere.
-    if (albedoSums_ && src.surfelAlbedo && !albedo) cmd.clearTexture(albedo_, {0, 0, 0, 0});
+    // light's. One set of sums: one build may gather it.
+    bool gathered = false;
+    for (size_t b = 0; b < builds.size(); ++b) {
+        const GeometrySources& src = *builds[b].sources;
+        if (!albedoSums_ || !src.surfelAlbedo) continue;
+        if (gathered) throw std::invalid_argument("GeometryVolume: two builds together gather albedo");
+        gathered = true;
+        plans[b].albedo = addAlbedoSums(cmd, uniforms[b], src, plans[b].marks ? plans[b].cameraSamples : 0);
+        // Asked for with no surfel to give it: none anywhere.
+        if (!plans[b].albedo) cmd.clearTexture(albedo_, {0, 0, 0, 0});
+    }
     // The light's surfels, as the radiance injection: one layered draw per surfel set, or every set
     // once per slice.
     const uint32_t passes = layered_ ? 1 : g;
-    for (uint32_t slice = 0; slice < passes; ++slice) {
-        RenderPassDesc pass;
-        pass.colors[0] = {coverage_, 0, slice, LoadOp::Load};
-        pass.colors[0].layered = layered_;
-        pass.colorCount = 1;
-        pass.debugName = layered_ ? "gv inject" : "gv inject slice";
-        cmd.beginRenderPass(pass);
-        u.grid.y = int(slice);
-        if (src.vplCount > 0) {
-            cmd.bindPipeline(vplPipeline_);
-            cmd.pushUniforms(0, &u, sizeof(u));
-            cmd.bindStorageBuffer(1, src.vpls);
-            cmd.draw(src.vplCount);
+    for (size_t b = 0; b < builds.size(); ++b) {
+        const GeometrySources& src = *builds[b].sources;
+        InjectUniforms& u = uniforms[b];
+        for (uint32_t slice = 0; slice < passes; ++slice) {
+            RenderPassDesc pass;
+            pass.colors[0] = {scratchOf(slotOf(b)).coverage, 0, slice, LoadOp::Load};
+            pass.colors[0].layered = layered_;
+            pass.colorCount = 1;
+            pass.debugName = layered_ ? "gv inject" : "gv inject slice";
+            cmd.beginRenderPass(pass);
+            u.grid.y = int(slice);
+            if (src.vplCount > 0) {
+                cmd.bindPipeline(vplPipeline_);
+                cmd.pushUniforms(0, &u, sizeof(u));
+                cmd.bindStorageBuffer(1, src.vpls);
+                cmd.draw(src.vplCount);
+            }
+            for (const PointLightSurfels& light : src.pointLights) {
+                if (light.count == 0) continue;
+                InjectUniforms lu = u;
+                lu.grid.z = int(light.count);
+                lu.lightPosition = glm::vec4(light.position, light.vplSolidAngle);
+                lu.lightAxis = glm::vec4(light.axis, 0.0f);
+                cmd.bindPipeline(pointLightPipeline_);
+                cmd.pushUniforms(0, &lu, sizeof(lu));
+                cmd.bindStorageBuffer(1, light.vpls);
+                cmd.draw(light.count);
+            }
+            cmd.endRenderPass();
         }
-        for (const PointLightSurfels& light : src.pointLights) {
-            if (light.count == 0) continue;
-            InjectUniforms lu = u;
-            lu.grid.z = int(light.count);
-            lu.lightPosition = glm::vec4(light.position, light.vplSolidAngle);
-            lu.lightAxis = glm::vec4(light.axis, 0.0f);
-            cmd.bindPipeline(pointLightPipeline_);
-            cmd.pushUniforms(0, &lu, sizeof(lu));
-            cmd.bindStorageBuffer(1, light.vpls);
-            cmd.draw(light.count);
+    }
+    for (size_t b = 0; b < builds.size(); ++b) {
+        const Plan& p = plans[b];
+        const Scratch& k = scratchOf(slotOf(b));
+        // y: camera samples taken (only then is the camera's coverage closed over holes).
+        const glm::ivec4 faceGrid(int(lpvSize_), p.cameraSamples > 0 ? 1 : 0, 0, 0);
+        // Without albedo this build leaves albedo_ as it was (another cascade's, or none).
+        cmd.bindPipeline(p.areas ? (p.albedo ? facesAreasAlbedoPipeline_ : facesAreasPipeline_)
+                                 : (p.albedo ? facesAlbedoPipeline_ : facesPipeline_));
+        cmd.pushUniforms(0, &faceGrid, sizeof(faceGrid));
+        cmd.bindTexture(1, k.coverage, pointSampler_);
+        cmd.bindStorageImage(2, faces_[slotOf(b)]);
+        cmd.bindStorageImage(3, p.areas ? k.cameraAreas : k.cameraMarks);
+        if (p.albedo) {
+            cmd.bindStorageImage(4, albedoSums_);
+            cmd.bindStorageImage(5, albedo_);
         }
-        cmd.endRenderPass();
+        cmd.dispatch((lpvSize_ + 3) / 4, (lpvSize_ + 3) / 4, (lpvSize_ + 3) / 4);
     }
-    // y: camera samples taken (only then is the camera's coverage closed over holes).
-    const glm::ivec4 faceGrid(int(lpvSize_), cameraSamples > 0 ? 1 : 0, 0, 0);
-    // Without albedo this build leaves albedo_ as it was (another cascade's, or none).
-    cmd.bindPipeline(areas ? (albedo ? facesAreasAlbedoPipeline_ : facesAreasPipeline_)
-                           : (albedo ? facesAlbedoPipeline_ : facesPipeline_));
-    cmd.pushUniforms(0, &faceGrid, sizeof(faceGrid));
-    cmd.bindTexture(1, coverage_, pointSampler_);
-    cmd.bindStorageImage(2, faces_[lastSlot_]);
-    cmd.bindStorageImage(3, areas ? cameraAreas_ : cameraMarks_);
-    if (albedo) {
-        cmd.bindStorageImage(4, albedoSums_);
-        cmd.bindStorageImage(5, albedo_);
-    }
-    cmd.dispatch((lpvSize_ + 3) / 4, (lpvSize_ + 3) / 4, (lpvSize_ + 3) / 4);
+    if (!builds.empty()) lastSlot_ = slotOf(builds.size() - 1);
 }
 
 bool GeometryVolume::addAlbedoSums(rhi::CommandList& cmd, const InjectUniforms& base,

@@ -64,12 +64,15 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
             {light + " vpl buffers (6 faces)", "gi.vpl", kCubeFaces * uint64_t(spotLightVplSlots(s)) * 48});
     }
     if (s.occlusion) {
-        out.push_back({"geometry volume coverage, light surfels", "gi.gv", gvCells * 4});
-        out.push_back({"geometry volume coverage, camera surfels", "gi.gv", gvCells * 4});
+        // gi.cascades_together: every cascade's geometry volume is built at once, each in its own.
+        const uint64_t sets = s.propagateTogether() ? s.cascades : 1;
+        out.push_back({"geometry volume coverage, light surfels", "gi.gv", sets * gvCells * 4});
+        out.push_back({"geometry volume coverage, camera surfels", "gi.gv", sets * gvCells * 4});
         // One per cascade with gi.lookup_occlusion: the lookup reads each cascade's.
         out.push_back({"face transmittance", "gi.gv", cells * 4 * s.faceVolumes()});
         // gi.coarse_camera_occlusion: the coarse cascades' camera areas, 3 x R32UI a GV cell.
-        if (s.cameraAreas()) out.push_back({"geometry volume coverage, camera areas", "gi.gv", gvCells * 12});
+        if (s.cameraAreas())
+            out.push_back({"geometry volume coverage, camera areas", "gi.gv", sets * gvCells * 12});
     }
     if (s.bounces > 1) { // needs occlusion (readLpvSettings)
         // Two R32UI a GV cell: a fixed-point mean albedo and a surfel count (gv_albedo_sums_body.glsl).

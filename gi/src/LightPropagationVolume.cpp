@@ -107,7 +107,7 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     facesValid_ = 0;
     if (s.occlusion)
         geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize, s.bounces > 1, s.faceVolumes(),
-                                                     s.cameraAreas());
+                                                     s.cameraAreas(), s.propagateTogether());
     if (s.bounces > 1)
         bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_, s.propagateTogether());
     firstValid_ = false;
@@ -143,7 +143,7 @@ void LightPropagationVolume::replaceUpdateResources(const LpvSettings& s) {
         facesValid_ = 0;
         if (s.occlusion)
             geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize, s.bounces > 1, s.faceVolumes(),
-                                                         s.cameraAreas());
+                                                         s.cameraAreas(), s.propagateTogether());
         if (s.bounces > 1)
             bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_, s.propagateTogether());
         firstValid_ = false;
@@ -413,9 +413,12 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     uint32_t propagated = 0; // bit c: cascade c's result is made anew this frame
     for (uint32_t c = 0; c < cascadeCount(); ++c)
         if (!(validBefore & (1u << c)) || (volumeUpdates_ & (1u << c))) propagated |= 1u << c;
-    // Together, a finer cascade reads the coarser one's result of an earlier frame: one that has
-    // none yet (the first frame) is made first, the cascades then one after another.
-    bool together = settings_.propagateTogether();
+    // Together (gi.cascades_together), every cascade's volume half but its injection runs after
+    // all of them: the geometry volumes built at once, then the propagations. A finer cascade then
+    // reads the coarser one's result of an earlier frame: one that has none yet (the first frame)
+    // is made first, the cascades then propagating one after another.
+    const bool mode = settings_.propagateTogether();
+    bool together = mode;
     for (uint32_t c = 0; c + 1 < cascadeCount(); ++c)
         if ((propagated & (1u << c)) && !(validBefore & (2u << c))) together = false;
     for (uint32_t c = cascadeCount(); c-- > 0;) {
@@ -426,11 +429,22 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         cascadesValid_ |= 1u << c;
         const auto cascadeScope = f.scope(kCascadeScopes[c]);
         if (lightHalf) recordLightHalf(f, c);
-        if (volumeHalf) recordVolumeHalf(f, c, !together);
+        if (volumeHalf) recordVolumeHalf(f, c, !mode);
     }
     // The finest cascade's further bounces run with it: after its propagation, or (together, one
     // further bounce) from its first bounce of the frame before, propagated with the cascades.
     const bool bounced = (propagated & 1u) && bounces_ && settings_.bouncesIn(0) && !deferredBounces_;
+    if (mode && propagated && geometry_)
+        f.pass("occlusion", [&] { return recordOcclusionTogether(f, propagated); });
+    if (mode && propagated && !together) {
+        f.pass("propagate", [&] {
+            engine::WorkCounts work;
+            for (uint32_t c = cascadeCount(); c-- > 0;)
+                if (propagated & (1u << c)) work += recordPropagation(f, c);
+            return work;
+        });
+        if (bounced) f.pass("bounces", [&] { return recordBounces(f, 0); });
+    }
     if (together && propagated) {
         const Cascade& finest = cascades_[0];
         const bool ahead = bounced && bounces_->first() && settings_.bounces == 2 && firstValid_ &&
@@ -475,13 +489,13 @@ void LightPropagationVolume::recordLightHalf(const FrameRecording& f, uint32_t c
 }
 
 // A cascade's volume half, this frame or a later one: its result made anew from the VPLs of its
-// light half, where they were lit; with `propagate` false its propagation waits for the others'
-// (recordPropagationTogether).
-void LightPropagationVolume::recordVolumeHalf(const FrameRecording& f, uint32_t c, bool propagate) {
+// light half, where they were lit; with `whole` false only its injection, its geometry volume and
+// propagation waiting for the other cascades' (renderIndirect).
+void LightPropagationVolume::recordVolumeHalf(const FrameRecording& f, uint32_t c, bool whole) {
     cascades_[c].grid = cascades_[c].lit;
-    if (geometry_) f.pass("occlusion", [&] { return recordOcclusion(f, c); });
+    if (whole && geometry_) f.pass("occlusion", [&] { return recordOcclusion(f, c); });
     f.pass("inject", [&] { return recordInjection(f, c); });
-    if (!propagate) return;
+    if (!whole) return;
     f.pass("propagate", [&] { return recordPropagation(f, c); });
     if (bounces_ && settings_.bouncesIn(c) && !(deferredBounces_ && c == 0))
         f.pass("bounces", [&] { return recordBounces(f, c); });
@@ -515,7 +529,8 @@ engine::WorkCounts LightPropagationVolume::recordVpls(const FrameRecording& f, u
     return vplClusterWork(settings_);
 }
 
-engine::WorkCounts LightPropagationVolume::recordOcclusion(const FrameRecording& f, uint32_t c) {
+GeometrySources LightPropagationVolume::occlusionSources(const FrameRecording& f, uint32_t c,
+                                                         std::span<PointLightSurfels> lights) const {
     const Cascade& cascade = cascades_[c];
     GeometrySources src;
     src.vpls = cascade.vpls;
@@ -539,21 +554,51 @@ engine::WorkCounts LightPropagationVolume::recordOcclusion(const FrameRecording&
     // The surfels' albedo only where the further bounces read it (gi.bounce_cascades).
     src.surfelAlbedo = settings_.bouncesIn(c);
     // The spot and point lights' RSM surfels that can land in this cascade.
-    std::array<PointLightSurfels, SpotLightRsms::kMaxRsms> lights;
-    src.pointLights = std::span(lights.data(), spotRsms_->surfelsReaching(cascade.grid, lights));
+    src.pointLights = lights.first(spotRsms_->surfelsReaching(cascade.grid, lights));
+    return src;
+}
+
+engine::WorkCounts LightPropagationVolume::occlusionWorkOf(const FrameRecording& f,
+                                                           const GeometrySources& src) const {
     uint64_t lightSurfels = 0;
     for (const PointLightSurfels& l : src.pointLights)
         lightSurfels += l.count;
-    // Cascade c's faces go to its own slot, or to the one slot all share (the finest builds last,
-    // so the lookup reads its faces there).
-    const bool shared = geometry_->faceSlots() == 1;
-    geometry_->record(f.cmd, cascade.grid, src, shared ? 0 : c);
-    facesValid_ = (shared ? 0u : facesValid_) | (1u << c);
     const uint64_t cameraSamples =
-        src.depth ? geometry_->cameraSampleCount(f.gbuffer.width, f.gbuffer.height) : 0;
+        src.depth ? GeometryVolume::cameraSampleCount(f.gbuffer.width, f.gbuffer.height) : 0;
     engine::WorkCounts work =
         occlusionWork(settings_, src.cameraAreas ? 0 : cameraSamples, volumeDraw(), lightSurfels);
     if (src.cameraAreas) work += cameraAreasWork(settings_, cameraSamples);
+    return work;
+}
+
+engine::WorkCounts LightPropagationVolume::recordOcclusion(const FrameRecording& f, uint32_t c) {
+    std::array<PointLightSurfels, SpotLightRsms::kMaxRsms> lights;
+    const GeometrySources src = occlusionSources(f, c, lights);
+    // Cascade c's faces go to its own slot, or to the one slot all share (the finest builds last,
+    // so the lookup reads its faces there).
+    const bool shared = geometry_->faceSlots() == 1;
+    geometry_->record(f.cmd, cascades_[c].grid, src, shared ? 0 : c);
+    facesValid_ = (shared ? 0u : facesValid_) | (1u << c);
+    return occlusionWorkOf(f, src);
+}
+
+engine::WorkCounts LightPropagationVolume::recordOcclusionTogether(const FrameRecording& f,
+                                                                   uint32_t cascades) {
+    std::array<std::array<PointLightSurfels, SpotLightRsms::kMaxRsms>, LpvPropagation::kMaxJobs> lights;
+    std::array<GeometrySources, LpvPropagation::kMaxJobs> sources;
+    std::array<GeometryVolume::Build, LpvPropagation::kMaxJobs> builds;
+    size_t count = 0;
+    engine::WorkCounts work;
+    // Coarsest first: the finest builds last, so faceTransmittance() is its faces (the bounces').
+    for (uint32_t c = cascadeCount(); c-- > 0;) {
+        if (!(cascades & (1u << c))) continue;
+        sources[count] = occlusionSources(f, c, lights[count]);
+        builds[count] = {cascades_[c].grid, &sources[count], c};
+        work += occlusionWorkOf(f, sources[count]);
+        facesValid_ |= 1u << c;
+        ++count;
+    }
+    geometry_->recordTogether(f.cmd, std::span(builds.data(), count));
     return work;
 }
 
@@ -576,9 +621,12 @@ engine::WorkCounts LightPropagationVolume::recordPropagation(const FrameRecordin
     const bool coarser = c + 1 < cascades_.size();
     CascadeHandoff handoff;
     if (coarser) handoff = handoffInto(c);
-    propagation_->record(f.cmd, volumesOf(c), settings_.iterations,
-                         geometry_ ? geometry_->faceTransmittance() : rhi::TextureHandle{},
-                         &propagationTarget(c), coarser ? &handoff : nullptr);
+    // Its own faces (every cascade's may be built by now), or the one slot all share.
+    const rhi::TextureHandle faces =
+        geometry_ ? geometry_->faceTransmittance(std::min(c, geometry_->faceSlots() - 1))
+                  : rhi::TextureHandle{};
+    propagation_->record(f.cmd, volumesOf(c), settings_.iterations, faces, &propagationTarget(c),
+                         coarser ? &handoff : nullptr);
     cascades_[c].resultGrid = cascades_[c].grid;
     return propagateWork(settings_);
 }

@@ -125,7 +125,9 @@ TEST_CASE("cli: the sample game's config is valid and turns GI on") {
     while (std::fgets(buffer.data(), int(buffer.size()), f))
         summary += buffer.data();
     std::fclose(f);
-    CHECK(summary.find("gi/cascade0/propagate") != std::string::npos);
+    // The cascades propagate together (gi.cascades_together), after each cascade's injection.
+    CHECK(summary.find("gi/propagate") != std::string::npos);
+    CHECK(summary.find("gi/cascade0/inject") != std::string::npos);
 }
 
 // ./lpv.sh run passes its own --screenshot and --profile-out before the caller's: the last wins.

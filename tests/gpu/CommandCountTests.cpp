@@ -87,18 +87,19 @@ Pinned pinnedFor(rhi::BackendKind kind) {
         // dispatch's). A render pass owes its own (its targets back home) to the next command,
         // which pays it in its own (82 -> 76). The cascades propagate together, one stage per step
         // for all three (76 -> 58; GI chain 62 -> 44), and the finest cascade's further bounce with
-        // them, from its first bounce of the frame before (58 -> 49; GI chain 44 -> 35). The
+        // them, from its first bounce of the frame before (58 -> 49; GI chain 44 -> 35), and the
+        // cascades' geometry volumes are built together (49 -> 45; GI chain 35 -> 31). The
         // conservative rule: a barrier after every command, as the issue counted at the loader
         // (100 vkCmdPipelineBarrier2 calls). The GI's stages are its dependent-pass chain.
-        return {{50, 109, 852, 49, 41}, {50, 105, 418, 40, 35},  "gi/cascade0/inject",  {0, 16, 0, 1, 1},
+        return {{50, 109, 852, 45, 37}, {50, 105, 418, 36, 31},  "gi/cascade0/inject",  {0, 16, 0, 1, 1},
                 {36, 0, 0, 9, 9},       {50, 109, 852, 100, 68}, {50, 105, 418, 86, 62}};
     // GL: a command pays one glMemoryBarrier, with the bits it needs, only where it touches what
     // earlier shaders stored to (or stores to what they read) since a barrier covered it
     // (GlHazards.h); GL orders framebuffer writes, clears and copies with later commands itself.
-    // The cascades and the further bounce propagate together (48 -> 29 -> 21; GI chain 47 -> 28 ->
-    // 20). The conservative rule: glMemoryBarrier(GL_ALL_BARRIER_BITS) after every dispatch, render
-    // pass and transfer (84).
-    return {{50, 19, 852, 21, 21}, {50, 15, 418, 20, 20}, "render.gbuffer",     {0, 0, 217, 0, 0},
+    // The cascades and the further bounce propagate together, and the cascades' geometry volumes
+    // are built together (48 -> 29 -> 21 -> 19; GI chain 47 -> 28 -> 20 -> 18). The conservative
+    // rule: glMemoryBarrier(GL_ALL_BARRIER_BITS) after every dispatch, render pass and transfer (84).
+    return {{50, 19, 852, 19, 19}, {50, 15, 418, 18, 18}, "render.gbuffer",     {0, 0, 217, 0, 0},
             {36, 0, 0, 9, 9},      {50, 19, 852, 84, 68}, {50, 15, 418, 77, 62}};
 }
 

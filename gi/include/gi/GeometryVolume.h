@@ -67,8 +67,10 @@ public:
     // so that the lookup can read every cascade's after all were built.
     // cameraAreas: keep the volume the coarse cascades' camera samples add their areas into
     // (GeometrySources::cameraAreas; 12 bytes per GV cell).
+    // scratchPerSlot: each face slot gets its own coverage volumes too, so that recordTogether can
+    // build every slot's at once (gi.cascades_together).
     GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepAlbedo, uint32_t faceSlots = 1,
-                   bool cameraAreas = false);
+                   bool cameraAreas = false, bool scratchPerSlot = false);
     ~GeometryVolume();
     GeometryVolume(const GeometryVolume&) = delete;
     GeometryVolume& operator=(const GeometryVolume&) = delete;
@@ -77,6 +79,17 @@ public:
     // transmittance into face slot `slot`.
     void record(rhi::CommandList& cmd, const VolumeGrid& grid, const GeometrySources& sources,
                 uint32_t slot = 0);
+    // One build of recordTogether: what record() takes.
+    struct Build {
+        VolumeGrid grid;
+        const GeometrySources* sources = nullptr;
+        uint32_t slot = 0;
+    };
+    // Several builds (up to 4, distinct slots of a volume made with scratchPerSlot, at most one
+    // gathering albedo) recorded phase by phase, each phase of all of them before the next: the
+    // builds do not depend on each other, so each phase is one stage of the GPU's dependent chain.
+    // The last build's slot is the one faceTransmittance() then gives.
+    void recordTogether(rhi::CommandList& cmd, std::span<const Build> builds);
 
     // Per LPV cell: transmittance of its -x, -y, -z faces (RGBA8, xyz), of the last record()
     // (propagation and bounces read it), or of a slot's (the lookup, for each cascade).
@@ -86,12 +99,14 @@ public:
     // Per GV cell (lpvSize + 1 per axis): projected coverage along x, y, z from the light's
     // surfels (RGBA8), and the finest cascade's camera marks: per axis the largest |n| its samples
     // saw there (R32UI, packUnorm4x8 of x, y, z, as glm::unpackUnorm4x8 reads it; the top byte
-    // holds its real gaps, bit `axis` set where the camera sees through it, gv_gaps.comp).
-    rhi::TextureHandle lightCoverage() const { return coverage_; }
-    rhi::TextureHandle cameraMarks() const { return cameraMarks_; }
+    // holds its real gaps, bit `axis` set where the camera sees through it, gv_gaps.comp): the
+    // last build's coverage and the last marks taken.
+    rhi::TextureHandle lightCoverage() const { return scratchOf(lastSlot_).coverage; }
+    rhi::TextureHandle cameraMarks() const { return scratchOf(marksSlot_).cameraMarks; }
     // Per GV cell g and axis a, texel (3 g.x + a, g.y, g.z): a coarse cascade's camera coverage
-    // along a (R32UI, fixed point: gv_camera_areas.glsl). None unless made with cameraAreas.
-    rhi::TextureHandle cameraAreas() const { return cameraAreas_; }
+    // along a (R32UI, fixed point: gv_camera_areas.glsl), the last taken. None unless made with
+    // cameraAreas.
+    rhi::TextureHandle cameraAreas() const { return scratchOf(areasSlot_).cameraAreas; }
     // Per LPV cell: the mean albedo of the surfels at its corners (RGBA8, rgb; a: 1 where any),
     // what multiple bounces reflect with. None unless made with keepAlbedo.
     rhi::TextureHandle surfelAlbedo() const { return albedo_; }
@@ -105,12 +120,26 @@ private:
     bool addAlbedoSums(rhi::CommandList& cmd, const InjectUniforms& base, const GeometrySources& src,
                        uint32_t cameraSamples);
 
+    // The coverage a build fills before its faces pass reads it: one set, or one per face slot.
+    struct Scratch {
+        rhi::TextureHandle coverage, cameraMarks;
+        rhi::TextureHandle cameraAreas; // made with cameraAreas
+    };
+    const Scratch& scratchOf(uint32_t slot) const { return scratch_[scratch_.size() > 1 ? slot : 0]; }
+    // A build's choices, made before its phases (recordTogether).
+    struct Plan {
+        bool areas = false, marks = false, albedo = false;
+        uint32_t cameraSamples = 0;
+    };
+
     rhi::Device& device_;
     uint32_t lpvSize_;
     bool layered_; // points in one layered draw (rhi Caps::vertexShaderLayer)
-    rhi::TextureHandle coverage_, cameraMarks_;
+    std::vector<Scratch> scratch_;
     std::vector<rhi::TextureHandle> faces_;
     uint32_t lastSlot_ = 0;
+    // The last builds that took the camera's marks and its areas: whose the accessors give.
+    uint32_t marksSlot_ = 0, areasSlot_ = 0;
     rhi::GraphicsPipelineHandle vplPipeline_, pointLightPipeline_;
     rhi::ComputePipelineHandle cameraMarksPipeline_, gapsPipeline_, facesPipeline_;
     // With keepAlbedo: per GV cell (texels 2 g.x and 2 g.x + 1) its surfels' mean albedo in fixed
@@ -121,8 +150,8 @@ private:
     // [pass: 0 counts, 1 adds][the camera's samples, the sun's VPLs, both]
     rhi::ComputePipelineHandle albedoPipelines_[2][3];
     rhi::ComputePipelineHandle facesAlbedoPipeline_;
-    // With cameraAreas: the volume, the pass that fills it, and the faces pass that reads it.
-    rhi::TextureHandle cameraAreas_;
+    // With cameraAreas (Scratch::cameraAreas): the pass that fills it, and the faces pass that reads it.
+    bool cameraAreas_ = false;
     rhi::ComputePipelineHandle cameraAreasPipeline_, facesAreasPipeline_, facesAreasAlbedoPipeline_;
     rhi::SamplerHandle pointSampler_;
 };

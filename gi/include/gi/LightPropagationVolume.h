@@ -146,11 +146,17 @@ private:
     struct FrameRecording;
     void recordLightHalf(const FrameRecording& f, uint32_t c); // rsm, vpl
     void recordVolumeHalf(const FrameRecording& f, uint32_t c,
-                          bool propagate); // occlusion, inject, propagate, bounces
+                          bool whole); // occlusion, inject, propagate, bounces
     engine::WorkCounts recordLightRsms(const FrameRecording& f);
     engine::WorkCounts recordRsm(const FrameRecording& f, uint32_t c);
     engine::WorkCounts recordVpls(const FrameRecording& f, uint32_t c);
     engine::WorkCounts recordOcclusion(const FrameRecording& f, uint32_t c);
+    // Every cascade whose bit is set in `cascades`, their geometry volumes built together.
+    engine::WorkCounts recordOcclusionTogether(const FrameRecording& f, uint32_t cascades);
+    // What cascade c's geometry volume is built from (`lights`: room for the point lights' surfels).
+    GeometrySources occlusionSources(const FrameRecording& f, uint32_t c,
+                                     std::span<PointLightSurfels> lights) const;
+    engine::WorkCounts occlusionWorkOf(const FrameRecording& f, const GeometrySources& src) const;
     engine::WorkCounts recordInjection(const FrameRecording& f, uint32_t c);
     engine::WorkCounts recordPropagation(const FrameRecording& f, uint32_t c);
     // Every cascade whose bit is set in `cascades`, propagated together (gi.cascades_together), and
