@@ -434,23 +434,22 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     // The finest cascade's further bounces run with it: after its propagation, or (together, one
     // further bounce) from its first bounce of the frame before, propagated with the cascades.
     const bool bounced = (propagated & 1u) && bounces_ && settings_.bouncesIn(0) && !deferredBounces_;
-    if (mode && propagated && geometry_)
-        f.pass("occlusion", [&] { return recordOcclusionTogether(f, propagated); });
-    if (mode && propagated && !together) {
+    if (mode && propagated) {
+        if (geometry_) f.pass("occlusion", [&] { return recordOcclusionTogether(f, propagated); });
+        // One further bounce goes with the cascades, from the finest's first bounce of the frame
+        // before where it was placed at the same cell size; otherwise the bounces follow.
+        const Cascade& finest = cascades_[0];
+        const bool ahead = together && bounced && bounces_->first() && settings_.bounces == 2 &&
+                           firstValid_ && firstGrid_.cellSize == finest.grid.cellSize &&
+                           firstGrid_.size == finest.grid.size;
+        if (ahead) f.pass("bounces", [&] { return recordBounceReflect(f); });
         f.pass("propagate", [&] {
+            if (together) return recordPropagationTogether(f, propagated, ahead);
             engine::WorkCounts work;
             for (uint32_t c = cascadeCount(); c-- > 0;)
                 if (propagated & (1u << c)) work += recordPropagation(f, c);
             return work;
         });
-        if (bounced) f.pass("bounces", [&] { return recordBounces(f, 0); });
-    }
-    if (together && propagated) {
-        const Cascade& finest = cascades_[0];
-        const bool ahead = bounced && bounces_->first() && settings_.bounces == 2 && firstValid_ &&
-                           firstGrid_.cellSize == finest.grid.cellSize && firstGrid_.size == finest.grid.size;
-        if (ahead) f.pass("bounces", [&] { return recordBounceReflect(f); });
-        f.pass("propagate", [&] { return recordPropagationTogether(f, propagated, ahead); });
         if (ahead)
             f.pass("bounces.add", [&] {
                 bounces_->recordAdd(f.cmd, *bounces_->ownVolumes(), finest.result, bounces_->first());
