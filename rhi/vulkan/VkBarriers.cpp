@@ -20,14 +20,6 @@ VkMemoryBarrier2 allWritesVisibleAt(VkPipelineStageFlags2 dstStages, VkAccessFla
     return barrier;
 }
 
-void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 dstStages, VkAccessFlags2 dstAccess) {
-    const VkMemoryBarrier2 barrier = allWritesVisibleAt(dstStages, dstAccess);
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &barrier;
-    cmdPipelineBarrier2(cmd, dep);
-}
-
 } // namespace
 
 void cmdPipelineBarrier2(VkCommandBuffer cmd, const VkDependencyInfo& dep) {
@@ -41,10 +33,6 @@ uint64_t pipelineBarrierCalls() {
 
 void fullBarrier(VkCommandBuffer cmd) {
     BarrierBatch(cmd).memory();
-}
-
-void hostReadBarrier(VkCommandBuffer cmd) {
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
 }
 
 void BarrierBatch::transition(VulkanTexture& texture, uint32_t baseMip, uint32_t mipCount,
@@ -78,16 +66,21 @@ void BarrierBatch::transition(VulkanTexture& texture, uint32_t baseMip, uint32_t
 }
 
 void BarrierBatch::flush() {
-    if (imageCount_ == 0 && !memory_) return;
-    const VkMemoryBarrier2 barrier = allWritesVisibleAt(kAllStages, kAllAccess);
+    if (empty()) return;
+    std::array<VkMemoryBarrier2, 2> barriers{};
+    uint32_t count = 0;
+    if (memory_) barriers[count++] = allWritesVisibleAt(kAllStages, kAllAccess);
+    if (hostRead_)
+        barriers[count++] = allWritesVisibleAt(VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.memoryBarrierCount = memory_ ? 1 : 0;
-    dep.pMemoryBarriers = &barrier;
+    dep.memoryBarrierCount = count;
+    dep.pMemoryBarriers = barriers.data();
     dep.imageMemoryBarrierCount = imageCount_;
     dep.pImageMemoryBarriers = images_.data();
     cmdPipelineBarrier2(cmd_, dep);
     imageCount_ = 0;
     memory_ = false;
+    hostRead_ = false;
 }
 
 } // namespace lpv::rhi::vk

@@ -32,8 +32,11 @@ public:
     }
     // All earlier writes visible to every later stage and access.
     void memory() { memory_ = true; }
+    // All earlier writes made available to the host (for MemoryAccess::HostRead buffers, read after the
+    // frame's fence, which covers device access only), in the same call.
+    void hostRead() { hostRead_ = true; }
     // Nothing to record yet.
-    bool empty() const { return imageCount_ == 0 && !memory_; }
+    bool empty() const { return imageCount_ == 0 && !memory_ && !hostRead_; }
     void flush();
 
 private:
@@ -41,6 +44,7 @@ private:
     std::array<VkImageMemoryBarrier2, 32> images_; // the first imageCount_ are set, each when added
     uint32_t imageCount_ = 0;
     bool memory_ = false;
+    bool hostRead_ = false;
 };
 
 // Every vkCmdPipelineBarrier2 of the backend goes through here, which counts it.
@@ -51,10 +55,6 @@ uint64_t pipelineBarrierCalls();
 
 // A full memory barrier: all earlier writes visible to every later stage and access.
 void fullBarrier(VkCommandBuffer cmd);
-
-// Every earlier write made available to the host, for the frame's fence wait to make visible
-// (a fence alone covers device access only): MemoryAccess::HostRead buffers.
-void hostReadBarrier(VkCommandBuffer cmd);
 
 // One texture's move, as BarrierBatch::transition, recorded at once.
 inline void transition(VkCommandBuffer cmd, VulkanTexture& texture, uint32_t baseMip, uint32_t mipCount,

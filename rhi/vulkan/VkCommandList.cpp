@@ -32,7 +32,11 @@ void VulkanCommandList::begin(VkCommandBuffer cmd) {
     markerDepth_ = 0;
     owed_ = false;
     passOwed_ = false;
+    rendering_ = false;
     writtenCount_ = readCount_ = 0;
+    writtenOverflow_ = readOverflow_ = false;
+    vertexBuffers_ = {};
+    indexBuffer_ = 0;
 }
 
 void VulkanCommandList::resetCounts() {
@@ -48,7 +52,13 @@ CommandCounts VulkanCommandList::counts() const {
 
 void VulkanCommandList::finish() {
     if (inPass_) throw Error("endFrame() inside a render pass: call endRenderPass() first");
-    payAll();
+    // What is owed, and every write made available to the host (MemoryAccess::HostRead buffers,
+    // read after the frame's fence), in one call.
+    BarrierBatch batch(cmd_);
+    payPass(batch);
+    payOwed(&batch);
+    batch.hostRead();
+    batch.flush();
     while (markerDepth_ > 0) {
         endLabel();
         --markerDepth_;
@@ -98,27 +108,20 @@ void VulkanCommandList::beginRenderPass(const RenderPassDesc& desc) {
     if (desc.colorCount == 0 && !desc.depth.texture) throw Error("beginRenderPass: no color or depth target");
     device_.flushNewTextures(cmd_);
 
-    // Every attachment moves to its attachment layout before rendering begins: barriers are not
-    // allowed inside a dynamic rendering instance.
-    std::array<VkRenderingAttachmentInfo, RenderPassDesc::kMaxColorTargets> colors{};
-    BarrierBatch barriers(cmd_);
-    // What dispatches and the last pass owe, in the same call as the attachments' moves; the last
-    // pass's targets this one draws to stay where they are.
-    std::array<PassTarget, RenderPassDesc::kMaxColorTargets + 1> next{};
-    uint32_t nextCount = 0;
-    for (uint32_t i = 0; i < desc.colorCount && i < RenderPassDesc::kMaxColorTargets; ++i)
-        next[nextCount++] = {desc.colors[i].texture, desc.colors[i].mipLevel};
-    if (desc.depth.texture) next[nextCount++] = {desc.depth.texture, 0};
-    payPass(barriers, std::span(next.data(), nextCount));
-    payOwed(&barriers);
-    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    passTargetCount_ = 0;
+    // The attachments, and the layout each is drawn in: in GENERAL where that is its home (a
+    // storage image, such as the LPV's injection volumes, or every texture with unified layouts),
+    // so it needs no move there and back around each pass (30% of the injection's time on an
+    // NVIDIA H100 when it moved).
+    std::array<PassTarget, RenderPassDesc::kMaxColorTargets + 1> targets{};
+    uint32_t targetCount = 0;
     passExtent_ = {0, 0};
+    passColors_ = {};
+    passDepth_ = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     const bool layered = isLayeredPass(desc, device_.caps());
     uint32_t layerCount = 1;
     auto checkExtent = [&](const VulkanTexture& t, uint32_t mip) {
         const VkExtent2D e{t.width(mip), t.height(mip)};
-        if (passTargetCount_ == 0) {
+        if (targetCount == 0) {
             passExtent_ = e;
         } else if (e.width < passExtent_.width || e.height < passExtent_.height) {
             throw Error("beginRenderPass '" + std::string(desc.debugName) + "': target '" + t.desc.debugName +
@@ -136,14 +139,10 @@ void VulkanCommandList::beginRenderPass(const RenderPassDesc& desc) {
         checkExtent(t, a.mipLevel);
         if (layered)
             layerCount = layeredTargetLayers(desc, i, t.desc, t.targetLayers(a.mipLevel), layerCount);
-        // A storage image (home GENERAL) is drawn to in GENERAL: no move there and back around each
-        // pass (the LPV's injection, 3D targets written by draws and by dispatches; 30% of the
-        // injection's time on an NVIDIA H100).
         const VkImageLayout layout = t.home == VK_IMAGE_LAYOUT_GENERAL
                                          ? VK_IMAGE_LAYOUT_GENERAL
                                          : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        barriers.transition(t, a.mipLevel, 1, layout);
-        VkRenderingAttachmentInfo& c = colors[i];
+        VkRenderingAttachmentInfo& c = passColors_[i];
         c = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         c.imageView =
             layered ? t.layeredViews[a.mipLevel] : t.targetViews[t.targetBase[a.mipLevel] + a.layer];
@@ -157,7 +156,7 @@ void VulkanCommandList::beginRenderPass(const RenderPassDesc& desc) {
             for (int k = 0; k < 4; ++k)
                 c.clearValue.color.float32[k] = a.clearColor[k];
         }
-        passTargets_[passTargetCount_++] = {a.texture, a.mipLevel};
+        targets[targetCount++] = {a.texture, a.mipLevel, layout};
     }
     if (desc.depth.texture) {
         const DepthAttachment& a = desc.depth;
@@ -168,40 +167,120 @@ void VulkanCommandList::beginRenderPass(const RenderPassDesc& desc) {
             throw Error("beginRenderPass: depth texture '" + t.desc.debugName + "' has no layer " +
                         std::to_string(a.layer));
         checkExtent(t, 0);
-        barriers.transition(t, 0, 1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
-        depth.imageView = t.targetViews[t.targetBase[0] + a.layer];
-        depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-        depth.loadOp = toVkLoadOp(a.load);
-        depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        depth.clearValue.depthStencil = {a.clearDepth, a.clearStencil};
-        passTargets_[passTargetCount_++] = {a.texture, 0};
+        const VkImageLayout layout = t.home == VK_IMAGE_LAYOUT_GENERAL
+                                         ? VK_IMAGE_LAYOUT_GENERAL
+                                         : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+        passDepth_.imageView = t.targetViews[t.targetBase[0] + a.layer];
+        passDepth_.imageLayout = layout;
+        passDepth_.loadOp = toVkLoadOp(a.load);
+        passDepth_.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        passDepth_.clearValue.depthStencil = {a.clearDepth, a.clearStencil};
+        targets[targetCount++] = {a.texture, 0, layout};
     }
 
-    barriers.flush();
-    beginLabel(desc.debugName);
-    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    info.renderArea = {{0, 0}, passExtent_};
-    info.layerCount = layerCount;
-    info.colorAttachmentCount = desc.colorCount;
-    info.pColorAttachments = colors.data();
-    info.pDepthAttachment = desc.depth.texture ? &depth : nullptr;
+    passInfo_ = {VK_STRUCTURE_TYPE_RENDERING_INFO};
+    passInfo_.renderArea = {{0, 0}, passExtent_};
+    passInfo_.layerCount = layerCount;
+    passInfo_.colorAttachmentCount = desc.colorCount;
+    passInfo_.pColorAttachments = passColors_.data();
+    passInfo_.pDepthAttachment = desc.depth.texture ? &passDepth_ : nullptr;
     // A depth format with a stencil: one attachment, both aspects.
     const bool stencil =
         desc.depth.texture && hasStencil(device_.textures.get(desc.depth.texture).desc.format);
-    info.pStencilAttachment = stencil ? &depth : nullptr;
-    vkCmdBeginRendering(cmd_, &info);
+    passInfo_.pStencilAttachment = stencil ? &passDepth_ : nullptr;
+
     inPass_ = true;
+    rendering_ = false;
+    // With unified layouts a pass has no moves of its own: it begins at its first draw, when what
+    // the draws bind is known, behind a barrier only if they or its targets meet a hazard.
+    deferredBegin_ = device_.unifiedImageLayouts();
+    if (!deferredBegin_) {
+        // Every attachment moves to its attachment layout before rendering begins (no barriers
+        // inside a dynamic rendering instance), in one call with what dispatches and the last pass
+        // owe; the last pass's targets this one draws to stay where they are.
+        BarrierBatch barriers(cmd_);
+        payPass(barriers, std::span(targets.data(), targetCount));
+        payOwed(&barriers);
+        for (uint32_t i = 0; i < targetCount; ++i)
+            barriers.transition(device_.textures.get(targets[i].texture), targets[i].mip, 1,
+                                targets[i].layout);
+    }
+    passTargets_ = targets;
+    passTargetCount_ = targetCount;
+    beginLabel(desc.debugName);
+    if (!deferredBegin_) startRendering(nullptr);
 
     // The RHI's rule: viewport and scissor start as the whole first target.
     setViewport({0.0f, 0.0f, float(passExtent_.width), float(passExtent_.height), 0.0f, 1.0f});
     setScissor(0, 0, passExtent_.width, passExtent_.height);
 }
 
+void VulkanCommandList::startRendering(const VulkanPipeline* firstDraw) {
+    if (deferredBegin_) {
+        // Its targets (moved only if something left them elsewhere) and the first draw's
+        // bindings: a barrier only at a hazard.
+        BarrierBatch barriers(cmd_);
+        bool hazard = device_.conservativeBarriers();
+        for (uint32_t i = 0; i < passTargetCount_; ++i) {
+            VulkanTexture& t = device_.textures.get(passTargets_[i].texture);
+            barriers.transition(t, passTargets_[i].mip, 1, passTargets_[i].layout);
+            hazard = hazard || owedHazard(uint64_t(t.image), true);
+        }
+        if (firstDraw) hazard = hazard || drawHazard(*firstDraw);
+        if (hazard || !barriers.empty()) payOwed(&barriers);
+    }
+    vkCmdBeginRendering(cmd_, &passInfo_);
+    rendering_ = true;
+}
+
+void VulkanCommandList::beforeDraw(const VulkanPipeline& p) {
+    if (!deferredBegin_) return;
+    if (!rendering_) {
+        startRendering(&p);
+        return;
+    }
+    // A later draw binds what an earlier command left unordered (the first draw's bindings were
+    // ordered at the begin): the pass stops for the barrier and goes on where it was.
+    if (!drawHazard(p)) return;
+    vkCmdEndRendering(cmd_);
+    for (uint32_t i = 0; i < passTargetCount_; ++i)
+        owe(uint64_t(device_.textures.get(passTargets_[i].texture).image), true);
+    payOwed();
+    for (VkRenderingAttachmentInfo& c : passColors_)
+        c.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    passDepth_.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    vkCmdBeginRendering(cmd_, &passInfo_);
+}
+
+bool VulkanCommandList::drawHazard(const VulkanPipeline& p) const {
+    if (dispatchHazard(p) || owedHazard(indexBuffer_, false)) return true;
+    return std::any_of(vertexBuffers_.begin(), vertexBuffers_.end(),
+                       [&](uint64_t b) { return owedHazard(b, false); });
+}
+
+void VulkanCommandList::noteDrawAccesses(const VulkanPipeline& p) {
+    if (!deferredBegin_) return;
+    noteDispatchAccesses(p);
+    owe(indexBuffer_, false);
+    for (uint64_t b : vertexBuffers_)
+        owe(b, false);
+}
+
 void VulkanCommandList::endRenderPass() {
     requirePass(true, "endRenderPass");
+    if (!rendering_) startRendering(nullptr); // no draws: the begin still clears
     vkCmdEndRendering(cmd_);
     endLabel();
     inPass_ = false;
+    rendering_ = false;
+    if (deferredBegin_) {
+        // Its targets are written like a dispatch's storage images: owed to whatever touches them.
+        for (uint32_t i = 0; i < passTargetCount_; ++i)
+            owe(uint64_t(device_.textures.get(passTargets_[i].texture).image), true);
+        passTargetCount_ = 0;
+        if (device_.conservativeBarriers()) payOwed();
+        return;
+    }
     // Its barrier is owed to the next command (payPass); at once under the conservative rule.
     passOwed_ = true;
     if (device_.conservativeBarriers()) {
@@ -270,7 +349,11 @@ void VulkanCommandList::bindVertexBuffer(uint32_t slotIndex, BufferHandle buffer
     requireFrame("bindVertexBuffer");
     const VulkanBuffer& b = device_.buffers.get(buffer);
     if (!(b.desc.usage & kBufferVertex)) throw Error("buffer '" + b.desc.debugName + "' lacks kBufferVertex");
+    if (slotIndex >= vertexBuffers_.size())
+        throw Error("bindVertexBuffer: slot " + std::to_string(slotIndex) +
+                    " >= " + std::to_string(vertexBuffers_.size()));
     vkCmdBindVertexBuffers(cmd_, slotIndex, 1, &b.buffer, &offset);
+    vertexBuffers_[slotIndex] = uint64_t(b.buffer);
 }
 
 void VulkanCommandList::bindIndexBuffer(BufferHandle buffer, IndexType type, uint64_t offset) {
@@ -279,6 +362,7 @@ void VulkanCommandList::bindIndexBuffer(BufferHandle buffer, IndexType type, uin
     if (!(b.desc.usage & kBufferIndex)) throw Error("buffer '" + b.desc.debugName + "' lacks kBufferIndex");
     vkCmdBindIndexBuffer(cmd_, b.buffer, offset,
                          type == IndexType::Uint16 ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32);
+    indexBuffer_ = uint64_t(b.buffer);
 }
 
 void VulkanCommandList::bindBuffer(uint32_t binding, BufferHandle buffer, uint64_t offset, uint64_t size,
@@ -392,7 +476,9 @@ void VulkanCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint3
     requirePass(true, "draw");
     if (!graphics_) throw Error("draw without a graphics pipeline");
     const VulkanPipeline& p = device_.graphicsPipelines.get(graphics_);
+    beforeDraw(p);
     pushBindings(p);
+    noteDrawAccesses(p);
     // Split point lists (see pointChunk in VkPipelines.cpp) keep their order only with one
     // instance: instances are the outer loop of a draw.
     if (p.pointChunk == 0 || instanceCount != 1) {
@@ -412,7 +498,10 @@ void VulkanCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount,
                                     int32_t vertexOffset, uint32_t firstInstance) {
     requirePass(true, "drawIndexed");
     if (!graphics_) throw Error("drawIndexed without a graphics pipeline");
-    pushBindings(device_.graphicsPipelines.get(graphics_));
+    const VulkanPipeline& p = device_.graphicsPipelines.get(graphics_);
+    beforeDraw(p);
+    pushBindings(p);
+    noteDrawAccesses(p);
     vkCmdDrawIndexed(cmd_, indexCount, instanceCount, firstIndex, vertexOffset, firstInstance);
     ++counts_.drawsIndexed;
     countStage(pipelineBarrierCalls());
@@ -437,6 +526,7 @@ void VulkanCommandList::dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t gr
 
 bool VulkanCommandList::owedHazard(uint64_t resource, bool writes) const {
     if (!owed_ || resource == 0) return false;
+    if (writtenOverflow_ || (writes && readOverflow_)) return true;
     const auto in = [](const auto& set, uint32_t n, uint64_t r) {
         return std::find(set.begin(), set.begin() + n, r) != set.begin() + n;
     };
@@ -457,10 +547,9 @@ void VulkanCommandList::owe(uint64_t resource, bool writes) {
     auto& set = writes ? written_ : read_;
     uint32_t& n = writes ? writtenCount_ : readCount_;
     if (std::find(set.begin(), set.begin() + n, resource) != set.begin() + n) return;
-    if (n == kMaxTracked) { // too many to track: pay now, start over
-        payOwed();
-        owed_ = true;
-        return owe(resource, writes);
+    if (n == kMaxTracked) { // too many to track (and no barrier inside a render pass): all count
+        (writes ? writtenOverflow_ : readOverflow_) = true;
+        return;
     }
     set[n++] = resource;
 }
@@ -479,6 +568,7 @@ bool VulkanCommandList::payOwed(BarrierBatch* batch) {
         fullBarrier(cmd_);
     owed_ = false;
     writtenCount_ = readCount_ = 0;
+    writtenOverflow_ = readOverflow_ = false;
     return true;
 }
 

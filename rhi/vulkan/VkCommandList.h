@@ -65,6 +65,7 @@ private:
     struct PassTarget {
         TextureHandle texture;
         uint32_t mip = 0;
+        VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED; // drawn in
         static constexpr uint32_t kAllMips = ~0u;
     };
 
@@ -91,6 +92,13 @@ private:
     bool payPass(BarrierBatch& batch, std::span<const PassTarget> keep = {});
     // Both owed barriers, into one call, if either is owed.
     void payAll();
+    // vkCmdBeginRendering for the current pass; with a deferred begin, behind a barrier where its
+    // targets or `firstDraw`'s bindings (null: none) meet a hazard.
+    void startRendering(const VulkanPipeline* firstDraw);
+    // Before each draw: begins a deferred pass, or stops it for a barrier a later draw needs.
+    void beforeDraw(const VulkanPipeline& p);
+    bool drawHazard(const VulkanPipeline& p) const;
+    void noteDrawAccesses(const VulkanPipeline& p);
     void beginLabel(const char* name);
     void endLabel();
 
@@ -104,10 +112,22 @@ private:
     bool passOwed_ = false; // the last pass's barrier: its targets are still in passTargets_
     VkExtent2D passExtent_{0, 0};
     bool inPass_ = false;
+    // The current pass, kept so that it can begin later (deferredBegin_: unified layouts) or
+    // begin again after a barrier.
+    bool deferredBegin_ = false;
+    bool rendering_ = false; // vkCmdBeginRendering recorded for the current pass
+    VkRenderingInfo passInfo_{};
+    std::array<VkRenderingAttachmentInfo, RenderPassDesc::kMaxColorTargets> passColors_{};
+    VkRenderingAttachmentInfo passDepth_{};
+    // Bound for draws, for their hazards (0: none).
+    std::array<uint64_t, 8> vertexBuffers_{};
+    uint64_t indexBuffer_ = 0;
     uint32_t markerDepth_ = 0;
     static constexpr uint32_t kMaxTracked = 64;
     std::array<uint64_t, kMaxTracked> written_{}, read_{}; // since the owed barrier's dispatches
     uint32_t writtenCount_ = 0, readCount_ = 0;
+    // More than kMaxTracked: every resource counts as written (read) until the barrier is paid.
+    bool writtenOverflow_ = false, readOverflow_ = false;
     bool owed_ = false;
     uint64_t barrierBase_ = 0; // pipelineBarrierCalls() when the frame began
 };

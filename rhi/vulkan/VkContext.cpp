@@ -353,6 +353,24 @@ void VulkanContext::createDevice(bool needPresent) {
     shaderStencilExport =
         hasInstanceExtension(deviceExtensions(physical), VK_EXT_SHADER_STENCIL_EXPORT_EXTENSION_NAME);
     if (shaderStencilExport) extensions.push_back(VK_EXT_SHADER_STENCIL_EXPORT_EXTENSION_NAME);
+    // VK_KHR_unified_image_layouts, spelled out: Debian 12's headers predate it (extension 528).
+    struct UnifiedImageLayoutsFeatures {
+        VkStructureType sType = VkStructureType(1000527000);
+        void* pNext = nullptr;
+        VkBool32 unifiedImageLayouts = VK_FALSE;
+        VkBool32 unifiedImageLayoutsVideo = VK_FALSE;
+    } unified;
+    if (hasInstanceExtension(deviceExtensions(physical), "VK_KHR_unified_image_layouts")) {
+        VkPhysicalDeviceFeatures2 query{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &unified};
+        vkGetPhysicalDeviceFeatures2(physical, &query);
+        if (unified.unifiedImageLayouts) {
+            unified.unifiedImageLayoutsVideo = VK_FALSE;
+            unified.pNext = f13.pNext;
+            f13.pNext = &unified;
+            extensions.push_back("VK_KHR_unified_image_layouts");
+        }
+    }
+    unifiedImageLayouts = properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU || unified.unifiedImageLayouts;
 
     VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
     info.queueCreateInfoCount = 1;

@@ -134,7 +134,7 @@ TextureHandle VulkanDevice::createTexture(const TextureDesc& desc) {
     VulkanTexture t;
     t.desc = desc;
     t.aspect = aspectOf(desc.format);
-    t.home = homeLayout(desc.usage, desc.format);
+    t.home = unifiedImageLayouts_ ? VK_IMAGE_LAYOUT_GENERAL : homeLayout(desc.usage, desc.format);
     t.layouts.assign(desc.mipLevels, VK_IMAGE_LAYOUT_UNDEFINED);
 
     const bool renderable = desc.usage & (kTextureColorTarget | kTextureDepthTarget);

@@ -43,6 +43,7 @@ VulkanDevice::VulkanDevice(const DeviceConfig& config) : config_(config) {
     conservativeBarriers_ = config.conservativeBarriers || (env && env[0] == '1');
     if (config.framesInFlight == 0) throw Error("DeviceConfig::framesInFlight must be at least 1");
     ctx_ = std::make_unique<VulkanContext>(config); // throws BackendUnavailable with the reason
+    unifiedImageLayouts_ = config.unifiedImageLayouts.value_or(ctx_->unifiedImageLayouts);
     try {
         const VkPhysicalDeviceLimits& limits = ctx_->properties.limits;
         caps_.deviceName = ctx_->properties.deviceName;
@@ -298,7 +299,6 @@ void VulkanDevice::endFrame(TextureHandle present) {
             if (presenting) recordPresent(f.cmd, source, imageIndex);
         }
     }
-    hostReadBarrier(f.cmd); // MemoryAccess::HostRead buffers, read after the fence
     lastFrame_ = list_->counts();
     vkCheck(vkEndCommandBuffer(f.cmd), "vkEndCommandBuffer");
 

@@ -52,6 +52,9 @@ public:
     uint64_t frameIndex() const override { return frame_; }
     CommandCounts frameCounters() const override { return lastFrame_; }
     bool conservativeBarriers() const { return conservativeBarriers_; }
+    // Every texture lives in VK_IMAGE_LAYOUT_GENERAL (DeviceConfig::unifiedImageLayouts): no
+    // layout moves, so render passes are ordered by their hazards alone.
+    bool unifiedImageLayouts() const { return unifiedImageLayouts_; }
     bool readTimestamps(uint64_t frame, std::span<uint64_t> nanoseconds) override;
     void waitIdle() override;
 
@@ -115,6 +118,7 @@ private:
 
     DeviceConfig config_;
     bool conservativeBarriers_ = false;
+    bool unifiedImageLayouts_ = false;
     Caps caps_;
     AllocationRecord allocations_;
     std::unique_ptr<VulkanContext> ctx_;

@@ -67,6 +67,12 @@ struct DeviceConfig {
     // synchronization bug in or out in one run; the environment variable
     // LPV_CONSERVATIVE_BARRIERS=1 sets it too.
     bool conservativeBarriers = false;
+    // Vulkan: set, keep every texture in VK_IMAGE_LAYOUT_GENERAL (true) or in the layout of each
+    // use (false) instead of as the device prefers: GENERAL where layouts cost nothing (a CPU
+    // device, or one with VK_KHR_unified_image_layouts), so a render pass then needs a barrier
+    // only where it reads or writes what an earlier command left unordered. For running both
+    // paths on any device.
+    std::optional<bool> unifiedImageLayouts;
 };
 
 // Throws BackendUnavailable when no allowed backend starts.

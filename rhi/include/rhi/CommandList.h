@@ -10,8 +10,12 @@
 //   recorded before the next dispatch or transfer that reads or writes what it wrote (or writes
 //   what it read: storage images and buffers a shader does not declare readonly count as written,
 //   the others and sampled textures and uniform buffers as read), and before any render pass, in the
-//   same vkCmdPipelineBarrier2 as that command's own when it has one. A render pass owes its
-//   barrier (its targets back home, its writes visible) to the next command, whatever it is.
+//   same vkCmdPipelineBarrier2 as that command's own when it has one. Where the device keeps every
+//   texture in GENERAL (unified image layouts: a CPU device, or VK_KHR_unified_image_layouts), a
+//   render pass begins at its first draw, behind a barrier only where its targets or what that
+//   draw binds meet a hazard (a later draw that meets one stops the pass for it), and its targets
+//   are owed like a dispatch's writes. Otherwise it moves its targets to their attachment
+//   layouts and owes its barrier (its targets back home, its writes visible) to the next command.
 // - GL: a command pays one glMemoryBarrier, with the bits of its own accesses, where it touches
 //   what earlier shaders stored to or stores to what they read (GlHazards.h); GL orders
 //   everything else itself.
