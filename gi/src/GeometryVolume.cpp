@@ -194,7 +194,6 @@ void GeometryVolume::recordTogether(rhi::CommandList& cmd, std::span<const Build
     for (size_t b = 0; b < builds.size(); ++b) {
         const GeometrySources& src = *builds[b].sources;
         const Scratch& k = scratchOf(slotOf(b));
-        cmd.clearTexture(k.coverage, {0, 0, 0, 0});
         if (plans[b].marks) {
             GapsUniforms gaps{};
             gaps.gridOrigin = uniforms[b].gridOrigin;
@@ -245,7 +244,8 @@ void GeometryVolume::recordTogether(rhi::CommandList& cmd, std::span<const Build
         InjectUniforms& u = uniforms[b];
         for (uint32_t slice = 0; slice < passes; ++slice) {
             RenderPassDesc pass;
-            pass.colors[0] = {scratchOf(slotOf(b)).coverage, 0, slice, LoadOp::Load};
+            // Cleared as the pass begins (a slice's pass, its slice).
+            pass.colors[0] = {scratchOf(slotOf(b)).coverage, 0, slice, LoadOp::Clear};
             pass.colors[0].layered = layered_;
             pass.colorCount = 1;
             pass.debugName = layered_ ? "gv inject" : "gv inject slice";

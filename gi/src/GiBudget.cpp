@@ -36,13 +36,14 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
          s.cascades * PointLightInjection::kBufferBytes},
     };
     // Every further cascade keeps its own result, and its VPLs (its update may be split over two
-    // frames); the scratch volumes above serve them in turn, or (gi.cascades_together) each has
-    // its own, to propagate with the others.
+    // frames); the scratch volumes and the RSM above serve them in turn, or (gi.cascades_together)
+    // each has its own, to be drawn and propagated with the others.
     for (uint32_t c = 1; c < s.cascades; ++c) {
         const std::string cascade = ", cascade " + std::to_string(c);
         out.push_back({"accumulation" + cascade + " (3 SH textures)", "gi.lpv", 3 * cells * shBytes});
         out.push_back({"vpl buffer" + cascade, "gi.vpl", uint64_t(s.vplSlots()) * 48});
         if (!s.propagateTogether()) continue;
+        out.push_back({"rsm depth, normal, flux" + cascade, "gi.rsm", rsm * (4 + 8 + 8)});
         out.push_back({"injection volume" + cascade + " (3 SH textures)", "gi.lpv", 3 * cells * injectBytes});
         out.push_back(
             {"propagation partial sums, ping" + cascade + " (packed)", "gi.lpv", partialCells * packedBytes});

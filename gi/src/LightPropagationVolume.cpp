@@ -74,6 +74,7 @@ void LightPropagationVolume::release() {
     }
     cascades_.clear();
     rsm_.reset();
+    cascadeRsms_.clear();
     volumes_.reset();
     cascadeVolumes_.clear();
     injection_.reset();
@@ -97,8 +98,10 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     propagation_ = std::make_unique<LpvPropagation>(device_, s);
     cascades_.resize(s.cascades);
     if (s.propagateTogether())
-        for (uint32_t c = 1; c < s.cascades; ++c)
+        for (uint32_t c = 1; c < s.cascades; ++c) {
             cascadeVolumes_.push_back(std::make_unique<LpvVolumes>(device_, s));
+            cascadeRsms_.push_back(std::make_unique<ReflectiveShadowMap>(device_, s.rsmSize));
+        }
     cascades_[0].result = volumes_->accumulated();
     for (uint32_t c = 1; c < s.cascades; ++c)
         cascades_[c].result = s.propagateTogether()
@@ -128,9 +131,13 @@ void LightPropagationVolume::replaceUpdateResources(const LpvSettings& s) {
     // The old resources' destructors wait for the frames in flight that still use them.
     if (s.rsmSize != madeWith_.rsmSize) {
         // The old ones go first, so the device never holds both sizes.
+        const size_t cascadeRsms = cascadeRsms_.size();
         rsm_.reset();
+        cascadeRsms_.clear();
         spotRsms_.reset();
         rsm_ = std::make_unique<ReflectiveShadowMap>(device_, s.rsmSize);
+        for (size_t c = 0; c < cascadeRsms; ++c)
+            cascadeRsms_.push_back(std::make_unique<ReflectiveShadowMap>(device_, s.rsmSize));
         spotRsms_ = std::make_unique<SpotLightRsms>(device_, s);
     }
     madeWith_ = s;
@@ -421,15 +428,33 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     bool together = mode;
     for (uint32_t c = 0; c + 1 < cascadeCount(); ++c)
         if ((propagated & (1u << c)) && !(validBefore & (2u << c))) together = false;
-    for (uint32_t c = cascadeCount(); c-- > 0;) {
-        const bool valid = (validBefore & (1u << c)) != 0;
-        const bool lightHalf = !valid || (lightUpdates_ & (1u << c));
-        const bool volumeHalf = (propagated & (1u << c)) != 0;
-        if (!lightHalf && !volumeHalf) continue;
-        cascadesValid_ |= 1u << c;
-        const auto cascadeScope = f.scope(kCascadeScopes[c]);
-        if (lightHalf) recordLightHalf(f, c);
-        if (volumeHalf) recordVolumeHalf(f, c, !mode);
+    uint32_t lit = 0; // bit c: cascade c's light half runs this frame
+    for (uint32_t c = 0; c < cascadeCount(); ++c)
+        if (!(validBefore & (1u << c)) || (lightUpdates_ & (1u << c))) lit |= 1u << c;
+    cascadesValid_ |= lit | propagated;
+    if (mode) {
+        // Each cascade has an RSM of its own: every RSM, then every VPL clustering, then every
+        // injection, so that each phase of all of them is one stage of the GPU's chain.
+        const auto phase = [&](uint32_t cascades, const auto& record) {
+            for (uint32_t c = cascadeCount(); c-- > 0;)
+                if (cascades & (1u << c)) {
+                    const auto cascadeScope = f.scope(kCascadeScopes[c]);
+                    record(c);
+                }
+        };
+        phase(lit, [&](uint32_t c) {
+            cascades_[c].lit = cascades_[c].placement; // a skipped cascade keeps where it was lit
+            f.pass("rsm", [&] { return recordRsm(f, c); });
+        });
+        phase(lit, [&](uint32_t c) { f.pass("vpl", [&] { return recordVpls(f, c); }); });
+        phase(propagated, [&](uint32_t c) { recordVolumeHalf(f, c, false); });
+    } else {
+        for (uint32_t c = cascadeCount(); c-- > 0;) {
+            if (!((lit | propagated) & (1u << c))) continue;
+            const auto cascadeScope = f.scope(kCascadeScopes[c]);
+            if (lit & (1u << c)) recordLightHalf(f, c);
+            if (propagated & (1u << c)) recordVolumeHalf(f, c, true);
+        }
     }
     // The finest cascade's further bounces run with it: after its propagation, or (together, one
     // further bounce) from its first bounce of the frame before, propagated with the cascades.
@@ -508,23 +533,25 @@ engine::WorkCounts LightPropagationVolume::recordLightRsms(const FrameRecording&
 
 engine::WorkCounts LightPropagationVolume::recordRsm(const FrameRecording& f, uint32_t c) {
     const Cascade& cascade = cascades_[c];
-    rsm_->fit(cascade.lit, f.sunDirection);
+    ReflectiveShadowMap& rsm = rsmOf(c);
+    rsm.fit(cascade.lit, f.sunDirection);
     // Objects smaller than a cell of this cascade are left to the finer ones.
     const uint64_t triangles =
-        rsm_->record(f.cmd, *frame_.scene, frame_.specularAlbedo, f.sunDirection, frame_.sunRadiance,
-                     c == 0 ? 0.0f : cascade.lit.cellSize, settings_.rsmLodTexels);
+        rsm.record(f.cmd, *frame_.scene, frame_.specularAlbedo, f.sunDirection, frame_.sunRadiance,
+                   c == 0 ? 0.0f : cascade.lit.cellSize, settings_.rsmLodTexels);
     return rsmWork(settings_, triangles);
 }
 
 engine::WorkCounts LightPropagationVolume::recordVpls(const FrameRecording& f, uint32_t c) {
     Cascade& cascade = cascades_[c];
     const uint32_t side = settings_.vplGridSide();
-    vplClustering_.record(f.cmd, *rsm_, side, cascade.vpls);
+    const ReflectiveShadowMap& rsm = rsmOf(c);
+    vplClustering_.record(f.cmd, rsm, side, cascade.vpls);
     // What the volume half needs of the light these VPLs carry.
-    const float texelsPerVpl = float(rsm_->size() / side) * float(rsm_->size() / side);
+    const float texelsPerVpl = float(rsm.size() / side) * float(rsm.size() / side);
     cascade.lightDirection = f.sunDirection;
-    cascade.vplArea = rsm_->texelArea() * texelsPerVpl;
-    cascade.whiteTexelFlux = frame_.sunRadiance * rsm_->texelArea();
+    cascade.vplArea = rsm.texelArea() * texelsPerVpl;
+    cascade.whiteTexelFlux = frame_.sunRadiance * rsm.texelArea();
     return vplClusterWork(settings_);
 }
 

@@ -45,19 +45,18 @@ void LpvInjection::record(rhi::CommandList& cmd, LpvVolumes& volumes, std::span<
                           const VolumeGrid& grid, float intensity, uint32_t cascade) {
     using namespace rhi;
     const std::array<TextureHandle, 3>& injected = volumes.injected();
-    for (TextureHandle t : injected)
-        cmd.clearTexture(t, {0, 0, 0, 0});
     volumes.setInjected(grid, cascade);
     InjectUniforms u;
     u.gridOrigin = glm::vec4(grid.origin, grid.cellSize);
     u.intensity = glm::vec4(intensity, 0, 0, 0);
     // One layered draw per source where the device lets the vertex shader pick the slice; else
-    // every source once per slice (gridSize times the vertex work).
+    // every source once per slice (gridSize times the vertex work). Each pass clears what it draws
+    // to as it begins: no clear of its own to order before it.
     const uint32_t passes = layered_ ? 1 : gridSize_;
     for (uint32_t slice = 0; slice < passes; ++slice) {
         RenderPassDesc pass;
         for (uint32_t c = 0; c < 3; ++c) {
-            pass.colors[c] = {injected[c], 0, slice, LoadOp::Load};
+            pass.colors[c] = {injected[c], 0, slice, LoadOp::Clear};
             pass.colors[c].layered = layered_;
         }
         pass.colorCount = 3;

@@ -101,6 +101,34 @@ TEST_CASE("profiler: GPU results arrive frames later, never by waiting") {
     CHECK(profiler.gpuResultsLost() == 0);
 }
 
+// A scope a frame enters more than once (a cascade's, whose passes run phase by phase with the
+// other cascades') is one sample of that frame, its time the sum of its entries.
+TEST_CASE("profiler: a scope entered twice in a frame counts once, with both entries' time") {
+    auto device = nullDevice();
+    FrameProfiler profiler(*device, tinyProfile(100, 100));
+    for (int i = 0; i < 4; ++i) {
+        rhi::CommandList& cmd = device->beginFrame();
+        profiler.beginFrame(cmd);
+        {
+            auto gi = profiler.scope("gi", &cmd);
+            for (int entry : {2, 3}) {
+                auto cascade = profiler.scope("cascade0", &cmd);
+                for (int d = 0; d < entry; ++d)
+                    cmd.dispatch(1);
+            }
+        }
+        profiler.endFrame(cmd);
+        device->endFrame();
+    }
+    profiler.collectPending();
+    const ScopeInfo& cascade = profiler.scopes()[1];
+    REQUIRE(cascade.path == "gi/cascade0");
+    CHECK(cascade.cpuMs.count() == 4);
+    REQUIRE(cascade.gpuMs.count() == 4);
+    CHECK(cascade.gpuMs.stats().last == doctest::Approx(0.005)); // 2 + 3 dispatches, 1 us each
+    CHECK(cascade.commands.dispatches == 5);
+}
+
 // Before a report the last frames' results are collected without counting the empty device
 // frames that carry them in: every recorded frame is checked, none is lost, and the frame
 // statistics hold those frames alone (the empty ones took about 0 ms and pulled the median down).

@@ -140,7 +140,6 @@ void FrameProfiler::closeScope() {
     s.commands = commands;
     s.cpuEnd = platforms::nowNanoseconds();
     if (s.gpuTimed) open.gpu->writeTimestamp(3 + 2 * open.sample);
-    scopes_[open.scope].cpuMs.add(ms(s.cpuBegin, s.cpuEnd));
 }
 
 WorkCounts FrameProfiler::inclusiveWork(size_t scope) const {
@@ -266,6 +265,7 @@ void FrameProfiler::endFrame(rhi::CommandList& cmd) {
     current_->memoryTotal = device_.allocations().totalBytes();
     current_->memoryGi = device_.allocations().bytesIn("gi");
     frameCpu_.add(ms(current_->cpuBegin, current_->cpuEnd));
+    forEachScopeIn(*current_, [&](uint16_t scope, double cpuMs, double) { scopes_[scope].cpuMs.add(cpuMs); });
     if (const auto resources = resourceSignature(); resources != resources_) {
         current_->warmUp |= kWarmUpMadeResources;
         resources_ = resources;
@@ -306,11 +306,16 @@ void FrameProfiler::resolveGpu() {
             frameGpu_.add(ms(r.gpuBegin, r.gpuEnd));
             for (uint32_t k = 0; k < r.sampleCount; ++k) {
                 Sample& s = r.samples[k];
-                if (!s.gpuTimed || 3 + 2 * k >= slots) continue;
+                if (!s.gpuTimed || 3 + 2 * k >= slots) {
+                    s.gpuTimed = false;
+                    continue;
+                }
                 s.gpuBegin = timestampScratch_[2 + 2 * k];
                 s.gpuEnd = timestampScratch_[3 + 2 * k];
-                scopes_[s.scope].gpuMs.add(ms(s.gpuBegin, s.gpuEnd));
             }
+            forEachScopeIn(r, [&](uint16_t scope, double, double gpuMs) {
+                if (gpuMs >= 0.0) scopes_[scope].gpuMs.add(gpuMs);
+            });
             finishCheck(r);
         } else if (r.frame + keep <= now) {
             // The device reused this frame's timestamp storage before we saw it: judge it on CPU time.

@@ -101,8 +101,7 @@ SteadyState steadyState(const FrameProfiler& p) {
     p.forEachFrame([&](const FrameProfiler::FrameRecord& r) {
         if (!st.covers(r)) return;
         ++st.frames;
-        for (uint32_t k = 0; k < r.sampleCount; ++k)
-            ++samples[r.samples[k].scope];
+        FrameProfiler::forEachScopeIn(r, [&](uint16_t scope, double, double) { ++samples[scope]; });
     });
     std::vector<SampleWindow> cpu, gpu;
     for (uint32_t n : samples) {
@@ -117,12 +116,10 @@ SteadyState steadyState(const FrameProfiler& p) {
         if (!st.covers(r)) return;
         frameCpu.add(ms(r.cpuBegin, r.cpuEnd));
         if (r.gpuResolved) frameGpu.add(ms(r.gpuBegin, r.gpuEnd));
-        for (uint32_t k = 0; k < r.sampleCount; ++k) {
-            const FrameProfiler::Sample& sample = r.samples[k];
-            if (sample.cpuEnd) cpu[sample.scope].add(ms(sample.cpuBegin, sample.cpuEnd));
-            if (r.gpuResolved && sample.gpuTimed && sample.gpuEnd >= sample.gpuBegin)
-                gpu[sample.scope].add(ms(sample.gpuBegin, sample.gpuEnd));
-        }
+        FrameProfiler::forEachScopeIn(r, [&](uint16_t scope, double cpuMs, double gpuMs) {
+            cpu[scope].add(cpuMs);
+            if (gpuMs >= 0.0) gpu[scope].add(gpuMs);
+        });
     });
     for (size_t i = 0; i < samples.size(); ++i) {
         st.cpu.push_back(cpu[i].stats());

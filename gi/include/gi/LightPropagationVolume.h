@@ -169,6 +169,10 @@ private:
     LpvVolumes& volumesOf(uint32_t c) {
         return c > 0 && !cascadeVolumes_.empty() ? *cascadeVolumes_[c - 1] : *volumes_;
     }
+    // The sun's RSM cascade c draws (its own under gi.cascades_together).
+    ReflectiveShadowMap& rsmOf(uint32_t c) {
+        return c > 0 && !cascadeRsms_.empty() ? *cascadeRsms_[c - 1] : *rsm_;
+    }
     CascadeHandoff handoffInto(uint32_t c) const;
     engine::WorkCounts recordBounces(const FrameRecording& f, uint32_t c);
     // Into every cascade whose bit is set in `propagated` (made anew this frame).
@@ -243,14 +247,15 @@ private:
     bool analyticLights_ = true;
     // The passes and resources made for a configuration (remake), in the frame's order.
     std::unique_ptr<SpotLightRsms> spotRsms_;
-    std::unique_ptr<ReflectiveShadowMap> rsm_;
-    rhi::BufferHandle vpls_;                                  // cascade 0's
-    std::unique_ptr<GeometryVolume> geometry_;                // gi.occlusion
-    std::unique_ptr<LpvVolumes> volumes_;                     // cascade 0's, or every cascade's
-    std::vector<std::unique_ptr<LpvVolumes>> cascadeVolumes_; // gi.cascades_together: 1, 2, ...
-    std::unique_ptr<LpvInjection> injection_;                 // into volumes_, made with them
-    std::unique_ptr<LpvPropagation> propagation_;             // in volumes_, made with them
-    std::unique_ptr<MultipleBounces> bounces_;                // gi.bounces > 1
+    std::unique_ptr<ReflectiveShadowMap> rsm_;                      // cascade 0's, or every cascade's
+    std::vector<std::unique_ptr<ReflectiveShadowMap>> cascadeRsms_; // gi.cascades_together: 1, 2, ...
+    rhi::BufferHandle vpls_;                                        // cascade 0's
+    std::unique_ptr<GeometryVolume> geometry_;                      // gi.occlusion
+    std::unique_ptr<LpvVolumes> volumes_;                           // cascade 0's, or every cascade's
+    std::vector<std::unique_ptr<LpvVolumes>> cascadeVolumes_;       // gi.cascades_together: 1, 2, ...
+    std::unique_ptr<LpvInjection> injection_;                       // into volumes_, made with them
+    std::unique_ptr<LpvPropagation> propagation_;                   // in volumes_, made with them
+    std::unique_ptr<MultipleBounces> bounces_;                      // gi.bounces > 1
     std::unique_ptr<PointLightInjection> pointLights_;
     // The passes made once, with the LPV; the lookup first, as it refuses a device that binds too
     // few textures for it.

@@ -213,6 +213,32 @@ public:
         return (done > kept ? done - kept : 0) + pendingLost_;
     }
 
+    // Calls f(scope, cpuMs, gpuMs) once for each scope frame `r` recorded, with the times of all its
+    // samples added: a scope a frame enters more than once (a cascade's, whose passes run phase by
+    // phase with the other cascades') is one sample of its frame. gpuMs is negative where none
+    // of its samples was timed on the GPU (or the frame's results are not in).
+    template <typename F> static void forEachScopeIn(const FrameRecord& r, F&& f) {
+        const auto ms = [](uint64_t begin, uint64_t end) {
+            return end > begin ? double(end - begin) / 1e6 : 0.0;
+        };
+        for (uint32_t k = 0; k < r.sampleCount; ++k) {
+            const uint16_t scope = r.samples[k].scope;
+            bool seen = false;
+            for (uint32_t j = 0; j < k && !seen; ++j)
+                seen = r.samples[j].scope == scope;
+            if (seen) continue;
+            double cpu = 0.0, gpu = -1.0;
+            for (uint32_t j = k; j < r.sampleCount; ++j) {
+                const Sample& s = r.samples[j];
+                if (s.scope != scope) continue;
+                if (s.cpuEnd) cpu += ms(s.cpuBegin, s.cpuEnd);
+                if (r.gpuResolved && s.gpuTimed && s.gpuEnd >= s.gpuBegin)
+                    gpu = std::max(gpu, 0.0) + ms(s.gpuBegin, s.gpuEnd);
+            }
+            f(scope, cpu, gpu);
+        }
+    }
+
     // Recorded frames, oldest first (up to ProfilerOptions::traceFrames).
     template <typename F> void forEachFrame(F&& f) const {
         const uint64_t n = std::min<uint64_t>(recorded_, records_.size());
