@@ -52,11 +52,13 @@ CommandCounts VulkanCommandList::counts() const {
 
 void VulkanCommandList::finish() {
     if (inPass_) throw Error("endFrame() inside a render pass: call endRenderPass() first");
-    // What is owed, and every write made available to the host (MemoryAccess::HostRead buffers,
-    // read after the frame's fence), in one call.
+    // Every write visible to whatever is submitted next (the next frame begins with no barrier of
+    // its own) and available to the host (MemoryAccess::HostRead buffers, read after the frame's
+    // fence), in one call.
     BarrierBatch batch(cmd_);
     payPass(batch);
     payOwed(&batch);
+    batch.memory();
     batch.hostRead();
     batch.flush();
     while (markerDepth_ > 0) {

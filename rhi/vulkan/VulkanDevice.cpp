@@ -228,8 +228,8 @@ CommandList& VulkanDevice::beginFrame() {
     vkCheck(vkBeginCommandBuffer(f.cmd, &begin), "vkBeginCommandBuffer");
     inFrame_ = true;
     list_->resetCounts();
-    // Orders this frame after everything submitted before it (immediate transfers included).
-    fullBarrier(f.cmd);
+    // Nothing to order this frame after: every command buffer submitted before it ends with a full
+    // barrier (the last frame's end, and each immediate transfer's).
     timestamps_.beginFrame(f.cmd, frame_);
     ringCursor_ = 0;
     flushNewTextures(f.cmd);
