@@ -195,8 +195,7 @@ void VulkanCommandList::beginRenderPass(const RenderPassDesc& desc) {
     rendering_ = false;
     // With unified layouts a pass has no moves of its own: it begins at its first draw, when what
     // the draws bind is known, behind a barrier only if they or its targets meet a hazard.
-    deferredBegin_ = device_.unifiedImageLayouts();
-    if (!deferredBegin_) {
+    if (!deferredBegin()) {
         // Every attachment moves to its attachment layout before rendering begins (no barriers
         // inside a dynamic rendering instance), in one call with what dispatches and the last pass
         // owe; the last pass's targets this one draws to stay where they are.
@@ -210,15 +209,19 @@ void VulkanCommandList::beginRenderPass(const RenderPassDesc& desc) {
     passTargets_ = targets;
     passTargetCount_ = targetCount;
     beginLabel(desc.debugName);
-    if (!deferredBegin_) startRendering(nullptr);
+    if (!deferredBegin()) startRendering(nullptr);
 
     // The RHI's rule: viewport and scissor start as the whole first target.
     setViewport({0.0f, 0.0f, float(passExtent_.width), float(passExtent_.height), 0.0f, 1.0f});
     setScissor(0, 0, passExtent_.width, passExtent_.height);
 }
 
+bool VulkanCommandList::deferredBegin() const {
+    return device_.unifiedImageLayouts();
+}
+
 void VulkanCommandList::startRendering(const VulkanPipeline* firstDraw) {
-    if (deferredBegin_) {
+    if (deferredBegin()) {
         // Its targets (moved only if something left them elsewhere) and the first draw's
         // bindings: a barrier only at a hazard.
         BarrierBatch barriers(cmd_);
@@ -236,7 +239,7 @@ void VulkanCommandList::startRendering(const VulkanPipeline* firstDraw) {
 }
 
 void VulkanCommandList::beforeDraw(const VulkanPipeline& p) {
-    if (!deferredBegin_) return;
+    if (!deferredBegin()) return;
     if (!rendering_) {
         startRendering(&p);
         return;
@@ -261,7 +264,7 @@ bool VulkanCommandList::drawHazard(const VulkanPipeline& p) const {
 }
 
 void VulkanCommandList::noteDrawAccesses(const VulkanPipeline& p) {
-    if (!deferredBegin_) return;
+    if (!deferredBegin()) return;
     noteDispatchAccesses(p);
     owe(indexBuffer_, false);
     for (uint64_t b : vertexBuffers_)
@@ -275,7 +278,7 @@ void VulkanCommandList::endRenderPass() {
     endLabel();
     inPass_ = false;
     rendering_ = false;
-    if (deferredBegin_) {
+    if (deferredBegin()) {
         // Its targets are written like a dispatch's storage images: owed to whatever touches them.
         for (uint32_t i = 0; i < passTargetCount_; ++i)
             owe(uint64_t(device_.textures.get(passTargets_[i].texture).image), true);

@@ -92,6 +92,8 @@ private:
     bool payPass(BarrierBatch& batch, std::span<const PassTarget> keep = {});
     // Both owed barriers, into one call, if either is owed.
     void payAll();
+    // Passes begin at their first draw: with unified layouts, where they have no moves of their own.
+    bool deferredBegin() const;
     // vkCmdBeginRendering for the current pass; with a deferred begin, behind a barrier where its
     // targets or `firstDraw`'s bindings (null: none) meet a hazard.
     void startRendering(const VulkanPipeline* firstDraw);
@@ -112,9 +114,8 @@ private:
     bool passOwed_ = false; // the last pass's barrier: its targets are still in passTargets_
     VkExtent2D passExtent_{0, 0};
     bool inPass_ = false;
-    // The current pass, kept so that it can begin later (deferredBegin_: unified layouts) or
-    // begin again after a barrier.
-    bool deferredBegin_ = false;
+    // The current pass, kept so that it can begin later (deferredBegin) or begin again after a
+    // barrier.
     bool rendering_ = false; // vkCmdBeginRendering recorded for the current pass
     VkRenderingInfo passInfo_{};
     std::array<VkRenderingAttachmentInfo, RenderPassDesc::kMaxColorTargets> passColors_{};

@@ -52,6 +52,18 @@ rhi::TextureDesc volumeDesc(uint32_t usage, const char* name) {
             "test"};
 }
 
+// A 16x16 RGBA16F render target, sampled, and (`storage`) a storage image: one that stays in one
+// layout (Vulkan's GENERAL), so that no layout move orders the passes around it, only the RHI's
+// barriers.
+constexpr uint32_t kTargetSize = 16;
+rhi::TextureHandle createTarget(rhi::Device& device, bool storage, const char* name) {
+    using namespace rhi;
+    return device.createTexture(
+        {TextureKind::Tex2D, Format::RGBA16F, kTargetSize, kTargetSize, 1, 1,
+         kTextureColorTarget | kTextureSampled | kTextureTransfer | (storage ? kTextureStorage : 0u), name,
+         "test"});
+}
+
 rhi::BufferHandle createResult(rhi::Device& device, const char* name) {
     return device.createBuffer({kVolumeTexels * 16ull, rhi::kBufferStorage | rhi::kBufferTransfer,
                                 rhi::MemoryAccess::GpuOnly, name, "test"});
@@ -227,22 +239,9 @@ TEST_CASE("rhi: a clear and a copy are read by the next dispatch; a copy's sourc
 TEST_CASE("rhi: a render target is sampled by the next pass; a dispatch reads what a pass drew") {
     inEveryBarrierMode([](rhi::Device& device) {
         using namespace rhi;
-        constexpr uint32_t kSize = 16, kSlice = 5;
-        // `drawn` is a storage image too: it stays in one layout (Vulkan's GENERAL), so no layout move
-        // orders the passes around it, only the RHI's barriers.
-        TextureDesc td{TextureKind::Tex2D,
-                       Format::RGBA16F,
-                       kSize,
-                       kSize,
-                       1,
-                       1,
-                       kTextureColorTarget | kTextureSampled | kTextureTransfer | kTextureStorage,
-                       "drawn",
-                       "test"};
-        const TextureHandle drawn = device.createTexture(td);
-        td.usage &= ~kTextureStorage;
-        td.debugName = "summed";
-        const TextureHandle summed = device.createTexture(td);
+        constexpr uint32_t kSize = kTargetSize, kSlice = 5;
+        const TextureHandle drawn = createTarget(device, true, "drawn");
+        const TextureHandle summed = createTarget(device, false, "summed");
         const TextureHandle volume = device.createTexture(
             volumeDesc(kTextureStorage | kTextureColorTarget | kTextureSampled | kTextureTransfer, "volume"));
         const BufferHandle result = createResult(device, "result");
@@ -331,22 +330,10 @@ TEST_CASE("rhi: a render target is sampled by the next pass; a dispatch reads wh
 TEST_CASE("rhi: a later draw of a pass samples what a clear before the pass wrote") {
     inEveryBarrierMode([](rhi::Device& device) {
         using namespace rhi;
-        constexpr uint32_t kSize = 16;
-        TextureDesc td{TextureKind::Tex2D,
-                       Format::RGBA16F,
-                       kSize,
-                       kSize,
-                       1,
-                       1,
-                       kTextureColorTarget | kTextureSampled | kTextureTransfer | kTextureStorage,
-                       "cleared",
-                       "test"};
-        const TextureHandle cleared = device.createTexture(td);
-        td.debugName = "quiet";
-        const TextureHandle quiet = device.createTexture(td);
-        td.usage &= ~kTextureStorage;
-        td.debugName = "summed";
-        const TextureHandle summed = device.createTexture(td);
+        constexpr uint32_t kSize = kTargetSize;
+        const TextureHandle cleared = createTarget(device, true, "cleared");
+        const TextureHandle quiet = createTarget(device, true, "quiet");
+        const TextureHandle summed = createTarget(device, false, "summed");
         GraphicsPipelineDesc pd;
         pd.vertex = &shaders::fullscreen_vert;
         pd.fragment = &shaders::sample_target_frag;
