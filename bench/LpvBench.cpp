@@ -362,7 +362,7 @@ void benchFrames(const BenchBackend& b, const std::string& sceneName, int frames
         "| stages |\n|---|---|---|---|---|---|---|---|---|\n");
     double giMs = 0, fogMs = -1;
     engine::FrameProfiler::ScopePrediction fogPredicted{};
-    for (size_t i = 0; i < profiler.scopes().size(); ++i) {
+    for (size_t i : profiler.scopesInTreeOrder()) {
         const engine::ScopeInfo& s = profiler.scopes()[i];
         const engine::FrameProfiler::ScopePrediction predicted = profiler.predicted(i);
         const engine::SampleStats st = s.gpuMs.count() ? s.gpuMs.stats() : s.cpuMs.stats();

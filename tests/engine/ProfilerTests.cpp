@@ -129,6 +129,27 @@ TEST_CASE("profiler: a scope entered twice in a frame counts once, with both ent
     CHECK(cascade.commands.dispatches == 5);
 }
 
+// Passes a frame runs phase by phase (each cascade's RSM, then each one's VPLs) are listed under
+// their parent, in the order first opened.
+TEST_CASE("profiler: scopes in tree order list each one's children after it") {
+    auto device = nullDevice();
+    FrameProfiler profiler(*device, tinyProfile(100, 100));
+    rhi::CommandList& cmd = device->beginFrame();
+    profiler.beginFrame(cmd);
+    for (const char* pass : {"rsm", "vpl"})
+        for (const char* cascade : {"cascade1", "cascade0"}) {
+            auto c = profiler.scope(cascade, &cmd);
+            auto p = profiler.scope(pass, &cmd);
+        }
+    profiler.endFrame(cmd);
+    device->endFrame();
+    std::vector<std::string> paths;
+    for (size_t i : profiler.scopesInTreeOrder())
+        paths.push_back(profiler.scopes()[i].path);
+    CHECK(paths == std::vector<std::string>{"cascade1", "cascade1/rsm", "cascade1/vpl", "cascade0",
+                                            "cascade0/rsm", "cascade0/vpl"});
+}
+
 // Before a report the last frames' results are collected without counting the empty device
 // frames that carry them in: every recorded frame is checked, none is lost, and the frame
 // statistics hold those frames alone (the empty ones took about 0 ms and pulled the median down).

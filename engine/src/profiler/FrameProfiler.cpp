@@ -4,6 +4,7 @@
 #include "platforms/Clock.h"
 
 #include <algorithm>
+#include <functional>
 #include <stdexcept>
 
 namespace lpv::engine {
@@ -140,6 +141,20 @@ void FrameProfiler::closeScope() {
     s.commands = commands;
     s.cpuEnd = platforms::nowNanoseconds();
     if (s.gpuTimed) open.gpu->writeTimestamp(3 + 2 * open.sample);
+}
+
+std::vector<size_t> FrameProfiler::scopesInTreeOrder() const {
+    std::vector<size_t> order;
+    order.reserve(scopes_.size());
+    std::function<void(int32_t)> visit = [&](int32_t parent) {
+        for (size_t i = 0; i < scopes_.size(); ++i)
+            if (scopes_[i].parent == parent) {
+                order.push_back(i);
+                visit(int32_t(i));
+            }
+    };
+    visit(-1);
+    return order;
 }
 
 WorkCounts FrameProfiler::inclusiveWork(size_t scope) const {

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -256,16 +255,10 @@ std::vector<Row> rows(const FrameProfiler& p) {
             r.predictedShareOfGi = 100.0 * r.active.ms / p.profile().giBudgetMs;
         out.push_back(r);
     }
-    // Depth-first order of the scope tree, so children follow their parent.
+    // Children follow their parent.
     std::vector<Row> ordered;
-    std::function<void(int32_t)> visit = [&](int32_t parent) {
-        for (const Row& r : out)
-            if (r.scope->parent == parent) {
-                ordered.push_back(r);
-                visit(int32_t(r.scope - p.scopes().data()));
-            }
-    };
-    visit(-1);
+    for (size_t i : p.scopesInTreeOrder())
+        ordered.push_back(out[i]);
     return ordered;
 }
 

@@ -138,6 +138,9 @@ public:
     void note(std::string_view topic, std::string_view text, uint64_t frame);
 
     const std::vector<ScopeInfo>& scopes() const { return scopes_; }
+    // Indices into scopes(), depth first: each scope's children right after it, in the order they
+    // were first opened (how the reports list passes, whatever order a frame ran them in).
+    std::vector<size_t> scopesInTreeOrder() const;
     // A scope's work counts plus those of every scope nested in it (a parent such as "gi" sets
     // none of its own).
     WorkCounts inclusiveWork(size_t scope) const;
