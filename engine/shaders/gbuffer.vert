@@ -8,17 +8,17 @@ layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) in vec4 inTangent;
 
+#define DRAW_MATERIAL_OUT
 #include "draw_uniforms.glsl"
 
 layout(location = 0) out vec3 vNormal;
 layout(location = 1) out vec2 vUv;
 layout(location = 2) out vec4 vTangent;
 layout(location = 3) out vec3 vWorld;
-layout(location = DRAW_INDEX_LOCATION) flat out uint vDrawIndex;
 
 void main() {
     DrawRecord draw = drawRecords.draws[gl_InstanceIndex];
-    vDrawIndex = uint(gl_InstanceIndex);
+    writeDrawMaterial(draw);
     vec4 world = draw.model * vec4(inPosition, 1.0);
     vNormal = mat3(draw.normalMatrix) * inNormal;
     vTangent = vec4(mat3(draw.model) * inTangent.xyz, inTangent.w);

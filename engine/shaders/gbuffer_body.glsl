@@ -6,6 +6,7 @@
 // atrium, which has none.
 #include "common.glsl"
 
+#define DRAW_MATERIAL_IN
 #include "draw_uniforms.glsl"
 layout(binding = 2) uniform sampler2D baseColorTexture;
 layout(binding = 3) uniform sampler2D normalTexture;
@@ -18,14 +19,13 @@ layout(location = 0) in vec3 vNormal;
 layout(location = 1) in vec2 vUv;
 layout(location = 2) in vec4 vTangent;
 layout(location = 3) in vec3 vWorld;
-layout(location = DRAW_INDEX_LOCATION) flat in uint vDrawIndex;
 
 layout(location = 0) out vec4 outAlbedo;
 layout(location = 1) out vec4 outNormal;
 layout(location = 2) out vec4 outEmissive;
 
 void main() {
-    DrawRecord draw = drawRecords.draws[vDrawIndex];
+    DrawMaterial draw = drawMaterial();
     vec4 albedo = draw.baseColor;
     if (draw.material.w > 0.5) albedo *= texture(baseColorTexture, vUv);
     vec3 n = normalize(vNormal);
