@@ -64,6 +64,17 @@ rhi::TextureHandle createTarget(rhi::Device& device, bool storage, const char* n
          "test"});
 }
 
+// A fullscreen triangle drawn into one RGBA16F target by `fragment`.
+rhi::GraphicsPipelineHandle fullscreenPipeline(rhi::Device& device, const rhi::ShaderBinary& fragment,
+                                               const char* name) {
+    rhi::GraphicsPipelineDesc pd;
+    pd.vertex = &shaders::fullscreen_vert;
+    pd.fragment = &fragment;
+    pd.colorFormats = {rhi::Format::RGBA16F};
+    pd.debugName = name;
+    return device.createPipeline(pd);
+}
+
 rhi::BufferHandle createResult(rhi::Device& device, const char* name) {
     return device.createBuffer({kVolumeTexels * 16ull, rhi::kBufferStorage | rhi::kBufferTransfer,
                                 rhi::MemoryAccess::GpuOnly, name, "test"});
@@ -249,15 +260,10 @@ TEST_CASE("rhi: a render target is sampled by the next pass; a dispatch reads wh
         const BufferHandle params = device.createBuffer(
             {sizeof(scale), kBufferUniform | kBufferTransfer, MemoryAccess::GpuOnly, "params", "test"},
             &scale);
-        GraphicsPipelineDesc pd;
-        pd.vertex = &shaders::fullscreen_vert;
-        pd.fragment = &shaders::constant_frag;
-        pd.colorFormats = {Format::RGBA16F};
-        pd.debugName = "constant";
-        const GraphicsPipelineHandle constant = device.createPipeline(pd);
-        pd.fragment = &shaders::sample_target_frag;
-        pd.debugName = "sample target";
-        const GraphicsPipelineHandle sampleTarget = device.createPipeline(pd);
+        const GraphicsPipelineHandle constant =
+            fullscreenPipeline(device, shaders::constant_frag, "constant");
+        const GraphicsPipelineHandle sampleTarget =
+            fullscreenPipeline(device, shaders::sample_target_frag, "sample target");
         const ComputePipelineHandle fill =
             device.createPipeline(ComputePipelineDesc{&shaders::fill_volume_comp, "fill"});
         const ComputePipelineHandle sample =
@@ -334,12 +340,8 @@ TEST_CASE("rhi: a later draw of a pass samples what a clear before the pass wrot
         const TextureHandle cleared = createTarget(device, true, "cleared");
         const TextureHandle quiet = createTarget(device, true, "quiet");
         const TextureHandle summed = createTarget(device, false, "summed");
-        GraphicsPipelineDesc pd;
-        pd.vertex = &shaders::fullscreen_vert;
-        pd.fragment = &shaders::sample_target_frag;
-        pd.colorFormats = {Format::RGBA16F};
-        pd.debugName = "sample target";
-        const GraphicsPipelineHandle sampleTarget = device.createPipeline(pd);
+        const GraphicsPipelineHandle sampleTarget =
+            fullscreenPipeline(device, shaders::sample_target_frag, "sample target");
         const SamplerHandle point = device.createSampler({});
         const glm::vec4 q{0.5f, 0.25f, 1.0f, 1.0f}, v{2.0f, 3.0f, 4.0f, 5.0f}, b{1.0f, 2.0f, 3.0f, 4.0f};
 
