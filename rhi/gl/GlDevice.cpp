@@ -90,6 +90,7 @@ GlDevice::GlDevice(const DeviceConfig& config, std::unique_ptr<platforms::GlCont
     caps_.fragmentTextureBindings =
         std::min({glInteger(gl_, GL_MAX_TEXTURE_IMAGE_UNITS),
                   config.fragmentTextureBindings.value_or(kMaxBindings), kMaxBindings});
+    caps_.computeTextureBindings = std::min(glInteger(gl_, GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS), kMaxBindings);
 
     const uint64_t region = std::max(config.uniformRingBytes, 256u);
     uniformRing_.create(gl_, region, config.framesInFlight);

@@ -110,6 +110,7 @@ public:
         caps_.storageImageBindings = configuredStorageImageBindings(32, config.storageImageBindings);
         caps_.fragmentTextureBindings =
             std::min(kMaxBindings, config.fragmentTextureBindings.value_or(kMaxBindings));
+        caps_.computeTextureBindings = kMaxBindings;
     }
 
     BackendKind backend() const override { return BackendKind::Null; }

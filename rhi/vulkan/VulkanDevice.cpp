@@ -67,6 +67,8 @@ VulkanDevice::VulkanDevice(const DeviceConfig& config) : config_(config) {
         caps_.fragmentTextureBindings =
             std::min({limits.maxPerStageDescriptorSamplers, limits.maxPerStageDescriptorSampledImages,
                       config.fragmentTextureBindings.value_or(kMaxBindings), kMaxBindings});
+        caps_.computeTextureBindings = std::min(
+            {limits.maxPerStageDescriptorSamplers, limits.maxPerStageDescriptorSampledImages, kMaxBindings});
 
         timestamps_.create(*ctx_, timestamps, config.framesInFlight + 1, config.maxTimestampsPerFrame);
         createFrames();

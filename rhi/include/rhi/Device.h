@@ -65,6 +65,9 @@ struct Caps {
     // (GL_MAX_TEXTURE_IMAGE_UNITS, 16 at the spec's minimum, 32 on Mesa and NVIDIA), Vulkan's
     // per-stage samplers and sampled images.
     uint32_t fragmentTextureBindings = 16;
+    // The same for a compute shader: OpenGL's GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS (16 at the spec's
+    // minimum, 32 on Mesa and NVIDIA), Vulkan's per-stage limits as above.
+    uint32_t computeTextureBindings = 16;
 };
 
 class Device {
