@@ -50,6 +50,28 @@
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
+#ifdef SLABS
+// SLABS: up to four volumes (LpvPropagation::recordTogether's jobs) in one dispatch. Each is a slab
+// of the stacked partial sums along z, picked by the workgroup's z; its injection volume, faces,
+// handoff and result are its own bindings, chosen by a switch on the slab: uniform over a
+// workgroup, so a GPU takes one branch (a CPU rasterizer would run all four: it keeps one dispatch
+// per volume, rhi Caps::maskedBranches).
+layout(binding = 0, std140) uniform Propagate {
+    ivec4 grid; // x: cells per axis, y: cells per thread along z, z: workgroups per slab along z,
+                // w: a slab's depth in the partial sums
+    vec4 encode[4];  // per slab, as below
+    vec4 handoff[4]; // per slab, as below; w 0: no coarser cascade around this slab
+} params;
+// The volume this workgroup computes: the seed runs one workgroup layer a cell of a slab's depth,
+// the iterations params.grid.z workgroups a slab.
+#ifdef SEED
+#define SLAB (int(gl_WorkGroupID.z) / params.grid.w)
+#else
+#define SLAB (int(gl_WorkGroupID.z) / params.grid.z)
+#endif
+#define PARAM_ENCODE params.encode[SLAB]
+#define PARAM_HANDOFF params.handoff[SLAB]
+#else
 layout(binding = 0, std140) uniform Propagate {
     ivec4 grid;  // x: cells per axis, y: cells per thread along z
     // x: rgba8 range (this volume's: LpvVolumes::encodeRange), y: handoff scale (0: none),
@@ -57,7 +79,23 @@ layout(binding = 0, std140) uniform Propagate {
     vec4 encode;
     vec4 handoff; // xyz: the coarse volume's uvw at cell (0,0,0)'s centre; w: uvw per cell
 } params;
-#ifdef HANDOFF
+#define PARAM_ENCODE params.encode
+#define PARAM_HANDOFF params.handoff
+#endif
+#ifdef SLABS
+#ifdef SEED
+// The coarser cascade's result around slabs 0-2 (the last slab is a coarsest cascade or a bounce).
+layout(binding = 7) uniform sampler3D coarse0Red;
+layout(binding = 8) uniform sampler3D coarse0Green;
+layout(binding = 9) uniform sampler3D coarse0Blue;
+layout(binding = 10) uniform sampler3D coarse1Red;
+layout(binding = 11) uniform sampler3D coarse1Green;
+layout(binding = 12) uniform sampler3D coarse1Blue;
+layout(binding = 13) uniform sampler3D coarse2Red;
+layout(binding = 14) uniform sampler3D coarse2Green;
+layout(binding = 15) uniform sampler3D coarse2Blue;
+#endif
+#elif defined(HANDOFF)
 // Cascade handoff (SEED only): outside this volume the neighbours are the next coarser cascade's
 // result, so light from beyond the border flows in (Kaplanyan & Dachsbacher 2010).
 layout(binding = 20) uniform sampler3D coarseRed;
@@ -69,7 +107,18 @@ layout(binding = 22) uniform sampler3D coarseBlue;
 // bindings up to 10; where a device has fewer storage image bindings (rhi Caps::
 // storageImageBindings: OpenGL guarantees 8, NVIDIA's driver has 8), INJECTED_AS_TEXTURE reads
 // the injection volume through texelFetch and the kernel keeps to bindings 1-7.
-#ifdef INJECTED_AS_TEXTURE
+#ifdef SLABS
+// Each slab's injection volume, read through texelFetch (the storage image bindings go to the
+// results).
+#define SLAB_INJECTED(s, first) \
+    layout(binding = first) uniform sampler3D injected##s##Red; \
+    layout(binding = first + 1) uniform sampler3D injected##s##Green; \
+    layout(binding = first + 2) uniform sampler3D injected##s##Blue;
+SLAB_INJECTED(0, 16)
+SLAB_INJECTED(1, 19)
+SLAB_INJECTED(2, 22)
+SLAB_INJECTED(3, 25)
+#elif defined(INJECTED_AS_TEXTURE)
 layout(binding = 8) uniform sampler3D injectedRed;
 layout(binding = 9) uniform sampler3D injectedGreen;
 layout(binding = 10) uniform sampler3D injectedBlue;
@@ -108,7 +157,16 @@ layout(binding = 2, PACKED1_FORMAT) uniform readonly PARTIAL_IMAGE src1;
 layout(binding = 3, PACKED2_FORMAT) uniform readonly PARTIAL_IMAGE src2;
 #endif
 #endif
-#ifdef TO_RESULT
+#if defined(TO_RESULT) && defined(SLABS)
+#define SLAB_RESULT(s, first) \
+    layout(binding = first, SH_FORMAT) uniform writeonly image3D result##s##Red; \
+    layout(binding = first + 1, SH_FORMAT) uniform writeonly image3D result##s##Green; \
+    layout(binding = first + 2, SH_FORMAT) uniform writeonly image3D result##s##Blue;
+SLAB_RESULT(0, 4)
+SLAB_RESULT(1, 7)
+SLAB_RESULT(2, 10)
+SLAB_RESULT(3, 13)
+#elif defined(TO_RESULT)
 layout(binding = 4, SH_FORMAT) uniform writeonly image3D resultRed;
 layout(binding = 5, SH_FORMAT) uniform writeonly image3D resultGreen;
 layout(binding = 6, SH_FORMAT) uniform writeonly image3D resultBlue;
@@ -122,7 +180,13 @@ layout(binding = 6, PACKED2_FORMAT) uniform writeonly PARTIAL_IMAGE dst2;
 #endif
 #endif
 
-#ifdef OCCLUSION
+#if defined(OCCLUSION) && defined(SLABS)
+// Per cell: the transmittance of its -x, -y, -z faces (GeometryVolume), each slab's own.
+layout(binding = 28) uniform sampler3D faceTransmittance0;
+layout(binding = 29) uniform sampler3D faceTransmittance1;
+layout(binding = 30) uniform sampler3D faceTransmittance2;
+layout(binding = 31) uniform sampler3D faceTransmittance3;
+#elif defined(OCCLUSION)
 // Per cell: the transmittance of its -x, -y, -z faces (GeometryVolume).
 layout(binding = 7, rgba8) uniform readonly image3D faceTransmittance;
 #endif
@@ -175,7 +239,24 @@ Sh3 add(Sh3 a, Sh3 b) { return Sh3(a.r + b.r, a.g + b.g, a.b + b.b); }
 // A cell outside the volume: the coarser cascade's result there, in this cascade's units (the
 // intensity of a cell scales with its cross-section), or nothing for the coarsest cascade.
 Sh3 outside(ivec3 c) {
-#ifndef HANDOFF
+#if defined(SLABS) && defined(SEED)
+    const vec3 uvw = PARAM_HANDOFF.xyz + vec3(c) * PARAM_HANDOFF.w;
+    vec4 r = vec4(0.0), g = vec4(0.0), b = vec4(0.0);
+    if (PARAM_HANDOFF.w == 0.0) return Sh3(r, g, b);
+    switch (SLAB) {
+    case 0:
+        r = textureLod(coarse0Red, uvw, 0.0), g = textureLod(coarse0Green, uvw, 0.0), b = textureLod(coarse0Blue, uvw, 0.0);
+        break;
+    case 1:
+        r = textureLod(coarse1Red, uvw, 0.0), g = textureLod(coarse1Green, uvw, 0.0), b = textureLod(coarse1Blue, uvw, 0.0);
+        break;
+    default:
+        r = textureLod(coarse2Red, uvw, 0.0), g = textureLod(coarse2Green, uvw, 0.0), b = textureLod(coarse2Blue, uvw, 0.0);
+        break;
+    }
+    // Float volumes only (rgba8 keeps one set, LpvSettings::propagateTogether): nothing to decode.
+    return Sh3(r * PARAM_ENCODE.y, g * PARAM_ENCODE.y, b * PARAM_ENCODE.y);
+#elif !defined(HANDOFF)
     return Sh3(vec4(0.0), vec4(0.0), vec4(0.0));
 #else
     const vec3 uvw = params.handoff.xyz + vec3(c) * params.handoff.w;
@@ -193,6 +274,9 @@ Sh3 outside(ivec3 c) {
 #if !defined(SEED) && !defined(FROM_INJECTION)
 // The previous iteration's partial sum at texel k of the partial-sum volumes.
 Sh3 loadPartial(ivec3 k) {
+#ifdef SLABS
+    k.z += SLAB * params.grid.w;
+#endif
     PARTIAL_TEXEL t0 = imageLoad(src0, k), t1 = PARTIAL_TEXEL(0), t2 = PARTIAL_TEXEL(0);
 #if PACKED_TEXELS > 1
     t1 = imageLoad(src1, k);
@@ -209,7 +293,22 @@ Sh3 loadPartial(ivec3 k) {
 // out, and storeCell drops those cells).
 Sh3 loadInjected(ivec3 c, int n) {
     const ivec3 k = min(c, ivec3(n - 1));
+#ifdef SLABS
+#define SLAB_LOAD_INJECTED(s) \
+    Sh3(texelFetch(injected##s##Red, k, 0), texelFetch(injected##s##Green, k, 0), texelFetch(injected##s##Blue, k, 0))
+    switch (SLAB) {
+    case 0:
+        return SLAB_LOAD_INJECTED(0);
+    case 1:
+        return SLAB_LOAD_INJECTED(1);
+    case 2:
+        return SLAB_LOAD_INJECTED(2);
+    default:
+        return SLAB_LOAD_INJECTED(3);
+    }
+#else
     return Sh3(LOAD_INJECTED(injectedRed, k), LOAD_INJECTED(injectedGreen, k), LOAD_INJECTED(injectedBlue, k));
+#endif
 }
 
 #ifndef SEED
@@ -255,6 +354,9 @@ Sh3 loadSource(ivec3 c, int n) {
 
 void storePartial(ivec3 p, Sh3 v) {
 #ifndef TO_RESULT
+#ifdef SLABS
+    p.z += SLAB * params.grid.w;
+#endif
     PARTIAL_TEXEL t0, t1, t2;
     packCell(v, t0, t1, t2);
     STORE_PACKED(dst, p, t0, t1, t2);
@@ -263,7 +365,25 @@ void storePartial(ivec3 p, Sh3 v) {
 
 void storeCell(ivec3 c, int n, Sh3 v) {
     if (any(greaterThanEqual(c, ivec3(n)))) return; // odd sizes: the 2x2 column may stick out
-#ifdef TO_RESULT
+#if defined(TO_RESULT) && defined(SLABS)
+#define SLAB_STORE_RESULT(s) \
+    imageStore(result##s##Red, c, encodeSh(v.r)), imageStore(result##s##Green, c, encodeSh(v.g)), \
+        imageStore(result##s##Blue, c, encodeSh(v.b))
+    switch (SLAB) {
+    case 0:
+        SLAB_STORE_RESULT(0);
+        break;
+    case 1:
+        SLAB_STORE_RESULT(1);
+        break;
+    case 2:
+        SLAB_STORE_RESULT(2);
+        break;
+    default:
+        SLAB_STORE_RESULT(3);
+        break;
+    }
+#elif defined(TO_RESULT)
     imageStore(resultRed, c, encodeSh(v.r));
     imageStore(resultGreen, c, encodeSh(v.g));
     imageStore(resultBlue, c, encodeSh(v.b));
@@ -278,7 +398,25 @@ void storeCell(ivec3 c, int n, Sh3 v) {
 
 // Face transmittance of a cell; 1 outside the volume (nothing comes from there anyway).
 vec3 faces(ivec3 c, int n) {
-#ifdef OCCLUSION
+#if defined(OCCLUSION) && defined(SLABS)
+    const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
+    vec3 t;
+    switch (SLAB) {
+    case 0:
+        t = texelFetch(faceTransmittance0, k, 0).xyz;
+        break;
+    case 1:
+        t = texelFetch(faceTransmittance1, k, 0).xyz;
+        break;
+    case 2:
+        t = texelFetch(faceTransmittance2, k, 0).xyz;
+        break;
+    default:
+        t = texelFetch(faceTransmittance3, k, 0).xyz;
+        break;
+    }
+    return mix(vec3(1.0), t, bvec3(all(equal(c, k))));
+#elif defined(OCCLUSION)
     const ivec3 k = clamp(c, ivec3(0), ivec3(n - 1));
     return mix(vec3(1.0), imageLoad(faceTransmittance, k).xyz, bvec3(all(equal(c, k))));
 #else
@@ -291,7 +429,10 @@ vec3 faces(ivec3 c, int n) {
 // cell of the padded volume.
 void main() {
     const int n = params.grid.x;
-    const ivec3 p = ivec3(gl_GlobalInvocationID);
+    ivec3 p = ivec3(gl_GlobalInvocationID);
+#ifdef SLABS
+    p.z -= SLAB * params.grid.w;
+#endif
     if (any(greaterThanEqual(p, ivec3(n + 2 + (n & 1))))) return;
     const ivec3 c = p - 1;
     if (all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(n)))) {
@@ -301,6 +442,9 @@ void main() {
     // Beyond the border: the same texels in both partial-sum volumes.
     PARTIAL_TEXEL t0, t1, t2;
     packCell(outside(c), t0, t1, t2);
+#ifdef SLABS
+    p.z += SLAB * params.grid.w;
+#endif
     STORE_PACKED(dst, p, t0, t1, t2);
     STORE_PACKED(shell, p, t0, t1, t2);
 }
@@ -308,7 +452,11 @@ void main() {
 void main() {
     const int n = params.grid.x;
     const ivec2 o = ivec2(gl_GlobalInvocationID.xy) * 2; // the 2x2 column: o, o+x, o+y, o+x+y
+#ifdef SLABS
+    const int z0 = (int(gl_WorkGroupID.z) - SLAB * params.grid.z) * params.grid.y;
+#else
     const int z0 = int(gl_GlobalInvocationID.z) * params.grid.y;
+#endif
     if (o.x >= n || o.y >= n || z0 >= n) return;
     const int z1 = min(z0 + params.grid.y, n);
     // The column's cells below, at and above the current slice: 0 = (0,0), 1 = (1,0), 2 = (0,1),

@@ -29,6 +29,12 @@ uint64_t pixelsOf(const rhi::TextureDesc& d) {
     return uint64_t(d.width) * d.height;
 }
 
+// The volumes with partial sums of their own (GiBudget.cpp counts them): every cascade's and the
+// further bounces' with gi.cascades_together, else the one shared set.
+uint32_t propagatedTogether(const LpvSettings& s) {
+    return s.propagateTogether() ? s.cascades + (s.bounces > 1 ? 1 : 0) : 1;
+}
+
 } // namespace
 
 VolumeGrid placeVolume(const LpvSettings& s, glm::vec3 cameraPosition, glm::vec3 cameraForward,
@@ -93,13 +99,15 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     clippingReported_ = 0.0f;
     madeWith_ = s;
     rsm_ = std::make_unique<ReflectiveShadowMap>(device_, s.rsmSize);
-    volumes_ = std::make_unique<LpvVolumes>(device_, s);
+    propagation_ = std::make_unique<LpvPropagation>(device_, s, 0, propagatedTogether(s));
+    // Stacked, the propagation keeps every volume's partial sums.
+    const bool partialSums = !propagation_->stacked();
+    volumes_ = std::make_unique<LpvVolumes>(device_, s, partialSums);
     injection_ = std::make_unique<LpvInjection>(device_, s);
-    propagation_ = std::make_unique<LpvPropagation>(device_, s);
     cascades_.resize(s.cascades);
     if (s.propagateTogether())
         for (uint32_t c = 1; c < s.cascades; ++c) {
-            cascadeVolumes_.push_back(std::make_unique<LpvVolumes>(device_, s));
+            cascadeVolumes_.push_back(std::make_unique<LpvVolumes>(device_, s, partialSums));
             cascadeRsms_.push_back(std::make_unique<ReflectiveShadowMap>(device_, s.rsmSize));
         }
     cascades_[0].result = volumes_->accumulated();
@@ -112,7 +120,8 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
         geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize, s.bounces > 1, s.faceVolumes(),
                                                      s.cameraAreas(), s.propagateTogether());
     if (s.bounces > 1)
-        bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_, s.propagateTogether());
+        bounces_ =
+            std::make_unique<MultipleBounces>(device_, s, *volumes_, s.propagateTogether(), partialSums);
     firstValid_ = false;
     pointLights_ = std::make_unique<PointLightInjection>(device_, s);
     spotRsms_ = std::make_unique<SpotLightRsms>(device_, s);
@@ -151,8 +160,14 @@ void LightPropagationVolume::replaceUpdateResources(const LpvSettings& s) {
         if (s.occlusion)
             geometry_ = std::make_unique<GeometryVolume>(device_, s.gridSize, s.bounces > 1, s.faceVolumes(),
                                                          s.cameraAreas(), s.propagateTogether());
+        // Stacked, the bounces' volumes take a slab of the propagation's partial sums or give it back.
+        if (propagation_->stacked()) {
+            propagation_.reset();
+            propagation_ = std::make_unique<LpvPropagation>(device_, s, 0, propagatedTogether(s));
+        }
         if (s.bounces > 1)
-            bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_, s.propagateTogether());
+            bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_, s.propagateTogether(),
+                                                         !propagation_->stacked());
         firstValid_ = false;
     }
 }
@@ -465,8 +480,8 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         // before where it was placed at the same cell size; otherwise the bounces follow.
         const Cascade& finest = cascades_[0];
         const bool ahead = together && bounced && bounces_->first() && settings_.bounces == 2 &&
-                           firstValid_ && firstGrid_.cellSize == finest.grid.cellSize &&
-                           firstGrid_.size == finest.grid.size;
+                           cascadeCount() < LpvPropagation::kMaxJobs && firstValid_ &&
+                           firstGrid_.cellSize == finest.grid.cellSize && firstGrid_.size == finest.grid.size;
         if (ahead) f.pass("bounces", [&] { return recordBounceReflect(f); });
         f.pass("propagate", [&] {
             if (together) return recordPropagationTogether(f, propagated, ahead);

@@ -30,7 +30,7 @@ rhi::Format packedTexelFormat(ShFormat f, uint32_t /*texel*/) {
     return f == ShFormat::Rgba16f ? rhi::Format::RGBA16F : rhi::Format::RGBA32UI;
 }
 
-LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings)
+LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings, bool partialSums)
     : device_(device), settings_(settings) {
     using namespace rhi;
     const uint32_t n = settings.gridSize;
@@ -50,7 +50,7 @@ LpvVolumes::LpvVolumes(rhi::Device& device, const LpvSettings& settings)
         accum_[size_t(c)] = volume(shFormat, kTextureStorage | kTextureSampled, "accumulated");
     }
     const uint32_t padded = partialSumSize(settings);
-    for (uint32_t t = 0; t < packedTexelCount(settings.shFormat); ++t)
+    for (uint32_t t = 0; t < (partialSums ? packedTexelCount(settings.shFormat) : 0); ++t)
         for (uint32_t p = 0; p < 2; ++p)
             partial_[p][t] = device.createTexture(
                 {TextureKind::Tex3D, packedTexelFormat(settings.shFormat, t), padded, padded, padded, 1,

@@ -37,13 +37,13 @@ const rhi::ShaderBinary& addShader(ShFormat f) {
 } // namespace
 
 MultipleBounces::MultipleBounces(rhi::Device& device, const LpvSettings& settings, const LpvVolumes& volumes,
-                                 bool keepFirst)
+                                 bool keepFirst, bool partialSums)
     : device_(device), settings_(settings) {
     using namespace rhi;
     if (keepFirst) {
         if (settings.shFormat == ShFormat::Rgba8)
             throw std::logic_error("MultipleBounces: the first bounce is kept apart in float volumes only");
-        own_ = std::make_unique<LpvVolumes>(device, settings);
+        own_ = std::make_unique<LpvVolumes>(device, settings, partialSums);
         bounce_ = own_->accumulated();
         first_ = volumes.createResult("lpv first bounce");
         addFirstPipeline_ = device.createPipeline(ComputePipelineDesc{

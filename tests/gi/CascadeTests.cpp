@@ -9,6 +9,7 @@
 #include "engine/profiler/FrameProfiler.h"
 #include "engine/scene/BuiltinScenes.h"
 #include "gi/LightPropagationVolume.h"
+#include "gi/LpvPropagation.h"
 #include "gi/ShBasis.h"
 #include "gi/adapter/EngineFrame.h"
 #include "platforms/PlatformProfile.h"
@@ -251,45 +252,127 @@ TEST_CASE("gi: coarse cascades updated in two halves on two frames match a whole
 TEST_CASE("gi: cascades propagated together match cascades one after another in a still scene") {
     // Together (gi.cascades_together), a finer cascade takes the coarser one's result of the frame
     // before at its border; the first frame propagates them one after another, as they have none.
-    // In a still scene the result is the same from the second frame on, texel for texel.
+    // In a still scene the result is the same from the second frame on, texel for texel. Where
+    // branches are not masked, the volumes propagate stacked, one dispatch a step for all of them
+    // (LpvPropagation::stacks); a CPU rasterizer, whose branches are, one dispatch per volume.
+    for (const auto& backend : selectedBackends()) {
+        for (const bool masked : {true, false})
+            SUBCASE((backend.name + (masked ? ", a dispatch per volume" : ", stacked")).c_str()) {
+                rhi::DeviceConfig config;
+                config.maskedBranches = masked;
+                TestDevice device(backend, config);
+                gi::LpvSettings stackedSettings;
+                stackedSettings.cascades = 3;
+                REQUIRE(gi::LpvPropagation::stacks(device->caps(), stackedSettings, 4) == !masked);
+                const auto frameWith = [&](const char* together, int frames) {
+                    std::vector<std::string> settings = kGi;
+                    settings.push_back("gi.cascades=3");
+                    settings.push_back("gi.bounces=2");
+                    settings.push_back(together);
+                    return renderSceneFrame(*device, engine::buildCornellBox(), settings, {}, 160, 120,
+                                            frames);
+                };
+                const CornellFrame serial = frameWith("gi.cascades_together=false", 3);
+                const CornellFrame together = frameWith("gi.cascades_together=true", 3);
+                // One frame together changes nothing either: it has no coarse result to take yet.
+                const CornellFrame first = frameWith("gi.cascades_together=true", 1);
+                const CornellFrame firstSerial = frameWith("gi.cascades_together=false", 1);
+                REQUIRE(serial.cascadeVolumes.size() == 3);
+                REQUIRE(together.cascadeVolumes.size() == 3);
+                size_t differing = 0, differingFirst = 0;
+                float peak = 0.0f;
+                for (uint32_t c = 0; c < 3; ++c)
+                    for (uint32_t ch = 0; ch < 3; ++ch) {
+                        const Image& a = serial.cascadeVolumes[c][ch];
+                        const Image& b = together.cascadeVolumes[c][ch];
+                        REQUIRE(a.texels.size() == b.texels.size());
+                        for (size_t i = 0; i < a.texels.size(); ++i) {
+                            peak = std::max(peak, std::fabs(a.texels[i].x));
+                            if (a.texels[i] != b.texels[i]) ++differing;
+                            if (first.cascadeVolumes[c][ch].texels[i] !=
+                                firstSerial.cascadeVolumes[c][ch].texels[i])
+                                ++differingFirst;
+                        }
+                    }
+                MESSAGE(backend.name << std::string(masked ? "" : ", stacked") << ": " << differing
+                                     << " differing texels after 3 frames, " << differingFirst
+                                     << " after 1; peak " << peak);
+                CHECK(peak > 0.0f);
+                CHECK(differing == 0);
+                CHECK(differingFirst == 0);
+                CHECK(serial.hdr.texels == together.hdr.texels);
+                device.expectSilent();
+            }
+    }
+}
+
+namespace {
+
+// Every cascade's result after each group of `frames` frames with its settings in turn, rendered
+// by one LightPropagationVolume from the Cornell box's camera.
+std::vector<std::array<Image, 3>>
+cascadesAfter(rhi::Device& device, const std::vector<std::vector<std::string>>& settingsInTurn, int frames) {
+    const engine::Scene scene = engine::buildCornellBox();
+    engine::Renderer renderer(device, 160, 120);
+    renderer.setScene(scene);
+    gi::LightPropagationVolume lpv(device, platforms::loadPlatformProfile("pc"));
+    const engine::CameraMatrices matrices = engine::cameraMatrices(*scene.camera, 160.0f / 120.0f);
+    for (const std::vector<std::string>& settings : settingsInTurn) {
+        engine::Config config;
+        for (const std::string& s : settings)
+            config.applyOverride(s, "test");
+        for (int i = 0; i < frames; ++i) {
+            REQUIRE(gi::updateFromConfig(lpv, config, renderer, matrices).accepted);
+            rhi::CommandList& cmd = device.beginFrame();
+            renderer.render(cmd, matrices, config, nullptr, &lpv);
+            device.endFrame();
+        }
+    }
+    device.waitIdle();
+    std::vector<std::array<Image, 3>> out(lpv.cascadeCount());
+    for (uint32_t c = 0; c < lpv.cascadeCount(); ++c)
+        for (uint32_t ch = 0; ch < 3; ++ch)
+            out[c][ch] = readImage(device, lpv.cascadeResult(c)[ch]);
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("gi: stacked volumes follow the further bounces turned off and on") {
+    // Stacked (a GPU's path), the further bounce's volume is a slab of the propagation's partial
+    // sums: turning gi.bounces from 2 to 1 or from 1 to 2 remakes the propagation with one slab
+    // fewer or more. The cascades then match a volume that always had the later settings.
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
-            TestDevice device(backend);
-            const auto frameWith = [&](const char* together, int frames) {
-                std::vector<std::string> settings = kGi;
-                settings.push_back("gi.cascades=3");
-                settings.push_back("gi.bounces=2");
-                settings.push_back(together);
-                return renderSceneFrame(*device, engine::buildCornellBox(), settings, {}, 160, 120, frames);
-            };
-            const CornellFrame serial = frameWith("gi.cascades_together=false", 3);
-            const CornellFrame together = frameWith("gi.cascades_together=true", 3);
-            // One frame together changes nothing either: it has no coarse result to take yet.
-            const CornellFrame first = frameWith("gi.cascades_together=true", 1);
-            const CornellFrame firstSerial = frameWith("gi.cascades_together=false", 1);
-            REQUIRE(serial.cascadeVolumes.size() == 3);
-            REQUIRE(together.cascadeVolumes.size() == 3);
-            size_t differing = 0, differingFirst = 0;
+            rhi::DeviceConfig config;
+            config.maskedBranches = false;
+            TestDevice device(backend, config);
+            std::vector<std::string> two = kGi, one = kGi;
+            two.push_back("gi.cascades=3"), one.push_back("gi.cascades=3");
+            two.push_back("gi.bounces=2"), one.push_back("gi.bounces=1");
+            const auto toggled = cascadesAfter(*device, {two, one}, 3);
+            const auto never = cascadesAfter(*device, {one}, 3);
+            const auto back = cascadesAfter(*device, {one, two}, 3);
+            const auto always = cascadesAfter(*device, {two}, 3);
+            REQUIRE(toggled.size() == 3);
+            size_t differing = 0, differingBack = 0;
             float peak = 0.0f;
             for (uint32_t c = 0; c < 3; ++c)
-                for (uint32_t ch = 0; ch < 3; ++ch) {
-                    const Image& a = serial.cascadeVolumes[c][ch];
-                    const Image& b = together.cascadeVolumes[c][ch];
-                    REQUIRE(a.texels.size() == b.texels.size());
-                    for (size_t i = 0; i < a.texels.size(); ++i) {
-                        peak = std::max(peak, std::fabs(a.texels[i].x));
-                        if (a.texels[i] != b.texels[i]) ++differing;
-                        if (first.cascadeVolumes[c][ch].texels[i] !=
-                            firstSerial.cascadeVolumes[c][ch].texels[i])
-                            ++differingFirst;
+                for (uint32_t ch = 0; ch < 3; ++ch)
+                    for (size_t i = 0; i < never[c][ch].texels.size(); ++i) {
+                        peak = std::max(peak, std::fabs(never[c][ch].texels[i].x));
+                        if (toggled[c][ch].texels[i] != never[c][ch].texels[i]) ++differing;
+                        if (back[c][ch].texels[i] != always[c][ch].texels[i]) ++differingBack;
                     }
-                }
-            MESSAGE(backend.name << ": " << differing << " differing texels after 3 frames, "
-                                 << differingFirst << " after 1; peak " << peak);
+            MESSAGE(backend.name << ": " << differing << " texels differ after 2 -> 1 bounces, "
+                                 << differingBack << " after 1 -> 2; peak " << peak);
             CHECK(peak > 0.0f);
             CHECK(differing == 0);
-            CHECK(differingFirst == 0);
-            CHECK(serial.hdr.texels == together.hdr.texels);
+            CHECK(differingBack == 0);
+            // Four cascades fill a dispatch: their bounce propagates after them.
+            std::vector<std::string> four = two;
+            four.push_back("gi.cascades=4");
+            CHECK(cascadesAfter(*device, {four}, 2).size() == 4);
             device.expectSilent();
         }
     }

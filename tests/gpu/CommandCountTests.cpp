@@ -77,6 +77,9 @@ struct Pinned {
     // gi/propagate: the 3 cascades' and the further bounce's seeds and 8 iterations, together.
     rhi::CommandCounts propagate;
     rhi::CommandCounts conservativeFrame, conservativeGi;
+    // As a GPU runs it (DeviceConfig::maskedBranches false): the propagation's volumes stacked,
+    // one dispatch a step for all of them (LpvPropagation::stacks).
+    rhi::CommandCounts stackedFrame, stackedGi, stackedPropagate;
     // Vulkan with its textures in the layout of each use (DeviceConfig::unifiedImageLayouts
     // false, as on a GPU without unified layouts): render passes move their targets.
     std::optional<std::pair<rhi::CommandCounts, rhi::CommandCounts>> layoutsPerUse;
@@ -113,6 +116,9 @@ Pinned pinnedFor(rhi::BackendKind kind) {
             {36, 0, 0, 9, 9},
             {50, 109, 852, 72, 68},
             {50, 105, 418, 65, 62},
+            {23, 102, 852, 24, 24},
+            {23, 98, 418, 19, 19},
+            {9, 0, 0, 9, 9},
             std::pair{rhi::CommandCounts{50, 109, 852, 36, 35}, rhi::CommandCounts{50, 105, 418, 29, 29}}};
     // GL: a command pays one glMemoryBarrier, with the bits it needs, only where it touches what
     // earlier shaders stored to (or stores to what they read) since a barrier covered it
@@ -123,7 +129,8 @@ Pinned pinnedFor(rhi::BackendKind kind) {
     // after every dispatch, render pass and transfer (84, 72 since the injection's and the
     // coverage's clears are their passes').
     return {{50, 19, 852, 17, 17}, {50, 15, 418, 16, 16}, "render.gbuffer",      {0, 0, 217, 0, 0},
-            {36, 0, 0, 9, 9},      {50, 19, 852, 72, 68}, {50, 15, 418, 65, 62}, std::nullopt};
+            {36, 0, 0, 9, 9},      {50, 19, 852, 72, 68}, {50, 15, 418, 65, 62}, {23, 12, 852, 17, 17},
+            {23, 8, 418, 16, 16},  {9, 0, 0, 9, 9},       std::nullopt};
 }
 
 } // namespace
@@ -148,6 +155,16 @@ TEST_CASE("render: the benchmark's atrium frame records its pinned commands") {
             MESSAGE("conservative frame: " << describe(c.frame) << "; gi: " << describe(c.passes.at("gi")));
             CHECK(c.frame == pinned.conservativeFrame);
             CHECK(c.passes.at("gi") == pinned.conservativeGi);
+        }
+        SUBCASE((backend.name + ", a GPU's branches").c_str()) {
+            rhi::DeviceConfig gpu;
+            gpu.maskedBranches = false;
+            const Counted c = countAtrium(backend, gpu);
+            MESSAGE("unmasked frame: " << describe(c.frame) << "; gi: " << describe(c.passes.at("gi"))
+                                       << "; gi/propagate: " << describe(c.passes.at("gi/propagate")));
+            CHECK(c.frame == pinned.stackedFrame);
+            CHECK(c.passes.at("gi") == pinned.stackedGi);
+            CHECK(c.passes.at("gi/propagate") == pinned.stackedPropagate);
         }
         if (pinned.layoutsPerUse) {
             SUBCASE((backend.name + ", layouts per use").c_str()) {

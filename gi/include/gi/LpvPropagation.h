@@ -40,10 +40,20 @@ class LpvPropagation {
 public:
     static constexpr size_t kMaxJobs = 4;
 
+    // Whether `volumes` (2 or more) volumes made with `settings` propagate as slabs of one stacked
+    // set of partial sums, each step of up to kMaxJobs of them one dispatch: float volumes with a
+    // shell, on a device whose branches uniform over a workgroup cost one side only (a CPU
+    // rasterizer runs every side: there each volume keeps its own dispatch and partial sums) and
+    // with the bindings the kernel takes (16 storage images, 32 textures in a compute shader).
+    static bool stacks(const rhi::Caps& caps, const LpvSettings& settings, uint32_t volumes);
+
     // For volumes made with `settings` (their size, format and partial-sum layout).
     // `columnLength`: cells each thread walks along z; 0 picks it from the device
     // (propagationColumnLength). Tests pin it to cover the shapes other devices get.
-    LpvPropagation(rhi::Device& device, const LpvSettings& settings, uint32_t columnLength = 0);
+    // `volumes`: how many recordTogether() takes at once; where they stack (stacks()), the
+    // propagation keeps their partial sums, and the volumes are made without (LpvVolumes).
+    LpvPropagation(rhi::Device& device, const LpvSettings& settings, uint32_t columnLength = 0,
+                   uint32_t volumes = 1);
     ~LpvPropagation();
     LpvPropagation(const LpvPropagation&) = delete;
     LpvPropagation& operator=(const LpvPropagation&) = delete;
@@ -62,10 +72,19 @@ public:
                 const CascadeHandoff* handoff = nullptr);
     // Several volumes (up to kMaxJobs, each made with these settings, none another's handoff
     // source) propagated step by step together: each step of all of them is one stage of the
-    // dependent chain, not one per volume.
+    // dependent chain, not one per volume; stacked (stacked()), one dispatch. Stacked, every job
+    // or none has faces, and only the first three a handoff (std::logic_error otherwise).
     void recordTogether(rhi::CommandList& cmd, std::span<const PropagationJob> jobs, uint32_t iterations);
 
+    // The volumes' partial sums are this propagation's, stacked (stacks()).
+    bool stacked() const { return slabs_ > 0; }
+
 private:
+    void recordStacked(rhi::CommandList& cmd, std::span<const PropagationJob> jobs, uint32_t iterations);
+    // The partial sums job j ping-pongs between: its volumes', or the stack's (whose first slab
+    // the one-volume kernels address like a volume's own).
+    const std::array<std::array<rhi::TextureHandle, 3>, 2>& partialSumsOf(const PropagationJob& job) const;
+
     rhi::Device& device_;
     LpvSettings settings_;
     uint32_t columnLength_;
@@ -77,6 +96,11 @@ private:
     std::array<rhi::ComputePipelineHandle, 14> pipelines_{};
     rhi::SamplerHandle linearSampler_; // the coarse cascade's result (handoff)
     rhi::SamplerHandle pointSampler_;  // the injection volume, read texel by texel
+    // Stacked: the slabs of the partial sums (0: not stacked), their textures (ping and pong,
+    // packedTexelCount each) and the slab kernels (StackedRole in LpvPropagation.cpp).
+    uint32_t slabs_ = 0;
+    std::array<std::array<rhi::TextureHandle, 3>, 2> stack_{};
+    std::array<rhi::ComputePipelineHandle, 5> stackedPipelines_{};
 };
 
 } // namespace lpv::gi

@@ -32,7 +32,9 @@ uint32_t partialSumSize(const LpvSettings& s);
 
 class LpvVolumes {
 public:
-    LpvVolumes(rhi::Device& device, const LpvSettings& settings);
+    // `partialSums` false: without partial sums, for a propagation that keeps them
+    // (LpvPropagation::stacked()).
+    LpvVolumes(rhi::Device& device, const LpvSettings& settings, bool partialSums = true);
     ~LpvVolumes();
     LpvVolumes(const LpvVolumes&) = delete;
     LpvVolumes& operator=(const LpvVolumes&) = delete;
@@ -46,7 +48,7 @@ public:
     const std::array<rhi::TextureHandle, 3>& injected() const { return inject_; }
     const std::array<rhi::TextureHandle, 3>& accumulated() const { return accum_; }
     // The partial sums, ping and pong: packedTexelCount textures each (the others null),
-    // partialSumSize^3.
+    // partialSumSize^3; all null where made without.
     const std::array<std::array<rhi::TextureHandle, 3>, 2>& partialSums() const { return partial_; }
     bool encoded() const { return settings_.shFormat == ShFormat::Rgba8; }
     // The largest coefficient an rgba8 volume placed at `grid` stores (ShEncoding.h):

@@ -27,9 +27,10 @@ public:
     // Scratch for one bounce's light (3 SH textures in gi.sh_format), shared by every cascade.
     // `keepFirst` (gi.cascades_together): the finest cascade's first bounce is kept apart (first()),
     // and the bounces have volumes of their own (ownVolumes()), so that a bounce can propagate with
-    // the cascades from the first bounce of the frame before (LightPropagationVolume).
+    // the cascades from the first bounce of the frame before (LightPropagationVolume); those
+    // have no partial sums where the propagation keeps them (`partialSums` false).
     MultipleBounces(rhi::Device& device, const LpvSettings& settings, const LpvVolumes& volumes,
-                    bool keepFirst = false);
+                    bool keepFirst = false, bool partialSums = true);
     ~MultipleBounces();
     MultipleBounces(const MultipleBounces&) = delete;
     MultipleBounces& operator=(const MultipleBounces&) = delete;
