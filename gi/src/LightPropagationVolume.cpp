@@ -31,7 +31,7 @@ uint64_t pixelsOf(const rhi::TextureDesc& d) {
 
 // The volumes with partial sums of their own (GiBudget.cpp counts them): every cascade's and the
 // further bounces' with gi.cascades_together, else the one shared set.
-uint32_t propagatedTogether(const LpvSettings& s) {
+uint32_t volumesWithPartialSums(const LpvSettings& s) {
     return s.propagateTogether() ? s.cascades + (s.bounces > 1 ? 1 : 0) : 1;
 }
 
@@ -99,7 +99,7 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     clippingReported_ = 0.0f;
     madeWith_ = s;
     rsm_ = std::make_unique<ReflectiveShadowMap>(device_, s.rsmSize);
-    propagation_ = std::make_unique<LpvPropagation>(device_, s, 0, propagatedTogether(s));
+    propagation_ = std::make_unique<LpvPropagation>(device_, s, 0, volumesWithPartialSums(s));
     // Stacked, the propagation keeps every volume's partial sums.
     const bool partialSums = !propagation_->stacked();
     volumes_ = std::make_unique<LpvVolumes>(device_, s, partialSums);
@@ -163,7 +163,7 @@ void LightPropagationVolume::replaceUpdateResources(const LpvSettings& s) {
         // Stacked, the bounces' volumes take a slab of the propagation's partial sums or give it back.
         if (propagation_->stacked()) {
             propagation_.reset();
-            propagation_ = std::make_unique<LpvPropagation>(device_, s, 0, propagatedTogether(s));
+            propagation_ = std::make_unique<LpvPropagation>(device_, s, 0, volumesWithPartialSums(s));
         }
         if (s.bounces > 1)
             bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_, s.propagateTogether(),
