@@ -57,9 +57,8 @@ using namespace lpv;
 // after 6 warm-up frames, with `extra` settings. `check` looks at the profiler and the LPV afterwards.
 template <typename Check>
 uint64_t steadyStateAllocations(const test::BackendUnderTest& backend, const engine::Scene& scene,
-                                float cellSize, Check&& check,
-                                std::initializer_list<const char*> extra = {}) {
-    rhi::DeviceConfig config;
+                                float cellSize, Check&& check, std::initializer_list<const char*> extra = {},
+                                rhi::DeviceConfig config = {}) {
     config.backend = backend.kind;
     config.glHeadless = backend.glHeadless;
     config.allowFallback = false;
@@ -113,6 +112,16 @@ TEST_CASE("steady state: a frame with GI, the profiler and its overlay allocates
                 backend, engine::buildCornellBox(), 0.17f,
                 [](const engine::FrameProfiler&, const gi::LightPropagationVolume&) {});
             MESSAGE(backend.name << ": " << n << " allocations in 4 steady-state frames");
+            CHECK(n == 0);
+        }
+        // As a GPU runs it: the lookup per texel, the propagation's volumes stacked.
+        SUBCASE((backend.name + ", a GPU's branches").c_str()) {
+            rhi::DeviceConfig gpu;
+            gpu.maskedBranches = false;
+            const uint64_t n = steadyStateAllocations(
+                backend, engine::buildCornellBox(), 0.17f,
+                [](const engine::FrameProfiler&, const gi::LightPropagationVolume&) {}, {}, gpu);
+            MESSAGE(backend.name << ", a GPU's branches: " << n << " allocations in 4 steady-state frames");
             CHECK(n == 0);
         }
     }
