@@ -83,17 +83,16 @@ layout(binding = 0, std140) uniform Propagate {
 #define PARAM_HANDOFF params.handoff
 #endif
 #ifdef SLABS
+// A slab's set of three SH textures (red, green, blue) at bindings first..first + 2.
+#define SLAB_SAMPLERS(name, first) \
+    layout(binding = first) uniform sampler3D name##Red; \
+    layout(binding = first + 1) uniform sampler3D name##Green; \
+    layout(binding = first + 2) uniform sampler3D name##Blue;
 #ifdef SEED
 // The coarser cascade's result around slabs 0-2 (the last slab is a coarsest cascade or a bounce).
-layout(binding = 7) uniform sampler3D coarse0Red;
-layout(binding = 8) uniform sampler3D coarse0Green;
-layout(binding = 9) uniform sampler3D coarse0Blue;
-layout(binding = 10) uniform sampler3D coarse1Red;
-layout(binding = 11) uniform sampler3D coarse1Green;
-layout(binding = 12) uniform sampler3D coarse1Blue;
-layout(binding = 13) uniform sampler3D coarse2Red;
-layout(binding = 14) uniform sampler3D coarse2Green;
-layout(binding = 15) uniform sampler3D coarse2Blue;
+SLAB_SAMPLERS(coarse0, 7)
+SLAB_SAMPLERS(coarse1, 10)
+SLAB_SAMPLERS(coarse2, 13)
 #endif
 #elif defined(HANDOFF)
 // Cascade handoff (SEED only): outside this volume the neighbours are the next coarser cascade's
@@ -110,14 +109,10 @@ layout(binding = 22) uniform sampler3D coarseBlue;
 #ifdef SLABS
 // Each slab's injection volume, read through texelFetch (the storage image bindings go to the
 // results).
-#define SLAB_INJECTED(s, first) \
-    layout(binding = first) uniform sampler3D injected##s##Red; \
-    layout(binding = first + 1) uniform sampler3D injected##s##Green; \
-    layout(binding = first + 2) uniform sampler3D injected##s##Blue;
-SLAB_INJECTED(0, 16)
-SLAB_INJECTED(1, 19)
-SLAB_INJECTED(2, 22)
-SLAB_INJECTED(3, 25)
+SLAB_SAMPLERS(injected0, 16)
+SLAB_SAMPLERS(injected1, 19)
+SLAB_SAMPLERS(injected2, 22)
+SLAB_SAMPLERS(injected3, 25)
 #elif defined(INJECTED_AS_TEXTURE)
 layout(binding = 8) uniform sampler3D injectedRed;
 layout(binding = 9) uniform sampler3D injectedGreen;
@@ -243,15 +238,17 @@ Sh3 outside(ivec3 c) {
     const vec3 uvw = PARAM_HANDOFF.xyz + vec3(c) * PARAM_HANDOFF.w;
     vec4 r = vec4(0.0), g = vec4(0.0), b = vec4(0.0);
     if (PARAM_HANDOFF.w == 0.0) return Sh3(r, g, b);
+#define SAMPLE_COARSE(name) \
+    r = textureLod(name##Red, uvw, 0.0), g = textureLod(name##Green, uvw, 0.0), b = textureLod(name##Blue, uvw, 0.0)
     switch (SLAB) {
     case 0:
-        r = textureLod(coarse0Red, uvw, 0.0), g = textureLod(coarse0Green, uvw, 0.0), b = textureLod(coarse0Blue, uvw, 0.0);
+        SAMPLE_COARSE(coarse0);
         break;
     case 1:
-        r = textureLod(coarse1Red, uvw, 0.0), g = textureLod(coarse1Green, uvw, 0.0), b = textureLod(coarse1Blue, uvw, 0.0);
+        SAMPLE_COARSE(coarse1);
         break;
     default:
-        r = textureLod(coarse2Red, uvw, 0.0), g = textureLod(coarse2Green, uvw, 0.0), b = textureLod(coarse2Blue, uvw, 0.0);
+        SAMPLE_COARSE(coarse2);
         break;
     }
     // Float volumes only (rgba8 keeps one set, LpvSettings::propagateTogether): nothing to decode.
@@ -294,17 +291,16 @@ Sh3 loadPartial(ivec3 k) {
 Sh3 loadInjected(ivec3 c, int n) {
     const ivec3 k = min(c, ivec3(n - 1));
 #ifdef SLABS
-#define SLAB_LOAD_INJECTED(s) \
-    Sh3(texelFetch(injected##s##Red, k, 0), texelFetch(injected##s##Green, k, 0), texelFetch(injected##s##Blue, k, 0))
+#define FETCH_INJECTED(name) Sh3(texelFetch(name##Red, k, 0), texelFetch(name##Green, k, 0), texelFetch(name##Blue, k, 0))
     switch (SLAB) {
     case 0:
-        return SLAB_LOAD_INJECTED(0);
+        return FETCH_INJECTED(injected0);
     case 1:
-        return SLAB_LOAD_INJECTED(1);
+        return FETCH_INJECTED(injected1);
     case 2:
-        return SLAB_LOAD_INJECTED(2);
+        return FETCH_INJECTED(injected2);
     default:
-        return SLAB_LOAD_INJECTED(3);
+        return FETCH_INJECTED(injected3);
     }
 #else
     return Sh3(LOAD_INJECTED(injectedRed, k), LOAD_INJECTED(injectedGreen, k), LOAD_INJECTED(injectedBlue, k));
