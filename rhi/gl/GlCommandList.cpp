@@ -444,6 +444,32 @@ void GlCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uin
     noteShaderAccesses(p.bindings);
 }
 
+void GlCommandList::drawIndexedIndirect(BufferHandle commands, uint64_t offset, uint32_t drawCount) {
+    if (!indexBuffer_) throw Error("drawIndexedIndirect without an index buffer");
+    if (indexOffset_ != 0) throw Error("drawIndexedIndirect: the index buffer is bound at an offset");
+    const GlBuffer& b = device_.buffers.get(commands);
+    if (!(b.desc.usage & kBufferIndirect) || b.desc.access != MemoryAccess::HostWrite)
+        throw Error("drawIndexedIndirect: buffer '" + b.desc.debugName +
+                    "' is not a HostWrite kBufferIndirect one");
+    const GlGraphicsPipeline& p = prepareDraw("drawIndexedIndirect", true);
+    // SPIRV-Cross's stand-in for the base instance is one uniform a call: a multi-draw's later
+    // draws would read the first one's records.
+    if (p.baseInstanceLocation >= 0)
+        throw Error("drawIndexedIndirect: pipeline '" + p.desc.debugName +
+                    "' reads gl_InstanceIndex, which GL gives a multi-draw's draws wrong");
+    const Functions& gl = device_.gl();
+    gl.glVertexArrayElementBuffer(p.vao, indexBuffer_);
+    gl.glBindBuffer(GL_DRAW_INDIRECT_BUFFER, b.id);
+    gl.glMultiDrawElementsIndirect(primitiveMode(p.desc.topology),
+                                   indexType_ == IndexType::Uint16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT,
+                                   reinterpret_cast<const void*>(uintptr_t(offset)), GLsizei(drawCount),
+                                   GLsizei(sizeof(DrawIndexedIndirectCommand)));
+    gl.glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    ++counts_.drawsIndexed;
+    countStage(counts_.barriers);
+    noteShaderAccesses(p.bindings);
+}
+
 void GlCommandList::dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) {
     requirePass(false, "dispatch");
     if (!compute_) throw Error("dispatch without a compute pipeline");

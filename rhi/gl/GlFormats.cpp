@@ -127,6 +127,8 @@ GlVertexFormat vertexFormat(VertexFormat f) {
         return {4, GL_FLOAT, GL_FALSE};
     case VertexFormat::UByte4Norm:
         return {4, GL_UNSIGNED_BYTE, GL_TRUE};
+    case VertexFormat::UInt1:
+        return {1, GL_UNSIGNED_INT, GL_FALSE, true};
     }
     return {4, GL_FLOAT, GL_FALSE};
 }

@@ -27,6 +27,7 @@ struct GlVertexFormat {
     GLint size;
     GLenum type;
     GLboolean normalized;
+    bool integer = false; // read as an integer (glVertexArrayAttribIFormat)
 };
 GlVertexFormat vertexFormat(VertexFormat f);
 

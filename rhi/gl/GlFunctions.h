@@ -49,6 +49,7 @@ namespace lpv::rhi::gl {
     X(PFNGLMAPNAMEDBUFFERRANGEPROC, glMapNamedBufferRange)                                                   \
     X(PFNGLDELETEBUFFERSPROC, glDeleteBuffers)                                                               \
     X(PFNGLBINDBUFFERRANGEPROC, glBindBufferRange)                                                           \
+    X(PFNGLBINDBUFFERPROC, glBindBuffer)                                                                     \
     X(PFNGLCREATETEXTURESPROC, glCreateTextures)                                                             \
     X(PFNGLTEXTURESTORAGE2DPROC, glTextureStorage2D)                                                         \
     X(PFNGLTEXTURESTORAGE3DPROC, glTextureStorage3D)                                                         \
@@ -100,6 +101,7 @@ namespace lpv::rhi::gl {
     X(PFNGLUNIFORM1IPROC, glUniform1i)                                                                       \
     X(PFNGLCREATEVERTEXARRAYSPROC, glCreateVertexArrays)                                                     \
     X(PFNGLVERTEXARRAYATTRIBFORMATPROC, glVertexArrayAttribFormat)                                           \
+    X(PFNGLVERTEXARRAYATTRIBIFORMATPROC, glVertexArrayAttribIFormat)                                         \
     X(PFNGLVERTEXARRAYATTRIBBINDINGPROC, glVertexArrayAttribBinding)                                         \
     X(PFNGLENABLEVERTEXARRAYATTRIBPROC, glEnableVertexArrayAttrib)                                           \
     X(PFNGLVERTEXARRAYBINDINGDIVISORPROC, glVertexArrayBindingDivisor)                                       \
@@ -109,6 +111,7 @@ namespace lpv::rhi::gl {
     X(PFNGLDELETEVERTEXARRAYSPROC, glDeleteVertexArrays)                                                     \
     X(PFNGLDRAWARRAYSINSTANCEDBASEINSTANCEPROC, glDrawArraysInstancedBaseInstance)                           \
     X(PFNGLDRAWELEMENTSINSTANCEDBASEVERTEXBASEINSTANCEPROC, glDrawElementsInstancedBaseVertexBaseInstance)   \
+    X(PFNGLMULTIDRAWELEMENTSINDIRECTPROC, glMultiDrawElementsIndirect)                                       \
     X(PFNGLDISPATCHCOMPUTEPROC, glDispatchCompute)                                                           \
     X(PFNGLMEMORYBARRIERPROC, glMemoryBarrier)                                                               \
     X(PFNGLCREATEQUERIESPROC, glCreateQueries)                                                               \

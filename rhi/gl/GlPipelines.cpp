@@ -133,7 +133,10 @@ GraphicsPipelineHandle GlDevice::createPipeline(const GraphicsPipelineDesc& desc
     for (const VertexAttribute& a : desc.attributes) {
         const GlVertexFormat f = vertexFormat(a.format);
         gl_.glEnableVertexArrayAttrib(p.vao, a.location);
-        gl_.glVertexArrayAttribFormat(p.vao, a.location, f.size, f.type, f.normalized, a.offset);
+        if (f.integer)
+            gl_.glVertexArrayAttribIFormat(p.vao, a.location, f.size, f.type, a.offset);
+        else
+            gl_.glVertexArrayAttribFormat(p.vao, a.location, f.size, f.type, f.normalized, a.offset);
         gl_.glVertexArrayAttribBinding(p.vao, a.location, a.bufferSlot);
     }
     for (size_t i = 0; i < desc.vertexBuffers.size(); ++i)

@@ -65,6 +65,11 @@ public:
         ++counts_.drawsIndexed;
         countStage(counts_.barriers);
     }
+    void drawIndexedIndirect(BufferHandle, uint64_t, uint32_t) override {
+        requirePass(true, "drawIndexedIndirect");
+        ++counts_.drawsIndexed;
+        countStage(counts_.barriers);
+    }
     // Barriers: one after each dispatch, pass, clear and copy, two around a buffer update (the
     // Vulkan backend's conservative rule, DeviceConfig::conservativeBarriers).
     void dispatch(uint32_t, uint32_t, uint32_t) override {
@@ -107,6 +112,7 @@ public:
         caps_.vertexShaderLayer = config.vertexShaderLayer;
         caps_.maskedBranches = config.maskedBranches.value_or(false);
         caps_.shaderStencilExport = true; // it runs no shader, so any may export
+        caps_.multiDrawIndirect = true;
         caps_.storageImageBindings = configuredStorageImageBindings(32, config.storageImageBindings);
         caps_.fragmentTextureBindings =
             std::min(kMaxBindings, config.fragmentTextureBindings.value_or(kMaxBindings));

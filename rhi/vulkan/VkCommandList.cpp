@@ -512,6 +512,25 @@ void VulkanCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount,
     countStage(pipelineBarrierCalls());
 }
 
+void VulkanCommandList::drawIndexedIndirect(BufferHandle commands, uint64_t offset, uint32_t drawCount) {
+    requirePass(true, "drawIndexedIndirect");
+    if (!graphics_) throw Error("drawIndexedIndirect without a graphics pipeline");
+    if (!device_.caps().multiDrawIndirect) throw Error("drawIndexedIndirect: no Caps::multiDrawIndirect");
+    const VulkanBuffer& b = device_.buffers.get(commands);
+    // The CPU wrote the commands before the frame's submission, which makes them visible: no
+    // barrier to track.
+    if (!(b.desc.usage & kBufferIndirect) || b.desc.access != MemoryAccess::HostWrite)
+        throw Error("drawIndexedIndirect: buffer '" + b.desc.debugName +
+                    "' is not a HostWrite kBufferIndirect one");
+    const VulkanPipeline& p = device_.graphicsPipelines.get(graphics_);
+    beforeDraw(p);
+    pushBindings(p);
+    noteDrawAccesses(p);
+    vkCmdDrawIndexedIndirect(cmd_, b.buffer, offset, drawCount, sizeof(DrawIndexedIndirectCommand));
+    ++counts_.drawsIndexed;
+    countStage(pipelineBarrierCalls());
+}
+
 void VulkanCommandList::dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) {
     requirePass(false, "dispatch");
     if (!compute_) throw Error("dispatch without a compute pipeline");

@@ -46,6 +46,7 @@ public:
               uint32_t firstInstance) override;
     void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, int32_t vertexOffset,
                      uint32_t firstInstance) override;
+    void drawIndexedIndirect(BufferHandle commands, uint64_t offset, uint32_t drawCount) override;
     void dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) override;
     void clearTexture(TextureHandle texture, const std::array<float, 4>& value) override;
     void updateBuffer(BufferHandle buffer, uint64_t offset, const void* data, uint32_t size) override;

@@ -340,6 +340,7 @@ void VulkanContext::createDevice(bool needPresent) {
     f.shaderInt16 = h.shaderInt16;
     f.imageCubeArray = h.imageCubeArray;
     samplerAnisotropy = h.samplerAnisotropy;
+    multiDrawIndirect = h.multiDrawIndirect && h.drawIndirectFirstInstance;
     shaderOutputLayer = has12.shaderOutputLayer;
 
     const float priority = 1.0f;

@@ -49,6 +49,8 @@ VkFormat toVkFormat(VertexFormat f) {
         return VK_FORMAT_R32G32B32A32_SFLOAT;
     case VertexFormat::UByte4Norm:
         return VK_FORMAT_R8G8B8A8_UNORM;
+    case VertexFormat::UInt1:
+        return VK_FORMAT_R32_UINT;
     }
     return VK_FORMAT_UNDEFINED;
 }

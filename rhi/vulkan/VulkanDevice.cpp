@@ -62,6 +62,7 @@ VulkanDevice::VulkanDevice(const DeviceConfig& config) : config_(config) {
         caps_.maskedBranches =
             config.maskedBranches.value_or(ctx_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
         caps_.shaderStencilExport = ctx_->shaderStencilExport;
+        caps_.multiDrawIndirect = ctx_->multiDrawIndirect && config.multiDrawIndirect.value_or(true);
         caps_.storageImageBindings = configuredStorageImageBindings(limits.maxPerStageDescriptorStorageImages,
                                                                     config.storageImageBindings);
         caps_.fragmentTextureBindings =

@@ -128,6 +128,27 @@ TEST_CASE("rhi: a long point list, some points outside the clip volume") {
     }
 }
 
+TEST_CASE("rhi: one indirect multi-draw draws each of its draws with its own first instance") {
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            REQUIRE(device->caps().multiDrawIndirect);
+            const MultiDrawResult r = multiDrawQuads(*device);
+            float want[4] = {0, 0, 0, 0};
+            for (const auto& [quad, instance] : kMultiDraws)
+                want[quad] = float(kMultiDrawValues[instance]);
+            for (uint32_t y = 0; y < 4; ++y)
+                for (uint32_t x = 0; x < 16; ++x)
+                    REQUIRE_MESSAGE(
+                        near(r.image.at(x, y), {want[x / 4], 0, 0, want[x / 4] > 0 ? 1.0f : 0.0f}, 1e-3f),
+                        "at " << x << "," << y << " " << describe(r.image.at(x, y)));
+            // One call, as the API sees it.
+            CHECK(r.counts.drawsIndexed == 1);
+            device.expectSilent();
+        }
+    }
+}
+
 TEST_CASE("rhi: a fragment shader exports the stencil, and masked stencil tests select its fields") {
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <vector>
 
 namespace lpv::test {
 namespace {
@@ -179,6 +180,64 @@ glm::vec4 expectedPointTexel(uint32_t x, uint32_t y) {
     for (uint32_t i = kFirstPoint; i < kFirstPoint + kPointCount; ++i)
         if (i % 3 != 0 && i % 16 == x && i / 16 % 16 == y) hits += 1.0f;
     return hits * kBlendColor;
+}
+
+MultiDrawResult multiDrawQuads(rhi::Device& device) {
+    using namespace rhi;
+    const TextureHandle target =
+        device.createTexture({TextureKind::Tex2D, Format::RGBA16F, 16, 4, 1, 1,
+                              kTextureColorTarget | kTextureTransfer, "multi-draw", "test"});
+    std::vector<float> positions;
+    std::vector<uint32_t> indices;
+    for (uint32_t q = 0; q < 4; ++q) {
+        const float x0 = -1.0f + 0.5f * float(q), x1 = x0 + 0.5f;
+        const uint32_t v = uint32_t(positions.size() / 2);
+        positions.insert(positions.end(), {x0, -1.0f, x1, -1.0f, x1, 1.0f, x0, 1.0f});
+        indices.insert(indices.end(), {v, v + 1, v + 2, v, v + 2, v + 3});
+    }
+    const BufferHandle vertices = device.createBuffer(
+        {positions.size() * sizeof(float), kBufferVertex, MemoryAccess::GpuOnly, "quads", "test"},
+        positions.data());
+    const BufferHandle values = device.createBuffer(
+        {sizeof(kMultiDrawValues), kBufferVertex, MemoryAccess::GpuOnly, "values", "test"}, kMultiDrawValues);
+    const BufferHandle index = device.createBuffer(
+        {indices.size() * sizeof(uint32_t), kBufferIndex, MemoryAccess::GpuOnly, "quad indices", "test"},
+        indices.data());
+    const BufferHandle commands =
+        device.createBuffer({sizeof(DrawIndexedIndirectCommand) * 3, kBufferIndirect, MemoryAccess::HostWrite,
+                             "commands", "test"});
+    auto* c = static_cast<DrawIndexedIndirectCommand*>(device.mapped(commands));
+    for (uint32_t k = 0; k < 3; ++k)
+        c[k] = {6, 1, 6 * kMultiDraws[k][0], 0, kMultiDraws[k][1]};
+    GraphicsPipelineDesc pd;
+    pd.vertex = &shaders::multi_draw_vert;
+    pd.fragment = &shaders::multi_draw_frag;
+    pd.vertexBuffers = {{2 * sizeof(float)}, {sizeof(uint32_t), true}};
+    pd.attributes = {{0, VertexFormat::Float2, 0, 0}, {6, VertexFormat::UInt1, 0, 1}};
+    pd.colorFormats = {Format::RGBA16F};
+    pd.debugName = "multi-draw";
+    const GraphicsPipelineHandle pipeline = device.createPipeline(pd);
+
+    CommandList& cmd = device.beginFrame();
+    RenderPassDesc pass;
+    pass.colors[0] = {target, 0, 0, LoadOp::Clear, {0, 0, 0, 0}};
+    pass.colorCount = 1;
+    cmd.beginRenderPass(pass);
+    cmd.bindPipeline(pipeline);
+    cmd.bindVertexBuffer(0, vertices);
+    cmd.bindVertexBuffer(1, values);
+    cmd.bindIndexBuffer(index, IndexType::Uint32);
+    cmd.drawIndexedIndirect(commands, 0, 3);
+    cmd.endRenderPass();
+    device.endFrame();
+    device.waitIdle();
+
+    MultiDrawResult out{readImage(device, target), device.frameCounters()};
+    device.destroy(pipeline);
+    for (BufferHandle b : {vertices, values, index, commands})
+        device.destroy(b);
+    device.destroy(target);
+    return out;
 }
 
 Image drawStencilFields(rhi::Device& device) {

@@ -46,6 +46,17 @@ inline constexpr uint32_t kLayeredPointCount = 200;
 Image drawLayeredPoints(rhi::Device& device);
 glm::vec4 expectedLayeredTexel(uint32_t x, uint32_t y, uint32_t z);
 
+// 16x4 RGBA16F cleared to 0: four quads of 4x4 texels, quad q over columns 4q..4q+3, each drawn
+// with the value its first instance picks from a per-instance stream (kMultiDrawValues) as red.
+// One drawIndexedIndirect of kMultiDraws (quad, first instance) draws three; quad 1 stays clear.
+inline constexpr uint32_t kMultiDrawValues[4] = {7, 11, 13, 17};
+inline constexpr uint32_t kMultiDraws[3][2] = {{0, 2}, {2, 0}, {3, 3}};
+struct MultiDrawResult {
+    Image image;
+    rhi::CommandCounts counts; // the frame's
+};
+MultiDrawResult multiDrawQuads(rhi::Device& device);
+
 // 16x16 RGBA16F cleared to 0 with a D32FS8 target whose stencil is cleared to kStencilClear. A
 // fragment shader exports each pixel's stencil (tests/shaders/stencil_export.frag: x & 3 in bits
 // 0-1, y & 3 in bits 4-5; columns 12-15 keep the clear); then three fullscreen draws add

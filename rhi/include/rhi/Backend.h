@@ -56,6 +56,9 @@ struct DeviceConfig {
     // Set: report Caps::maskedBranches as given instead of as the device is, so both of the
     // callers' paths can be run and compared on any device.
     std::optional<bool> maskedBranches;
+    // False: report no Caps::multiDrawIndirect, as a device without it, so that the one call per
+    // draw that callers fall back to can be run and compared (true changes nothing).
+    std::optional<bool> multiDrawIndirect;
     // Set: report at most this many storage image bindings (Caps::storageImageBindings), so the
     // callers' paths for OpenGL's minimum of 8 run, and are compared, on any device.
     std::optional<uint32_t> storageImageBindings;

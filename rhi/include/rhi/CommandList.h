@@ -69,15 +69,27 @@ struct Viewport {
 
 inline constexpr uint64_t kWholeSize = std::numeric_limits<uint64_t>::max();
 
+// One draw of drawIndexedIndirect(), as Vulkan's VkDrawIndexedIndirectCommand and GL's
+// DrawElementsIndirectCommand lay it out.
+struct DrawIndexedIndirectCommand {
+    uint32_t indexCount = 0;
+    uint32_t instanceCount = 1;
+    uint32_t firstIndex = 0;
+    int32_t vertexOffset = 0;
+    uint32_t firstInstance = 0;
+};
+static_assert(sizeof(DrawIndexedIndirectCommand) == 20);
+
 // Commands recorded, counted as the backend issues them to its API: on Vulkan vkCmdDispatch,
-// vkCmdDraw, vkCmdDrawIndexed and vkCmdPipelineBarrier2 calls (a split point list is several
-// draws); on GL glDispatchCompute, the glDraw* calls and glMemoryBarrier calls; on the null device
+// vkCmdDraw, vkCmdDrawIndexed, vkCmdDrawIndexedIndirect and vkCmdPipelineBarrier2 calls (a split
+// point list is several draws); on GL glDispatchCompute, the glDraw* and glMultiDraw* calls and
+// glMemoryBarrier calls (an indirect multi-draw counts once, as an indexed draw); on the null device
 // what the Vulkan backend's rule would record. Snapshots subtract: counts at a pass's end minus
 // counts at its begin are the pass's.
 struct CommandCounts {
     uint32_t dispatches = 0;
-    uint32_t draws = 0; // not indexed
-    uint32_t drawsIndexed = 0;
+    uint32_t draws = 0;        // not indexed
+    uint32_t drawsIndexed = 0; // drawIndexed and drawIndexedIndirect calls
     uint32_t barriers = 0;
     // Serial stages: runs of dispatches and draws with no barrier between them, counted at each
     // run's first command. Work in one stage may overlap on a GPU; a barrier ends the stage (even
@@ -139,6 +151,13 @@ public:
                       uint32_t firstInstance = 0) = 0;
     virtual void drawIndexed(uint32_t indexCount, uint32_t instanceCount = 1, uint32_t firstIndex = 0,
                              int32_t vertexOffset = 0, uint32_t firstInstance = 0) = 0;
+    // `drawCount` indexed draws in one call (Caps::multiDrawIndirect), their parameters the
+    // DrawIndexedIndirectCommands at `offset` in `commands`, a MemoryAccess::HostWrite buffer with
+    // kBufferIndirect that the CPU wrote before the frame was submitted. The index buffer is bound
+    // at offset 0. GL has no per-draw base instance in a vertex shader (gl_InstanceIndex is the
+    // first instance of the call), so a multi-drawn pipeline reads what a draw's first instance
+    // names from a per-instance vertex attribute, which both APIs offset by it.
+    virtual void drawIndexedIndirect(BufferHandle commands, uint64_t offset, uint32_t drawCount) = 0;
     virtual void dispatch(uint32_t groupsX, uint32_t groupsY = 1, uint32_t groupsZ = 1) = 0;
 
     // Transfers; only outside a render pass.

@@ -57,6 +57,9 @@ struct Caps {
     // VK_EXT_shader_stencil_export, GL_ARB_shader_stencil_export): one pass can store a different
     // stencil per pixel.
     bool shaderStencilExport = false;
+    // CommandList::drawIndexedIndirect with many draws and first instances other than 0 (Vulkan's
+    // multiDrawIndirect and drawIndirectFirstInstance features; GL 4.3's glMultiDrawElementsIndirect).
+    bool multiDrawIndirect = false;
     // Storage images take bindings below this (rhi/Shader.h): OpenGL's image units and per-stage
     // image uniforms (8 on NVIDIA's driver, the spec's minimum; 32 on Mesa), Vulkan's per-stage
     // storage images, at most the 32 bindings the command lists track.

@@ -11,7 +11,7 @@
 
 namespace lpv::rhi {
 
-enum class VertexFormat : uint8_t { Float1, Float2, Float3, Float4, UByte4Norm };
+enum class VertexFormat : uint8_t { Float1, Float2, Float3, Float4, UByte4Norm, UInt1 };
 enum class PrimitiveTopology : uint8_t { TriangleList, TriangleStrip, LineList, PointList };
 enum class CullMode : uint8_t { None, Front, Back };
 enum class FrontFace : uint8_t { CounterClockwise, Clockwise };
