@@ -1,6 +1,10 @@
 // std430 array `Draws` (engine::DrawUniforms, GpuScene::drawRecords()): one record per draw of the
 // scene, made once when the scene is set. A draw passes its index as its first instance and the
-// vertex shader reads the record at gl_InstanceIndex. What the fragment shader needs of it comes
+// vertex shader reads the record at gl_InstanceIndex, or, in a pass drawn as indirect multi-draws
+// (engine::MultiDraw: GL gives gl_InstanceIndex one base per call), at the per-instance attribute
+// DRAW_INDEX_ATTRIBUTE (GpuScene::drawIndices(), which the first instance offsets on both APIs):
+//       layout(location = DRAW_INDEX_ATTRIBUTE) in uint inDrawIndex;
+// What the fragment shader needs of it comes
 // one of two ways:
 // - as flat varyings (DrawMaterial), where fragments far outnumber vertices (the G-buffer): a CPU
 //   rasterizer gathers a storage-buffer read lane by lane, per fragment;
@@ -17,6 +21,8 @@
 #define DRAW_UNIFORMS_GLSL
 
 #define DRAW_INDEX_LOCATION 7
+// engine::kDrawIndexAttribute
+#define DRAW_INDEX_ATTRIBUTE 6
 // The first of DrawMaterial's four flat varyings.
 #define DRAW_MATERIAL_LOCATION 8
 

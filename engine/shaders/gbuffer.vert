@@ -10,6 +10,7 @@ layout(location = 3) in vec4 inTangent;
 
 #define DRAW_MATERIAL_OUT
 #include "draw_uniforms.glsl"
+layout(location = DRAW_INDEX_ATTRIBUTE) in uint inDrawIndex; // multi-drawn
 
 layout(location = 0) out vec3 vNormal;
 layout(location = 1) out vec2 vUv;
@@ -17,7 +18,7 @@ layout(location = 2) out vec4 vTangent;
 layout(location = 3) out vec3 vWorld;
 
 void main() {
-    DrawRecord draw = drawRecords.draws[gl_InstanceIndex];
+    DrawRecord draw = drawRecords.draws[inDrawIndex];
     writeDrawMaterial(draw);
     vec4 world = draw.model * vec4(inPosition, 1.0);
     vNormal = mat3(draw.normalMatrix) * inNormal;

@@ -13,6 +13,7 @@ layout(binding = 0, std140) uniform SpotRsm {
     vec4 intensity;      // rgb: radiant intensity (W/sr)
 } rsm;
 #include "draw_uniforms.glsl"
+layout(location = DRAW_INDEX_ATTRIBUTE) in uint inDrawIndex; // multi-drawn
 
 layout(location = 0) out vec3 vNormal;
 layout(location = 1) out vec2 vUv;
@@ -20,8 +21,8 @@ layout(location = 2) out vec3 vWorld;
 layout(location = DRAW_INDEX_LOCATION) flat out uint vDrawIndex;
 
 void main() {
-    DrawRecord draw = drawRecords.draws[gl_InstanceIndex];
-    vDrawIndex = uint(gl_InstanceIndex);
+    DrawRecord draw = drawRecords.draws[inDrawIndex];
+    vDrawIndex = inDrawIndex;
     vec4 world = draw.model * vec4(inPosition, 1.0);
     vNormal = mat3(draw.normalMatrix) * inNormal;
     vUv = inUv;

@@ -68,7 +68,8 @@ SpotRsmFit fitCubeFace(const engine::Light& point, uint32_t face, float reach) {
 }
 
 ReflectiveShadowMap::ReflectiveShadowMap(rhi::Device& device, uint32_t size, RsmLight light)
-    : device_(device), size_(size), light_(light) {
+    : device_(device), size_(size), light_(light),
+      multiDraw_(device, light == RsmLight::Spot ? "spot rsm" : "rsm", "render.draw_commands") {
     using namespace rhi;
     depth_ = device.createTexture({TextureKind::Tex2D, Format::D32F, size, size, 1, 1,
                                    kTextureDepthTarget | kTextureSampled | kTextureTransfer, "rsm depth",
@@ -86,6 +87,7 @@ ReflectiveShadowMap::ReflectiveShadowMap(rhi::Device& device, uint32_t size, Rsm
     d.attributes = {{0, VertexFormat::Float3, offsetof(engine::Vertex, position)},
                     {1, VertexFormat::Float3, offsetof(engine::Vertex, normal)},
                     {2, VertexFormat::Float2, offsetof(engine::Vertex, uv)}};
+    engine::addDrawIndexStream(d);
     d.depthTest = d.depthWrite = true;
     d.depthCompare = CompareOp::Less;
     d.colorFormats = {Format::RGBA16F, Format::RGBA16F};
@@ -204,19 +206,30 @@ uint64_t ReflectiveShadowMap::draw(rhi::CommandList& cmd, const engine::GpuScene
     cmd.bindPipeline(pipeline_);
     cmd.pushUniforms(0, uniforms, bytes);
     cmd.bindVertexBuffer(0, scene.vertices());
+    cmd.bindVertexBuffer(engine::kDrawIndexSlot, scene.drawIndices());
     cmd.bindIndexBuffer(scene.indices(), IndexType::Uint32);
     cmd.bindTexture(3, specularAlbedo, linearSampler_);
     cmd.bindStorageBuffer(1, scene.drawRecords());
+    // Twice the scene's draws a frame: an RSM may be drawn twice in one (a test, a light that moved).
+    multiDraw_.reserve(2 * uint32_t(scene.draws().size()));
+    const std::vector<engine::GpuDraw>& draws = scene.draws();
     uint64_t triangles = 0;
-    for (const engine::GpuDraw& d : scene.draws()) {
-        // The light's view holds the volume and, toward the light, its occluders (fit()): nothing
-        // outside it can land in the map.
-        if (d.worldSize < minObjectSize || d.worldBounds.outsideClipVolume(viewProjection_)) continue;
-        cmd.bindTexture(2, d.baseColor, scene.materialSampler());
-        cmd.bindTexture(4, d.metallicRoughnessMap, scene.materialSampler());
-        const engine::DrawLod& lod = d.lodWithin(maxError(d));
-        cmd.drawIndexed(lod.indexCount, 1, lod.firstIndex, 0, d.index);
-        triangles += lod.indexCount / 3;
+    for (const engine::DrawBatch& batch : scene.batches()) {
+        const uint64_t before = triangles;
+        for (uint32_t k = batch.first; k < batch.first + batch.count; ++k) {
+            const engine::GpuDraw& d = draws[scene.batchedDraws()[k]];
+            // The light's view holds the volume and, toward the light, its occluders (fit()):
+            // nothing outside it can land in the map.
+            if (d.worldSize < minObjectSize || d.worldBounds.outsideClipVolume(viewProjection_)) continue;
+            const engine::DrawLod& lod = d.lodWithin(maxError(d));
+            multiDraw_.add(lod, d.index);
+            triangles += lod.indexCount / 3;
+        }
+        if (triangles == before) continue; // every draw culled
+        const engine::GpuDraw& first = draws[scene.batchedDraws()[batch.first]];
+        cmd.bindTexture(2, first.baseColor, scene.materialSampler());
+        cmd.bindTexture(4, first.metallicRoughnessMap, scene.materialSampler());
+        multiDraw_.draw(cmd);
     }
     cmd.endRenderPass();
     return triangles;

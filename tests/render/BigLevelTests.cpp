@@ -110,8 +110,9 @@ TEST_CASE("render: a level of 50,000 draws renders, with and without GI, its dra
                     *device, scene, {"render.ssao=false", gi ? "gi.enabled=true" : "gi.enabled=false"},
                     [&](engine::Renderer&) { drawBytes = device->allocations().bytesIn("scene.draws"); }, 160,
                     90);
-                // One record per draw, made at setScene; none once the scene is gone.
-                CHECK(drawBytes == uint64_t(kBoxes) * sizeof(engine::DrawUniforms));
+                // One record and one index (the multi-draws' per-instance stream) per draw, made at
+                // setScene; none once the scene is gone.
+                CHECK(drawBytes == uint64_t(kBoxes) * (sizeof(engine::DrawUniforms) + sizeof(uint32_t)));
                 CHECK(device->allocations().bytesIn("scene.draws") == 0);
                 checkBands(f);
                 // The sun lights the boxes' tops (the ambient term alone gives 0.044).

@@ -182,3 +182,41 @@ TEST_CASE("render: the Cornell box is the same image on GL and Vulkan") {
                                             << gl.output.texels.size() << " pixels over tolerance");
     CHECK(d.texelsOver <= gl.output.texels.size() / 100);
 }
+
+// The scene's draws go out as indirect multi-draws, one per set of textures (engine::MultiDraw), or,
+// on a device without them, one drawIndexed each, in the same order: the two frames are the same
+// image bit for bit, G-buffer, sun shadow, RSMs (through the GI's volumes) and spot and point light
+// shadows (the lights hall) included.
+TEST_CASE("render: a frame drawn by indirect multi-draws equals the frame drawn a call per draw") {
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            for (const engine::Scene& scene : {engine::buildAtrium(), engine::buildLightHall()}) {
+                CAPTURE(scene.name);
+                const std::vector<std::string> settings = {"gi.enabled=true", "render.ssao=false"};
+                CornellFrame multi, single;
+                {
+                    TestDevice device(backend);
+                    REQUIRE(device->caps().multiDrawIndirect);
+                    multi = renderSceneFrame(*device, scene, settings, {}, 160, 90);
+                    device.expectSilent();
+                }
+                {
+                    rhi::DeviceConfig config;
+                    config.multiDrawIndirect = false;
+                    TestDevice device(backend, config);
+                    REQUIRE(!device->caps().multiDrawIndirect);
+                    single = renderSceneFrame(*device, scene, settings, {}, 160, 90);
+                    device.expectSilent();
+                }
+                CHECK(meanLuminance(multi.hdr) > 0.0);
+                CHECK(compareImages(multi.hdr, single.hdr, 0.0f).texelsOver == 0);
+                CHECK(compareImages(multi.albedo, single.albedo, 0.0f).texelsOver == 0);
+                REQUIRE(multi.cascadeVolumes.size() == single.cascadeVolumes.size());
+                for (size_t c = 0; c < multi.cascadeVolumes.size(); ++c)
+                    for (size_t k = 0; k < 3; ++k)
+                        CHECK(compareImages(multi.cascadeVolumes[c][k], single.cascadeVolumes[c][k], 0.0f)
+                                  .texelsOver == 0);
+            }
+        }
+    }
+}

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace lpv::engine {
 namespace {
@@ -164,6 +165,29 @@ GpuScene::GpuScene(rhi::Device& device, const Scene& scene) : device_(device) {
                                         kBufferStorage | kBufferTransfer, MemoryAccess::GpuOnly,
                                         scene.name + " draw records", "scene.draws"},
                                        records.empty() ? nullptr : records.data());
+    std::vector<uint32_t> drawIndices(std::max<size_t>(draws_.size(), 1));
+    std::iota(drawIndices.begin(), drawIndices.end(), 0u);
+    drawIndices_ = device.createBuffer({drawIndices.size() * sizeof(uint32_t), kBufferVertex,
+                                        MemoryAccess::GpuOnly, scene.name + " draw indices", "scene.draws"},
+                                       drawIndices.data());
+    batchDraws();
+}
+
+void GpuScene::batchDraws() {
+    // By texture set, in scene order within one.
+    const auto textures = [this](uint32_t i) {
+        const GpuDraw& d = draws_[i];
+        return std::array{d.baseColor.bits, d.normal.bits, d.metallicRoughnessMap.bits, d.emissiveMap.bits};
+    };
+    batchedDraws_.resize(draws_.size());
+    std::iota(batchedDraws_.begin(), batchedDraws_.end(), 0u);
+    std::stable_sort(batchedDraws_.begin(), batchedDraws_.end(),
+                     [&](uint32_t a, uint32_t b) { return textures(a) < textures(b); });
+    for (uint32_t k = 0; k < batchedDraws_.size(); ++k) {
+        if (k == 0 || textures(batchedDraws_[k]) != textures(batchedDraws_[k - 1]))
+            batches_.push_back({k, 0});
+        ++batches_.back().count;
+    }
 }
 
 GpuScene::~GpuScene() {
@@ -177,6 +201,7 @@ GpuScene::~GpuScene() {
     device_.destroy(indices_);
     device_.destroy(lights_);
     device_.destroy(drawRecords_);
+    device_.destroy(drawIndices_);
 }
 
 } // namespace lpv::engine

@@ -122,13 +122,15 @@ glm::mat4 pointShadowFaceViewProjection(const GpuPunctualLight& light, uint32_t 
     return perspectiveView(glm::vec3(light.positionRange), axis, tanHalfAngle, light.positionRange.w, reach);
 }
 
-LightShadows::LightShadows(rhi::Device& device) : device_(device) {
+LightShadows::LightShadows(rhi::Device& device)
+    : device_(device), draws_(device, "light shadow", "render.draw_commands") {
     using namespace rhi;
     GraphicsPipelineDesc d;
     d.vertex = &shaders::light_shadow_vert;
     d.fragment = &shaders::shadow_frag;
     d.vertexBuffers = {{sizeof(Vertex)}};
     d.attributes = {{0, VertexFormat::Float3, offsetof(Vertex, position)}};
+    addDrawIndexStream(d);
     d.depthTest = d.depthWrite = true;
     d.depthCompare = CompareOp::Less;
     d.depthBiasConstant = 2.0f;
@@ -183,9 +185,10 @@ uint64_t LightShadows::drawView(rhi::CommandList& cmd, const GpuScene& scene, ui
     uint64_t triangles = 0;
     for (const GpuDraw& d : scene.draws()) {
         if (d.worldBounds.outsideClipVolume(viewProjection)) continue;
-        cmd.drawIndexed(d.lods[0].indexCount, 1, d.lods[0].firstIndex, 0, d.index);
+        draws_.add(d.lods[0], d.index);
         triangles += d.lods[0].indexCount / 3;
     }
+    draws_.draw(cmd);
     return triangles;
 }
 
@@ -235,7 +238,10 @@ uint64_t LightShadows::render(rhi::CommandList& cmd, const GpuScene& scene,
     cmd.beginRenderPass(pass);
     cmd.bindPipeline(pipeline_);
     cmd.bindVertexBuffer(0, scene.vertices());
+    cmd.bindVertexBuffer(kDrawIndexSlot, scene.drawIndices());
     cmd.bindIndexBuffer(scene.indices(), IndexType::Uint32);
+    // Each view's draws in one multi-draw; twice the views' room (see MultiDraw::reserve).
+    draws_.reserve(2 * views_ * uint32_t(scene.draws().size()));
     uint64_t triangles = 0;
     for (uint32_t v = 0; v < views_; ++v) {
         // A view the camera's does not overlap (a point light's face turned away from it, a spot

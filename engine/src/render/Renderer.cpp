@@ -111,7 +111,9 @@ WorkCounts indirectRebuildWork(uint64_t pixels) {
 }
 
 Renderer::Renderer(rhi::Device& device, uint32_t width, uint32_t height)
-    : device_(device), width_(width), height_(height) {
+    : device_(device), width_(width), height_(height),
+      shadowDraws_(device, "sun shadow", "render.draw_commands"),
+      gbufferDraws_(device, "gbuffer", "render.draw_commands") {
     using namespace rhi;
     SamplerDesc linear;
     linear.mipFilter = Filter::Nearest;
@@ -220,6 +222,7 @@ rhi::GraphicsPipelineDesc Renderer::gbufferPipelineDesc(bool materialMaps) {
                     {1, VertexFormat::Float3, offsetof(Vertex, normal)},
                     {2, VertexFormat::Float2, offsetof(Vertex, uv)},
                     {3, VertexFormat::Float4, offsetof(Vertex, tangent)}};
+    addDrawIndexStream(g);
     g.depthTest = g.depthWrite = true;
     g.depthCompare = CompareOp::Less;
     g.colorFormats = {Format::RGBA8Srgb, Format::RGBA16F, Format::RGBA16F};
@@ -237,6 +240,7 @@ void Renderer::createPipelines() {
     s.fragment = &shaders::shadow_frag;
     s.vertexBuffers = {{sizeof(Vertex)}};
     s.attributes = {{0, VertexFormat::Float3, offsetof(Vertex, position)}};
+    addDrawIndexStream(s);
     s.depthTest = s.depthWrite = true;
     s.depthCompare = CompareOp::Less;
     s.depthBiasConstant = 2.0f;
@@ -421,10 +425,14 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         cmd.bindPipeline(shadowPipeline_);
         cmd.pushUniforms(0, &frame_, sizeof(frame_));
         cmd.bindVertexBuffer(0, scene_->vertices());
+        cmd.bindVertexBuffer(kDrawIndexSlot, scene_->drawIndices());
         cmd.bindIndexBuffer(scene_->indices(), IndexType::Uint32);
         cmd.bindStorageBuffer(1, scene_->drawRecords());
+        // No textures: every draw in one multi-draw.
+        shadowDraws_.reserve(2 * uint32_t(scene_->draws().size())); // twice: see MultiDraw::reserve
         for (const GpuDraw& d : scene_->draws())
-            cmd.drawIndexed(d.lods[0].indexCount, 1, d.lods[0].firstIndex, 0, d.index);
+            shadowDraws_.add(d.lods[0], d.index);
+        shadowDraws_.draw(cmd);
         cmd.endRenderPass();
         cmd.endMarker();
         WorkCounts w;
@@ -455,24 +463,33 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         pass.debugName = "gbuffer";
         cmd.beginRenderPass(pass);
         // The draws without metallic-roughness or emissive maps, then those with (gbuffer_body.glsl):
-        // each pipeline bound once. Equal depths keep the first draw, so where coplanar surfaces of
-        // the two kinds meet, the one without maps wins rather than the earlier in the scene.
+        // each pipeline bound once, and a multi-draw per set of textures (a batch's draws share
+        // their maps too). Equal depths keep the first draw, so where coplanar surfaces of the two
+        // kinds meet, the one without maps wins rather than the earlier in the scene.
+        gbufferDraws_.reserve(2 * uint32_t(scene_->draws().size()));
+        const std::vector<GpuDraw>& draws = scene_->draws();
         for (const bool mapped : {false, true}) {
             if (mapped && !scene_->hasMaterialMaps()) break;
             cmd.bindPipeline(mapped ? gbufferMappedPipeline_ : gbufferPipeline_);
             cmd.pushUniforms(0, &frame_, sizeof(frame_));
             cmd.bindVertexBuffer(0, scene_->vertices());
+            cmd.bindVertexBuffer(kDrawIndexSlot, scene_->drawIndices());
             cmd.bindIndexBuffer(scene_->indices(), IndexType::Uint32);
             cmd.bindStorageBuffer(1, scene_->drawRecords());
-            for (const GpuDraw& d : scene_->draws()) {
-                if (d.hasMaterialMaps() != mapped) continue;
-                cmd.bindTexture(2, d.baseColor, scene_->materialSampler());
-                cmd.bindTexture(3, d.normal, scene_->materialSampler());
-                if (mapped) {
-                    cmd.bindTexture(4, d.metallicRoughnessMap, scene_->materialSampler());
-                    cmd.bindTexture(5, d.emissiveMap, scene_->materialSampler());
+            for (const DrawBatch& batch : scene_->batches()) {
+                const GpuDraw& first = draws[scene_->batchedDraws()[batch.first]];
+                if (first.hasMaterialMaps() != mapped) continue;
+                for (uint32_t k = batch.first; k < batch.first + batch.count; ++k) {
+                    const GpuDraw& d = draws[scene_->batchedDraws()[k]];
+                    gbufferDraws_.add(d.lods[0], d.index);
                 }
-                cmd.drawIndexed(d.lods[0].indexCount, 1, d.lods[0].firstIndex, 0, d.index);
+                cmd.bindTexture(2, first.baseColor, scene_->materialSampler());
+                cmd.bindTexture(3, first.normal, scene_->materialSampler());
+                if (mapped) {
+                    cmd.bindTexture(4, first.metallicRoughnessMap, scene_->materialSampler());
+                    cmd.bindTexture(5, first.emissiveMap, scene_->materialSampler());
+                }
+                gbufferDraws_.draw(cmd);
             }
         }
         cmd.endRenderPass();

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "engine/render/GpuScene.h"
+#include "engine/render/MultiDraw.h"
 #include "engine/scene/Scene.h"
 #include "gi/LpvReference.h"
 #include "rhi/Device.h"
@@ -93,6 +94,7 @@ private:
     rhi::TextureHandle depth_, normal_, flux_;
     rhi::GraphicsPipelineHandle pipeline_;
     rhi::SamplerHandle linearSampler_; // the specular albedo table's
+    engine::MultiDraw multiDraw_;
     glm::mat4 viewProjection_{1.0f};
     float texelArea_ = 0.0f;
     float texelSide_ = 0.0f; // of the sun's orthographic map (m)

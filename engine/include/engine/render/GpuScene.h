@@ -70,6 +70,18 @@ struct GpuDraw {
     }
 };
 
+// A run of GpuScene::batchedDraws() whose draws bind the same textures (one material's, mostly):
+// a pass binds them once and draws the run as one indirect multi-draw (MultiDraw).
+struct DrawBatch {
+    uint32_t first = 0; // into batchedDraws()
+    uint32_t count = 0;
+};
+
+// Where a multi-drawn vertex shader reads its draw's index (GpuScene::drawIndices(), a per-instance
+// stream at vertex buffer slot 1): draw_uniforms.glsl's DRAW_INDEX_ATTRIBUTE.
+inline constexpr uint32_t kDrawIndexAttribute = 6;
+inline constexpr uint32_t kDrawIndexSlot = 1;
+
 class GpuScene {
 public:
     static constexpr uint32_t kMaxPunctualLights = 1024;
@@ -89,19 +101,29 @@ public:
     // Every draw's DrawUniforms, at GpuDraw::index: bound as a storage buffer at binding 1
     // (draw_uniforms.glsl) by every pass that draws the scene. Memory category "scene.draws".
     rhi::BufferHandle drawRecords() const { return drawRecords_; }
+    // 0, 1, ... one uint per draw: bound as a per-instance vertex stream, it gives each draw of a
+    // multi-draw its first instance, the index of its record (CommandList::drawIndexedIndirect).
+    rhi::BufferHandle drawIndices() const { return drawIndices_; }
+    // The draws' indices ordered so that those binding the same textures are together, and the runs.
+    const std::vector<uint32_t>& batchedDraws() const { return batchedDraws_; }
+    const std::vector<DrawBatch>& batches() const { return batches_; }
     // Whether any draw hasMaterialMaps().
     bool hasMaterialMaps() const { return hasMaterialMaps_; }
     rhi::SamplerHandle materialSampler() const { return sampler_; }
     uint64_t triangleCount() const { return triangles_; }
 
 private:
+    void batchDraws();
+
     rhi::Device& device_;
-    rhi::BufferHandle vertices_, indices_, lights_, drawRecords_;
+    rhi::BufferHandle vertices_, indices_, lights_, drawRecords_, drawIndices_;
     std::vector<rhi::TextureHandle> textures_;
     rhi::TextureHandle white_, flatNormal_;
     bool hasMaterialMaps_ = false;
     rhi::SamplerHandle sampler_;
     std::vector<GpuDraw> draws_;
+    std::vector<uint32_t> batchedDraws_;
+    std::vector<DrawBatch> batches_;
     std::vector<GpuPunctualLight> lightRecords_;
     uint32_t lightCount_ = 0;
     uint64_t triangles_ = 0;

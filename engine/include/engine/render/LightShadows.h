@@ -10,6 +10,7 @@
 #include "engine/profiler/WorkCounts.h"
 #include "engine/render/CameraMatrices.h"
 #include "engine/render/GpuScene.h"
+#include "engine/render/MultiDraw.h"
 #include "rhi/Device.h"
 
 #include <glm/mat4x4.hpp>
@@ -103,6 +104,7 @@ private:
     // The lights (indices into render()'s list) that got a map in the last render().
     std::array<uint32_t, LightShadowUniforms::kMaxLights> kept_{};
     uint32_t keptCount_ = 0;
+    MultiDraw draws_;
 };
 
 } // namespace lpv::engine

@@ -12,6 +12,7 @@
 #include "engine/render/GpuScene.h"
 #include "engine/render/IndirectLighting.h"
 #include "engine/render/LightShadows.h"
+#include "engine/render/MultiDraw.h"
 #include "engine/render/SpecularAlbedoTexture.h"
 #include "rhi/Device.h"
 
@@ -142,6 +143,7 @@ private:
     std::unique_ptr<LightShadows> lightShadows_;
     uint32_t sceneSpots_ = 0, scenePointLights_ = 0; // no more shadow maps than the scene has lights
     FrameUniforms frame_{};
+    MultiDraw shadowDraws_, gbufferDraws_;
 };
 
 } // namespace lpv::engine
