@@ -215,7 +215,7 @@ uint64_t ReflectiveShadowMap::draw(rhi::CommandList& cmd, const engine::GpuScene
     const std::vector<engine::GpuDraw>& draws = scene.draws();
     uint64_t triangles = 0;
     for (const engine::DrawBatch& batch : scene.batches()) {
-        const uint64_t before = triangles;
+        bool any = false;
         for (uint32_t k = batch.first; k < batch.first + batch.count; ++k) {
             const engine::GpuDraw& d = draws[scene.batchedDraws()[k]];
             // The light's view holds the volume and, toward the light, its occluders (fit()):
@@ -223,9 +223,10 @@ uint64_t ReflectiveShadowMap::draw(rhi::CommandList& cmd, const engine::GpuScene
             if (d.worldSize < minObjectSize || d.worldBounds.outsideClipVolume(viewProjection_)) continue;
             const engine::DrawLod& lod = d.lodWithin(maxError(d));
             multiDraw_.add(lod, d.index);
+            any = true;
             triangles += lod.indexCount / 3;
         }
-        if (triangles == before) continue; // every draw culled
+        if (!any) continue; // every draw culled
         const engine::GpuDraw& first = draws[scene.batchedDraws()[batch.first]];
         cmd.bindTexture(2, first.baseColor, scene.materialSampler());
         cmd.bindTexture(4, first.metallicRoughnessMap, scene.materialSampler());
