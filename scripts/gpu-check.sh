@@ -68,8 +68,9 @@ command -v nvidia-smi >/dev/null && nvidia-smi --query-gpu=name,driver_version,c
 frames=96 kernelRuns=101 testTimeout=240 tests=()
 [[ $quick == --quick ]] && frames=4 kernelRuns=3 tests=(-tc='*pinned*')
 status=0
-# Every GPU test on every backend that starts there (validation and debug output fail a test).
-timeout "$testTimeout" "$pack/bin/lpv_gpu_tests" "${tests[@]}" 2>&1 | tail -n 40 | tee "$out/gpu-tests.txt" ||
+# Every GPU test on the GPU's backends (validation and debug output fail a test; gl-osmesa is
+# Mesa on the CPU there too).
+timeout "$testTimeout" "$pack/bin/lpv_gpu_tests" --backends=vulkan,gl-egl "${tests[@]}" 2>&1 | tail -n 40 | tee "$out/gpu-tests.txt" ||
     status=1
 "$pack/bin/lpv_alloc_tests" 2>&1 | tail -n 5 | tee "$out/alloc-tests.txt" || status=1
 "$pack/bin/lpv_bench" --backends vulkan,gl-egl --parts frames,propagation --frames "$frames" \
