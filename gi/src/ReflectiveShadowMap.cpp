@@ -210,8 +210,8 @@ uint64_t ReflectiveShadowMap::draw(rhi::CommandList& cmd, const engine::GpuScene
     cmd.bindIndexBuffer(scene.indices(), IndexType::Uint32);
     cmd.bindTexture(3, specularAlbedo, linearSampler_);
     cmd.bindStorageBuffer(1, scene.drawRecords());
-    // Twice the scene's draws a frame: an RSM may be drawn twice in one (a test, a light that moved).
-    multiDraw_.reserve(2 * uint32_t(scene.draws().size()));
+    // Room for every draw once; a frame that draws the map again grows it (MultiDraw::add).
+    multiDraw_.reserve(uint32_t(scene.draws().size()));
     const std::vector<engine::GpuDraw>& draws = scene.draws();
     uint64_t triangles = 0;
     for (const engine::DrawBatch& batch : scene.batches()) {

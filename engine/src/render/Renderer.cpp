@@ -429,7 +429,7 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         cmd.bindIndexBuffer(scene_->indices(), IndexType::Uint32);
         cmd.bindStorageBuffer(1, scene_->drawRecords());
         // No textures: every draw in one multi-draw.
-        shadowDraws_.reserve(2 * uint32_t(scene_->draws().size())); // twice: see MultiDraw::reserve
+        shadowDraws_.reserve(uint32_t(scene_->draws().size()));
         for (const GpuDraw& d : scene_->draws())
             shadowDraws_.add(d.lods[0], d.index);
         shadowDraws_.draw(cmd);
@@ -466,7 +466,7 @@ void Renderer::render(rhi::CommandList& cmd, const CameraMatrices& camera, const
         // each pipeline bound once, and a multi-draw per set of textures (a batch's draws share
         // their maps too). Equal depths keep the first draw, so where coplanar surfaces of the two
         // kinds meet, the one without maps wins rather than the earlier in the scene.
-        gbufferDraws_.reserve(2 * uint32_t(scene_->draws().size()));
+        gbufferDraws_.reserve(uint32_t(scene_->draws().size()));
         const std::vector<GpuDraw>& draws = scene_->draws();
         for (const bool mapped : {false, true}) {
             if (mapped && !scene_->hasMaterialMaps()) break;

@@ -31,7 +31,8 @@ public:
     MultiDraw& operator=(const MultiDraw&) = delete;
 
     // Room for `draws` commands a frame: makes the buffer when it has less (a new scene), else
-    // nothing. A frame that adds more grows it (a new buffer: once, not in every frame).
+    // nothing. A frame that adds more grows it to twice its room (a new buffer: once per doubling,
+    // in the frames that first need it, not in every frame).
     void reserve(uint32_t draws);
     // Draw `drawIndex` (GpuDraw::index: its first instance) at level of detail `lod`.
     void add(const DrawLod& lod, uint32_t drawIndex);
