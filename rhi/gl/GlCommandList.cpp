@@ -445,6 +445,7 @@ void GlCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uin
 }
 
 void GlCommandList::drawIndexedIndirect(BufferHandle commands, uint64_t offset, uint32_t drawCount) {
+    if (!device_.caps().multiDrawIndirect) throw Error("drawIndexedIndirect: no Caps::multiDrawIndirect");
     if (!indexBuffer_) throw Error("drawIndexedIndirect without an index buffer");
     if (indexOffset_ != 0) throw Error("drawIndexedIndirect: the index buffer is bound at an offset");
     const GlBuffer& b = device_.buffers.get(commands);

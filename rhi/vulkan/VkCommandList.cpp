@@ -37,6 +37,7 @@ void VulkanCommandList::begin(VkCommandBuffer cmd) {
     writtenOverflow_ = readOverflow_ = false;
     vertexBuffers_ = {};
     indexBuffer_ = 0;
+    indexOffset_ = 0;
 }
 
 void VulkanCommandList::resetCounts() {
@@ -368,6 +369,7 @@ void VulkanCommandList::bindIndexBuffer(BufferHandle buffer, IndexType type, uin
     vkCmdBindIndexBuffer(cmd_, b.buffer, offset,
                          type == IndexType::Uint16 ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32);
     indexBuffer_ = uint64_t(b.buffer);
+    indexOffset_ = offset;
 }
 
 void VulkanCommandList::bindBuffer(uint32_t binding, BufferHandle buffer, uint64_t offset, uint64_t size,
@@ -516,6 +518,8 @@ void VulkanCommandList::drawIndexedIndirect(BufferHandle commands, uint64_t offs
     requirePass(true, "drawIndexedIndirect");
     if (!graphics_) throw Error("drawIndexedIndirect without a graphics pipeline");
     if (!device_.caps().multiDrawIndirect) throw Error("drawIndexedIndirect: no Caps::multiDrawIndirect");
+    if (!indexBuffer_) throw Error("drawIndexedIndirect without an index buffer");
+    if (indexOffset_ != 0) throw Error("drawIndexedIndirect: the index buffer is bound at an offset");
     const VulkanBuffer& b = device_.buffers.get(commands);
     // The CPU wrote the commands before the frame's submission, which makes them visible: no
     // barrier to track.

@@ -124,6 +124,7 @@ private:
     // Bound for draws, for their hazards (0: none).
     std::array<uint64_t, 8> vertexBuffers_{};
     uint64_t indexBuffer_ = 0;
+    uint64_t indexOffset_ = 0; // drawIndexedIndirect's rule: 0, as GL's multi-draw needs
     uint32_t markerDepth_ = 0;
     static constexpr uint32_t kMaxTracked = 64;
     std::array<uint64_t, kMaxTracked> written_{}, read_{}; // since the owed barrier's dispatches
