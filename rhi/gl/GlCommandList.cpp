@@ -523,23 +523,33 @@ void GlCommandList::updateBuffer(BufferHandle buffer, uint64_t offset, const voi
     conservativeBarrier();
 }
 
-void GlCommandList::copyTexture(TextureHandle src, TextureHandle dst) {
-    requirePass(false, "copyTexture");
-    if (src == dst) throw Error("copyTexture: source and destination are the same texture");
-    const GlTexture& s = device_.textures.get(src);
-    const GlTexture& d = device_.textures.get(dst);
-    if (s.desc.kind != d.desc.kind || s.desc.format != d.desc.format || s.desc.width != d.desc.width ||
-        s.desc.height != d.desc.height || s.desc.depthOrLayers != d.desc.depthOrLayers)
-        throw Error("copyTexture: '" + s.desc.debugName + "' and '" + d.desc.debugName +
-                    "' differ in kind, format or size");
-    // No barrier bit names glCopyImageSubData: after shader stores to either texture, every bit.
-    const uint64_t from = GlHazards::textureKey(s.id), to = GlHazards::textureKey(d.id);
-    if (hazards_.beforeRead(from, GL_ALL_BARRIER_BITS) ||
-        hazards_.beforeCommandWrite(to, GL_ALL_BARRIER_BITS))
-        barrier(GL_ALL_BARRIER_BITS);
+void GlCommandList::copyTextures(std::span<const TextureCopy> copies) {
+    requirePass(false, "copyTextures");
+    if (copies.size() > TextureCopy::kMaxCopies)
+        throw Error("copyTextures: " + std::to_string(copies.size()) + " copies, at most " +
+                    std::to_string(TextureCopy::kMaxCopies) + " in one call");
+    // No barrier bit names glCopyImageSubData: after shader stores to any of the textures, every
+    // bit, once for all the copies.
+    bool hazard = false;
+    for (const TextureCopy& c : copies) {
+        if (c.src == c.dst) throw Error("copyTexture: source and destination are the same texture");
+        const GlTexture& s = device_.textures.get(c.src);
+        const GlTexture& d = device_.textures.get(c.dst);
+        if (s.desc.kind != d.desc.kind || s.desc.format != d.desc.format || s.desc.width != d.desc.width ||
+            s.desc.height != d.desc.height || s.desc.depthOrLayers != d.desc.depthOrLayers)
+            throw Error("copyTexture: '" + s.desc.debugName + "' and '" + d.desc.debugName +
+                        "' differ in kind, format or size");
+        hazard |= hazards_.beforeRead(GlHazards::textureKey(s.id), GL_ALL_BARRIER_BITS);
+        hazard |= hazards_.beforeCommandWrite(GlHazards::textureKey(d.id), GL_ALL_BARRIER_BITS);
+    }
+    if (hazard) barrier(GL_ALL_BARRIER_BITS);
     const Functions& gl = device_.gl();
-    gl.glCopyImageSubData(s.id, s.target, 0, 0, 0, 0, d.id, d.target, 0, 0, 0, 0, GLsizei(s.desc.width),
-                          GLsizei(s.desc.height), GLsizei(s.desc.depthOrLayers));
+    for (const TextureCopy& c : copies) {
+        const GlTexture& s = device_.textures.get(c.src);
+        const GlTexture& d = device_.textures.get(c.dst);
+        gl.glCopyImageSubData(s.id, s.target, 0, 0, 0, 0, d.id, d.target, 0, 0, 0, 0, GLsizei(s.desc.width),
+                              GLsizei(s.desc.height), GLsizei(s.desc.depthOrLayers));
+    }
     conservativeBarrier();
 }
 

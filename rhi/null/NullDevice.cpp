@@ -80,7 +80,7 @@ public:
     }
     void clearTexture(TextureHandle t, const std::array<float, 4>&) override;
     void updateBuffer(BufferHandle b, uint64_t offset, const void* data, uint32_t size) override;
-    void copyTexture(TextureHandle src, TextureHandle dst) override;
+    void copyTextures(std::span<const TextureCopy> copies) override;
     void writeTimestamp(uint32_t slot) override;
     void beginMarker(const char*) override {}
     void endMarker() override {}
@@ -311,10 +311,13 @@ void NullCommandList::updateBuffer(BufferHandle b, uint64_t offset, const void* 
     device_.uploadBuffer(b, offset, data, size);
     counts_.barriers += 2;
 }
-void NullCommandList::copyTexture(TextureHandle src, TextureHandle dst) {
-    requirePass(false, "copyTexture");
-    device_.textures.get(src);
-    device_.textures.get(dst);
+void NullCommandList::copyTextures(std::span<const TextureCopy> copies) {
+    requirePass(false, "copyTextures");
+    if (copies.size() > TextureCopy::kMaxCopies) throw Error("copyTextures: too many copies in one call");
+    for (const TextureCopy& c : copies) {
+        device_.textures.get(c.src);
+        device_.textures.get(c.dst);
+    }
     ++counts_.barriers;
 }
 

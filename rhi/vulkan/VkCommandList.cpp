@@ -660,34 +660,50 @@ void VulkanCommandList::updateBuffer(BufferHandle buffer, uint64_t offset, const
     if (device_.conservativeBarriers()) payOwed();
 }
 
-void VulkanCommandList::copyTexture(TextureHandle src, TextureHandle dst) {
-    requirePass(false, "copyTexture");
-    if (src == dst) throw Error("copyTexture: source and destination are the same texture");
-    VulkanTexture& s = device_.textures.get(src);
-    VulkanTexture& d = device_.textures.get(dst);
-    if (s.desc.kind != d.desc.kind || s.desc.format != d.desc.format || s.desc.width != d.desc.width ||
-        s.desc.height != d.desc.height || s.desc.depthOrLayers != d.desc.depthOrLayers)
-        throw Error("copyTexture: '" + s.desc.debugName + "' and '" + d.desc.debugName +
-                    "' differ in kind, format or size");
-    // Both move to their transfer layouts and back (the validation layer warns of a copy in
-    // GENERAL), so the moves order the copy; what dispatches owe goes into the same two calls.
+void VulkanCommandList::copyTextures(std::span<const TextureCopy> copies) {
+    requirePass(false, "copyTextures");
+    if (copies.size() > TextureCopy::kMaxCopies)
+        throw Error("copyTextures: " + std::to_string(copies.size()) + " copies, at most " +
+                    std::to_string(TextureCopy::kMaxCopies) + " in one call");
+    std::array<PassTarget, 2 * TextureCopy::kMaxCopies> selves;
+    for (size_t i = 0; i < copies.size(); ++i) {
+        const TextureCopy& c = copies[i];
+        if (c.src == c.dst) throw Error("copyTexture: source and destination are the same texture");
+        const VulkanTexture& s = device_.textures.get(c.src);
+        const VulkanTexture& d = device_.textures.get(c.dst);
+        if (s.desc.kind != d.desc.kind || s.desc.format != d.desc.format || s.desc.width != d.desc.width ||
+            s.desc.height != d.desc.height || s.desc.depthOrLayers != d.desc.depthOrLayers)
+            throw Error("copyTexture: '" + s.desc.debugName + "' and '" + d.desc.debugName +
+                        "' differ in kind, format or size");
+        selves[2 * i] = {c.src, 0};
+        selves[2 * i + 1] = {c.dst, 0};
+    }
+    // Every texture moves to its transfer layout and back (the validation layer warns of a copy in
+    // GENERAL), so the moves order the copies; what dispatches owe goes into the same two calls.
     {
         BarrierBatch before(cmd_);
-        const std::array<PassTarget, 2> selves{PassTarget{src, 0}, PassTarget{dst, 0}};
-        payPass(before, selves);
-        before.transition(s, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-        before.transition(d, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        payPass(before, std::span(selves.data(), 2 * copies.size()));
+        for (const TextureCopy& c : copies) {
+            before.transition(device_.textures.get(c.src), 0, 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+            before.transition(device_.textures.get(c.dst), 0, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        }
         payOwed(&before);
     }
-    VkImageCopy region{};
-    region.srcSubresource = {s.aspect, 0, 0, s.arrayLayers()};
-    region.dstSubresource = region.srcSubresource;
-    region.extent = {s.width(0), s.height(0), s.depth(0)};
-    vkCmdCopyImage(cmd_, s.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.image,
-                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    for (const TextureCopy& c : copies) {
+        VulkanTexture& s = device_.textures.get(c.src);
+        VulkanTexture& d = device_.textures.get(c.dst);
+        VkImageCopy region{};
+        region.srcSubresource = {s.aspect, 0, 0, s.arrayLayers()};
+        region.dstSubresource = region.srcSubresource;
+        region.extent = {s.width(0), s.height(0), s.depth(0)};
+        vkCmdCopyImage(cmd_, s.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.image,
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    }
     BarrierBatch after(cmd_);
-    after.transitionHome(s);
-    after.transitionHome(d);
+    for (const TextureCopy& c : copies) {
+        after.transitionHome(device_.textures.get(c.src));
+        after.transitionHome(device_.textures.get(c.dst));
+    }
 }
 
 void VulkanCommandList::writeTimestamp(uint32_t slotIndex) {

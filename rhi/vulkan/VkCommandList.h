@@ -50,7 +50,7 @@ public:
     void dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) override;
     void clearTexture(TextureHandle texture, const std::array<float, 4>& value) override;
     void updateBuffer(BufferHandle buffer, uint64_t offset, const void* data, uint32_t size) override;
-    void copyTexture(TextureHandle src, TextureHandle dst) override;
+    void copyTextures(std::span<const TextureCopy> copies) override;
     void writeTimestamp(uint32_t slot) override;
     void beginMarker(const char* name) override;
     void endMarker() override;

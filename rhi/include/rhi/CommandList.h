@@ -29,6 +29,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <span>
 
 namespace lpv::rhi {
 
@@ -117,6 +118,12 @@ struct CommandCounts {
     friend bool operator==(const CommandCounts&, const CommandCounts&) = default;
 };
 
+// One texture copied onto another of the same kind, format and size (CommandList::copyTextures).
+struct TextureCopy {
+    TextureHandle src, dst;
+    static constexpr size_t kMaxCopies = 8;
+};
+
 class CommandList {
 public:
     virtual ~CommandList() = default;
@@ -163,7 +170,13 @@ public:
     // Transfers; only outside a render pass.
     virtual void clearTexture(TextureHandle texture, const std::array<float, 4>& value) = 0;
     virtual void updateBuffer(BufferHandle buffer, uint64_t offset, const void* data, uint32_t size) = 0;
-    virtual void copyTexture(TextureHandle src, TextureHandle dst) = 0; // same desc, all of mip 0
+    // Same desc, all of mip 0.
+    void copyTexture(TextureHandle src, TextureHandle dst) {
+        const TextureCopy copy{src, dst};
+        copyTextures(std::span(&copy, 1));
+    }
+    // Up to kMaxCopies copies behind one barrier (each texture in at most one of them).
+    virtual void copyTextures(std::span<const TextureCopy> copies) = 0;
 
     // GPU timestamp `slot` (< Device::caps().maxTimestampsPerFrame) of this frame; read back with
     // Device::readTimestamps some frames later. See Caps::timestampSource for what it measures.
