@@ -77,6 +77,9 @@ engine::Config sceneConfig(const FidelityScene& fs, uint32_t bounces,
     engine::Config config;
     config.applyOverride("gi.enabled=true", "lpv_fidelity");
     config.applyOverride("gi.bounces=" + std::to_string(bounces), "lpv_fidelity");
+    // The light as a GPU renders it by default: gi.gather = auto turns the gather off on the CPU
+    // rasterizers the benchmark runs on here (--set gi.gather=off for the propagation alone).
+    config.applyOverride("gi.gather=on", "lpv_fidelity");
     for (const std::string& s : fs.settings)
         config.applyOverride(s, "lpv_fidelity's scene " + fs.name);
     for (const std::string& s : assignments)

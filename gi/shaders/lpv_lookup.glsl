@@ -122,6 +122,53 @@ vec3 keptInside(int c, vec3 q, vec3 p) {
     return origin.xyz + (base + f + 0.5) * origin.w;
 }
 
+#ifdef GATHER
+// gi.gather (gi/VplGather.h): the two finest cascades' propagated first bounce, kept apart
+// (bindings 21-26), which the lookup takes out of their light, and the VPL gather that replaces
+// it (binding 27), interleaved over 4 x 4 texels.
+layout(binding = 21) uniform sampler3D first0r;
+layout(binding = 22) uniform sampler3D first0g;
+layout(binding = 23) uniform sampler3D first0b;
+layout(binding = 24) uniform sampler3D first1r;
+layout(binding = 25) uniform sampler3D first1g;
+layout(binding = 26) uniform sampler3D first1b;
+layout(binding = 27) uniform sampler2D gatheredLight;
+
+// Cascade c's (a constant, 0 or 1) first bounce at uvw against `lobe`, as radiance.
+vec3 firstBounceAt(int c, vec3 uvw, vec4 lobe) {
+    if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) return vec3(0.0);
+    vec3 e = c == 0 ? projectVolumes(first0r, first0g, first0b, uvw, lobe, encodeRangeOf(0))
+                    : projectVolumes(first1r, first1g, first1b, uvw, lobe, encodeRangeOf(1));
+    return max(e, vec3(0.0)) / (lookup.gridOrigin[c].w * lookup.gridOrigin[c].w);
+}
+
+// The gather at this texel, averaged over the 4 x 4 block around it (one texel of each
+// interleaving phase) where the neighbours lie on the same surface: normals within about 25
+// degrees and positions within 2% of the view distance of the texel's tangent plane. A neighbour's
+// share of VPLs lights its own point; on one surface the light varies slowly enough to average.
+vec3 gatheredAround(ivec2 texel, vec3 p, vec3 n, float viewDistance) {
+    ivec2 size = textureSize(gatheredLight, 0);
+    vec3 sum = vec3(0.0);
+    float weights = 0.0;
+    int col = lookup.pixels.w;
+    for (int y = -2; y <= 1; ++y)
+        for (int x = -2; x <= 1; ++x) {
+            ivec2 t = clamp(texel + ivec2(x, y), ivec2(0), size - 1);
+            ivec2 source = min(t * lookup.pixels.x, lookup.pixels.yz - 1);
+            float depth = texelFetch(depthTexture, source, 0).r;
+            if (depth >= 1.0) continue;
+            vec2 uv = (vec2(source) + 0.5) / vec2(lookup.pixels.yz);
+            vec4 world = MUL_COLUMNS_AT(lookup.invViewProjection, col, vec4(uv * 2.0 - 1.0, depth, 1.0));
+            vec3 q = world.xyz / world.w;
+            vec3 m = normalize(texelFetch(normalTexture, source, 0).xyz);
+            if (dot(n, m) < 0.9 || abs(dot(q - p, n)) > 0.02 * viewDistance) continue;
+            sum += texelFetch(gatheredLight, t, 0).rgb;
+            weights += 1.0;
+        }
+    return sum / max(weights, 1.0);
+}
+#endif
+
 // Cascade c's irradiance alone at point p, for the damping's sample behind the surface.
 vec3 irradianceAt(int c, vec3 p, vec4 cosine) {
     vec3 uvw = uvwIn(c, p);
@@ -138,15 +185,24 @@ CascadeSample surfaceLight(int c, vec3 p, vec3 n, LookupLobes lobes) {
     // The damping's sample behind the surface stays a plain lookup: it is there to see the light
     // beyond the surface.
     CascadeSample front = lightAt(c, q, lobes);
+    float damping = 1.0;
     if (lookup.grid.z != 0) {
         vec3 behind = irradianceAt(c, p - 0.5 * cell * n, lobes.irradiance);
         float f = dot(front.irradiance, vec3(0.2126, 0.7152, 0.0722));
         float bk = dot(behind, vec3(0.2126, 0.7152, 0.0722));
         float growth = max(bk - f, 0.0) / max(bk, 1e-6);
-        float damping = clamp(1.0 - lookup.intensity.y * growth, 0.0, 1.0);
+        damping = clamp(1.0 - lookup.intensity.y * growth, 0.0, 1.0);
         front.irradiance *= damping;
         front.glossy *= damping;
     }
+#ifdef GATHER
+    // The first bounce leaves the two finest cascades' irradiance (damped as the rest was); the
+    // gather brings it back (main). The glossy term keeps the volume's.
+    if (c < 2) {
+        vec3 first = firstBounceAt(c, uvwIn(c, q), lobes.irradiance);
+        front.irradiance = max(front.irradiance - damping * first, vec3(0.0));
+    }
+#endif
     return front;
 }
 
@@ -236,6 +292,9 @@ void main() {
     }
 #endif
     if (left > 0.0) light = mixSamples(light, surfaceLight(CASCADES - 1, p, n, lobes), left);
+#endif
+#ifdef GATHER
+    light.irradiance += gatheredAround(ivec2(gl_FragCoord.xy), p, n, length(p - lookup.cameraPosition.xyz));
 #endif
     // The view depth (1 / world.w: clip w is the view depth), for the lighting pass's rebuild.
     outIrradiance = vec4(light.irradiance, 1.0 / world.w);

@@ -6,6 +6,7 @@
 #include "gi/SpotLightRsms.h"
 #include "rhi/Format.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -89,6 +90,13 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
             out.push_back({"first bounce, finest cascade (3 SH textures)", "gi.lpv", 3 * cells * shBytes});
         }
     }
+    // gi.gather: the two finest cascades' first bounce kept apart for the lookup to take out (the
+    // gather's target is screen-sized, counted with the lookup's targets in render.lighting).
+    if (s.gather)
+        for (uint32_t c = 0; c < std::min(s.cascades, 2u); ++c)
+            out.push_back(
+                {"first bounce kept for gi.gather, cascade " + std::to_string(c) + " (3 SH textures)",
+                 "gi.lpv", 3 * cells * shBytes});
     return out;
 }
 

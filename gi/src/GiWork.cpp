@@ -220,6 +220,13 @@ WorkCounts lookupWork(const LpvSettings& s, uint64_t pixels) {
     w.aluOps = pixels * (30 + 30 * lobes + 37 * lookups * cascades + 20 * faces);
     w.bytesMoved = pixels * (4 + 8 + 4 * lobes + 8 + 8);
     w.primitives = 1;
+    if (s.gather) {
+        // The first bounce's 3 volumes in each of (at most) two cascades, and the gather's 4 x 4
+        // average: each texel's depth, normal and gathered light.
+        w.texelsRead += pixels * (3 * 2 * cascades + 16 * 3);
+        w.aluOps += pixels * (20 * cascades + 16 * 25);
+        w.bytesMoved += pixels * 16 * (4 + 8 + 8);
+    }
     return w;
 }
 

@@ -16,6 +16,23 @@ namespace {
 // lpv_lookup.glsl's highest texture binding (faceTransmittance3) plus one.
 constexpr uint32_t kLookupTextureBindings = 21;
 
+void requireBindings(const rhi::Device& device, uint32_t bindings, const char* what) {
+    if (device.caps().fragmentTextureBindings < bindings)
+        throw rhi::Error(std::string("GI: ") + what + " binds textures up to binding " +
+                         std::to_string(bindings - 1) + " in one fragment shader, and this device (" +
+                         device.caps().deviceName + ") allows " +
+                         std::to_string(device.caps().fragmentTextureBindings) +
+                         " (OpenGL's GL_MAX_TEXTURE_IMAGE_UNITS, Vulkan's per-stage samplers)");
+}
+
+rhi::GraphicsPipelineDesc lookupDesc() {
+    rhi::GraphicsPipelineDesc d;
+    d.vertex = &engine::shaders::fullscreen_vert;
+    d.colorFormats = {rhi::Format::RGBA16F, rhi::Format::RGBA16F}; // irradiance, glossy radiance
+    d.debugName = "lpv lookup";
+    return d;
+}
+
 // std140 block `Lookup` of lpv_lookup.glsl.
 struct LookupUniforms {
     glm::mat4 invViewProjection;
@@ -31,16 +48,8 @@ struct LookupUniforms {
 
 IndirectLookup::IndirectLookup(rhi::Device& device) : device_(device) {
     using namespace rhi;
-    if (device.caps().fragmentTextureBindings < kLookupTextureBindings)
-        throw rhi::Error("GI: the indirect light's lookup binds textures up to binding " +
-                         std::to_string(kLookupTextureBindings - 1) +
-                         " in one fragment shader, and this device (" + device.caps().deviceName +
-                         ") allows " + std::to_string(device.caps().fragmentTextureBindings) +
-                         " (OpenGL's GL_MAX_TEXTURE_IMAGE_UNITS, Vulkan's per-stage samplers)");
-    GraphicsPipelineDesc d;
-    d.vertex = &engine::shaders::fullscreen_vert;
-    d.colorFormats = {Format::RGBA16F, Format::RGBA16F}; // irradiance, glossy radiance
-    d.debugName = "lpv lookup";
+    requireBindings(device, kLookupTextureBindings, "the indirect light's lookup");
+    GraphicsPipelineDesc d = lookupDesc();
     const rhi::ShaderBinary* lookups[4] = {&shaders::lpv_lookup_1_frag, &shaders::lpv_lookup_2_frag,
                                            &shaders::lpv_lookup_3_frag, &shaders::lpv_lookup_4_frag};
     for (size_t c = 0; c < 4; ++c) {
@@ -72,9 +81,40 @@ IndirectLookup::IndirectLookup(rhi::Device& device) : device_(device) {
     linearSampler_ = device.createSampler(linear);
 }
 
+void IndirectLookup::enableGather() {
+    using namespace rhi;
+    if (gatherPipelines_[0]) return;
+    requireBindings(device_, kGatherTextureBindings, "the indirect light's lookup with gi.gather");
+    GraphicsPipelineDesc d = lookupDesc();
+    d.debugName = "lpv lookup, gathered";
+    const rhi::ShaderBinary* lookups[4] = {
+        &shaders::lpv_lookup_1_gather_frag, &shaders::lpv_lookup_2_gather_frag,
+        &shaders::lpv_lookup_3_gather_frag, &shaders::lpv_lookup_4_gather_frag};
+    for (size_t c = 0; c < 4; ++c) {
+        d.fragment = lookups[c];
+        gatherPipelines_[c] = device_.createPipeline(d);
+    }
+    if (!classPipelines_[0][0]) return;
+    d.debugName = "lpv lookup, one cascade class, gathered";
+    const rhi::ShaderBinary* shadersOf[2][2] = {
+        {&shaders::lpv_lookup_class0_gather_frag, &shaders::lpv_lookup_class0_blend_gather_frag},
+        {&shaders::lpv_lookup_class1_gather_frag, &shaders::lpv_lookup_class1_blend_gather_frag}};
+    for (uint32_t c = 0; c < 2; ++c)
+        for (uint32_t band = 0; band < 2; ++band) {
+            d.fragment = shadersOf[c][band];
+            CascadeClasses::configureLookupDraw(d, c, band != 0);
+            gatherClassPipelines_[c][band] = device_.createPipeline(d);
+        }
+}
+
 IndirectLookup::~IndirectLookup() {
     for (rhi::GraphicsPipelineHandle p : pipelines_)
         device_.destroy(p);
+    for (rhi::GraphicsPipelineHandle p : gatherPipelines_)
+        if (p) device_.destroy(p);
+    for (const auto& byBand : gatherClassPipelines_)
+        for (rhi::GraphicsPipelineHandle p : byBand)
+            if (p) device_.destroy(p);
     for (const auto& byBand : classPipelines_)
         for (rhi::GraphicsPipelineHandle p : byBand)
             if (p) device_.destroy(p);
@@ -86,7 +126,7 @@ void IndirectLookup::record(rhi::CommandList& cmd, const engine::CameraMatrices&
                             const engine::GBufferView& gbuffer, std::span<const LookupCascade> cascades,
                             const LookupOptions& options, rhi::TextureHandle target,
                             rhi::TextureHandle glossyTarget, rhi::TextureHandle specularAlbedoTable,
-                            const CascadeClasses* classes) {
+                            const CascadeClasses* classes, const LookupGather* gather) {
     using namespace rhi;
     const uint32_t count = uint32_t(cascades.size());
     // Past the coarsest, a cascade's inputs are the coarsest's.
@@ -127,16 +167,24 @@ void IndirectLookup::record(rhi::CommandList& cmd, const engine::CameraMatrices&
         // Without occlusion the bindings are unread; any 3D texture fills them.
         for (uint32_t c = 0; c < 4; ++c)
             cmd.bindTexture(17 + c, cascade(c).faces ? cascade(c).faces : volumes[0][0], pointSampler_);
+        if (gather) {
+            for (uint32_t c = 0; c < 2; ++c)
+                for (uint32_t ch = 0; ch < 3; ++ch)
+                    cmd.bindTexture(21 + 3 * c + ch, gather->first[std::min(c, count - 1)][ch],
+                                    linearSampler_);
+            cmd.bindTexture(27, gather->gathered, pointSampler_);
+        }
     };
     if (!classes) {
-        cmd.bindPipeline(pipelines_[count - 1]);
+        cmd.bindPipeline(gather ? gatherPipelines_[count - 1] : pipelines_[count - 1]);
         bindInputs();
         cmd.draw(3);
     } else {
         for (uint32_t c = 0; c < count; ++c) {
             for (const bool blend : {false, true}) {
                 if (blend && c + 1 == count) continue; // the coarsest has no band
-                cmd.bindPipeline(classPipelines_[c][blend ? 1 : 0]);
+                cmd.bindPipeline(gather && c < 2 ? gatherClassPipelines_[c][blend ? 1 : 0]
+                                                 : classPipelines_[c][blend ? 1 : 0]);
                 bindInputs();
                 cmd.draw(3);
             }

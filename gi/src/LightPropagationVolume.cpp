@@ -89,6 +89,12 @@ void LightPropagationVolume::release() {
     geometry_.reset();
     pointLights_.reset();
     spotRsms_.reset();
+    gather_.reset();
+    for (auto& first : firsts_)
+        for (rhi::TextureHandle& t : first) {
+            if (t) device_.destroy(t);
+            t = {};
+        }
     if (vpls_) device_.destroy(vpls_);
     vpls_ = {};
     made_ = false;
@@ -125,6 +131,12 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     firstValid_ = false;
     pointLights_ = std::make_unique<PointLightInjection>(device_, s);
     spotRsms_ = std::make_unique<SpotLightRsms>(device_, s);
+    if (s.gather) {
+        lookup_.enableGather();
+        gather_ = std::make_unique<VplGather>(device_);
+        for (uint32_t c = 0; c < std::min(s.cascades, VplGather::kCascades); ++c)
+            firsts_[c] = volumes_->createResult("lpv first bounce, cascade " + std::to_string(c));
+    }
     vpls_ = device_.createBuffer({uint64_t(s.vplSlots()) * 48, rhi::kBufferStorage | rhi::kBufferTransfer,
                                   rhi::MemoryAccess::GpuOnly, "vpls", "gi.vpl"});
     // A coarse cascade's VPLs wait a frame for its volume half when the scheduler splits its update.
@@ -284,10 +296,19 @@ GiConfigResult LightPropagationVolume::prepare(const LpvSettings& configured, co
     if (reconfigured) {
         if (std::optional<LpvSettingsError> error = validateLpvSettings(configured))
             return GiConfigResult::refused(std::string(error->setting), std::move(error->message));
+        const uint32_t bindings = device_.caps().fragmentTextureBindings;
+        if (configured.enabled && configured.gatherMode == LpvSettings::Gather::On &&
+            bindings < IndirectLookup::kGatherTextureBindings)
+            return GiConfigResult::refused(
+                "gi.gather", "gi.gather: the lookup with the gather binds " +
+                                 std::to_string(IndirectLookup::kGatherTextureBindings) +
+                                 " fragment textures, and this device (" + device_.caps().deviceName +
+                                 ") allows " + std::to_string(bindings) + "; set gi.gather = auto or off");
         schedulerBefore_ = scheduler_;
         scheduleBefore_ = schedule_;
     }
     if (s.cellSizeAuto) s.cellSize = autoCellSize(s.gridSize, camera.position, inputs.sceneBounds);
+    s.gather = gathers(s.gatherMode); // the load the scheduler starts from has it as resolved
     lightUpdates_ = volumeUpdates_ = ~0u;
     if (configured.enabled) {
         // The scheduler always sees the configured load; what it returns is this frame's. Without
@@ -295,8 +316,8 @@ GiConfigResult LightPropagationVolume::prepare(const LpvSettings& configured, co
         // gi.coarse_update_interval says.
         const uint64_t frame = device_.frameIndex() + 1;
         const std::optional<GiFrameCost> cost = profiler ? giFrameCost(*profiler) : std::nullopt;
-        schedule_ = scheduler_.schedule(frame, cost, giBudgetOf(profile_),
-                                        giLoadOf(configured, configured.cascades), configured.budgetPolicy);
+        schedule_ = scheduler_.schedule(frame, cost, giBudgetOf(profile_), giLoadOf(s, configured.cascades),
+                                        configured.budgetPolicy);
         applyGiLoad(schedule_.load, s);
         lightUpdates_ = volumeUpdates_ = 0;
         for (uint32_t c = 0; c < configured.cascades; ++c) {
@@ -319,7 +340,8 @@ GiConfigResult LightPropagationVolume::prepare(const LpvSettings& configured, co
                          s.lookupOcclusion != madeWith_.lookupOcclusion ||
                          s.propagateTogether() != madeWith_.propagateTogether() ||
                          s.coarseCameraOcclusion != madeWith_.coarseCameraOcclusion ||
-                         s.lightRsms != madeWith_.lightRsms || s.pointLightRsms != madeWith_.pointLightRsms;
+                         s.lightRsms != madeWith_.lightRsms || s.pointLightRsms != madeWith_.pointLightRsms ||
+                         s.gather != madeWith_.gather;
     // What adapt turns (gi/GiScheduler.h) needs no cascade made again: the results stay (a kept
     // cascade shows its old bounce count until its next update), so the frame after a step runs the
     // scheduled cascades only, not every one (on PS3 the PC settings' frame after the RSM step
@@ -490,6 +512,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                 if (propagated & (1u << c)) work += recordPropagation(f, c);
             return work;
         });
+        if (gather_) keepFirstBounces(cmd, propagated);
         if (ahead)
             f.pass("bounces.add", [&] {
                 bounces_->recordAdd(f.cmd, *bounces_->ownVolumes(), finest.result, bounces_->first());
@@ -501,8 +524,10 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
     // or (bounces left to the next frame) it alone.
     if ((propagated & 1u) && bounces_ && bounces_->first()) {
         if (!bounced)
-            for (uint32_t ch = 0; ch < 3; ++ch)
-                cmd.copyTexture((*bounces_->first())[ch], cascades_[0].result[ch]);
+            cmd.copyTextures(
+                std::array<rhi::TextureCopy, 3>{{{(*bounces_->first())[0], cascades_[0].result[0]},
+                                                 {(*bounces_->first())[1], cascades_[0].result[1]},
+                                                 {(*bounces_->first())[2], cascades_[0].result[2]}}});
         firstValid_ = true;
         firstGrid_ = cascades_[0].grid;
     }
@@ -513,6 +538,7 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
         allocationCheckDue_ = false;
         warnIfAllocatedOverBudget();
     }
+    if (gather_) f.pass("gather", [&] { return recordGather(f); });
     f.pass("lookup", [&] { return recordLookup(f); });
     if (settings_.glossy) f.pass("glossy", [&] { return recordGlossy(f); });
     cmd.endMarker();
@@ -536,6 +562,7 @@ void LightPropagationVolume::recordVolumeHalf(const FrameRecording& f, uint32_t 
     f.pass("inject", [&] { return recordInjection(f, c); });
     if (!whole) return;
     f.pass("propagate", [&] { return recordPropagation(f, c); });
+    if (gather_) keepFirstBounces(f.cmd, 1u << c);
     if (bounces_ && settings_.bouncesIn(c) && !(deferredBounces_ && c == 0))
         f.pass("bounces", [&] { return recordBounces(f, c); });
 }
@@ -749,6 +776,96 @@ void LightPropagationVolume::recordClasses(const FrameRecording& f) {
                      settings_.resolutionDivisor);
 }
 
+// gi.gather = auto runs the gather on a GPU that can bind the lookup's inputs. Not on a platform
+// whose GI time is predicted for a console's modelled GPU (the Xbox 360's model gives the gather
+// about 236 ms at 1280x720, lpv_bench --parts=console), nor on a CPU rasterizer (a CPU-rasterizer
+// workaround: every pixel loops over a sixteenth of the VPLs, 6.4 s a 1280x720 frame on
+// lavapipe, docs/benchmarks.md); it says so once.
+bool LightPropagationVolume::gathers(LpvSettings::Gather mode) {
+    if (mode != LpvSettings::Gather::Auto) return mode == LpvSettings::Gather::On;
+    const rhi::Caps& caps = device_.caps();
+    if (caps.fragmentTextureBindings < IndirectLookup::kGatherTextureBindings || profile_.giTimePredicted)
+        return false;
+    if (caps.concurrentWorkgroups == 0) return true;
+    if (!gatherAutoReported_) {
+        gatherAutoReported_ = true;
+        log::info("gi: gi.gather = auto: off on this CPU rasterizer (" + caps.deviceName +
+                  "), where the per-pixel gather costs seconds a frame; gi.gather = on runs it");
+    }
+    return false;
+}
+
+// gi.gather: cascade c's first bounce, where the lookup takes it out (c < VplGather::kCascades).
+const std::array<rhi::TextureHandle, 3>& LightPropagationVolume::firstBounce(uint32_t c) const {
+    return c == 0 && bounces_ && bounces_->first() ? *bounces_->first() : firsts_[c];
+}
+
+// Right after propagation, before the further bounces and the analytic lights join the result: the
+// part of the light the gather stands for.
+void LightPropagationVolume::keepFirstBounces(rhi::CommandList& cmd, uint32_t propagated) {
+    std::array<rhi::TextureCopy, 3 * VplGather::kCascades> copies;
+    size_t count = 0;
+    for (uint32_t c = 0; c < std::min(cascadeCount(), VplGather::kCascades); ++c) {
+        if (!(propagated & (1u << c)) || (c == 0 && bounces_ && bounces_->first())) continue;
+        for (uint32_t ch = 0; ch < 3; ++ch)
+            copies[count++] = {cascades_[c].result[ch], firsts_[c][ch]};
+    }
+    if (count > 0) cmd.copyTextures(std::span(copies.data(), count)); // one barrier for all
+}
+
+engine::WorkCounts LightPropagationVolume::recordGather(const FrameRecording& f) {
+    const rhi::TextureDesc& target = device_.desc(f.target);
+    gather_->resize(target.width, target.height); // makes it only when the size changes
+    const uint32_t gathered = std::min(cascadeCount(), VplGather::kCascades);
+    // The sun's VPLs of each gathered cascade in its share; the spot and point lights' in the share of
+    // every gathered cascade they are injected into (recordInjection).
+    std::array<GatherSource, VplGather::kCascades + SpotLightRsms::kMaxRsms> sources;
+    uint32_t count = 0;
+    // Visibility (gi.occlusion): marched through the faces of the cascade whose VPLs they are, or
+    // the finest's where only it keeps faces; unmarched where they are not built (yet).
+    const auto facesCascade = [&](uint32_t c) {
+        return geometry_ ? std::min(c, geometry_->faceSlots() - 1) : 0u;
+    };
+    const auto facesOf = [&](uint32_t c) {
+        const uint32_t slot = facesCascade(c);
+        return geometry_ && (facesValid_ & (1u << slot)) ? geometry_->faceTransmittance(slot)
+                                                         : rhi::TextureHandle{};
+    };
+    for (uint32_t c = 0; c < gathered; ++c) {
+        const float cell = cascades_[c].grid.cellSize;
+        sources[count++] = {cascades_[c].vpls,   settings_.vplSlots(), settings_.vplGridSide(), int32_t(c), 0,
+                            0.25f * cell * cell, facesOf(c),           facesCascade(c)};
+    }
+    const uint32_t suns = count;
+    const float finest = cascades_[0].grid.cellSize;
+    for (uint32_t c = 0; c < gathered; ++c) {
+        std::array<VplSource, SpotLightRsms::kMaxRsms> reaching;
+        const uint32_t n = spotRsms_->sourcesReaching(cascades_[c].grid, reaching);
+        for (uint32_t k = 0; k < n; ++k) {
+            uint32_t i = suns;
+            while (i < count && sources[i].vpls != reaching[k].vpls)
+                ++i;
+            if (i == count)
+                sources[count++] = {
+                    reaching[k].vpls,        reaching[k].count,     spotLightVplSide(settings_), -1, 0,
+                    0.25f * finest * finest, facesOf(gathered - 1), facesCascade(gathered - 1)};
+            sources[i].cascades |= 1u << c;
+        }
+    }
+    std::array<VolumeGrid, 4> grids;
+    for (uint32_t c = 0; c < cascadeCount(); ++c)
+        grids[c] = cascades_[c].grid;
+    gather_->record(f.cmd, f.camera, f.gbuffer, std::span(grids.data(), cascadeCount()), kBlendBand,
+                    settings_.intensity, settings_.resolutionDivisor, std::span(sources.data(), count),
+                    cascades_[0].result[0]);
+    uint64_t slots = 0;
+    for (uint32_t i = 0; i < count; ++i)
+        slots += sources[i].slots;
+    // A segment crosses a quarter of the grid's faces on average (an estimate; the march stops at
+    // the first wall).
+    return gatherWork(pixelsOf(target), slots, count, geometry_ ? settings_.gridSize / 4 : 0);
+}
+
 engine::WorkCounts LightPropagationVolume::recordLookup(const FrameRecording& f) {
     std::array<LookupCascade, 4> cascades;
     for (uint32_t c = 0; c < cascades_.size(); ++c) {
@@ -768,8 +885,15 @@ engine::WorkCounts LightPropagationVolume::recordLookup(const FrameRecording& f)
     options.blendBand = kBlendBand;
     // Each texel looks up the G-buffer pixel at texel x divisor; the lighting pass rebuilds the rest.
     options.divisor = settings_.resolutionDivisor;
+    LookupGather gather;
+    if (gather_) {
+        for (uint32_t c = 0; c < VplGather::kCascades; ++c)
+            gather.first[c] = firstBounce(std::min(c, cascadeCount() - 1));
+        gather.gathered = gather_->gathered();
+    }
     lookup_.record(f.cmd, f.camera, f.gbuffer, std::span(cascades.data(), cascades_.size()), options,
-                   f.target, f.glossyTarget, frame_.specularAlbedo, classified() ? classes_.get() : nullptr);
+                   f.target, f.glossyTarget, frame_.specularAlbedo, classified() ? classes_.get() : nullptr,
+                   gather_ ? &gather : nullptr);
     return lookupWork(settings_, pixelsOf(device_.desc(f.target)));
 }
 

@@ -34,6 +34,9 @@ namespace {
 // Measured when the test was written (vulkan and gl-egl alike: 1.344 and 11.98%), plus 4%.
 constexpr float kGuardRelativeRmse = 1.40f;
 constexpr float kGuardShareOver3x = 0.125f;
+// With gi.gather, measured (vulkan and gl-egl alike) plus a point.
+constexpr float kGatherGuardSunOver3x = 0.072f;   // 6.2%
+constexpr float kGatherGuardPointOver3x = 0.052f; // 4.2%
 
 struct Traced {
     engine::Scene scene;
@@ -53,6 +56,44 @@ const Traced& cornellSun() {
     return traced;
 }
 
+// The same box lit by a point light under its ceiling, traced once per process.
+const Traced& cornellPoint() {
+    static const Traced traced = [] {
+        Traced t{engine::loadScene(std::string(LPV_FIDELITY_SCENES) + "/cornell-point.gltf"), {}};
+        reference::TraceSettings s;
+        s.width = s.height = 128;
+        s.samplesPerPixel = 512;
+        t.image = reference::trace(t.scene, *t.scene.camera, s);
+        return t;
+    }();
+    return traced;
+}
+
+// The engine's figures for one of the benchmark's scenes with its settings and `extra`.
+bench::FidelityFigures measure(const BackendUnderTest& backend, const Traced& ref,
+                               const std::string& sceneName, const std::vector<std::string>& extra) {
+    TestDevice device(backend);
+    engine::Config config;
+    config.applyOverride("gi.enabled=true", "test");
+    for (const bench::FidelityScene& fs : bench::fidelityScenes(""))
+        if (fs.name == sceneName)
+            for (const std::string& s : fs.settings)
+                config.applyOverride(s, "test");
+    for (const std::string& s : extra)
+        config.applyOverride(s, "test");
+    const std::vector<glm::vec3> image =
+        bench::renderEngineIndirect(*device, ref.scene, *ref.scene.camera, 128, 128, config);
+    device.expectSilent();
+    const bench::FidelityFigures f =
+        bench::compareIndirect(image, ref.image.indirect, {ref.image.normal, ref.image.hit});
+    MESSAGE(backend.name << ", " << sceneName << ": mean ratio " << f.meanRatio.r << "/" << f.meanRatio.g
+                         << "/" << f.meanRatio.b << ", relative RMSE " << f.relativeRmse << " ("
+                         << f.relativeRmseScaled << " after x" << f.bestScale << "), ceilings "
+                         << f.orientation.ceilings << ", floors " << f.orientation.floors << ", walls "
+                         << f.orientation.walls << ", over 3x " << f.shareOver3x);
+    return f;
+}
+
 // The fog comparison's medium in the same box, traced once per process.
 const reference::TracedImage& cornellSunFog() {
     static const reference::TracedImage traced = [] {
@@ -69,26 +110,9 @@ const reference::TracedImage& cornellSunFog() {
 } // namespace
 
 TEST_CASE("gi: the Cornell box lit through its front, against the path tracer") {
-    const Traced& ref = cornellSun();
     for (const BackendUnderTest& backend : selectedBackends()) {
         CAPTURE(backend.name);
-        TestDevice device(backend);
-        engine::Config config;
-        config.applyOverride("gi.enabled=true", "test");
-        for (const bench::FidelityScene& fs : bench::fidelityScenes(""))
-            if (fs.name == "cornell-sun")
-                for (const std::string& s : fs.settings)
-                    config.applyOverride(s, "test");
-        const std::vector<glm::vec3> image =
-            bench::renderEngineIndirect(*device, ref.scene, *ref.scene.camera, 128, 128, config);
-        device.expectSilent();
-        const bench::FidelityFigures f =
-            bench::compareIndirect(image, ref.image.indirect, {ref.image.normal, ref.image.hit});
-        MESSAGE(backend.name << ": mean ratio " << f.meanRatio.r << "/" << f.meanRatio.g << "/"
-                             << f.meanRatio.b << ", relative RMSE " << f.relativeRmse << " ("
-                             << f.relativeRmseScaled << " after x" << f.bestScale << "), ceilings "
-                             << f.orientation.ceilings << ", floors " << f.orientation.floors << ", walls "
-                             << f.orientation.walls << ", over 3x " << f.shareOver3x);
+        const bench::FidelityFigures f = measure(backend, cornellSun(), "cornell-sun", {});
         // The target: every channel's mean within 20%.
         for (int c = 0; c < 3; ++c)
             CHECK(std::abs(f.meanRatio[c] - 1.0f) <= 0.2f);
@@ -96,6 +120,31 @@ TEST_CASE("gi: the Cornell box lit through its front, against the path tracer") 
         CHECK(f.relativeRmse <= kGuardRelativeRmse);
         CHECK(f.shareOver3x <= kGuardShareOver3x);
         CHECK(f.pixels > 128u * 128u / 2u);
+    }
+}
+
+// gi.gather: the first bounce gathered from the VPLs. Issue 44's targets but the share over 3x:
+// relative RMSE <= 0.45, every channel's mean within 20%, the ceilings' within 35%; the share over
+// 3x guarded at its measure (README, "How close to the truth") plus a point.
+TEST_CASE("gi: with gi.gather, the Cornell boxes lit by the sun and by a point light meet the targets") {
+    const struct {
+        const Traced& ref;
+        const char* name;
+        float shareOver3x;
+    } scenes[] = {{cornellSun(), "cornell-sun", kGatherGuardSunOver3x},
+                  {cornellPoint(), "cornell-point", kGatherGuardPointOver3x}};
+    for (const BackendUnderTest& backend : selectedBackends()) {
+        CAPTURE(backend.name);
+        for (const auto& scene : scenes) {
+            CAPTURE(scene.name);
+            const bench::FidelityFigures f = measure(backend, scene.ref, scene.name, {"gi.gather=on"});
+            for (int c = 0; c < 3; ++c)
+                CHECK(std::abs(f.meanRatio[c] - 1.0f) <= 0.2f);
+            CHECK(f.relativeRmse <= 0.45f);
+            CHECK(std::abs(f.orientation.ceilings - 1.0f) <= 0.35f);
+            CHECK(f.shareOver3x <= scene.shareOver3x);
+            CHECK(f.pixels > 128u * 128u / 2u);
+        }
     }
 }
 

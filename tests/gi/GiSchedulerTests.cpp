@@ -54,13 +54,14 @@ struct Run {
 };
 
 int rank(GiKnob k) {
-    return k == GiKnob::CoarseUpdateInterval ? 0
-           : k == GiKnob::Iterations         ? 1
-           : k == GiKnob::RsmSize            ? 2
-           : k == GiKnob::Resolution         ? 3
-           : k == GiKnob::Bounces            ? 4
-           : k == GiKnob::FogResolution      ? 5
-                                             : 6;
+    return k == GiKnob::Gather                 ? -1
+           : k == GiKnob::CoarseUpdateInterval ? 0
+           : k == GiKnob::Iterations           ? 1
+           : k == GiKnob::RsmSize              ? 2
+           : k == GiKnob::Resolution           ? 3
+           : k == GiKnob::Bounces              ? 4
+           : k == GiKnob::FogResolution        ? 5
+                                               : 6;
 }
 
 bool contains(std::string_view text, std::string_view part) {
@@ -114,6 +115,24 @@ TEST_CASE("gi budget: the cascade update pattern staggers coarse cascades") {
                 CHECK(lights == 1);
             }
         }
+}
+
+TEST_CASE("gi budget: adapt turns the per-pixel gather off first, and keeps it off") {
+    Run run;
+    run.configured.cascades = 3;
+    run.configured.gather = 1;
+    // The gather takes a frame from 2 ms to 12: off, the frame fits, and giving it back would not.
+    const auto costOf = [](const GiLoad& l, uint64_t) {
+        return std::pair(l.gather ? 12.0 : 2.0, uint64_t(1));
+    };
+    const GiSchedule& s = run.frames(200, GiBudget{3.3, 1u << 20}, costOf);
+    CHECK(s.load.gather == 0);
+    const auto steps = run.steps(false);
+    REQUIRE(steps.size() == 1);
+    CHECK(steps[0].change.knob == GiKnob::Gather);
+    CHECK(contains(steps[0].change.text(), "gi.gather=off (was on): frame "));
+    CHECK(run.steps(true).empty());
+    CHECK(s.load.coarseUpdateInterval == run.configured.coarseUpdateInterval);
 }
 
 TEST_CASE("gi budget: adapt brings 3 cascades under the x360 budget in the documented order") {

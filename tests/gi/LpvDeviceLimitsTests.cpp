@@ -33,6 +33,25 @@ TEST_CASE("gi: a device with too few fragment texture bindings for the lookup is
     CHECK(lpvOn(21).empty());
 }
 
+TEST_CASE("gi: gi.gather on a device with too few fragment texture bindings is refused, naming it") {
+    rhi::DeviceConfig config;
+    config.backend = rhi::BackendKind::Null;
+    config.fragmentTextureBindings = gi::IndirectLookup::kGatherTextureBindings - 1;
+    const std::unique_ptr<rhi::Device> device = rhi::createDevice(config);
+    gi::LightPropagationVolume lpv(*device, platforms::loadPlatformProfile("pc"));
+    gi::LpvSettings s;
+    s.enabled = true;
+    s.gatherMode = gi::LpvSettings::Gather::On;
+    const gi::GiConfigResult refused = lpv.update(s, gi::GiFrameInputs{}, nullptr);
+    CHECK_FALSE(refused.accepted);
+    CHECK(refused.setting == "gi.gather");
+    CHECK(refused.reason.find("allows 27") != std::string::npos);
+    // auto leaves it off there.
+    s.gatherMode = gi::LpvSettings::Gather::Auto;
+    CHECK(lpv.update(s, gi::GiFrameInputs{}, nullptr).accepted);
+    CHECK_FALSE(lpv.settings().gather);
+}
+
 TEST_CASE("gi: the volumes propagate stacked only where a GPU's branches and bindings allow") {
     // A GPU with the bindings the stacked kernels take (LpvPropagation::stacks).
     rhi::Caps gpu;

@@ -95,6 +95,19 @@ const engine::FloatSetting kGlossyMaxRoughness{
     "Surfaces this rough or rougher get no glossy march (it fades out over the 0.1 below) and reflect the "
     "volume at their lobe's mean direction instead, saving the march's cost per pixel; 1: all but the fully "
     "rough ones"};
+// The propagation scatters its first bounce within a few cells of the lit surfaces and leaves
+// the far side of a room dark (docs/gi-fidelity.md); gathered per pixel, the first bounce lands
+// where a path tracer puts it.
+const engine::EnumSetting<LpvSettings::Gather> kGather{
+    "gi.gather",
+    LpvSettings::Gather::Auto,
+    {{LpvSettings::Gather::Auto, "auto"}, {LpvSettings::Gather::On, "on"}, {LpvSettings::Gather::Off, "off"}},
+    "The first bounce in the two finest cascades gathered per pixel from their VPLs (interleaved over 4 x 4 "
+    "pixels) instead of read from the propagated volume, which keeps the further bounces, glossy and fog; "
+    "with "
+    "gi.occlusion a VPL does not light what the geometry volume's faces hide from it. auto: on a GPU, off on "
+    "a "
+    "CPU rasterizer (lavapipe, llvmpipe: seconds a frame) and on the console profiles (their modelled GPUs)"};
 const engine::IntSetting kBounces{
     "gi.bounces", 1, 1, 3,
     "Light bounces: 2-3 reflect the light the geometry volume blocks off its surfels (needs gi.occlusion)"};
@@ -125,8 +138,8 @@ const engine::EnumSetting<GiBudgetPolicy> kBudgetPolicy{
     "gi.budget_policy",
     GiBudgetPolicy::Fixed,
     {{GiBudgetPolicy::Fixed, "fixed"}, {GiBudgetPolicy::Adapt, "adapt"}},
-    "GI over the platform budget: fixed only reports it; adapt updates coarse cascades less often, then "
-    "lowers iterations, then the RSM size, then gi.resolution, then gi.bounces"};
+    "GI over the platform budget: fixed only reports it; adapt turns gi.gather off, then updates coarse "
+    "cascades less often, then lowers iterations, then the RSM size, then gi.resolution, then gi.bounces"};
 
 // The participating medium (FogSettings, gi/FogMarch.h).
 const engine::BoolSetting kFogEnabled{
@@ -187,6 +200,8 @@ LpvSettings lpvSettingsFrom(const engine::Config& config) {
     s.coarseCameraOcclusion = config.get(kCoarseCameraOcclusion);
     s.glossy = config.get(kGlossy);
     s.glossyMaxRoughness = float(config.get(kGlossyMaxRoughness));
+    s.gatherMode = config.get(kGather);
+    s.gather = s.gatherMode == LpvSettings::Gather::On; // auto: as LightPropagationVolume decides
     s.bounces = uint32_t(config.get(kBounces));
     s.bounceCascades = uint32_t(config.get(kBounceCascades));
     s.lightRsms = uint32_t(config.get(kLightRsms));

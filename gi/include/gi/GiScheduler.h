@@ -61,6 +61,7 @@ struct GiLoad {
     uint32_t rsmSize = 256;
     uint32_t resolutionDivisor = 1; // per axis: the lookup and glossy march run on 1 in d^2 pixels
     uint32_t bounces = 1;           // gi.bounces: the first is the propagated light itself
+    uint32_t gather = 0;            // 1: gi.gather runs (as resolved for the device)
     // fog.resolution and fog.steps; 0 while fog is off (nothing to lower).
     uint32_t fogResolutionDivisor = 0;
     uint32_t fogSteps = 0;
@@ -106,6 +107,7 @@ std::optional<GiFrameCost> giFrameCost(const engine::FrameProfiler& profiler);
 
 enum class GiKnob {
     None,
+    Gather,
     CoarseUpdateInterval,
     Iterations,
     RsmSize,
@@ -198,6 +200,7 @@ private:
     void reportStates(bool reportTime, bool timeOver, bool memoryOver, double ms, uint64_t bytes,
                       const GiBudget& budget);
     bool nextTimeStep(Step& step) const;
+    bool gatherStep(Step& step) const;
     bool rsmStep(Step& step) const;
     bool resolutionStep(Step& step) const;
     bool bouncesStep(Step& step) const;

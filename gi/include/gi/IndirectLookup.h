@@ -44,6 +44,14 @@ struct LookupOptions {
     uint32_t divisor = 1;
 };
 
+// gi.gather (gi/VplGather.h): the two finest cascades' first bounce kept apart from their light
+// (each 3 SH textures like the light; a cascade that does not exist binds another's, unread) and
+// the gathered light that replaces it.
+struct LookupGather {
+    std::array<std::array<rhi::TextureHandle, 3>, 2> first{};
+    rhi::TextureHandle gathered;
+};
+
 class IndirectLookup {
 public:
     // lpv_lookup.glsl samples the G-buffer, every cascade's volumes and faces and the lobes' table in
@@ -62,7 +70,14 @@ public:
     void record(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                 const engine::GBufferView& gbuffer, std::span<const LookupCascade> cascades,
                 const LookupOptions& options, rhi::TextureHandle target, rhi::TextureHandle glossyTarget,
-                rhi::TextureHandle specularAlbedoTable, const CascadeClasses* classes = nullptr);
+                rhi::TextureHandle specularAlbedoTable, const CascadeClasses* classes = nullptr,
+                const LookupGather* gather = nullptr);
+
+    // Makes the lookups that take a gather (once; before a record() with one). Throws rhi::Error
+    // where the device binds fewer fragment textures than kGatherTextureBindings.
+    void enableGather();
+    // What a lookup with a gather binds: up to its highest texture binding (27) plus one.
+    static constexpr uint32_t kGatherTextureBindings = 28;
 
 private:
     rhi::Device& device_;
@@ -71,6 +86,10 @@ private:
     // By cascade and [interior, blend band], for a class draw (CascadeClasses::wanted only); the
     // coarsest cascade has no band.
     std::array<std::array<rhi::GraphicsPipelineHandle, 2>, 4> classPipelines_{};
+    // The same with a gather (enableGather): by cascade count - 1, and for the classes of the two
+    // finest cascades (the coarser classes take none).
+    std::array<rhi::GraphicsPipelineHandle, 4> gatherPipelines_{};
+    std::array<std::array<rhi::GraphicsPipelineHandle, 2>, 2> gatherClassPipelines_{};
     rhi::SamplerHandle pointSampler_, linearSampler_;
 };
 

@@ -40,6 +40,7 @@
 #include "gi/ReflectiveShadowMap.h"
 #include "gi/SpotLightRsms.h"
 #include "gi/VplClustering.h"
+#include "gi/VplGather.h"
 #include "platforms/PlatformProfile.h"
 
 #include <algorithm>
@@ -257,6 +258,15 @@ private:
     std::unique_ptr<LpvPropagation> propagation_;                   // in volumes_, made with them
     std::unique_ptr<MultipleBounces> bounces_;                      // gi.bounces > 1
     std::unique_ptr<PointLightInjection> pointLights_;
+    // gi.gather: the pass, and the first bounce of the two finest cascades kept apart (cascade 0's
+    // is MultipleBounces::first() where that exists).
+    std::unique_ptr<VplGather> gather_;
+    std::array<std::array<rhi::TextureHandle, 3>, VplGather::kCascades> firsts_{};
+    const std::array<rhi::TextureHandle, 3>& firstBounce(uint32_t c) const;
+    bool gathers(LpvSettings::Gather mode);
+    bool gatherAutoReported_ = false;
+    void keepFirstBounces(rhi::CommandList& cmd, uint32_t propagated);
+    engine::WorkCounts recordGather(const FrameRecording& f);
     // The passes made once, with the LPV; the lookup first, as it refuses a device that binds too
     // few textures for it.
     IndirectLookup lookup_;

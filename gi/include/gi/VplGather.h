@@ -1,0 +1,80 @@
+// The near field's first bounce gathered per pixel from the VPLs (gi.gather): a fullscreen pass
+// at the lookup's resolution that sums, for every texel, the irradiance the VPLs of the finest
+// cascades send it (flux x cos x cos / (pi r^2), Dachsbacher & Stamminger's RSM gather) in the
+// share of the lookup those cascades answer for. The lookup then reads each such cascade's light
+// less its propagated first bounce, and adds this gather averaged over 4 x 4 texels on the
+// texel's surface (lpv_lookup.glsl, GATHER): the propagation scatters its first bounce within a
+// few cells and leaves ceilings dark (docs/gi-fidelity.md), the gather places it; the volume keeps
+// the further bounces, the coarse cascades, the glossy term and the fog.
+//
+// Interleaved: each texel of a 4 x 4 block sums a sixteenth of the VPLs (vpl_gather.frag).
+// Visibility (gi.occlusion): each VPL-texel segment is marched through the cascade's geometry
+// volume faces, cell by cell; a face less than half open blocks it. The faces hold what the sun
+// or the camera sees, at the cascade's cells (docs/gi-fidelity.md says what that leaves).
+#pragma once
+
+#include "engine/profiler/WorkCounts.h"
+#include "engine/render/CameraMatrices.h"
+#include "engine/render/IndirectLighting.h"
+#include "gi/LpvReference.h"
+#include "rhi/Device.h"
+
+#include <cstdint>
+#include <span>
+
+namespace lpv::gi {
+
+// One set of VPLs (vpl_cluster.comp's layout: a square grid of clusters, two slots each).
+struct GatherSource {
+    rhi::BufferHandle vpls;
+    uint32_t slots = 0;
+    uint32_t side = 0; // the cluster grid's side: slots = 2 side^2
+    // The sun's VPLs of this cascade (< kCascades), or -1: a spot or point light's, injected into
+    // the cascades of `cascades` (bit c, c < kCascades).
+    int32_t cascade = -1;
+    uint32_t cascades = 0;
+    float nearest = 0.0f; // r^2 below this counts as this (m^2): about a cluster's area
+    // Visibility: the face transmittances (GeometryVolume) of cascade `facesCascade` marched
+    // between each VPL and texel; none: unmarched.
+    rhi::TextureHandle faces;
+    uint32_t facesCascade = 0;
+};
+
+class VplGather {
+public:
+    // The cascades, finest first, whose share of the lookup is gathered.
+    static constexpr uint32_t kCascades = 2;
+
+    explicit VplGather(rhi::Device& device);
+    ~VplGather();
+    VplGather(const VplGather&) = delete;
+    VplGather& operator=(const VplGather&) = delete;
+
+    // Makes the target for lookup targets of this size (at a configuration or resize, not in a
+    // steady frame); the bytes it holds.
+    uint64_t resize(uint32_t width, uint32_t height);
+
+    // Clears the target and adds each source's gathered irradiance in its cascades' share.
+    // `cascades`: every cascade's grid, finest first (the shares depend on how many there are);
+    // `blendBand` as the lookup's; the target's texel t is G-buffer pixel t x divisor.
+    void record(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
+                const engine::GBufferView& gbuffer, std::span<const VolumeGrid> cascades, float blendBand,
+                float intensity, uint32_t divisor, std::span<const GatherSource> sources,
+                rhi::TextureHandle unusedFaces);
+
+    // RGBA16F at the lookup's resolution: the interleaved gather, rgb irradiance.
+    rhi::TextureHandle gathered() const { return target_; }
+
+private:
+    rhi::Device& device_;
+    rhi::GraphicsPipelineHandle pipeline_;
+    rhi::TextureHandle target_;
+    rhi::SamplerHandle pointSampler_;
+};
+
+// Per texel and draw (a set of VPLs): its depth and normal; per texel a sixteenth of all `slots`,
+// each marched through about `marchedFaces` faces (0 unmarched; an estimate: a march ends at the
+// first wall).
+engine::WorkCounts gatherWork(uint64_t pixels, uint64_t slots, uint64_t draws, uint32_t marchedFaces);
+
+} // namespace lpv::gi
