@@ -497,6 +497,25 @@ TEST_CASE("gi: GL and Vulkan compute the same indirect light") {
     checkBackendsAgree(gl.hdr, vk.hdr, "indirect");
 }
 
+// The same with the first bounce gathered from the VPLs (gi.gather=on; auto leaves it off on these
+// CPU rasterizers): the gather, its 4 x 4 average and its visibility march through the faces.
+TEST_CASE("gi: GL and Vulkan compute the same gathered indirect light") {
+    const std::vector<std::string> on = {"gi.enabled=true", "render.debug_view=indirect", "gi.cell_size=0.17",
+                                         "gi.gather=on"};
+    CornellFrame gl, vk;
+    {
+        TestDevice device(backendByName("gl-egl"));
+        gl = renderCornell(*device, on);
+        device.expectSilent();
+    }
+    {
+        TestDevice device(backendByName("vulkan"));
+        vk = renderCornell(*device, on);
+        device.expectSilent();
+    }
+    checkBackendsAgree(gl.hdr, vk.hdr, "indirect");
+}
+
 // Where two faces lie back to back in one plane, each backend's RSM used to keep the face its last
 // bits of depth favoured: the VPLs outside the red slab took the white wall's albedo on Vulkan and
 // the slab's on GL, and with the point light's damping 15% of the pixels' indirect light differed
