@@ -43,29 +43,24 @@ struct Traced {
     reference::TracedImage image;
 };
 
-// Traced once per process (each ctest entry runs one backend).
-const Traced& cornellSun() {
-    static const Traced traced = [] {
-        Traced t{engine::loadScene(std::string(LPV_FIDELITY_SCENES) + "/cornell-sun.gltf"), {}};
-        reference::TraceSettings s;
-        s.width = s.height = 128;
-        s.samplesPerPixel = 512;
-        t.image = reference::trace(t.scene, *t.scene.camera, s);
-        return t;
-    }();
-    return traced;
+// One of the benchmark's scenes traced at 128x128, 512 samples a pixel.
+Traced traceScene(const char* file) {
+    Traced t{engine::loadScene(std::string(LPV_FIDELITY_SCENES) + "/" + file), {}};
+    reference::TraceSettings s;
+    s.width = s.height = 128;
+    s.samplesPerPixel = 512;
+    t.image = reference::trace(t.scene, *t.scene.camera, s);
+    return t;
 }
 
-// The same box lit by a point light under its ceiling, traced once per process.
+// Each traced once per process (each ctest entry runs one backend): the standard box lit through
+// its front, and lit by a point light under its ceiling.
+const Traced& cornellSun() {
+    static const Traced traced = traceScene("cornell-sun.gltf");
+    return traced;
+}
 const Traced& cornellPoint() {
-    static const Traced traced = [] {
-        Traced t{engine::loadScene(std::string(LPV_FIDELITY_SCENES) + "/cornell-point.gltf"), {}};
-        reference::TraceSettings s;
-        s.width = s.height = 128;
-        s.samplesPerPixel = 512;
-        t.image = reference::trace(t.scene, *t.scene.camera, s);
-        return t;
-    }();
+    static const Traced traced = traceScene("cornell-point.gltf");
     return traced;
 }
 
