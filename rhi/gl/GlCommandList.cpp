@@ -525,22 +525,16 @@ void GlCommandList::updateBuffer(BufferHandle buffer, uint64_t offset, const voi
 
 void GlCommandList::copyTextures(std::span<const TextureCopy> copies) {
     requirePass(false, "copyTextures");
-    if (copies.size() > TextureCopy::kMaxCopies)
-        throw Error("copyTextures: " + std::to_string(copies.size()) + " copies, at most " +
-                    std::to_string(TextureCopy::kMaxCopies) + " in one call");
+    validateTextureCopies(
+        copies, [&](TextureHandle t) -> const TextureDesc& { return device_.textures.get(t).desc; });
     // No barrier bit names glCopyImageSubData: after shader stores to any of the textures, every
     // bit, once for all the copies.
     bool hazard = false;
     for (const TextureCopy& c : copies) {
-        if (c.src == c.dst) throw Error("copyTexture: source and destination are the same texture");
-        const GlTexture& s = device_.textures.get(c.src);
-        const GlTexture& d = device_.textures.get(c.dst);
-        if (s.desc.kind != d.desc.kind || s.desc.format != d.desc.format || s.desc.width != d.desc.width ||
-            s.desc.height != d.desc.height || s.desc.depthOrLayers != d.desc.depthOrLayers)
-            throw Error("copyTexture: '" + s.desc.debugName + "' and '" + d.desc.debugName +
-                        "' differ in kind, format or size");
-        hazard |= hazards_.beforeRead(GlHazards::textureKey(s.id), GL_ALL_BARRIER_BITS);
-        hazard |= hazards_.beforeCommandWrite(GlHazards::textureKey(d.id), GL_ALL_BARRIER_BITS);
+        hazard |=
+            hazards_.beforeRead(GlHazards::textureKey(device_.textures.get(c.src).id), GL_ALL_BARRIER_BITS);
+        hazard |= hazards_.beforeCommandWrite(GlHazards::textureKey(device_.textures.get(c.dst).id),
+                                              GL_ALL_BARRIER_BITS);
     }
     if (hazard) barrier(GL_ALL_BARRIER_BITS);
     const Functions& gl = device_.gl();

@@ -313,11 +313,8 @@ void NullCommandList::updateBuffer(BufferHandle b, uint64_t offset, const void* 
 }
 void NullCommandList::copyTextures(std::span<const TextureCopy> copies) {
     requirePass(false, "copyTextures");
-    if (copies.size() > TextureCopy::kMaxCopies) throw Error("copyTextures: too many copies in one call");
-    for (const TextureCopy& c : copies) {
-        device_.textures.get(c.src);
-        device_.textures.get(c.dst);
-    }
+    validateTextureCopies(
+        copies, [&](TextureHandle t) -> const TextureDesc& { return device_.textures.get(t).desc; });
     ++counts_.barriers;
 }
 

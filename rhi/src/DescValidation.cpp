@@ -99,4 +99,18 @@ void clipScissorToOrigin(int32_t& x, int32_t& y, uint32_t& width, uint32_t& heig
     }
 }
 
+void validateTextureCopyCount(size_t count) {
+    if (count > TextureCopy::kMaxCopies)
+        throw Error("copyTextures: " + std::to_string(count) + " copies, at most " +
+                    std::to_string(TextureCopy::kMaxCopies) + " in one call");
+}
+
+void validateTextureCopy(TextureHandle src, TextureHandle dst, const TextureDesc& s, const TextureDesc& d) {
+    if (src == dst) throw Error("copyTexture: source and destination are the same texture");
+    if (s.kind != d.kind || s.format != d.format || s.width != d.width || s.height != d.height ||
+        s.depthOrLayers != d.depthOrLayers)
+        throw Error("copyTexture: '" + s.debugName + "' and '" + d.debugName +
+                    "' differ in kind, format or size");
+}
+
 } // namespace lpv::rhi

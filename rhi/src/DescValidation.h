@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -16,6 +17,19 @@ namespace lpv::rhi {
 // Throws rhi::Error naming the texture when its extent, format, kind or mip count is invalid or
 // beyond the device's limits.
 void validateTextureDesc(const TextureDesc& desc, const Caps& caps);
+
+// CommandList::copyTextures' arguments: throws rhi::Error for more than TextureCopy::kMaxCopies
+// copies, and naming both textures for a copy onto itself or between different kinds, formats or
+// sizes. `descOf` gives a handle's desc.
+template <typename DescOf> void validateTextureCopies(std::span<const TextureCopy> copies, DescOf&& descOf);
+void validateTextureCopy(TextureHandle src, TextureHandle dst, const TextureDesc& s, const TextureDesc& d);
+void validateTextureCopyCount(size_t count);
+
+template <typename DescOf> void validateTextureCopies(std::span<const TextureCopy> copies, DescOf&& descOf) {
+    validateTextureCopyCount(copies.size());
+    for (const TextureCopy& c : copies)
+        validateTextureCopy(c.src, c.dst, descOf(c.src), descOf(c.dst));
+}
 
 // Throws rhi::Error naming the pipeline when it tests the stencil without a depth format that
 // has one.

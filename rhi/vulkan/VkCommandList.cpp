@@ -662,21 +662,12 @@ void VulkanCommandList::updateBuffer(BufferHandle buffer, uint64_t offset, const
 
 void VulkanCommandList::copyTextures(std::span<const TextureCopy> copies) {
     requirePass(false, "copyTextures");
-    if (copies.size() > TextureCopy::kMaxCopies)
-        throw Error("copyTextures: " + std::to_string(copies.size()) + " copies, at most " +
-                    std::to_string(TextureCopy::kMaxCopies) + " in one call");
+    validateTextureCopies(
+        copies, [&](TextureHandle t) -> const TextureDesc& { return device_.textures.get(t).desc; });
     std::array<PassTarget, 2 * TextureCopy::kMaxCopies> selves;
     for (size_t i = 0; i < copies.size(); ++i) {
-        const TextureCopy& c = copies[i];
-        if (c.src == c.dst) throw Error("copyTexture: source and destination are the same texture");
-        const VulkanTexture& s = device_.textures.get(c.src);
-        const VulkanTexture& d = device_.textures.get(c.dst);
-        if (s.desc.kind != d.desc.kind || s.desc.format != d.desc.format || s.desc.width != d.desc.width ||
-            s.desc.height != d.desc.height || s.desc.depthOrLayers != d.desc.depthOrLayers)
-            throw Error("copyTexture: '" + s.desc.debugName + "' and '" + d.desc.debugName +
-                        "' differ in kind, format or size");
-        selves[2 * i] = {c.src, 0};
-        selves[2 * i + 1] = {c.dst, 0};
+        selves[2 * i] = {copies[i].src, 0};
+        selves[2 * i + 1] = {copies[i].dst, 0};
     }
     // Every texture moves to its transfer layout and back (the validation layer warns of a copy in
     // GENERAL), so the moves order the copies; what dispatches owe goes into the same two calls.

@@ -6,9 +6,11 @@
 #include "TestShaders.h"
 
 #include "../support/TestDevice.h"
+#include "rhi/Error.h"
 
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -243,6 +245,63 @@ TEST_CASE("rhi: a clear and a copy are read by the next dispatch; a copy's sourc
         for (const BufferHandle b : {params, cleared, copied, zeroed})
             device.destroy(b);
         for (const TextureHandle t : {first, second, third})
+            device.destroy(t);
+    });
+}
+
+TEST_CASE("rhi: copies behind one barrier read what dispatches wrote, and are read after") {
+    inEveryBarrierMode([](rhi::Device& device) {
+        using namespace rhi;
+        const TextureHandle a = device.createTexture(volumeDesc(kTextureStorage | kTextureTransfer, "a"));
+        const TextureHandle b = device.createTexture(volumeDesc(kTextureStorage | kTextureTransfer, "b"));
+        const TextureHandle c = device.createTexture(volumeDesc(kTextureSampled | kTextureTransfer, "c"));
+        const TextureHandle d = device.createTexture(volumeDesc(kTextureSampled | kTextureTransfer, "d"));
+        const BufferHandle fromC = createResult(device, "from c"), fromD = createResult(device, "from d");
+        const glm::vec4 scale{0.1f, 0.2f, 0.05f, 0.0f};
+        const BufferHandle params = device.createBuffer(
+            {sizeof(scale), kBufferUniform | kBufferTransfer, MemoryAccess::GpuOnly, "params", "test"},
+            &scale);
+        const ComputePipelineHandle fill =
+            device.createPipeline(ComputePipelineDesc{&shaders::fill_volume_comp, "fill"});
+        const ComputePipelineHandle sample =
+            device.createPipeline(ComputePipelineDesc{&shaders::sample_volume_comp, "sample"});
+        const SamplerHandle point = device.createSampler({});
+
+        CommandList& cmd = device.beginFrame();
+        for (const TextureHandle t : {a, b}) {
+            cmd.bindPipeline(fill);
+            cmd.bindStorageImage(0, t);
+            cmd.bindUniformBuffer(1, params);
+            cmd.dispatch(kVolumeSize / 8, kVolumeSize / 8, kVolumeSize);
+        }
+        const std::array<TextureCopy, 2> copies{{{a, c}, {b, d}}};
+        cmd.copyTextures(copies); // both read what the fills wrote
+        for (const auto& [t, result] : {std::pair{c, fromC}, std::pair{d, fromD}}) {
+            cmd.bindPipeline(sample);
+            cmd.bindTexture(0, t, point);
+            cmd.bindStorageBuffer(1, result);
+            cmd.dispatch(kVolumeTexels / 64);
+        }
+        device.endFrame();
+        device.waitIdle();
+        CHECK(wrongTexels(readResult(device, fromC), expectedVolumeTexel) == 0);
+        CHECK(wrongTexels(readResult(device, fromD), expectedVolumeTexel) == 0);
+
+        // More than kMaxCopies in one call, or a copy onto itself, is refused.
+        CommandList& refused = device.beginFrame();
+        std::array<TextureCopy, TextureCopy::kMaxCopies + 1> many;
+        many.fill({a, c});
+        CHECK_THROWS_AS(refused.copyTextures(many), rhi::Error);
+        CHECK_THROWS_WITH_AS(refused.copyTexture(a, a),
+                             "copyTexture: source and destination are the same texture", Error);
+        device.endFrame();
+        device.waitIdle();
+        for (const ComputePipelineHandle p : {fill, sample})
+            device.destroy(p);
+        device.destroy(point);
+        for (const BufferHandle buffer : {params, fromC, fromD})
+            device.destroy(buffer);
+        for (const TextureHandle t : {a, b, c, d})
             device.destroy(t);
     });
 }
