@@ -89,12 +89,7 @@ void LightPropagationVolume::release() {
     geometry_.reset();
     pointLights_.reset();
     spotRsms_.reset();
-    gather_.reset();
-    for (auto& first : firsts_)
-        for (rhi::TextureHandle& t : first) {
-            if (t) device_.destroy(t);
-            t = {};
-        }
+    releaseGather();
     if (vpls_) device_.destroy(vpls_);
     vpls_ = {};
     made_ = false;
@@ -131,12 +126,7 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
     firstValid_ = false;
     pointLights_ = std::make_unique<PointLightInjection>(device_, s);
     spotRsms_ = std::make_unique<SpotLightRsms>(device_, s);
-    if (s.gather) {
-        lookup_.enableGather();
-        gather_ = std::make_unique<VplGather>(device_);
-        for (uint32_t c = 0; c < std::min(s.cascades, VplGather::kCascades); ++c)
-            firsts_[c] = volumes_->createResult("lpv first bounce, cascade " + std::to_string(c));
-    }
+    if (s.gather) makeGather(s);
     vpls_ = device_.createBuffer({uint64_t(s.vplSlots()) * 48, rhi::kBufferStorage | rhi::kBufferTransfer,
                                   rhi::MemoryAccess::GpuOnly, "vpls", "gi.vpl"});
     // A coarse cascade's VPLs wait a frame for its volume half when the scheduler splits its update.
@@ -146,6 +136,24 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
             {uint64_t(s.vplSlots()) * 48, rhi::kBufferStorage | rhi::kBufferTransfer,
              rhi::MemoryAccess::GpuOnly, "vpls, cascade " + std::to_string(c), "gi.vpl"});
     made_ = true;
+}
+
+// gi.gather's pass and the first bounces it keeps apart; made with the volumes, or when adapt turns
+// the gather back on.
+void LightPropagationVolume::makeGather(const LpvSettings& s) {
+    lookup_.enableGather();
+    gather_ = std::make_unique<VplGather>(device_);
+    for (uint32_t c = 0; c < std::min(s.cascades, VplGather::kCascades); ++c)
+        firsts_[c] = volumes_->createResult("lpv first bounce, cascade " + std::to_string(c));
+}
+
+void LightPropagationVolume::releaseGather() {
+    gather_.reset();
+    for (auto& first : firsts_)
+        for (rhi::TextureHandle& t : first) {
+            if (t) device_.destroy(t);
+            t = {};
+        }
 }
 
 void LightPropagationVolume::replaceUpdateResources(const LpvSettings& s) {
@@ -162,6 +170,15 @@ void LightPropagationVolume::replaceUpdateResources(const LpvSettings& s) {
         spotRsms_ = std::make_unique<SpotLightRsms>(device_, s);
     }
     madeWith_ = s;
+    if (s.gather != (gather_ != nullptr)) {
+        // adapt's first knob. Turned back on, no cascade has its first bounce kept yet: every one is
+        // made again on the next frame.
+        releaseGather();
+        if (s.gather) {
+            makeGather(s);
+            cascadesValid_ = 0;
+        }
+    }
     if ((s.bounces > 1) != (bounces_ != nullptr)) {
         // The geometry volume keeps surfel albedo for the bounces only; it is built anew for every
         // cascade update, and only the faces of each cascade's last update are kept, for the lookup:
@@ -340,14 +357,14 @@ GiConfigResult LightPropagationVolume::prepare(const LpvSettings& configured, co
                          s.lookupOcclusion != madeWith_.lookupOcclusion ||
                          s.propagateTogether() != madeWith_.propagateTogether() ||
                          s.coarseCameraOcclusion != madeWith_.coarseCameraOcclusion ||
-                         s.lightRsms != madeWith_.lightRsms || s.pointLightRsms != madeWith_.pointLightRsms ||
-                         s.gather != madeWith_.gather;
+                         s.lightRsms != madeWith_.lightRsms || s.pointLightRsms != madeWith_.pointLightRsms;
     // What adapt turns (gi/GiScheduler.h) needs no cascade made again: the results stay (a kept
     // cascade shows its old bounce count until its next update), so the frame after a step runs the
     // scheduled cascades only, not every one (on PS3 the PC settings' frame after the RSM step
     // predicted 5.24 ms against 4.59 at most in the cycles around it).
     const bool updateResized =
-        !resized && (s.rsmSize != madeWith_.rsmSize || (s.bounces > 1) != (bounces_ != nullptr));
+        !resized && (s.rsmSize != madeWith_.rsmSize || (s.bounces > 1) != (bounces_ != nullptr) ||
+                     s.gather != (gather_ != nullptr));
     if (s.enabled && (resized || updateResized)) {
         GiConfigResult fits = checkGiBudget(s, profile_); // before anything else changes
         if (!fits.accepted) {

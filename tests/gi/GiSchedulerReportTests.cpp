@@ -187,6 +187,38 @@ TEST_CASE("gi budget: the LPV under adapt on the x360 profile brings its predict
     CHECK(report.find("gi.iterations=33 (was 44): frame ") != std::string::npos);
 }
 
+// gi.gather=on on the Xbox 360 (auto leaves it off on the console profiles; 24^3 cells, so that
+// its first bounce kept apart fits the 3 MiB): adapt's first step turns it off, without making
+// the volumes again, and the frame fits.
+TEST_CASE("gi budget: adapt turns gi.gather off on the x360 profile, keeping the cascades") {
+    AdaptedLpv run(platforms::loadPlatformProfile("x360"),
+                   {"gi.enabled=true", "gi.sh_format=rgba8", "gi.rsm_size=128", "gi.vpl_count=1024",
+                    "gi.cascades=1", "gi.budget_policy=adapt", "gi.iterations=8", "gi.gather=on",
+                    "gi.grid_size=24"},
+                   engine::buildCornellBox(), 1280, 720);
+    std::optional<GiFrameCost> first, last;
+    rhi::TextureHandle result; // the finest cascade's result while the gather ran
+    for (int f = 0; f < 40; ++f) {
+        const auto cost = run.frame();
+        REQUIRE_MESSAGE(run.lastUpdate.accepted, run.lastUpdate.message());
+        if (cost && !first) {
+            first = cost;
+            result = run.lpv.volumes()->accumulated()[0];
+        }
+        if (cost) last = cost;
+    }
+    REQUIRE(first);
+    MESSAGE("predicted x360 GI with the gather " << first->ms << " ms, last " << last->ms << " ms");
+    CHECK(first->ms > run.profile.giBudgetMs);
+    CHECK(last->ms <= run.profile.giBudgetMs);
+    CHECK_FALSE(run.lpv.settings().gather);
+    CHECK(run.lpv.schedule().load.iterations == 8);
+    const std::string report = engine::profileSummaryMarkdown(run.profiler);
+    CHECK(report.find("gi.gather=off (was on): frame ") != std::string::npos);
+    // Turning it off kept the volumes: the same result texture.
+    CHECK(run.lpv.volumes()->accumulated()[0] == result);
+}
+
 // A change the budget check refuses (the GI goes on with the settings that ran) leaves the
 // scheduler as it was: its steps used to be dropped by the refused configuration (with a note for
 // a change that never took effect), and the restored one started again from the configured load.

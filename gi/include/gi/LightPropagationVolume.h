@@ -264,6 +264,8 @@ private:
     std::array<std::array<rhi::TextureHandle, 3>, VplGather::kCascades> firsts_{};
     const std::array<rhi::TextureHandle, 3>& firstBounce(uint32_t c) const;
     bool gathers(LpvSettings::Gather mode);
+    void makeGather(const LpvSettings& settings);
+    void releaseGather();
     bool gatherAutoReported_ = false;
     void keepFirstBounces(rhi::CommandList& cmd, uint32_t propagated);
     engine::WorkCounts recordGather(const FrameRecording& f);
