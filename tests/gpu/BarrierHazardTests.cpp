@@ -186,6 +186,44 @@ TEST_CASE("rhi: a dispatch reads what the previous one wrote; a buffer is update
     }
 }
 
+// The fill and sample kernels over a volume, with their parameters (fill_volume.comp's scale)
+// and sampler: fill() writes expectedVolumeTexel into a storage volume, sample() reads a volume
+// into a result buffer.
+struct VolumeKernels {
+    rhi::Device& device;
+    const glm::vec4 scale{0.1f, 0.2f, 0.05f, 0.0f};
+    rhi::BufferHandle params = device.createBuffer({sizeof(scale), rhi::kBufferUniform | rhi::kBufferTransfer,
+                                                    rhi::MemoryAccess::GpuOnly, "params", "test"},
+                                                   &scale);
+    rhi::ComputePipelineHandle fillPipeline =
+        device.createPipeline(rhi::ComputePipelineDesc{&shaders::fill_volume_comp, "fill"});
+    rhi::ComputePipelineHandle samplePipeline =
+        device.createPipeline(rhi::ComputePipelineDesc{&shaders::sample_volume_comp, "sample"});
+    rhi::SamplerHandle point = device.createSampler({});
+
+    explicit VolumeKernels(rhi::Device& d) : device(d) {}
+    ~VolumeKernels() {
+        device.destroy(fillPipeline);
+        device.destroy(samplePipeline);
+        device.destroy(point);
+        device.destroy(params);
+    }
+    VolumeKernels(const VolumeKernels&) = delete;
+    VolumeKernels& operator=(const VolumeKernels&) = delete;
+    void fill(rhi::CommandList& cmd, rhi::TextureHandle t) const {
+        cmd.bindPipeline(fillPipeline);
+        cmd.bindStorageImage(0, t);
+        cmd.bindUniformBuffer(1, params);
+        cmd.dispatch(kVolumeSize / 8, kVolumeSize / 8, kVolumeSize);
+    }
+    void sample(rhi::CommandList& cmd, rhi::TextureHandle t, rhi::BufferHandle result) const {
+        cmd.bindPipeline(samplePipeline);
+        cmd.bindTexture(0, t, point);
+        cmd.bindStorageBuffer(1, result);
+        cmd.dispatch(kVolumeTexels / 64);
+    }
+};
+
 TEST_CASE("rhi: a clear and a copy are read by the next dispatch; a copy's source is cleared after it") {
     inEveryBarrierMode([](rhi::Device& device) {
         using namespace rhi;
@@ -197,27 +235,12 @@ TEST_CASE("rhi: a clear and a copy are read by the next dispatch; a copy's sourc
             device.createTexture(volumeDesc(kTextureSampled | kTextureTransfer, "third"));
         const BufferHandle cleared = createResult(device, "cleared"), copied = createResult(device, "copied"),
                            zeroed = createResult(device, "zeroed");
-        const glm::vec4 scale{0.1f, 0.2f, 0.05f, 0.0f}, clearValue{0.5f, -0.25f, 2.0f, 1.0f};
+        const glm::vec4 clearValue{0.5f, -0.25f, 2.0f, 1.0f};
         const glm::vec4 marker{7.0f, 8.0f, 9.0f, 10.0f};
-        const BufferHandle params = device.createBuffer(
-            {sizeof(scale), kBufferUniform | kBufferTransfer, MemoryAccess::GpuOnly, "params", "test"},
-            &scale);
-        const ComputePipelineHandle fill =
-            device.createPipeline(ComputePipelineDesc{&shaders::fill_volume_comp, "fill"});
-        const ComputePipelineHandle sample =
-            device.createPipeline(ComputePipelineDesc{&shaders::sample_volume_comp, "sample"});
-        const SamplerHandle point = device.createSampler({});
-        const auto fillVolume = [&](CommandList& cmd, TextureHandle t) {
-            cmd.bindPipeline(fill);
-            cmd.bindStorageImage(0, t);
-            cmd.bindUniformBuffer(1, params);
-            cmd.dispatch(kVolumeSize / 8, kVolumeSize / 8, kVolumeSize);
-        };
+        const VolumeKernels kernels(device);
+        const auto fillVolume = [&](CommandList& cmd, TextureHandle t) { kernels.fill(cmd, t); };
         const auto sampleVolume = [&](CommandList& cmd, TextureHandle t, BufferHandle result) {
-            cmd.bindPipeline(sample);
-            cmd.bindTexture(0, t, point);
-            cmd.bindStorageBuffer(1, result);
-            cmd.dispatch(kVolumeTexels / 64);
+            kernels.sample(cmd, t, result);
         };
 
         CommandList& cmd = device.beginFrame();
@@ -239,10 +262,7 @@ TEST_CASE("rhi: a clear and a copy are read by the next dispatch; a copy's sourc
         CHECK(wrongTexels(readResult(device, zeroed), [&](uint32_t x, uint32_t y, uint32_t z) {
                   return x + y + z == 0 ? marker : glm::vec4(0.0f);
               }) == 0);
-        for (const ComputePipelineHandle p : {fill, sample})
-            device.destroy(p);
-        device.destroy(point);
-        for (const BufferHandle b : {params, cleared, copied, zeroed})
+        for (const BufferHandle b : {cleared, copied, zeroed})
             device.destroy(b);
         for (const TextureHandle t : {first, second, third})
             device.destroy(t);
@@ -257,31 +277,15 @@ TEST_CASE("rhi: copies behind one barrier read what dispatches wrote, and are re
         const TextureHandle c = device.createTexture(volumeDesc(kTextureSampled | kTextureTransfer, "c"));
         const TextureHandle d = device.createTexture(volumeDesc(kTextureSampled | kTextureTransfer, "d"));
         const BufferHandle fromC = createResult(device, "from c"), fromD = createResult(device, "from d");
-        const glm::vec4 scale{0.1f, 0.2f, 0.05f, 0.0f};
-        const BufferHandle params = device.createBuffer(
-            {sizeof(scale), kBufferUniform | kBufferTransfer, MemoryAccess::GpuOnly, "params", "test"},
-            &scale);
-        const ComputePipelineHandle fill =
-            device.createPipeline(ComputePipelineDesc{&shaders::fill_volume_comp, "fill"});
-        const ComputePipelineHandle sample =
-            device.createPipeline(ComputePipelineDesc{&shaders::sample_volume_comp, "sample"});
-        const SamplerHandle point = device.createSampler({});
+        const VolumeKernels kernels(device);
 
         CommandList& cmd = device.beginFrame();
-        for (const TextureHandle t : {a, b}) {
-            cmd.bindPipeline(fill);
-            cmd.bindStorageImage(0, t);
-            cmd.bindUniformBuffer(1, params);
-            cmd.dispatch(kVolumeSize / 8, kVolumeSize / 8, kVolumeSize);
-        }
+        kernels.fill(cmd, a);
+        kernels.fill(cmd, b);
         const std::array<TextureCopy, 2> copies{{{a, c}, {b, d}}};
         cmd.copyTextures(copies); // both read what the fills wrote
-        for (const auto& [t, result] : {std::pair{c, fromC}, std::pair{d, fromD}}) {
-            cmd.bindPipeline(sample);
-            cmd.bindTexture(0, t, point);
-            cmd.bindStorageBuffer(1, result);
-            cmd.dispatch(kVolumeTexels / 64);
-        }
+        kernels.sample(cmd, c, fromC);
+        kernels.sample(cmd, d, fromD);
         device.endFrame();
         device.waitIdle();
         CHECK(wrongTexels(readResult(device, fromC), expectedVolumeTexel) == 0);
@@ -296,10 +300,7 @@ TEST_CASE("rhi: copies behind one barrier read what dispatches wrote, and are re
                              "copyTexture: source and destination are the same texture", Error);
         device.endFrame();
         device.waitIdle();
-        for (const ComputePipelineHandle p : {fill, sample})
-            device.destroy(p);
-        device.destroy(point);
-        for (const BufferHandle buffer : {params, fromC, fromD})
+        for (const BufferHandle buffer : {fromC, fromD})
             device.destroy(buffer);
         for (const TextureHandle t : {a, b, c, d})
             device.destroy(t);
