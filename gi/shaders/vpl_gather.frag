@@ -29,15 +29,26 @@ layout(binding = 0, std140) uniform Gather {
     vec4 params;        // x: gi.intensity, y: blend band, z: the nearest a VPL counts (m^2 of r^2),
                         // w: 1 marched through the faces of cascade vpls.z, 0 unmarched
     ivec4 vpls;         // x: slots, y: the cluster grid's side (2 slots a cluster), z: the faces'
-                        // cascade, w: 0
+                        // cascade, w: 1 the VPLs are bounceVpls' lists (GatheredReflection), x
+                        // each one's room, y their counters
     ivec4 pixels;       // x: resolution divisor, yz: G-buffer size, w: 0 (MUL_COLUMNS_AT)
 } gather;
 layout(binding = 1, std430) readonly buffer Vpls { Vpl vpls[]; };
+// The second bounce's VPLs, where vpls.w is 1 (lpv_reflect_gathered_body.glsl): 16 lists of room
+// vpls.x, by the phase of their cell; counts[16 vpls.y + phase] listed in each.
+layout(binding = 5, std430) readonly buffer BounceVpls {
+    uint counts[32];
+    Vpl listed[];
+} bounceVpls;
+// Where vpls.w is 1: per cell of cascade vpls.z its listed faces (bits 26-31) and the slot of the
+// first in its phase's list (lpv_reflect_gathered_body.glsl).
+layout(binding = 6) uniform usampler3D faceSlots;
 layout(binding = 2) uniform sampler2D depthTexture;
 layout(binding = 3) uniform sampler2D normalTexture;
 // The faces of cascade vpls.z (the transmittance of each cell's -x, -y, -z faces), where params.w
 // is 1.
 layout(binding = 4) uniform sampler3D faceTransmittance;
+#include "vpl_visibility.glsl"
 
 layout(location = 0) in vec2 vUv;
 layout(location = 0) out vec4 outIrradiance;
@@ -59,33 +70,21 @@ vec2 sharesAt(vec3 p) {
     return vec2(w[0], gather.grid.y > 1 ? (1.0 - w[0]) * w[1] : 0.0);
 }
 
-// Whether b sees a through the faces of cascade vpls.z (GeometryVolume): a 3D DDA over its cells,
-// blocked by the first face less than half open. A face's transmittance is the share of it that
-// surfels leave open; multiplied along the segment, the partly covered faces a path grazes along
-// a surface darkened the Cornell box by a fifth (docs/gi-fidelity.md), while a wall is one surface
-// that either stands in the way or not. A segment leaving the volume is open beyond it.
 float visibility(vec3 a, vec3 b) {
-    vec4 o = gather.gridOrigin[gather.vpls.z];
-    int n = gather.grid.x;
-    vec3 ta = (a - o.xyz) / o.w, tb = (b - o.xyz) / o.w;
-    ivec3 c = ivec3(floor(ta));
-    vec3 d = tb - ta;
-    ivec3 st = ivec3(sign(d));
-    vec3 inv = 1.0 / max(abs(d), vec3(1e-6));
-    vec3 tMax = vec3(d.x > 0.0 ? float(c.x + 1) - ta.x : ta.x - float(c.x),
-                     d.y > 0.0 ? float(c.y + 1) - ta.y : ta.y - float(c.y),
-                     d.z > 0.0 ? float(c.z + 1) - ta.z : ta.z - float(c.z)) * inv;
-    for (int i = 0; i < 3 * n; ++i) {
-        int axis = tMax.x < tMax.y ? (tMax.x < tMax.z ? 0 : 2) : (tMax.y < tMax.z ? 1 : 2);
-        if (tMax[axis] > 1.0) break;
-        ivec3 upper = c;
-        if (st[axis] > 0) upper[axis] += 1;
-        if (any(lessThan(upper, ivec3(0))) || any(greaterThanEqual(upper, ivec3(n)))) break;
-        if (texelFetch(faceTransmittance, upper, 0)[axis] < 0.5) return 0.0;
-        c[axis] += st[axis];
-        tMax[axis] += inv[axis];
-    }
-    return 1.0;
+    return faceVisibility(gather.gridOrigin[gather.vpls.z], gather.grid.x, a, b);
+}
+
+// What VPL v sends the surface at p with normal n: flux x cos x cos / r^2 (pi and the interleave's 16
+// are applied once in main).
+vec3 fromVpl(Vpl v, vec3 p, vec3 n, float nearest, float half_) {
+    vec3 d = v.position.xyz - p;
+    float r2 = dot(d, d);
+    vec3 dir = d * inversesqrt(max(r2, 1e-12));
+    float w = step(0.5, v.position.w) * max(dot(v.normal.xyz, -dir), 0.0) * max(dot(n, dir), 0.0);
+    // From half a cell in front of each surface, as the injection and lookup place light, so
+    // neither end's own surface blocks it.
+    if (w > 0.0 && gather.params.w != 0.0) w *= visibility(p + half_ * n, v.position.xyz + half_ * v.normal.xyz);
+    return v.flux.rgb * (w / max(r2, nearest));
 }
 
 void main() {
@@ -109,22 +108,45 @@ void main() {
     // patch's light as a point's and blow up next to it.
     float nearest = gather.params.z;
     float half_ = 0.5 * gather.gridOrigin[gather.vpls.z].w;
-    int side = gather.vpls.y;
     ivec2 phase = texel & 3;
     vec3 e = vec3(0.0);
-    for (int cy = phase.y; cy < side; cy += 4)
-        for (int cx = phase.x; cx < side; cx += 4)
-            for (int layer = 0; layer < 2; ++layer) {
-                Vpl v = vpls[2 * (cy * side + cx) + layer];
-                vec3 d = v.position.xyz - p;
-                float r2 = dot(d, d);
-                vec3 dir = d * inversesqrt(max(r2, 1e-12));
-                float w = step(0.5, v.position.w) * max(dot(v.normal.xyz, -dir), 0.0) * max(dot(n, dir), 0.0);
-                // From half a cell in front of each surface, as the injection and lookup place
-                // light, so neither end's own surface blocks it.
-                if (w > 0.0 && gather.params.w != 0.0)
-                    w *= visibility(p + half_ * n, v.position.xyz + half_ * v.normal.xyz);
-                e += v.flux.rgb * (w / max(r2, nearest));
-            }
+    if (gather.vpls.w != 0) {
+        // The faces of the 3 x 3 x 3 cells around the one in front of the texel, each texel all of
+        // them: one phase's nearest face, times 16, would stand out of its block as a patch.
+        vec4 o = gather.gridOrigin[gather.vpls.z];
+        int cells = gather.grid.x;
+        uint room = uint(gather.vpls.x);
+        ivec3 home = ivec3(floor((p + half_ * n - o.xyz) / o.w));
+        vec3 near = vec3(0.0);
+        for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    ivec3 c = home + ivec3(dx, dy, dz);
+                    if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, ivec3(cells)))) continue;
+                    uint slots = texelFetch(faceSlots, c, 0).x;
+                    uint faces = slots >> 26;
+                    uint at = uint(((c.x + c.y) & 3) + 4 * ((c.y + c.z) & 3)) * room + (slots & 0x3ffffffu);
+                    for (uint i = 0u; i < uint(bitCount(faces)); ++i)
+                        near += fromVpl(bounceVpls.listed[at + i], p, n, nearest, half_);
+                }
+        // The rest: texel (x, y) of each block sums the faces of the cells of one phase, whichever
+        // order they were listed in.
+        int k = phase.x + 4 * phase.y;
+        uint start = uint(k) * room;
+        uint count = min(bounceVpls.counts[16 * gather.vpls.y + k], room);
+        for (uint i = 0u; i < count; ++i) {
+            Vpl v = bounceVpls.listed[start + i];
+            // Its cell: the face's centre plus half a cell along its normal, into the cell.
+            ivec3 c = ivec3(floor((v.position.xyz + 0.5 * o.w * v.normal.xyz - o.xyz) / o.w));
+            if (any(greaterThan(abs(c - home), ivec3(1)))) e += fromVpl(v, p, n, nearest, half_);
+        }
+        e += near / 16.0;
+    } else {
+        int side = gather.vpls.y;
+        for (int cy = phase.y; cy < side; cy += 4)
+            for (int cx = phase.x; cx < side; cx += 4)
+                for (int layer = 0; layer < 2; ++layer)
+                    e += fromVpl(vpls[2 * (cy * side + cx) + layer], p, n, nearest, half_);
+    }
     outIrradiance = vec4(e * (share * gather.params.x * 16.0 / PI), 0.0);
 }

@@ -1,6 +1,8 @@
 // GI resource plan and its check against the platform profile.
 #include "gi/GiBudget.h"
 
+#include "gi/GatheredReflection.h"
+
 #include "gi/LpvVolumes.h"
 #include "gi/PointLightInjection.h"
 #include "gi/SpotLightRsms.h"
@@ -92,11 +94,19 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
     }
     // gi.gather: the two finest cascades' first bounce kept apart for the lookup to take out (the
     // gather's target is screen-sized, counted with the lookup's targets in render.lighting).
-    if (s.gather)
+    if (s.gather) {
         for (uint32_t c = 0; c < std::min(s.cascades, 2u); ++c)
             out.push_back(
                 {"first bounce kept for gi.gather, cascade " + std::to_string(c) + " (3 SH textures)",
                  "gi.lpv", 3 * cells * shBytes});
+        // With further bounces, the second is reflected from the gathered first (GatheredReflection).
+        if (s.bounces > 1) {
+            out.push_back(
+                {"second bounce VPL list (gi.gather)", "gi.vpl", GatheredReflection::listBytes(s.gridSize)});
+            out.push_back({"second bounce face slots (gi.gather)", "gi.lpv",
+                           GatheredReflection::slotBytes(s.gridSize)});
+        }
+    }
     return out;
 }
 

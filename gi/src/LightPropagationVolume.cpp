@@ -143,12 +143,15 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
 void LightPropagationVolume::makeGather(const LpvSettings& s) {
     lookup_.enableGather();
     gather_ = std::make_unique<VplGather>(device_);
+    if (s.bounces > 1)
+        gatheredReflection_ = std::make_unique<GatheredReflection>(device_, s.shFormat, s.gridSize);
     for (uint32_t c = 0; c < std::min(s.cascades, VplGather::kCascades); ++c)
         firsts_[c] = volumes_->createResult("lpv first bounce, cascade " + std::to_string(c));
 }
 
 void LightPropagationVolume::releaseGather() {
     gather_.reset();
+    gatheredReflection_.reset();
     for (auto& first : firsts_)
         for (rhi::TextureHandle& t : first) {
             if (t) device_.destroy(t);
@@ -197,6 +200,9 @@ void LightPropagationVolume::replaceUpdateResources(const LpvSettings& s) {
         if (s.bounces > 1)
             bounces_ = std::make_unique<MultipleBounces>(device_, s, *volumes_, s.propagateTogether(),
                                                          !propagation_->stacked());
+        gatheredReflection_.reset();
+        if (gather_ && s.bounces > 1)
+            gatheredReflection_ = std::make_unique<GatheredReflection>(device_, s.shFormat, s.gridSize);
         firstValid_ = false;
     }
 }
@@ -529,10 +535,13 @@ void LightPropagationVolume::renderIndirect(rhi::CommandList& cmd, const engine:
                 if (propagated & (1u << c)) work += recordPropagation(f, c);
             return work;
         });
-        if (gather_) keepFirstBounces(cmd, propagated);
+        // The finest cascade's second bounce, where it is gathered, is kept with its first after it
+        // joins the result (recordBounces; below for the bounce that went with the cascades).
+        if (gather_) keepFirstBounces(cmd, propagated, bounced && secondGathered() ? ~1u : ~0u);
         if (ahead)
             f.pass("bounces.add", [&] {
-                bounces_->recordAdd(f.cmd, *bounces_->ownVolumes(), finest.result, bounces_->first());
+                bounces_->recordAdd(f.cmd, *bounces_->ownVolumes(), finest.result, bounces_->first(),
+                                    secondGathered() ? &firsts_[0] : nullptr);
             });
         else if (bounced)
             f.pass("bounces", [&] { return recordBounces(f, 0); });
@@ -579,9 +588,9 @@ void LightPropagationVolume::recordVolumeHalf(const FrameRecording& f, uint32_t 
     f.pass("inject", [&] { return recordInjection(f, c); });
     if (!whole) return;
     f.pass("propagate", [&] { return recordPropagation(f, c); });
-    if (gather_) keepFirstBounces(f.cmd, 1u << c);
-    if (bounces_ && settings_.bouncesIn(c) && !(deferredBounces_ && c == 0))
-        f.pass("bounces", [&] { return recordBounces(f, c); });
+    const bool bounced = bounces_ && settings_.bouncesIn(c) && !(deferredBounces_ && c == 0);
+    if (gather_) keepFirstBounces(f.cmd, 1u << c, bounced && c == 0 && secondGathered() ? ~1u : ~0u);
+    if (bounced) f.pass("bounces", [&] { return recordBounces(f, c); });
 }
 
 engine::WorkCounts LightPropagationVolume::recordLightRsms(const FrameRecording& f) {
@@ -742,9 +751,25 @@ engine::WorkCounts LightPropagationVolume::recordPropagationTogether(const Frame
 }
 
 engine::WorkCounts LightPropagationVolume::recordBounces(const FrameRecording& f, uint32_t c) {
+    // With the gather, a gathered cascade's second bounce is reflected from its gathered first.
+    engine::WorkCounts work;
+    const bool gathered = c == 0 && secondGathered();
+    if (gathered) work += recordGatheredReflection(f, c, volumesOf(c));
     bounces_->record(f.cmd, volumesOf(c), *propagation_, *geometry_, settings_.bounces, settings_.iterations,
-                     cascades_[c].result, c == 0 ? bounces_->first() : nullptr);
-    return bounceWork(settings_);
+                     cascades_[c].result, c == 0 ? bounces_->first() : nullptr, gathered,
+                     gathered ? &firsts_[0] : nullptr);
+    work += bounceWork(settings_);
+    return work;
+}
+
+engine::WorkCounts LightPropagationVolume::recordGatheredReflection(const FrameRecording& f, uint32_t c,
+                                                                    LpvVolumes& into) {
+    GatherSources sources;
+    const uint32_t count = gatherSources(sources, false);
+    const uint32_t slot = std::min(c, geometry_->faceSlots() - 1);
+    return gatheredReflection_->record(f.cmd, into, *geometry_, geometry_->faceTransmittance(slot),
+                                       (facesValid_ & (1u << slot)) != 0, cascades_[c].grid, c,
+                                       settings_.intensity, std::span(sources.data(), count));
 }
 
 engine::WorkCounts LightPropagationVolume::recordBounceReflect(const FrameRecording& f) {
@@ -753,6 +778,12 @@ engine::WorkCounts LightPropagationVolume::recordBounceReflect(const FrameRecord
     const Cascade& finest = cascades_[0];
     const glm::ivec3 shift =
         glm::ivec3(glm::round((finest.grid.origin - firstGrid_.origin) / finest.grid.cellSize));
+    // With the gather, the bounce is reflected from this frame's gathered first bounce instead.
+    if (gather_) {
+        engine::WorkCounts work = recordGatheredReflection(f, 0, *bounces_->ownVolumes());
+        work += bounceWork(settings_);
+        return work;
+    }
     bounces_->recordReflect(f.cmd, *bounces_->ownVolumes(), *geometry_, *bounces_->first(), shift);
     return bounceWork(settings_);
 }
@@ -812,31 +843,35 @@ bool LightPropagationVolume::gathers(LpvSettings::Gather mode) {
     return false;
 }
 
-// gi.gather: cascade c's first bounce, where the lookup takes it out (c < VplGather::kCascades).
+// gi.gather: cascade c's first bounce, where the lookup takes it out (c < VplGather::kCascades); the
+// finest's with its second where that is gathered too.
 const std::array<rhi::TextureHandle, 3>& LightPropagationVolume::firstBounce(uint32_t c) const {
-    return c == 0 && bounces_ && bounces_->first() ? *bounces_->first() : firsts_[c];
+    return c == 0 && bounces_ && bounces_->first() && !secondGathered() ? *bounces_->first() : firsts_[c];
+}
+
+bool LightPropagationVolume::secondGathered() const {
+    return gatheredReflection_ && bounces_ && settings_.bouncesIn(0);
 }
 
 // Right after propagation, before the further bounces and the analytic lights join the result: the
-// part of the light the gather stands for.
-void LightPropagationVolume::keepFirstBounces(rhi::CommandList& cmd, uint32_t propagated) {
+// part of the light the gather stands for, of the cascades in `propagated` & `which` (the finest
+// cascade's with its gathered second bounce is kept as they are summed, MultipleBounces::recordAdd).
+void LightPropagationVolume::keepFirstBounces(rhi::CommandList& cmd, uint32_t propagated, uint32_t which) {
     std::array<rhi::TextureCopy, 3 * VplGather::kCascades> copies;
     size_t count = 0;
     for (uint32_t c = 0; c < std::min(cascadeCount(), VplGather::kCascades); ++c) {
-        if (!(propagated & (1u << c)) || (c == 0 && bounces_ && bounces_->first())) continue;
+        if (!(propagated & which & (1u << c)) || &firstBounce(c) != &firsts_[c]) continue;
+        const std::array<rhi::TextureHandle, 3>& source = propagationTarget(c);
         for (uint32_t ch = 0; ch < 3; ++ch)
-            copies[count++] = {cascades_[c].result[ch], firsts_[c][ch]};
+            copies[count++] = {source[ch], firsts_[c][ch]};
     }
     if (count > 0) cmd.copyTextures(std::span(copies.data(), count)); // one barrier for all
 }
 
-engine::WorkCounts LightPropagationVolume::recordGather(const FrameRecording& f) {
-    const rhi::TextureDesc& target = device_.desc(f.target);
-    gather_->resize(target.width, target.height); // makes it only when the size changes
+uint32_t LightPropagationVolume::gatherSources(GatherSources& sources, bool secondBounce) const {
     const uint32_t gathered = std::min(cascadeCount(), VplGather::kCascades);
     // The sun's VPLs of each gathered cascade in its share; the spot and point lights' in the share of
     // every gathered cascade they are injected into (recordInjection).
-    std::array<GatherSource, VplGather::kCascades + SpotLightRsms::kMaxRsms> sources;
     uint32_t count = 0;
     // Visibility (gi.occlusion): marched through the faces of the cascade whose VPLs they are, or
     // the finest's where only it keeps faces; unmarched where they are not built (yet).
@@ -869,6 +904,31 @@ engine::WorkCounts LightPropagationVolume::recordGather(const FrameRecording& f)
             sources[i].cascades |= 1u << c;
         }
     }
+    // The finest cascade's second bounce (GatheredReflection), in its share and in the next
+    // cascade's where that has no bounces of its own: world-space light, and near the finest
+    // cascade's border (a room's walls) the next one answers most of the lookup.
+    if (secondBounce && secondGathered() && gatheredReflection_->listed()) {
+        const float cell = cascades_[0].grid.cellSize;
+        const uint32_t shares = 1u | (gathered > 1 && !settings_.bouncesIn(1) ? 2u : 0u);
+        sources[count++] = {gatheredReflection_->listed(),
+                            gatheredReflection_->room(),
+                            gatheredReflection_->parity(),
+                            -1,
+                            shares,
+                            0.25f * cell * cell,
+                            facesOf(0),
+                            facesCascade(0),
+                            true,
+                            gatheredReflection_->faceSlots()};
+    }
+    return count;
+}
+
+engine::WorkCounts LightPropagationVolume::recordGather(const FrameRecording& f) {
+    const rhi::TextureDesc& target = device_.desc(f.target);
+    gather_->resize(target.width, target.height); // makes it only when the size changes
+    GatherSources sources;
+    const uint32_t count = gatherSources(sources, true);
     std::array<VolumeGrid, 4> grids;
     for (uint32_t c = 0; c < cascadeCount(); ++c)
         grids[c] = cascades_[c].grid;
@@ -876,8 +936,8 @@ engine::WorkCounts LightPropagationVolume::recordGather(const FrameRecording& f)
                     settings_.intensity, settings_.resolutionDivisor, std::span(sources.data(), count),
                     cascades_[0].result[0]);
     uint64_t slots = 0;
-    for (uint32_t i = 0; i < count; ++i)
-        slots += sources[i].slots;
+    for (uint32_t i = 0; i < count; ++i) // a texel reads one of the second bounce's 16 lists
+        slots += sources[i].listed ? GatheredReflection::kPhases * sources[i].slots : sources[i].slots;
     // A segment crosses a quarter of the grid's faces on average (an estimate; the march stops at
     // the first wall).
     return gatherWork(pixelsOf(target), slots, count, geometry_ ? settings_.gridSize / 4 : 0);

@@ -22,16 +22,16 @@ const rhi::ShaderBinary& reflectShader(ShFormat f) {
     return f == ShFormat::Rgba32f ? shaders::lpv_reflect_rgba32f_comp : shaders::lpv_reflect_rgba16f_comp;
 }
 
-const rhi::ShaderBinary& addShader(ShFormat f) {
+const rhi::ShaderBinary& addShader(ShFormat f, bool keep) {
     switch (f) {
     case ShFormat::Rgba8:
-        return shaders::lpv_bounce_add_rgba8_comp;
+        return keep ? shaders::lpv_bounce_add_rgba8_keep_comp : shaders::lpv_bounce_add_rgba8_comp;
     case ShFormat::Rgba32f:
-        return shaders::lpv_bounce_add_rgba32f_comp;
+        return keep ? shaders::lpv_bounce_add_rgba32f_keep_comp : shaders::lpv_bounce_add_rgba32f_comp;
     case ShFormat::Rgba16f:
         break;
     }
-    return shaders::lpv_bounce_add_rgba16f_comp;
+    return keep ? shaders::lpv_bounce_add_rgba16f_keep_comp : shaders::lpv_bounce_add_rgba16f_comp;
 }
 
 } // namespace
@@ -50,13 +50,20 @@ MultipleBounces::MultipleBounces(rhi::Device& device, const LpvSettings& setting
             settings.shFormat == ShFormat::Rgba32f ? &shaders::lpv_bounce_add_rgba32f_first_comp
                                                    : &shaders::lpv_bounce_add_rgba16f_first_comp,
             "lpv bounce add (first apart)"});
+        addFirstKeepPipeline_ = device.createPipeline(ComputePipelineDesc{
+            settings.shFormat == ShFormat::Rgba32f ? &shaders::lpv_bounce_add_rgba32f_first_keep_comp
+                                                   : &shaders::lpv_bounce_add_rgba16f_first_keep_comp,
+            "lpv bounce add (first apart, kept)"});
     } else {
         bounce_ = volumes.createResult("lpv bounce");
     }
     reflectPipeline_ =
         device.createPipeline(ComputePipelineDesc{&reflectShader(settings.shFormat), "lpv bounce reflect"});
     addPipeline_ =
-        device.createPipeline(ComputePipelineDesc{&addShader(settings.shFormat), "lpv bounce add"});
+        device.createPipeline(ComputePipelineDesc{&addShader(settings.shFormat, false), "lpv bounce add"});
+    // gi.gather: the sum of the first two bounces kept for the lookup (GatheredReflection).
+    addKeepPipeline_ = device.createPipeline(
+        ComputePipelineDesc{&addShader(settings.shFormat, true), "lpv bounce add (kept)"});
     pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
 }
 
@@ -70,6 +77,8 @@ MultipleBounces::~MultipleBounces() {
     device_.destroy(reflectPipeline_);
     device_.destroy(addPipeline_);
     if (addFirstPipeline_) device_.destroy(addFirstPipeline_);
+    device_.destroy(addKeepPipeline_);
+    if (addFirstKeepPipeline_) device_.destroy(addFirstKeepPipeline_);
     device_.destroy(pointSampler_);
 }
 
@@ -99,7 +108,8 @@ PropagationJob MultipleBounces::job(LpvVolumes& volumes, const GeometryVolume& g
 
 void MultipleBounces::recordAdd(rhi::CommandList& cmd, LpvVolumes& volumes,
                                 const std::array<rhi::TextureHandle, 3>& result,
-                                const std::array<rhi::TextureHandle, 3>* first) {
+                                const std::array<rhi::TextureHandle, 3>* first,
+                                const std::array<rhi::TextureHandle, 3>* keep) {
     const uint32_t n = settings_.gridSize;
     const uint32_t groups = (n + 3) / 4;
     BounceUniforms u;
@@ -108,12 +118,14 @@ void MultipleBounces::recordAdd(rhi::CommandList& cmd, LpvVolumes& volumes,
     u.shift = glm::ivec4(0);
     if (first && !addFirstPipeline_)
         throw std::logic_error("MultipleBounces::recordAdd: made without keepFirst");
-    cmd.bindPipeline(first ? addFirstPipeline_ : addPipeline_);
+    cmd.bindPipeline(first ? (keep ? addFirstKeepPipeline_ : addFirstPipeline_)
+                           : (keep ? addKeepPipeline_ : addPipeline_));
     cmd.pushUniforms(0, &u, sizeof(u));
     for (uint32_t c = 0; c < 3; ++c) {
-        cmd.bindTexture(1 + c, bounce_[c], pointSampler_);
+        cmd.bindTexture((keep ? 10 : 1) + c, bounce_[c], pointSampler_);
         cmd.bindStorageImage(4 + c, result[c]);
         if (first) cmd.bindTexture(7 + c, (*first)[c], pointSampler_);
+        if (keep) cmd.bindStorageImage(1 + c, (*keep)[c]);
     }
     if (Rgba8Clipping* clipping = volumes.clipping()) clipping->bind(cmd, volumes.injectedCascade());
     cmd.dispatch(groups, groups, groups);
@@ -122,13 +134,14 @@ void MultipleBounces::recordAdd(rhi::CommandList& cmd, LpvVolumes& volumes,
 void MultipleBounces::record(rhi::CommandList& cmd, LpvVolumes& volumes, LpvPropagation& propagation,
                              const GeometryVolume& geometry, uint32_t bounces, uint32_t iterations,
                              const std::array<rhi::TextureHandle, 3>& result,
-                             const std::array<rhi::TextureHandle, 3>* first) {
+                             const std::array<rhi::TextureHandle, 3>* first, bool reflected,
+                             const std::array<rhi::TextureHandle, 3>* keepSecond) {
     // The first further bounce reflects the cascade's light; each later one the previous bounce's.
     const std::array<rhi::TextureHandle, 3>* source = first ? first : &result;
     for (uint32_t b = 1; b < bounces; ++b) {
-        recordReflect(cmd, volumes, geometry, *source);
+        if (b > 1 || !reflected) recordReflect(cmd, volumes, geometry, *source);
         propagation.record(cmd, volumes, iterations, geometry.faceTransmittance(), &bounce_);
-        recordAdd(cmd, volumes, result, b == 1 ? first : nullptr);
+        recordAdd(cmd, volumes, result, b == 1 ? first : nullptr, b == 1 ? keepSecond : nullptr);
         source = &bounce_;
     }
 }

@@ -33,10 +33,16 @@ VplGather::VplGather(rhi::Device& device) : device_(device) {
     d.debugName = "vpl gather";
     pipeline_ = device.createPipeline(d);
     pointSampler_ = device.createSampler({Filter::Nearest, Filter::Nearest, Filter::Nearest});
+    noFaceSlots_ = device.createTexture({TextureKind::Tex3D, Format::R32UI, 1, 1, 1, 1,
+                                         kTextureSampled | kTextureTransfer, "vpl gather, no face slots",
+                                         "render.lighting"});
+    const uint32_t none = 0;
+    device.uploadTexture(noFaceSlots_, 0, &none, sizeof(none));
 }
 
 VplGather::~VplGather() {
     if (target_) device_.destroy(target_);
+    device_.destroy(noFaceSlots_);
     device_.destroy(pipeline_);
     device_.destroy(pointSampler_);
 }
@@ -86,10 +92,13 @@ void VplGather::record(rhi::CommandList& cmd, const engine::CameraMatrices& came
         u.grid.z = s.cascade;
         u.grid.w = int(s.cascades);
         const bool marched = bool(s.faces);
-        u.params = glm::vec4(intensity, blendBand, s.nearest, marched ? 1.0f : 0.0f);
-        u.vpls = glm::ivec4(int(s.slots), int(s.side), int(s.facesCascade), 0);
+        u.params = glm::vec4(s.listed ? 1.0f : intensity, blendBand, s.nearest, marched ? 1.0f : 0.0f);
+        u.vpls = glm::ivec4(int(s.slots), int(s.side), int(s.facesCascade), s.listed ? 1 : 0);
         cmd.pushUniforms(0, &u, sizeof(u));
+        // The shader declares both views; the one it does not read is bound to the same buffer.
         cmd.bindStorageBuffer(1, s.vpls);
+        cmd.bindStorageBuffer(5, s.vpls);
+        cmd.bindTexture(6, s.listed ? s.faceSlots : noFaceSlots_, pointSampler_);
         cmd.bindTexture(4, marched ? s.faces : unusedFaces, pointSampler_);
         cmd.draw(3);
     }

@@ -22,6 +22,7 @@
 #include "engine/scene/OpenSpace.h"
 #include "gi/CascadeClasses.h"
 #include "gi/FogMarch.h"
+#include "gi/GatheredReflection.h"
 #include "gi/GeometryVolume.h"
 #include "gi/GiConfigResult.h"
 #include "gi/GiDebugViews.h"
@@ -261,13 +262,23 @@ private:
     // gi.gather: the pass, and the first bounce of the two finest cascades kept apart (cascade 0's
     // is MultipleBounces::first() where that exists).
     std::unique_ptr<VplGather> gather_;
+    // gi.gather with gi.bounces > 1: the second bounce reflected from the gathered first.
+    std::unique_ptr<GatheredReflection> gatheredReflection_;
     std::array<std::array<rhi::TextureHandle, 3>, VplGather::kCascades> firsts_{};
+    // The VPL sets the gather sums (the sun's of each gathered cascade, then the lights'); how many.
+    // With `secondBounce`, the finest cascade's second bounce's VPLs last.
+    using GatherSources = std::array<GatherSource, VplGather::kCascades + SpotLightRsms::kMaxRsms + 1>;
+    uint32_t gatherSources(GatherSources& sources, bool secondBounce) const;
+    // The finest cascade's second bounce is gathered too (its reflection, GatheredReflection).
+    bool secondGathered() const;
+    // Cascade c's second bounce reflected from its gathered first into `into`'s injection volume.
+    engine::WorkCounts recordGatheredReflection(const FrameRecording& f, uint32_t c, LpvVolumes& into);
     const std::array<rhi::TextureHandle, 3>& firstBounce(uint32_t c) const;
     bool gathers(LpvSettings::Gather mode);
     void makeGather(const LpvSettings& settings);
     void releaseGather();
     bool gatherAutoReported_ = false;
-    void keepFirstBounces(rhi::CommandList& cmd, uint32_t propagated);
+    void keepFirstBounces(rhi::CommandList& cmd, uint32_t propagated, uint32_t which = ~0u);
     engine::WorkCounts recordGather(const FrameRecording& f);
     // The passes made once, with the LPV; the lookup first, as it refuses a device that binds too
     // few textures for it.

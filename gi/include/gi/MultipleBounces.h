@@ -38,11 +38,14 @@ public:
     // Adds bounces 2..`bounces` to `result` (the cascade's first-bounce light, just propagated in
     // `volumes` with `geometry`'s faces), each propagated `iterations` times by `propagation`.
     // Overwrites the injection volume. With `first`: the first bounce is there, and `result`
-    // becomes first + the further bounces.
+    // becomes first + the further bounces. `reflected`: the caller has written the second
+    // bounce's injection already (GatheredReflection). `keepSecond`: `result` is written there too
+    // when it holds the first and second bounces.
     void record(rhi::CommandList& cmd, LpvVolumes& volumes, LpvPropagation& propagation,
                 const GeometryVolume& geometry, uint32_t bounces, uint32_t iterations,
                 const std::array<rhi::TextureHandle, 3>& result,
-                const std::array<rhi::TextureHandle, 3>* first = nullptr);
+                const std::array<rhi::TextureHandle, 3>* first = nullptr, bool reflected = false,
+                const std::array<rhi::TextureHandle, 3>* keepSecond = nullptr);
 
     // The steps of one further bounce, for a caller that propagates it with other volumes:
     // reflect `source` (its cell c + `shift` lighting cell c) into `into`'s injection volume...
@@ -50,10 +53,11 @@ public:
                        const std::array<rhi::TextureHandle, 3>& source, glm::ivec3 shift = glm::ivec3(0));
     // ... propagate it (into bounce()) ...
     PropagationJob job(LpvVolumes& volumes, const GeometryVolume& geometry);
-    // ... and add it to `result`, or make `result` `*first` + it.
+    // ... and add it to `result`, or make `result` `*first` + it; with `keep`, written there too.
     void recordAdd(rhi::CommandList& cmd, LpvVolumes& volumes,
                    const std::array<rhi::TextureHandle, 3>& result,
-                   const std::array<rhi::TextureHandle, 3>* first = nullptr);
+                   const std::array<rhi::TextureHandle, 3>* first = nullptr,
+                   const std::array<rhi::TextureHandle, 3>* keep = nullptr);
 
     // keepFirst: the finest cascade's first bounce, and the volumes the bounces propagate in.
     const std::array<rhi::TextureHandle, 3>* first() const { return own_ ? &first_ : nullptr; }
@@ -65,6 +69,7 @@ private:
     std::unique_ptr<LpvVolumes> own_; // keepFirst; its accumulated() is bounce_
     std::array<rhi::TextureHandle, 3> bounce_{}, first_{};
     rhi::ComputePipelineHandle reflectPipeline_, addPipeline_, addFirstPipeline_;
+    rhi::ComputePipelineHandle addKeepPipeline_, addFirstKeepPipeline_;
     rhi::SamplerHandle pointSampler_;
 };
 

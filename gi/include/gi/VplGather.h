@@ -38,6 +38,10 @@ struct GatherSource {
     // between each VPL and texel; none: unmarched.
     rhi::TextureHandle faces;
     uint32_t facesCascade = 0;
+    // The second bounce's VPLs (GatheredReflection): 16 lists, one per phase, each of room
+    // `slots`, counted in counter set `side`; their flux holds gi.intensity already.
+    bool listed = false;
+    rhi::TextureHandle faceSlots; // listed: per cell its faces and their slots (r32ui)
 };
 
 class VplGather {
@@ -69,6 +73,7 @@ private:
     rhi::Device& device_;
     rhi::GraphicsPipelineHandle pipeline_;
     rhi::TextureHandle target_;
+    rhi::TextureHandle noFaceSlots_; // bound where a draw sums no second bounce (r32ui, 1^3)
     rhi::SamplerHandle pointSampler_;
 };
 

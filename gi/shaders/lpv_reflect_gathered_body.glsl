@@ -1,0 +1,155 @@
+// Multiple bounces with gi.gather, the second bounce's reflection (gi/GatheredReflection.h): the
+// light each blocking face of the geometry volume receives is gathered from the VPLs (flux x cos x
+// cos / (pi r^2), as vpl_gather.frag gathers it for a pixel), not read from the propagated first
+// bounce, which scatters within a few cells and leaves far walls and ceilings unlit
+// (docs/gi-fidelity.md). Per cell and per face, as lpv_reflect_body.glsl:
+//   received  = irradiance on the face, facing back into the cell, x the face's area,
+//   reflected = albedo x (1 - face transmittance) x received, injected into this cell as a VPL of
+//               that flux whose normal points back into the cell: half a cell in front of the face.
+// Interleaved: cell c sums the clusters at ((c.x + c.y) mod 2, (c.y + c.z) mod 2), times 4, so that
+// every 2 x 2 block of cells on a plane of the grid covers each cluster once; propagation and the
+// pixels' gather blur the rest. One dispatch per set of VPLs; each after the first adds to the
+// injection volume and to the faces' flux.
+// Each reflecting face is also listed as a VPL of the second bounce (position: the face's centre,
+// normal: back into the cell), which the per-pixel gather sums as it sums the first bounce's: the
+// first dispatch gives each cell's blocking faces consecutive slots (faceSlots), the later ones add
+// to them. The list is 16 lists, one per cell phase ((c.x + c.y) mod 4 + 4 ((c.y + c.z) mod 4)):
+// a pixel sums one phase's whole list, so what it sums does not depend on the order the slots
+// were given in (atomics), which changes from frame to frame.
+// Included by the generated lpv_reflect_gathered_<format>.comp (INJECT_FORMAT: the injection
+// volume's).
+#include "lpv_common.glsl"
+
+struct Vpl {
+    vec4 position; // w: 1 when the cluster holds a lit texel
+    vec4 normal;
+    vec4 flux;
+};
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+
+layout(binding = 0, std140) uniform ReflectGathered {
+    vec4 gridOrigin; // xyz: corner of cell 0, w: cell size
+    ivec4 grid;      // x: cells per axis, y: 1 adds to the injection volume and the list, z: 1 marched
+    vec4 params;     // x: gi.intensity, y: the nearest a VPL counts (m^2 of r^2)
+    ivec4 vpls;      // x: slots, y: the cluster grid's side (2 slots a cluster), z: each phase's
+                     // room, w: the counters this frame (0 or 1)
+} params;
+// Storage images below kPortableStorageImageBindings (rhi/Shader.h), which every device has.
+layout(binding = 1, INJECT_FORMAT) uniform image3D injectedRed;
+layout(binding = 2, INJECT_FORMAT) uniform image3D injectedGreen;
+layout(binding = 3, INJECT_FORMAT) uniform image3D injectedBlue;
+// Per cell, written by the first dispatch: its blocking faces (bits 26-31, -x -y -z +x +y +z) and
+// the slot of the first in its phase's list (bits 0-25); 0: none. The gather reads it to sum the
+// faces near a pixel whole (vpl_gather.frag).
+layout(binding = 6, r32ui) uniform uimage3D faceSlots;
+layout(binding = 4, std430) readonly buffer Vpls { Vpl vpls[]; };
+// The second bounce's VPLs: counts[16 vpls.w + phase] counts the slots given in each phase's list
+// (it may pass the room; faces past it are not listed); the first dispatch clears the other 16
+// counters, which the next frame uses. Phase p's list starts at slot p x room.
+layout(binding = 5, std430) buffer BounceVpls {
+    uint counts[32];
+    Vpl listed[];
+};
+layout(binding = 7) uniform sampler3D faceTransmittance; // xyz: the cell's -x, -y, -z faces
+layout(binding = 8) uniform sampler3D surfelAlbedo;      // rgb: mean albedo of the cell's surfels
+#include "vpl_visibility.glsl"
+
+// Below this blocked share a face reflects nothing (the slivers at a surface's rim).
+const float kLeastBlocked = 0.02;
+
+void main() {
+    const ivec3 c = ivec3(gl_GlobalInvocationID);
+    const int n = params.grid.x;
+    if (any(greaterThanEqual(c, ivec3(n)))) return;
+    const bool adding = params.grid.y != 0;
+    vec4 outR = vec4(0.0), outG = vec4(0.0), outB = vec4(0.0);
+    if (adding) {
+        outR = imageLoad(injectedRed, c);
+        outG = imageLoad(injectedGreen, c);
+        outB = imageLoad(injectedBlue, c);
+    }
+    // The blocked share of the faces: -x, -y, -z (the cell's own), then +x, +y, +z (the next
+    // cells' lower faces; beyond the volume nothing blocks).
+    const vec3 lower = vec3(1.0) - texelFetch(faceTransmittance, c, 0).xyz;
+    const vec3 upper = vec3(1.0) - vec3(c.x + 1 < n ? texelFetch(faceTransmittance, c + ivec3(1, 0, 0), 0).x : 1.0,
+                                        c.y + 1 < n ? texelFetch(faceTransmittance, c + ivec3(0, 1, 0), 0).y : 1.0,
+                                        c.z + 1 < n ? texelFetch(faceTransmittance, c + ivec3(0, 0, 1), 0).z : 1.0);
+    float blocked[6] = float[6](lower.x, lower.y, lower.z, upper.x, upper.y, upper.z);
+    const vec3 albedo = texelFetch(surfelAlbedo, c, 0).rgb;
+    uint mask = 0u;
+    if (max(max(albedo.r, albedo.g), albedo.b) > 0.0)
+        for (int f = 0; f < 6; ++f)
+            if (blocked[f] > kLeastBlocked) mask |= 1u << f;
+    uint base = 0u;
+    bool listedHere = false;
+    const int phase = ((c.x + c.y) & 3) + 4 * ((c.y + c.z) & 3);
+    const uint room = uint(params.vpls.z);
+    if (!adding) {
+        if (c.x < 16 && c.y == 0 && c.z == 0) counts[16 * (1 - params.vpls.w) + c.x] = 0u;
+        if (mask != 0u) base = atomicAdd(counts[16 * params.vpls.w + phase], uint(bitCount(mask)));
+        // A cell whose faces pass the room is not listed (its light still propagates).
+        listedHere = mask != 0u && base + uint(bitCount(mask)) <= room;
+        imageStore(faceSlots, c, uvec4(listedHere ? (mask << 26) | base : 0u));
+    } else {
+        const uint slots = imageLoad(faceSlots, c).x;
+        listedHere = (slots >> 26) != 0u;
+        base = slots & 0x3ffffffu;
+    }
+    if (mask != 0u) {
+        const float cell = params.gridOrigin.w;
+        const vec3 centre = params.gridOrigin.xyz + (vec3(c) + 0.5) * cell;
+        const int side = params.vpls.y;
+        const ivec2 first = ivec2((c.x + c.y) & 1, (c.y + c.z) & 1); // of the clusters it sums
+        vec3 e[6];
+        for (int f = 0; f < 6; ++f)
+            e[f] = vec3(0.0);
+        for (int cy = first.y; cy < side; cy += 2)
+            for (int cx = first.x; cx < side; cx += 2)
+                for (int layer = 0; layer < 2; ++layer) {
+                    Vpl v = vpls[2 * (cy * side + cx) + layer];
+                    if (v.position.w < 0.5) continue;
+                    // Where its light starts, as the injection places it: half a cell in front.
+                    const vec3 front = v.position.xyz + 0.5 * cell * v.normal.xyz;
+                    float visible = -1.0; // marched once, when a face first needs it
+                    for (int f = 0; f < 6; ++f) {
+                        if ((mask & (1u << f)) == 0u) continue;
+                        vec3 toward = vec3(0.0);
+                        toward[f % 3] = f < 3 ? -1.0 : 1.0;
+                        // The face's centre; its surfels face back into the cell, along -toward.
+                        const vec3 face = centre + 0.5 * cell * toward;
+                        const vec3 d = v.position.xyz - face;
+                        const float r2 = dot(d, d);
+                        const vec3 dir = d * inversesqrt(max(r2, 1e-12));
+                        const float w = max(-dot(toward, dir), 0.0) * max(dot(v.normal.xyz, -dir), 0.0);
+                        // A surface's coverage closes the faces on both sides of it; the face on its
+                        // back, within half a cell, would read its own VPLs' light as arriving.
+                        if (w <= 0.0 || dot(front - face, toward) >= 0.0) continue;
+                        if (visible < 0.0)
+                            visible = params.grid.z != 0 ? faceVisibility(params.gridOrigin, n, centre, front) : 1.0;
+                        e[f] += v.flux.rgb * (visible * w / max(r2, params.params.y));
+                    }
+                }
+        // Irradiance (the interleave's 4, 1 / pi) x the face's area is the flux received; a VPL's
+        // lobe is flux / pi (inject.frag).
+        const float toFlux = params.params.x * 4.0 / PI * cell * cell;
+        for (int f = 0; f < 6; ++f) {
+            if ((mask & (1u << f)) == 0u) continue;
+            vec3 toward = vec3(0.0);
+            toward[f % 3] = f < 3 ? -1.0 : 1.0;
+            const vec3 reflected = albedo * blocked[f] * e[f] * toFlux;
+            const uint slot = base + uint(bitCount(mask & ((1u << f) - 1u)));
+            if (listedHere) {
+                const uint at = uint(phase) * room + slot;
+                vec3 sum = reflected;
+                if (adding) sum += listed[at].flux.rgb;
+                listed[at] = Vpl(vec4(centre + 0.5 * cell * toward, 1.0), vec4(-toward, 0.0), vec4(sum, 0.0));
+            }
+            const vec4 lobe = shCosineLobe(-toward) * (1.0 / PI);
+            outR += reflected.r * lobe, outG += reflected.g * lobe, outB += reflected.b * lobe;
+        }
+    }
+    imageStore(injectedRed, c, outR);
+    imageStore(injectedGreen, c, outG);
+    imageStore(injectedBlue, c, outB);
+}

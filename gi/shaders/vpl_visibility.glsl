@@ -1,0 +1,28 @@
+// Whether b sees a through a geometry volume's faces (GeometryVolume; the includer declares
+// `faceTransmittance`, each cell's -x, -y, -z faces): a 3D DDA over the cells of the grid with
+// corner origin.xyz, cell origin.w and n cells a side, blocked by the first face less than half
+// open. A face's transmittance is the share of it that surfels leave open; multiplied along the
+// segment, the partly covered faces a path grazes along a surface darkened the Cornell box by a
+// fifth (docs/gi-fidelity.md), while a wall is one surface that either stands in the way or not.
+// A segment leaving the volume is open beyond it.
+float faceVisibility(vec4 origin, int n, vec3 a, vec3 b) {
+    vec3 ta = (a - origin.xyz) / origin.w, tb = (b - origin.xyz) / origin.w;
+    ivec3 c = ivec3(floor(ta));
+    vec3 d = tb - ta;
+    ivec3 st = ivec3(sign(d));
+    vec3 inv = 1.0 / max(abs(d), vec3(1e-6));
+    vec3 tMax = vec3(d.x > 0.0 ? float(c.x + 1) - ta.x : ta.x - float(c.x),
+                     d.y > 0.0 ? float(c.y + 1) - ta.y : ta.y - float(c.y),
+                     d.z > 0.0 ? float(c.z + 1) - ta.z : ta.z - float(c.z)) * inv;
+    for (int i = 0; i < 3 * n; ++i) {
+        int axis = tMax.x < tMax.y ? (tMax.x < tMax.z ? 0 : 2) : (tMax.y < tMax.z ? 1 : 2);
+        if (tMax[axis] > 1.0) break;
+        ivec3 upper = c;
+        if (st[axis] > 0) upper[axis] += 1;
+        if (any(lessThan(upper, ivec3(0))) || any(greaterThanEqual(upper, ivec3(n)))) break;
+        if (texelFetch(faceTransmittance, upper, 0)[axis] < 0.5) return 0.0;
+        c[axis] += st[axis];
+        tMax[axis] += inv[axis];
+    }
+    return 1.0;
+}
