@@ -773,17 +773,17 @@ engine::WorkCounts LightPropagationVolume::recordGatheredReflection(const FrameR
 }
 
 engine::WorkCounts LightPropagationVolume::recordBounceReflect(const FrameRecording& f) {
+    // With the gather, the bounce is reflected from this frame's gathered first bounce.
+    if (secondGathered()) {
+        engine::WorkCounts work = recordGatheredReflection(f, 0, *bounces_->ownVolumes());
+        work += bounceWork(settings_);
+        return work;
+    }
     // The first bounce was computed where the finest cascade was placed then: its cell c + shift
     // is this frame's cell c.
     const Cascade& finest = cascades_[0];
     const glm::ivec3 shift =
         glm::ivec3(glm::round((finest.grid.origin - firstGrid_.origin) / finest.grid.cellSize));
-    // With the gather, the bounce is reflected from this frame's gathered first bounce instead.
-    if (gather_) {
-        engine::WorkCounts work = recordGatheredReflection(f, 0, *bounces_->ownVolumes());
-        work += bounceWork(settings_);
-        return work;
-    }
     bounces_->recordReflect(f.cmd, *bounces_->ownVolumes(), *geometry_, *bounces_->first(), shift);
     return bounceWork(settings_);
 }
