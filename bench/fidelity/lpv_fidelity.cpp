@@ -2,7 +2,8 @@
 // per scene and backend. Prints, per scene: mean ratio per channel, relative RMSE (RMSE / mean
 // reference luminance over pixels with geometry), the same after the best single scale, the mean
 // ratio on ceilings, floors and walls, and the share of pixels over 3x the reference; with --out,
-// writes each view as engine | reference side by side (PNG, one exposure for both).
+// writes each view as engine | reference side by side (PNG, one exposure for both) and both
+// images as linear radiance (PFM: <scene>-<backend>.pfm, <scene>-reference.pfm) for analysis.
 //
 // Then, when its scene (cornell-sun) is among --scenes, the fog (issue 48): the engine's
 // render.debug_view=fog against the reference's medium (FidelityScenes.h, fidelityFog), the same
@@ -25,6 +26,7 @@
 #include "platforms/Clock.h"
 #include "platforms/Platform.h"
 #include "reference/PathTracer.h"
+#include "reference/Pfm.h"
 
 #include <glm/common.hpp>
 
@@ -172,7 +174,8 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(-0.95f, 0.95f))
         ->capture_default_str();
     std::string outDir;
-    app.add_option("--out", outDir, "Folder for the side-by-side images (engine | reference)");
+    app.add_option("--out", outDir,
+                   "Folder for the side-by-side images (engine | reference, PNG) and both images (PFM)");
     std::vector<std::string> assignments;
     app.add_option("--set", assignments,
                    "A setting for every scene, after the scene's own: --set gi.iterations=16");
@@ -198,6 +201,9 @@ int main(int argc, char** argv) {
             const uint64_t t0 = platforms::nowNanoseconds();
             const reference::TracedImage ref = reference::trace(scene, camera, ts);
             const double traceMs = double(platforms::nowNanoseconds() - t0) / 1e6;
+            if (!outDir.empty())
+                reference::writePfm(outDir + "/" + fs.name + "-reference.pfm", fs.width, fs.height,
+                                    ref.indirect);
             for (const BenchBackend& b : backends) {
                 const engine::Config config = sceneConfig(fs, bounces, assignments);
                 auto device = makeDevice(b);
@@ -210,9 +216,12 @@ int main(int argc, char** argv) {
                             ratio(f.orientation.ceilings).c_str(), ratio(f.orientation.floors).c_str(),
                             ratio(f.orientation.walls).c_str(), 100.0 * f.shareOver3x);
                 std::fflush(stdout);
-                if (!outDir.empty())
+                if (!outDir.empty()) {
                     writeSideBySide(outDir + "/" + fs.name + "-" + b.name + ".png", fs.width, fs.height,
                                     engineImage, ref.indirect);
+                    reference::writePfm(outDir + "/" + fs.name + "-" + b.name + ".pfm", fs.width, fs.height,
+                                        engineImage);
+                }
             }
             std::fprintf(stderr, "%s: reference traced in %.1f s\n", fs.name.c_str(), traceMs / 1000.0);
         } catch (const std::exception& e) {
