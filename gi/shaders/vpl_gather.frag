@@ -32,6 +32,7 @@ layout(binding = 0, std140) uniform Gather {
                         // cascade, w: 1 the VPLs are bounceVpls' lists (GatheredReflection), x
                         // each one's room, y their counters
     ivec4 pixels;       // x: resolution divisor, yz: G-buffer size, w: 0 (MUL_COLUMNS_AT)
+    uvec4 faces;        // x: the stamp of cascade vpls.z's surfaces (gi/SurfaceVoxels.h)
 } gather;
 layout(binding = 1, std430) readonly buffer Vpls { Vpl vpls[]; };
 // The second bounce's VPLs, where vpls.w is 1 (lpv_reflect_gathered_body.glsl): 16 lists of room
@@ -45,9 +46,13 @@ layout(binding = 5, std430) readonly buffer BounceVpls {
 layout(binding = 6) uniform usampler3D faceSlots;
 layout(binding = 2) uniform sampler2D depthTexture;
 layout(binding = 3) uniform sampler2D normalTexture;
-// The faces of cascade vpls.z (the transmittance of each cell's -x, -y, -z faces), where params.w
-// is 1.
-layout(binding = 4) uniform sampler3D faceTransmittance;
+// Where params.w is 1: the faces the scene's surfaces cross, of cascade vpls.z, at texels
+// (3 x + axis, y, z), blocked where they hold faces.x (gi/SurfaceVoxels.h). Read as a storage
+// image: a CPU rasterizer fetches an integer texture through a sampler several times slower.
+layout(binding = 4, r32ui) uniform readonly uimage3D surfaceFaces;
+bool faceBlocked(ivec3 c, int axis) {
+    return imageLoad(surfaceFaces, ivec3(3 * c.x + axis, c.y, c.z)).x == gather.faces.x;
+}
 #include "vpl_visibility.glsl"
 
 layout(location = 0) in vec2 vUv;

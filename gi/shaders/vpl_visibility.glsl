@@ -1,9 +1,7 @@
-// Whether b sees a through a geometry volume's faces (GeometryVolume; the includer declares
-// `faceTransmittance`, each cell's -x, -y, -z faces): a 3D DDA over the cells of the grid with
-// corner origin.xyz, cell origin.w and n cells a side, blocked by the first face less than half
-// open. A face's transmittance is the share of it that surfels leave open; multiplied along the
-// segment, the partly covered faces a path grazes along a surface darkened the Cornell box by a
-// fifth (docs/gi-fidelity.md), while a wall is one surface that either stands in the way or not.
+// Whether b sees a through the faces of a cascade's cells: a 3D DDA over the cells of the grid
+// with corner origin.xyz, cell origin.w and n cells a side, stopped by the first blocked face. The
+// includer defines `bool faceBlocked(ivec3 cell, int axis)`: whether the lower face along `axis`
+// of `cell` (inside the grid) blocks, the scene's surfaces crossing it (gi/SurfaceVoxels.h).
 // A segment leaving the volume is open beyond it.
 float faceVisibility(vec4 origin, int n, vec3 a, vec3 b) {
     vec3 ta = (a - origin.xyz) / origin.w, tb = (b - origin.xyz) / origin.w;
@@ -20,7 +18,7 @@ float faceVisibility(vec4 origin, int n, vec3 a, vec3 b) {
         ivec3 upper = c;
         if (st[axis] > 0) upper[axis] += 1;
         if (any(lessThan(upper, ivec3(0))) || any(greaterThanEqual(upper, ivec3(n)))) break;
-        if (texelFetch(faceTransmittance, upper, 0)[axis] < 0.5) return 0.0;
+        if (faceBlocked(upper, axis)) return 0.0;
         c[axis] += st[axis];
         tMax[axis] += inv[axis];
     }

@@ -2,6 +2,7 @@
 #include "gi/GiBudget.h"
 
 #include "gi/GatheredReflection.h"
+#include "gi/SurfaceVoxels.h"
 
 #include "gi/LpvVolumes.h"
 #include "gi/PointLightInjection.h"
@@ -99,6 +100,10 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
             out.push_back(
                 {"first bounce kept for gi.gather, cascade " + std::to_string(c) + " (3 SH textures)",
                  "gi.lpv", 3 * cells * shBytes});
+        // Its visibility's faces: the scene's surfaces on the gathered cascades' cells.
+        if (s.occlusion)
+            out.push_back({"surface faces of the gathered cascades (gi.gather)", "gi.lpv",
+                           SurfaceVoxels::bytes(s.gridSize)});
         // With further bounces, the second is reflected from the gathered first (GatheredReflection).
         if (s.bounces > 1) {
             out.push_back(

@@ -23,6 +23,18 @@ WorkCounts rsmWork(const LpvSettings& s, uint64_t triangles) {
     return w;
 }
 
+WorkCounts surfaceVoxelsWork(const LpvSettings& s, uint64_t triangles) {
+    // An estimate: the surfaces of a room cross each cell column about twice per axis.
+    const uint64_t fragments = uint64_t(3) * 2 * s.gridSize * s.gridSize;
+    WorkCounts w;
+    w.primitives = triangles * 3;
+    w.pixelsShaded = fragments;
+    w.texelsWritten = fragments;
+    w.aluOps = triangles * 3 * 40 + fragments * 10;
+    w.bytesMoved = fragments * 4;
+    return w;
+}
+
 WorkCounts vplClusterWork(const LpvSettings& s) {
     const uint64_t texels = uint64_t(s.rsmSize) * s.rsmSize;
     WorkCounts w;

@@ -145,6 +145,11 @@ void LightPropagationVolume::makeGather(const LpvSettings& s) {
     gather_ = std::make_unique<VplGather>(device_);
     if (s.bounces > 1)
         gatheredReflection_ = std::make_unique<GatheredReflection>(device_, s.shFormat, s.gridSize);
+    if (s.occlusion && device_.caps().fragmentStores)
+        surfaceVoxels_ = std::make_unique<SurfaceVoxels>(device_, s.gridSize);
+    else if (s.occlusion)
+        log::warn("gi: gi.gather on " + device_.caps().deviceName +
+                  ", which cannot store from fragment shaders: its light goes through walls (no occlusion)");
     for (uint32_t c = 0; c < std::min(s.cascades, VplGather::kCascades); ++c)
         firsts_[c] = volumes_->createResult("lpv first bounce, cascade " + std::to_string(c));
 }
@@ -152,6 +157,7 @@ void LightPropagationVolume::makeGather(const LpvSettings& s) {
 void LightPropagationVolume::releaseGather() {
     gather_.reset();
     gatheredReflection_.reset();
+    surfaceVoxels_.reset();
     for (auto& first : firsts_)
         for (rhi::TextureHandle& t : first) {
             if (t) device_.destroy(t);
@@ -584,6 +590,9 @@ void LightPropagationVolume::recordLightHalf(const FrameRecording& f, uint32_t c
 // propagation waiting for the other cascades' (renderIndirect).
 void LightPropagationVolume::recordVolumeHalf(const FrameRecording& f, uint32_t c, bool whole) {
     cascades_[c].grid = cascades_[c].lit;
+    // The gather's faces where the cascade now is (the gathered ones).
+    if (surfaceVoxels_ && c < SurfaceVoxels::kCascades)
+        f.pass("voxels", [&] { return recordSurfaceVoxels(f, c); });
     if (whole && geometry_) f.pass("occlusion", [&] { return recordOcclusion(f, c); });
     f.pass("inject", [&] { return recordInjection(f, c); });
     if (!whole) return;
@@ -772,6 +781,10 @@ engine::WorkCounts LightPropagationVolume::recordGatheredReflection(const FrameR
                                        settings_.intensity, std::span(sources.data(), count));
 }
 
+engine::WorkCounts LightPropagationVolume::recordSurfaceVoxels(const FrameRecording& f, uint32_t c) {
+    return surfaceVoxelsWork(settings_, surfaceVoxels_->record(f.cmd, *frame_.scene, cascades_[c].grid, c));
+}
+
 engine::WorkCounts LightPropagationVolume::recordBounceReflect(const FrameRecording& f) {
     // With the gather, the bounce is reflected from this frame's gathered first bounce.
     if (secondGathered()) {
@@ -832,7 +845,8 @@ void LightPropagationVolume::recordClasses(const FrameRecording& f) {
 bool LightPropagationVolume::gathers(LpvSettings::Gather mode) {
     if (mode != LpvSettings::Gather::Auto) return mode == LpvSettings::Gather::On;
     const rhi::Caps& caps = device_.caps();
-    if (caps.fragmentTextureBindings < IndirectLookup::kGatherTextureBindings || profile_.giTimePredicted)
+    if (caps.fragmentTextureBindings < IndirectLookup::kGatherTextureBindings || !caps.fragmentStores ||
+        profile_.giTimePredicted)
         return false;
     if (caps.concurrentWorkgroups == 0) return true;
     if (!gatherAutoReported_) {
@@ -873,20 +887,19 @@ uint32_t LightPropagationVolume::gatherSources(GatherSources& sources, bool seco
     // The sun's VPLs of each gathered cascade in its share; the spot and point lights' in the share of
     // every gathered cascade they are injected into (recordInjection).
     uint32_t count = 0;
-    // Visibility (gi.occlusion): marched through the faces of the cascade whose VPLs they are, or
-    // the finest's where only it keeps faces; unmarched where they are not built (yet).
-    const auto facesCascade = [&](uint32_t c) {
-        return geometry_ ? std::min(c, geometry_->faceSlots() - 1) : 0u;
+    // Visibility (gi.occlusion): marched through the surfaces' faces of the cascade whose VPLs
+    // they are (SurfaceVoxels); unmarched where they are not drawn (yet).
+    const auto facesCascade = [&](uint32_t c) { return std::min(c, SurfaceVoxels::kCascades - 1); };
+    const auto stampOf = [&](uint32_t c) {
+        return surfaceVoxels_ ? surfaceVoxels_->stamp(facesCascade(c)) : 0u;
     };
     const auto facesOf = [&](uint32_t c) {
-        const uint32_t slot = facesCascade(c);
-        return geometry_ && (facesValid_ & (1u << slot)) ? geometry_->faceTransmittance(slot)
-                                                         : rhi::TextureHandle{};
+        return stampOf(c) != 0 ? surfaceVoxels_->faces(facesCascade(c)) : rhi::TextureHandle{};
     };
     for (uint32_t c = 0; c < gathered; ++c) {
         const float cell = cascades_[c].grid.cellSize;
         sources[count++] = {cascades_[c].vpls,   settings_.vplSlots(), settings_.vplGridSide(), int32_t(c), 0,
-                            0.25f * cell * cell, facesOf(c),           facesCascade(c)};
+                            0.25f * cell * cell, facesOf(c),           facesCascade(c),         stampOf(c)};
     }
     const uint32_t suns = count;
     const float finest = cascades_[0].grid.cellSize;
@@ -898,9 +911,15 @@ uint32_t LightPropagationVolume::gatherSources(GatherSources& sources, bool seco
             while (i < count && sources[i].vpls != reaching[k].vpls)
                 ++i;
             if (i == count)
-                sources[count++] = {
-                    reaching[k].vpls,        reaching[k].count,     spotLightVplSide(settings_), -1, 0,
-                    0.25f * finest * finest, facesOf(gathered - 1), facesCascade(gathered - 1)};
+                sources[count++] = {reaching[k].vpls,
+                                    reaching[k].count,
+                                    spotLightVplSide(settings_),
+                                    -1,
+                                    0,
+                                    0.25f * finest * finest,
+                                    facesOf(gathered - 1),
+                                    facesCascade(gathered - 1),
+                                    stampOf(gathered - 1)};
             sources[i].cascades |= 1u << c;
         }
     }
@@ -918,6 +937,7 @@ uint32_t LightPropagationVolume::gatherSources(GatherSources& sources, bool seco
                             0.25f * cell * cell,
                             facesOf(0),
                             facesCascade(0),
+                            stampOf(0),
                             true,
                             gatheredReflection_->faceSlots()};
     }
@@ -933,8 +953,7 @@ engine::WorkCounts LightPropagationVolume::recordGather(const FrameRecording& f)
     for (uint32_t c = 0; c < cascadeCount(); ++c)
         grids[c] = cascades_[c].grid;
     gather_->record(f.cmd, f.camera, f.gbuffer, std::span(grids.data(), cascadeCount()), kBlendBand,
-                    settings_.intensity, settings_.resolutionDivisor, std::span(sources.data(), count),
-                    cascades_[0].result[0]);
+                    settings_.intensity, settings_.resolutionDivisor, std::span(sources.data(), count));
     uint64_t slots = 0;
     for (uint32_t i = 0; i < count; ++i) // a texel reads one of the second bounce's 16 lists
         slots += sources[i].listed ? GatheredReflection::kPhases * sources[i].slots : sources[i].slots;

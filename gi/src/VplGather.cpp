@@ -19,6 +19,7 @@ struct GatherUniforms {
     glm::vec4 params;
     glm::ivec4 vpls;
     glm::ivec4 pixels;
+    glm::uvec4 faces;
 };
 
 } // namespace
@@ -38,11 +39,16 @@ VplGather::VplGather(rhi::Device& device) : device_(device) {
                                          "render.lighting"});
     const uint32_t none = 0;
     device.uploadTexture(noFaceSlots_, 0, &none, sizeof(none));
+    noFaces_ =
+        device.createTexture({TextureKind::Tex3D, Format::R32UI, 1, 1, 1, 1,
+                              kTextureStorage | kTextureTransfer, "vpl gather, no faces", "render.lighting"});
+    device.uploadTexture(noFaces_, 0, &none, sizeof(none));
 }
 
 VplGather::~VplGather() {
     if (target_) device_.destroy(target_);
     device_.destroy(noFaceSlots_);
+    device_.destroy(noFaces_);
     device_.destroy(pipeline_);
     device_.destroy(pointSampler_);
 }
@@ -69,7 +75,7 @@ uint64_t VplGather::resize(uint32_t width, uint32_t height) {
 void VplGather::record(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                        const engine::GBufferView& gbuffer, std::span<const VolumeGrid> cascades,
                        float blendBand, float intensity, uint32_t divisor,
-                       std::span<const GatherSource> sources, rhi::TextureHandle unusedFaces) {
+                       std::span<const GatherSource> sources) {
     using namespace rhi;
     GatherUniforms u;
     u.invViewProjection = camera.invViewProjection;
@@ -94,12 +100,13 @@ void VplGather::record(rhi::CommandList& cmd, const engine::CameraMatrices& came
         const bool marched = bool(s.faces);
         u.params = glm::vec4(s.listed ? 1.0f : intensity, blendBand, s.nearest, marched ? 1.0f : 0.0f);
         u.vpls = glm::ivec4(int(s.slots), int(s.side), int(s.facesCascade), s.listed ? 1 : 0);
+        u.faces = glm::uvec4(s.facesStamp, 0u, 0u, 0u);
         cmd.pushUniforms(0, &u, sizeof(u));
         // The shader declares both views; the one it does not read is bound to the same buffer.
         cmd.bindStorageBuffer(1, s.vpls);
         cmd.bindStorageBuffer(5, s.vpls);
         cmd.bindTexture(6, s.listed ? s.faceSlots : noFaceSlots_, pointSampler_);
-        cmd.bindTexture(4, marched ? s.faces : unusedFaces, pointSampler_);
+        cmd.bindStorageImage(4, marched ? s.faces : noFaces_);
         cmd.draw(3);
     }
     cmd.endRenderPass();

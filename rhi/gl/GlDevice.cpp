@@ -82,6 +82,7 @@ GlDevice::GlDevice(const DeviceConfig& config, std::unique_ptr<platforms::GlCont
     // SPIRV-Cross writes gl_FragStencilRefARB under this extension.
     caps_.shaderStencilExport = hasExtension(gl_, "GL_ARB_shader_stencil_export");
     caps_.multiDrawIndirect = config.multiDrawIndirect.value_or(true); // core since GL 4.3
+    caps_.fragmentStores = true;                                       // core since GL 4.2
     // An image's binding is its image unit, and each stage counts its image uniforms.
     caps_.storageImageBindings = configuredStorageImageBindings(
         uint32_t(std::min({glInteger(gl_, GL_MAX_IMAGE_UNITS), glInteger(gl_, GL_MAX_COMPUTE_IMAGE_UNIFORMS),

@@ -113,6 +113,7 @@ public:
         caps_.maskedBranches = config.maskedBranches.value_or(false);
         caps_.shaderStencilExport = true; // it runs no shader, so any may export
         caps_.multiDrawIndirect = config.multiDrawIndirect.value_or(true);
+        caps_.fragmentStores = true;
         caps_.storageImageBindings = configuredStorageImageBindings(32, config.storageImageBindings);
         caps_.fragmentTextureBindings =
             std::min(kMaxBindings, config.fragmentTextureBindings.value_or(kMaxBindings));

@@ -341,6 +341,7 @@ void VulkanContext::createDevice(bool needPresent) {
     f.imageCubeArray = h.imageCubeArray;
     samplerAnisotropy = h.samplerAnisotropy;
     multiDrawIndirect = h.multiDrawIndirect && h.drawIndirectFirstInstance;
+    fragmentStores = h.fragmentStoresAndAtomics;
     shaderOutputLayer = has12.shaderOutputLayer;
 
     const float priority = 1.0f;

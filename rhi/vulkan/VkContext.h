@@ -45,6 +45,7 @@ public:
     bool shaderOutputLayer = false;   // gl_Layer from the vertex shader
     bool shaderStencilExport = false; // VK_EXT_shader_stencil_export enabled
     bool multiDrawIndirect = false;   // the multiDrawIndirect and drawIndirectFirstInstance features
+    bool fragmentStores = false;      // the fragmentStoresAndAtomics feature
     // VK_IMAGE_LAYOUT_GENERAL costs nothing against the other layouts: a CPU device, which has no
     // layouts, or VK_KHR_unified_image_layouts (which guarantees it wherever GENERAL is valid).
     bool unifiedImageLayouts = false;

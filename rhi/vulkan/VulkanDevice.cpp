@@ -63,6 +63,7 @@ VulkanDevice::VulkanDevice(const DeviceConfig& config) : config_(config) {
             config.maskedBranches.value_or(ctx_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
         caps_.shaderStencilExport = ctx_->shaderStencilExport;
         caps_.multiDrawIndirect = ctx_->multiDrawIndirect && config.multiDrawIndirect.value_or(true);
+        caps_.fragmentStores = ctx_->fragmentStores;
         caps_.storageImageBindings = configuredStorageImageBindings(limits.maxPerStageDescriptorStorageImages,
                                                                     config.storageImageBindings);
         caps_.fragmentTextureBindings =

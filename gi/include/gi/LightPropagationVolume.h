@@ -40,6 +40,7 @@
 #include "gi/PointLightInjection.h"
 #include "gi/ReflectiveShadowMap.h"
 #include "gi/SpotLightRsms.h"
+#include "gi/SurfaceVoxels.h"
 #include "gi/VplClustering.h"
 #include "gi/VplGather.h"
 #include "platforms/PlatformProfile.h"
@@ -264,6 +265,8 @@ private:
     std::unique_ptr<VplGather> gather_;
     // gi.gather with gi.bounces > 1: the second bounce reflected from the gathered first.
     std::unique_ptr<GatheredReflection> gatheredReflection_;
+    // gi.gather with gi.occlusion: the faces its visibility marches through.
+    std::unique_ptr<SurfaceVoxels> surfaceVoxels_;
     std::array<std::array<rhi::TextureHandle, 3>, VplGather::kCascades> firsts_{};
     // The VPL sets the gather sums (the sun's of each gathered cascade, then the lights'); how many.
     // With `secondBounce`, the finest cascade's second bounce's VPLs last.
@@ -273,6 +276,7 @@ private:
     bool secondGathered() const;
     // Cascade c's second bounce reflected from its gathered first into `into`'s injection volume.
     engine::WorkCounts recordGatheredReflection(const FrameRecording& f, uint32_t c, LpvVolumes& into);
+    engine::WorkCounts recordSurfaceVoxels(const FrameRecording& f, uint32_t c);
     const std::array<rhi::TextureHandle, 3>& firstBounce(uint32_t c) const;
     bool gathers(LpvSettings::Gather mode);
     void makeGather(const LpvSettings& settings);

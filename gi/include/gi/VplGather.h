@@ -8,9 +8,8 @@
 // the further bounces, the coarse cascades, the glossy term and the fog.
 //
 // Interleaved: each texel of a 4 x 4 block sums a sixteenth of the VPLs (vpl_gather.frag).
-// Visibility (gi.occlusion): each VPL-texel segment is marched through the cascade's geometry
-// volume faces, cell by cell; a face less than half open blocks it. The faces hold what the sun
-// or the camera sees, at the cascade's cells (docs/gi-fidelity.md says what that leaves).
+// Visibility (gi.occlusion): each VPL-texel segment is marched through the cascade's cell faces,
+// cell by cell, and stops at the first that a surface of the scene crosses (SurfaceVoxels).
 #pragma once
 
 #include "engine/profiler/WorkCounts.h"
@@ -34,10 +33,11 @@ struct GatherSource {
     int32_t cascade = -1;
     uint32_t cascades = 0;
     float nearest = 0.0f; // r^2 below this counts as this (m^2): about a cluster's area
-    // Visibility: the face transmittances (GeometryVolume) of cascade `facesCascade` marched
-    // between each VPL and texel; none: unmarched.
+    // Visibility: the faces of cascade `facesCascade` (SurfaceVoxels::faces(), blocked where they
+    // hold `facesStamp`) marched between each VPL and texel; none: unmarched.
     rhi::TextureHandle faces;
     uint32_t facesCascade = 0;
+    uint32_t facesStamp = 0;
     // The second bounce's VPLs (GatheredReflection): 16 lists, one per phase, each of room
     // `slots`, counted in counter set `side`; their flux holds gi.intensity already.
     bool listed = false;
@@ -63,8 +63,7 @@ public:
     // `blendBand` as the lookup's; the target's texel t is G-buffer pixel t x divisor.
     void record(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
                 const engine::GBufferView& gbuffer, std::span<const VolumeGrid> cascades, float blendBand,
-                float intensity, uint32_t divisor, std::span<const GatherSource> sources,
-                rhi::TextureHandle unusedFaces);
+                float intensity, uint32_t divisor, std::span<const GatherSource> sources);
 
     // RGBA16F at the lookup's resolution: the interleaved gather, rgb irradiance.
     rhi::TextureHandle gathered() const { return target_; }
@@ -74,6 +73,7 @@ private:
     rhi::GraphicsPipelineHandle pipeline_;
     rhi::TextureHandle target_;
     rhi::TextureHandle noFaceSlots_; // bound where a draw sums no second bounce (r32ui, 1^3)
+    rhi::TextureHandle noFaces_;     // bound where a draw is unmarched (r32ui storage, 1^3)
     rhi::SamplerHandle pointSampler_;
 };
 

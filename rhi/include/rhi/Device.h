@@ -60,6 +60,9 @@ struct Caps {
     // CommandList::drawIndexedIndirect with many draws and first instances other than 0 (Vulkan's
     // multiDrawIndirect and drawIndirectFirstInstance features; GL 4.3's glMultiDrawElementsIndirect).
     bool multiDrawIndirect = false;
+    // A fragment shader may store to storage images (Vulkan's fragmentStoresAndAtomics; core in GL
+    // 4.2): a draw can write a volume through its fragments.
+    bool fragmentStores = false;
     // Storage images take bindings below this (rhi/Shader.h): OpenGL's image units and per-stage
     // image uniforms (8 on NVIDIA's driver, the spec's minimum; 32 on Mesa), Vulkan's per-stage
     // storage images, at most the 32 bindings the command lists track.

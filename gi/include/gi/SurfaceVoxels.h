@@ -1,0 +1,72 @@
+// The scene's surfaces at the cell faces of the gathered cascades: what gi.gather's visibility
+// marches through (vpl_visibility.glsl), in place of the geometry volume's faces, which hold only
+// what the sun's RSM or the camera sees. A box's hidden sides and top let the light of a lit floor
+// through to the walls behind it, and the sunlit ground outside a room reached its inside through
+// the walls the camera does not see (docs/gi-fidelity.md).
+//
+// The scene is drawn once along each axis, orthographically onto a cascade's cells: a fragment at
+// cell column (u, v) lies where a surface crosses the column's centre line, between the centres
+// of two cells along the axis, and marks the face between them (the lower face of the cell above)
+// as blocked. Along all three axes, a surface at an angle to the cells also closes the risers of
+// its staircase, which a segment crossing it diagonally would slip through. A face holds the
+// stamp of the pass that marked it, so no clear precedes a pass: a face is blocked where it holds
+// the cascade's last stamp (stamp()). The three axes are one multi-draw (each draw's axis in its
+// instance's draw index): two draws storing to one image would be a hazard to the RHI, a barrier
+// between them; each cascade has its own faces and target for the same reason.
+#pragma once
+
+#include "engine/render/MultiDraw.h"
+#include "gi/LpvReference.h"
+#include "rhi/Device.h"
+
+#include <array>
+#include <cstdint>
+
+namespace lpv::engine {
+class GpuScene;
+}
+
+namespace lpv::gi {
+
+class SurfaceVoxels {
+public:
+    // The cascades, finest first, whose faces it keeps (VplGather::kCascades).
+    static constexpr uint32_t kCascades = 2;
+
+    // For cascades of `gridSize` cells a side.
+    SurfaceVoxels(rhi::Device& device, uint32_t gridSize);
+    ~SurfaceVoxels();
+    SurfaceVoxels(const SurfaceVoxels&) = delete;
+    SurfaceVoxels& operator=(const SurfaceVoxels&) = delete;
+
+    // What it allocates for cascades of `gridSize` cells a side (GiBudget plans it).
+    static uint64_t bytes(uint32_t gridSize);
+
+    // Marks the faces of cascade `cascade` (< kCascades) at `grid` that the scene's surfaces cross:
+    // the draws whose bounds reach the grid, at a level of detail within a quarter cell. Returns
+    // the triangles drawn (three times each, one per axis). A scene with another number of draws
+    // than the last one's makes the draws' axis stream anew (once per scene).
+    uint64_t record(rhi::CommandList& cmd, const engine::GpuScene& scene, const VolumeGrid& grid,
+                    uint32_t cascade);
+
+    // Cascade c's faces, r32ui, (3 n) x n x n: the lower face along axis a of cell (x, y, z) at
+    // texel (3 x + a, y, z), blocked where it holds stamp(c).
+    rhi::TextureHandle faces(uint32_t cascade) const { return faces_.at(cascade); }
+    // The stamp of cascade c's last record(); 0 before the first (no face is blocked).
+    uint32_t stamp(uint32_t cascade) const { return stamps_.at(cascade); }
+
+private:
+    rhi::Device& device_;
+    uint32_t gridSize_;
+    std::array<rhi::TextureHandle, kCascades> faces_;
+    std::array<rhi::TextureHandle, kCascades> targets_; // the passes' colour targets, n x n: never written
+    // Per draw d and axis a, at a x draws + d: d | a << 30 (the draw index stream's format).
+    rhi::BufferHandle axisDraws_;
+    uint32_t axisDrawsFor_ = 0; // draws
+    rhi::GraphicsPipelineHandle pipeline_;
+    engine::MultiDraw multiDraw_;
+    std::array<uint32_t, kCascades> stamps_{};
+    uint32_t lastStamp_ = 0;
+};
+
+} // namespace lpv::gi
