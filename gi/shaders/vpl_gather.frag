@@ -89,7 +89,10 @@ vec3 fromVpl(Vpl v, vec3 p, vec3 n, float nearest, float half_) {
     // From half a cell in front of each surface, as the injection and lookup place light, so
     // neither end's own surface blocks it.
     if (w > 0.0 && gather.params.w != 0.0) w *= visibility(p + half_ * n, v.position.xyz + half_ * v.normal.xyz);
-    return v.flux.rgb * (w / max(r2, nearest));
+    // A listed face (vpls.w 1) is a square of a cell's side, radiating its flux over its area: a
+    // disk of that area gives flux / (pi (r^2 + area / pi)) on its axis, at most its radiosity
+    // however near (`nearest` is area / pi). A cluster's r^2 is clamped at about its area.
+    return v.flux.rgb * (w / (gather.vpls.w != 0 ? r2 + nearest : max(r2, nearest)));
 }
 
 void main() {

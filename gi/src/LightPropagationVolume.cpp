@@ -11,6 +11,7 @@
 #include <cmath>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -927,6 +928,7 @@ uint32_t LightPropagationVolume::gatherSources(GatherSources& sources, bool seco
     // cascade's where that has no bounces of its own: world-space light, and near the finest
     // cascade's border (a room's walls) the next one answers most of the lookup.
     if (secondBounce && secondGathered() && gatheredReflection_->listed()) {
+        // Its r^2 grows by a face's area over pi (vpl_gather.frag).
         const float cell = cascades_[0].grid.cellSize;
         const uint32_t shares = 1u | (gathered > 1 && !settings_.bouncesIn(1) ? 2u : 0u);
         sources[count++] = {gatheredReflection_->listed(),
@@ -934,7 +936,7 @@ uint32_t LightPropagationVolume::gatherSources(GatherSources& sources, bool seco
                             gatheredReflection_->parity(),
                             -1,
                             shares,
-                            0.25f * cell * cell,
+                            cell * cell / glm::pi<float>(),
                             facesOf(0),
                             facesCascade(0),
                             stampOf(0),

@@ -32,7 +32,9 @@ struct GatherSource {
     // the cascades of `cascades` (bit c, c < kCascades).
     int32_t cascade = -1;
     uint32_t cascades = 0;
-    float nearest = 0.0f; // r^2 below this counts as this (m^2): about a cluster's area
+    // r^2 below this counts as this (m^2): about a cluster's area; `listed`: added to r^2, a face's
+    // area over pi (a disk's form factor on its axis).
+    float nearest = 0.0f;
     // Visibility: the faces of cascade `facesCascade` (SurfaceVoxels::faces(), blocked where they
     // hold `facesStamp`) marched between each VPL and texel; none: unmarched.
     rhi::TextureHandle faces;
