@@ -16,8 +16,13 @@
 // to them. The list is 16 lists, one per cell phase ((c.x + c.y) mod 4 + 4 ((c.y + c.z) mod 4)):
 // a pixel sums one phase's whole list, so what it sums does not depend on the order the slots
 // were given in (atomics), which changes from frame to frame.
-// Included by the generated lpv_reflect_gathered_<format>.comp (INJECT_FORMAT: the injection
-// volume's).
+// LISTED_SOURCE (lpv_reflect_gathered_<format>_listed.comp, the third bounce): the light comes
+// from the previous bounce's listed faces instead of the VPLs, each a square of a cell's side:
+// cell c sums the faces of its own phase's list, times 16, but those of the 27 cells around it,
+// which it sums whole (as vpl_gather.frag does for a pixel), and counts a face's r^2 plus its area
+// over pi (a disk's form factor on its axis: at most its radiosity however near).
+// Included by the generated lpv_reflect_gathered_<format>[_listed].comp (INJECT_FORMAT: the
+// injection volume's).
 #include "lpv_common.glsl"
 
 struct Vpl {
@@ -30,8 +35,10 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 layout(binding = 0, std140) uniform ReflectGathered {
     vec4 gridOrigin; // xyz: corner of cell 0, w: cell size
-    ivec4 grid;      // x: cells per axis, y: 1 adds to the injection volume and the list, z: 1 marched
-    vec4 params;     // x: gi.intensity, y: the nearest a VPL counts (m^2 of r^2)
+    ivec4 grid;      // x: cells per axis, y: 1 adds to the injection volume and the list, z: 1 marched,
+                     // w: LISTED_SOURCE, the source list's counters (0 or 1)
+    vec4 params;     // x: gi.intensity (1 for a listed source, whose flux holds it), y: the nearest
+                     // a VPL counts (m^2 of r^2; LISTED_SOURCE: added to r^2)
     ivec4 vpls;      // x: slots, y: the cluster grid's side (2 slots a cluster), z: each phase's
                      // room, w: the counters this frame (0 or 1)
 } params;
@@ -43,7 +50,16 @@ layout(binding = 3, INJECT_FORMAT) uniform image3D injectedBlue;
 // the slot of the first in its phase's list (bits 0-25); 0: none. The gather reads it to sum the
 // faces near a pixel whole (vpl_gather.frag).
 layout(binding = 6, r32ui) uniform uimage3D faceSlots;
+#ifdef LISTED_SOURCE
+// The previous bounce's list and its faces' slots (GatheredReflection::listed(), faceSlots()).
+layout(binding = 4, std430) readonly buffer SourceVpls {
+    uint sourceCounts[32];
+    Vpl sourceListed[];
+};
+layout(binding = 9) uniform usampler3D sourceSlots;
+#else
 layout(binding = 4, std430) readonly buffer Vpls { Vpl vpls[]; };
+#endif
 // The second bounce's VPLs: counts[16 vpls.w + phase] counts the slots given in each phase's list
 // (it may pass the room; faces past it are not listed); the first dispatch clears the other 16
 // counters, which the next frame uses. Phase p's list starts at slot p x room.
@@ -63,6 +79,37 @@ bool faceBlocked(ivec3 c, int axis) { return texelFetch(faceTransmittance, c, 0)
 
 // Below this blocked share a face reflects nothing (the slivers at a surface's rim).
 const float kLeastBlocked = 0.02;
+
+// Each face of `mask` of the cell at `centre` receives `weight` x what VPL v sends it (flux x cos x
+// cos / r^2; pi is applied once by the caller).
+void receive(Vpl v, float weight, uint mask, vec3 centre, inout vec3 e[6]) {
+    const float cell = params.gridOrigin.w;
+    // Where its light starts, as the injection places it: half a cell in front.
+    const vec3 front = v.position.xyz + 0.5 * cell * v.normal.xyz;
+    float visible = -1.0; // marched once, when a face first needs it
+    for (int f = 0; f < 6; ++f) {
+        if ((mask & (1u << f)) == 0u) continue;
+        vec3 toward = vec3(0.0);
+        toward[f % 3] = f < 3 ? -1.0 : 1.0;
+        // The face's centre; its surfels face back into the cell, along -toward.
+        const vec3 face = centre + 0.5 * cell * toward;
+        const vec3 d = v.position.xyz - face;
+        const float r2 = dot(d, d);
+        const vec3 dir = d * inversesqrt(max(r2, 1e-12));
+        const float w = max(-dot(toward, dir), 0.0) * max(dot(v.normal.xyz, -dir), 0.0);
+        // A surface's coverage closes the faces on both sides of it; the face on its back, within
+        // half a cell, would read its own VPLs' light as arriving.
+        if (w <= 0.0 || dot(front - face, toward) >= 0.0) continue;
+        if (visible < 0.0)
+            visible = params.grid.z != 0 ? faceVisibility(params.gridOrigin, params.grid.x, centre, front) : 1.0;
+#ifdef LISTED_SOURCE
+        const float r2Counted = r2 + params.params.y;
+#else
+        const float r2Counted = max(r2, params.params.y);
+#endif
+        e[f] += v.flux.rgb * (weight * visible * w / r2Counted);
+    }
+}
 
 void main() {
     const ivec3 c = ivec3(gl_GlobalInvocationID);
@@ -105,40 +152,41 @@ void main() {
     if (mask != 0u) {
         const float cell = params.gridOrigin.w;
         const vec3 centre = params.gridOrigin.xyz + (vec3(c) + 0.5) * cell;
-        const int side = params.vpls.y;
-        const ivec2 first = ivec2((c.x + c.y) & 1, (c.y + c.z) & 1); // of the clusters it sums
         vec3 e[6];
         for (int f = 0; f < 6; ++f)
             e[f] = vec3(0.0);
+#ifdef LISTED_SOURCE
+        // The faces of the 27 cells around whole; the rest, one phase's list times 16.
+        for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const ivec3 q = c + ivec3(dx, dy, dz);
+                    if (any(lessThan(q, ivec3(0))) || any(greaterThanEqual(q, ivec3(n)))) continue;
+                    const uint slots = texelFetch(sourceSlots, q, 0).x;
+                    const uint at = uint(((q.x + q.y) & 3) + 4 * ((q.y + q.z) & 3)) * room + (slots & 0x3ffffffu);
+                    for (uint i = 0u; i < uint(bitCount(slots >> 26)); ++i)
+                        receive(sourceListed[at + i], 1.0, mask, centre, e);
+                }
+        const uint count = min(sourceCounts[16 * params.grid.w + phase], room);
+        for (uint i = 0u; i < count; ++i) {
+            Vpl v = sourceListed[uint(phase) * room + i];
+            // Its cell: the face's centre plus half a cell along its normal, into the cell.
+            const ivec3 q = ivec3(floor((v.position.xyz + 0.5 * cell * v.normal.xyz - params.gridOrigin.xyz) / cell));
+            if (any(greaterThan(abs(q - c), ivec3(1)))) receive(v, 16.0, mask, centre, e);
+        }
+#else
+        const int side = params.vpls.y;
+        const ivec2 first = ivec2((c.x + c.y) & 1, (c.y + c.z) & 1); // of the clusters it sums
         for (int cy = first.y; cy < side; cy += 2)
             for (int cx = first.x; cx < side; cx += 2)
                 for (int layer = 0; layer < 2; ++layer) {
                     Vpl v = vpls[2 * (cy * side + cx) + layer];
-                    if (v.position.w < 0.5) continue;
-                    // Where its light starts, as the injection places it: half a cell in front.
-                    const vec3 front = v.position.xyz + 0.5 * cell * v.normal.xyz;
-                    float visible = -1.0; // marched once, when a face first needs it
-                    for (int f = 0; f < 6; ++f) {
-                        if ((mask & (1u << f)) == 0u) continue;
-                        vec3 toward = vec3(0.0);
-                        toward[f % 3] = f < 3 ? -1.0 : 1.0;
-                        // The face's centre; its surfels face back into the cell, along -toward.
-                        const vec3 face = centre + 0.5 * cell * toward;
-                        const vec3 d = v.position.xyz - face;
-                        const float r2 = dot(d, d);
-                        const vec3 dir = d * inversesqrt(max(r2, 1e-12));
-                        const float w = max(-dot(toward, dir), 0.0) * max(dot(v.normal.xyz, -dir), 0.0);
-                        // A surface's coverage closes the faces on both sides of it; the face on its
-                        // back, within half a cell, would read its own VPLs' light as arriving.
-                        if (w <= 0.0 || dot(front - face, toward) >= 0.0) continue;
-                        if (visible < 0.0)
-                            visible = params.grid.z != 0 ? faceVisibility(params.gridOrigin, n, centre, front) : 1.0;
-                        e[f] += v.flux.rgb * (visible * w / max(r2, params.params.y));
-                    }
+                    if (v.position.w >= 0.5) receive(v, 4.0, mask, centre, e); // the interleave's 4
                 }
-        // Irradiance (the interleave's 4, 1 / pi) x the face's area is the flux received; a VPL's
-        // lobe is flux / pi (inject.frag).
-        const float toFlux = params.params.x * 4.0 / PI * cell * cell;
+#endif
+        // Irradiance (1 / pi) x the face's area is the flux received; a VPL's lobe is flux / pi
+        // (inject.frag).
+        const float toFlux = params.params.x / PI * cell * cell;
         for (int f = 0; f < 6; ++f) {
             if ((mask & (1u << f)) == 0u) continue;
             vec3 toward = vec3(0.0);

@@ -5,6 +5,7 @@
 #include "gi/GeometryVolume.h"
 #include "gi/LpvVolumes.h"
 
+#include <glm/gtc/constants.hpp>
 #include <glm/vec4.hpp>
 
 #include <array>
@@ -23,21 +24,26 @@ struct ReflectGatheredUniforms {
 
 } // namespace
 
-GatheredReflection::GatheredReflection(rhi::Device& device, ShFormat format, uint32_t gridSize)
-    : device_(device), room_(roomFor(gridSize)) {
+GatheredReflection::GatheredReflection(rhi::Device& device, ShFormat format, uint32_t gridSize, bool fromList)
+    : device_(device), room_(roomFor(gridSize)), fromList_(fromList) {
     list_ = device.createBuffer({listBytes(gridSize), rhi::kBufferStorage | rhi::kBufferTransfer,
-                                 rhi::MemoryAccess::GpuOnly, "second bounce vpls", "gi.vpl"});
+                                 rhi::MemoryAccess::GpuOnly,
+                                 fromList ? "third bounce vpls" : "second bounce vpls", "gi.vpl"});
     // Both sets of counters start at 0; each record() then clears the set the next one uses.
     const std::array<uint32_t, 2 * kPhases> zeros{};
     device.uploadBuffer(list_, 0, zeros.data(), sizeof(zeros));
-    faceSlots_ = device.createTexture({rhi::TextureKind::Tex3D, rhi::Format::R32UI, gridSize, gridSize,
-                                       gridSize, 1, rhi::kTextureStorage | rhi::kTextureSampled,
-                                       "second bounce face slots", "gi.lpv"});
+    faceSlots_ =
+        device.createTexture({rhi::TextureKind::Tex3D, rhi::Format::R32UI, gridSize, gridSize, gridSize, 1,
+                              rhi::kTextureStorage | rhi::kTextureSampled,
+                              fromList ? "third bounce face slots" : "second bounce face slots", "gi.lpv"});
     // The injection volume blends in half floats unless the volumes are rgba32f (LpvVolumes).
-    pipeline_ = device.createPipeline(
-        rhi::ComputePipelineDesc{format == ShFormat::Rgba32f ? &shaders::lpv_reflect_gathered_rgba32f_comp
-                                                             : &shaders::lpv_reflect_gathered_rgba16f_comp,
-                                 "lpv bounce reflect (gathered)"});
+    const bool f32 = format == ShFormat::Rgba32f;
+    pipeline_ = device.createPipeline(rhi::ComputePipelineDesc{
+        fromList ? (f32 ? &shaders::lpv_reflect_gathered_rgba32f_listed_comp
+                        : &shaders::lpv_reflect_gathered_rgba16f_listed_comp)
+                 : (f32 ? &shaders::lpv_reflect_gathered_rgba32f_comp
+                        : &shaders::lpv_reflect_gathered_rgba16f_comp),
+        fromList ? "lpv bounce reflect (from the listed bounce)" : "lpv bounce reflect (gathered)"});
     pointSampler_ = device.createSampler({rhi::Filter::Nearest, rhi::Filter::Nearest, rhi::Filter::Nearest});
 }
 
@@ -53,6 +59,7 @@ engine::WorkCounts GatheredReflection::record(rhi::CommandList& cmd, LpvVolumes&
                                               bool marched, const VolumeGrid& grid, uint32_t cascade,
                                               float intensity, std::span<const GatherSource> sources) {
     if (sources.empty()) throw std::logic_error("GatheredReflection::record: no VPLs");
+    if (fromList_) throw std::logic_error("GatheredReflection::record: made fromList");
     const uint32_t n = grid.size;
     const uint32_t groups = (n + 3) / 4;
     ReflectGatheredUniforms u;
@@ -100,6 +107,49 @@ engine::WorkCounts GatheredReflection::record(rhi::CommandList& cmd, LpvVolumes&
         cmd.dispatch(groups, groups, groups);
     }
     work.cells = cells;
+    return work;
+}
+
+engine::WorkCounts GatheredReflection::recordFromList(rhi::CommandList& cmd, LpvVolumes& into,
+                                                      const GeometryVolume& geometry,
+                                                      rhi::TextureHandle faces, bool marched,
+                                                      const VolumeGrid& grid,
+                                                      const GatheredReflection& source) {
+    if (!fromList_) throw std::logic_error("GatheredReflection::recordFromList: not made fromList");
+    if (!source.listed() || source.room_ != room_)
+        throw std::logic_error("GatheredReflection::recordFromList: the source has no list of this size");
+    const uint32_t n = grid.size;
+    const uint32_t groups = (n + 3) / 4;
+    parity_ = recorded_ ? 1u - parity_ : 0u;
+    recorded_ = true;
+    ReflectGatheredUniforms u;
+    u.gridOrigin = glm::vec4(grid.origin, grid.cellSize);
+    u.grid = glm::ivec4(int(n), 0, marched ? 1 : 0, int(source.parity()));
+    // The listed flux holds gi.intensity already; a face counts as a disk of its area.
+    u.params = glm::vec4(1.0f, grid.cellSize * grid.cellSize / glm::pi<float>(), 0.0f, 0.0f);
+    u.vpls = glm::ivec4(0, 0, int(room_), int(parity_));
+    cmd.bindPipeline(pipeline_);
+    cmd.pushUniforms(0, &u, sizeof(u));
+    cmd.bindStorageBuffer(5, list_);
+    cmd.bindStorageImage(6, faceSlots_);
+    for (uint32_t c = 0; c < 3; ++c)
+        cmd.bindStorageImage(1 + c, into.injected()[c]);
+    cmd.bindTexture(7, faces, pointSampler_);
+    cmd.bindTexture(8, geometry.surfelAlbedo(), pointSampler_);
+    cmd.bindStorageBuffer(4, source.list_);
+    cmd.bindTexture(9, source.faceSlots_, pointSampler_);
+    cmd.dispatch(groups, groups, groups);
+    // An estimate: an eighth of the cells hold a surface; each reads a sixteenth of the source's
+    // faces (a face per cell with a surface) and the 27 cells around it, marched through about a
+    // quarter of the grid's faces.
+    const uint64_t cells = uint64_t(n) * n * n;
+    const uint64_t pairs = cells / 8 * (cells / 8 / 16 + 27);
+    engine::WorkCounts work;
+    work.cells = cells;
+    work.texelsRead = cells * 8 + cells / 8 * 27 + pairs * (marched ? n / 4 : 0);
+    work.texelsWritten = cells * 3;
+    work.aluOps = pairs * (90 + 10 * uint64_t(marched ? n / 4 : 0));
+    work.bytesMoved = cells * 48 + pairs * 48 / 8;
     return work;
 }
 

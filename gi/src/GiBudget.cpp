@@ -111,6 +111,13 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
             out.push_back({"second bounce face slots (gi.gather)", "gi.lpv",
                            GatheredReflection::slotBytes(s.gridSize)});
         }
+        // And the third, from the second's list (gi.bounces = 3).
+        if (s.bounces > 2) {
+            out.push_back(
+                {"third bounce VPL list (gi.gather)", "gi.vpl", GatheredReflection::listBytes(s.gridSize)});
+            out.push_back(
+                {"third bounce face slots (gi.gather)", "gi.lpv", GatheredReflection::slotBytes(s.gridSize)});
+        }
     }
     return out;
 }

@@ -146,6 +146,8 @@ void LightPropagationVolume::makeGather(const LpvSettings& s) {
     gather_ = std::make_unique<VplGather>(device_);
     if (s.bounces > 1)
         gatheredReflection_ = std::make_unique<GatheredReflection>(device_, s.shFormat, s.gridSize);
+    if (s.bounces > 2)
+        thirdReflection_ = std::make_unique<GatheredReflection>(device_, s.shFormat, s.gridSize, true);
     if (s.occlusion && device_.caps().fragmentStores)
         surfaceVoxels_ = std::make_unique<SurfaceVoxels>(device_, s.gridSize);
     else if (s.occlusion)
@@ -158,6 +160,7 @@ void LightPropagationVolume::makeGather(const LpvSettings& s) {
 void LightPropagationVolume::releaseGather() {
     gather_.reset();
     gatheredReflection_.reset();
+    thirdReflection_.reset();
     surfaceVoxels_.reset();
     for (auto& first : firsts_)
         for (rhi::TextureHandle& t : first) {
@@ -211,6 +214,11 @@ void LightPropagationVolume::replaceUpdateResources(const LpvSettings& s) {
         if (gather_ && s.bounces > 1)
             gatheredReflection_ = std::make_unique<GatheredReflection>(device_, s.shFormat, s.gridSize);
         firstValid_ = false;
+    }
+    if (gather_ && (s.bounces > 2) != (thirdReflection_ != nullptr)) {
+        thirdReflection_.reset();
+        if (s.bounces > 2)
+            thirdReflection_ = std::make_unique<GatheredReflection>(device_, s.shFormat, s.gridSize, true);
     }
 }
 
@@ -765,9 +773,20 @@ engine::WorkCounts LightPropagationVolume::recordBounces(const FrameRecording& f
     engine::WorkCounts work;
     const bool gathered = c == 0 && secondGathered();
     if (gathered) work += recordGatheredReflection(f, c, volumesOf(c));
-    bounces_->record(f.cmd, volumesOf(c), *propagation_, *geometry_, settings_.bounces, settings_.iterations,
-                     cascades_[c].result, c == 0 ? bounces_->first() : nullptr, gathered,
-                     gathered ? &firsts_[0] : nullptr);
+    // The third, where gathered too, is reflected from the second's list once that has propagated
+    // (the injection volume is free again) and kept with the first two.
+    const bool third = gathered && thirdGathered();
+    bounces_->record(f.cmd, volumesOf(c), *propagation_, *geometry_, third ? 2 : settings_.bounces,
+                     settings_.iterations, cascades_[c].result, c == 0 ? bounces_->first() : nullptr,
+                     gathered, gathered ? &firsts_[0] : nullptr);
+    if (third) {
+        const uint32_t slot = std::min(c, geometry_->faceSlots() - 1);
+        work += thirdReflection_->recordFromList(
+            f.cmd, volumesOf(c), *geometry_, geometry_->faceTransmittance(slot),
+            (facesValid_ & (1u << slot)) != 0, cascades_[c].grid, *gatheredReflection_);
+        bounces_->recordFurther(f.cmd, volumesOf(c), *propagation_, *geometry_, settings_.iterations,
+                                cascades_[c].result, &firsts_[0]);
+    }
     work += bounceWork(settings_);
     return work;
 }
@@ -868,6 +887,10 @@ bool LightPropagationVolume::secondGathered() const {
     return gatheredReflection_ && bounces_ && settings_.bouncesIn(0);
 }
 
+bool LightPropagationVolume::thirdGathered() const {
+    return secondGathered() && thirdReflection_ && settings_.bounces > 2;
+}
+
 // Right after propagation, before the further bounces and the analytic lights join the result: the
 // part of the light the gather stands for, of the cascades in `propagated` & `which` (the finest
 // cascade's with its gathered second bounce is kept as they are summed, MultipleBounces::recordAdd).
@@ -942,6 +965,19 @@ uint32_t LightPropagationVolume::gatherSources(GatherSources& sources, bool seco
                             stampOf(0),
                             true,
                             gatheredReflection_->faceSlots()};
+        // The third (gi.bounces = 3), listed the same way.
+        if (thirdGathered() && thirdReflection_->listed())
+            sources[count++] = {thirdReflection_->listed(),
+                                thirdReflection_->room(),
+                                thirdReflection_->parity(),
+                                -1,
+                                shares,
+                                cell * cell / glm::pi<float>(),
+                                facesOf(0),
+                                facesCascade(0),
+                                stampOf(0),
+                                true,
+                                thirdReflection_->faceSlots()};
     }
     return count;
 }

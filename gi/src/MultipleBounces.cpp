@@ -146,4 +146,12 @@ void MultipleBounces::record(rhi::CommandList& cmd, LpvVolumes& volumes, LpvProp
     }
 }
 
+void MultipleBounces::recordFurther(rhi::CommandList& cmd, LpvVolumes& volumes, LpvPropagation& propagation,
+                                    const GeometryVolume& geometry, uint32_t iterations,
+                                    const std::array<rhi::TextureHandle, 3>& result,
+                                    const std::array<rhi::TextureHandle, 3>* keep) {
+    propagation.record(cmd, volumes, iterations, geometry.faceTransmittance(), &bounce_);
+    recordAdd(cmd, volumes, result, nullptr, keep);
+}
+
 } // namespace lpv::gi

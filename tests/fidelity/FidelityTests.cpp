@@ -158,13 +158,13 @@ TEST_CASE("gi: with gi.gather, the Cornell boxes lit by the sun and by a point l
 }
 
 // gi.gather with further bounces: the second is reflected from the first gathered at the geometry
-// volume's faces and gathered per pixel from them (GatheredReflection), the third propagated.
-// Against references of as many bounces (128 samples a pixel). The sun's box with two: the targets
-// on the means, the relative RMSE and the ceilings (measured 1.04-1.07, 0.37, 1.02), its share
-// over 3x guarded at its measure (4.6%) plus a point. The point light's with three: the targets on
-// the relative RMSE (0.40), the ceilings (0.71) and the share over 3x (1.7%); its means (0.77-0.81;
-// 0.57-0.64 with the second bounce propagated) short of the 20% target, guarded at their measure
-// less 0.05.
+// volume's faces and gathered per pixel from them (GatheredReflection), the third reflected from
+// the second's listed faces the same way. Against references of as many bounces (128 samples a
+// pixel). The sun's box with two: the targets on the means, the relative RMSE and the ceilings
+// (measured 0.92-0.95, 0.36, 0.99), its share over 3x guarded at its measure (3.2%) plus a point.
+// The point light's with three: the targets on the relative RMSE (0.39), the ceilings (0.73) and
+// the share over 3x (1.8%); its means (0.78-0.80; 0.72-0.77 with the third bounce propagated,
+// 0.57-0.64 with the second too) short of the 20% target on red, guarded at 0.76.
 TEST_CASE("gi: with gi.gather, the further bounces of the Cornell boxes against the path tracer") {
     for (const BackendUnderTest& backend : selectedBackends()) {
         CAPTURE(backend.name);
@@ -174,15 +174,16 @@ TEST_CASE("gi: with gi.gather, the further bounces of the Cornell boxes against 
             CHECK(std::abs(sun.meanRatio[c] - 1.0f) <= 0.2f);
         CHECK(std::abs(sun.orientation.ceilings - 1.0f) <= 0.35f);
         CHECK(sun.relativeRmse <= 0.45f);
-        CHECK(sun.shareOver3x <= 0.056f);
+        CHECK(sun.shareOver3x <= 0.042f);
         CHECK(sun.pixels > 128u * 128u / 2u);
 
-        // Two frames: its figures are those of three to the third decimal (its 7 sets of VPLs make
-        // the reflection the test's longest step on a CPU rasterizer).
+        // One frame: its figures are those of two to the last decimal (a still scene's cascades and
+        // bounces are all made in its first; its 7 sets of VPLs and the third bounce's list make
+        // the reflections the test's longest step on a CPU rasterizer).
         const bench::FidelityFigures point = measure(backend, cornellPointThreeBounces(), "cornell-point",
-                                                     {"gi.gather=on", "gi.bounces=3"}, 2);
+                                                     {"gi.gather=on", "gi.bounces=3"}, 1);
         for (int c = 0; c < 3; ++c)
-            CHECK(point.meanRatio[c] >= 0.71f);
+            CHECK(point.meanRatio[c] >= 0.76f);
         CHECK(point.relativeRmse <= 0.45f);
         CHECK(std::abs(point.orientation.ceilings - 1.0f) <= 0.35f);
         CHECK(point.shareOver3x <= 0.02f);

@@ -5,7 +5,8 @@
 // lights for the eye, reflected next to nothing; here each face receives what the VPLs send it
 // (flux x cos x cos / (pi r^2), visibility marched through the faces as the per-pixel gather
 // does), and its surfels reflect it into the cell in front of them as the next bounce's VPLs.
-// lpv_reflect_gathered_body.glsl has the per-cell arithmetic.
+// lpv_reflect_gathered_body.glsl has the per-cell arithmetic. Made `fromList`, it reflects the
+// third bounce from the second's listed faces the same way (recordFromList), and lists it in turn.
 #pragma once
 
 #include "engine/profiler/WorkCounts.h"
@@ -22,8 +23,8 @@ class LpvVolumes;
 
 class GatheredReflection {
 public:
-    // For volumes of `gridSize` cells a side.
-    GatheredReflection(rhi::Device& device, ShFormat format, uint32_t gridSize);
+    // For volumes of `gridSize` cells a side; `fromList`: recordFromList() rather than record().
+    GatheredReflection(rhi::Device& device, ShFormat format, uint32_t gridSize, bool fromList = false);
     // What it allocates for volumes of `gridSize` cells a side: the lists of faces, one per phase
     // of 16 (room for a room's six sides twice and what stands in it, 48 bytes a face, after 32
     // counters), and a 32-bit slot a cell (GiBudget plans both).
@@ -45,6 +46,12 @@ public:
                               rhi::TextureHandle faces, bool marched, const VolumeGrid& grid,
                               uint32_t cascade, float intensity, std::span<const GatherSource> sources);
 
+    // The same from the faces `source` listed in its last record() (the next bounce), in one
+    // dispatch. `source` must have recorded this frame.
+    engine::WorkCounts recordFromList(rhi::CommandList& cmd, LpvVolumes& into, const GeometryVolume& geometry,
+                                      rhi::TextureHandle faces, bool marched, const VolumeGrid& grid,
+                                      const GatheredReflection& source);
+
     // The reflecting faces of the last record() as VPLs of the second bounce, for the per-pixel
     // gather (VplGather): none before the first.
     rhi::BufferHandle listed() const { return recorded_ ? list_ : rhi::BufferHandle{}; }
@@ -60,6 +67,7 @@ private:
     rhi::BufferHandle list_;       // 2 x 16 counters, then 16 lists of room_ faces
     rhi::TextureHandle faceSlots_; // r32ui per cell: its first face's slot in list_
     bool recorded_ = false;
+    bool fromList_ = false;
     uint32_t parity_ = 0;
     rhi::ComputePipelineHandle pipeline_;
     rhi::SamplerHandle pointSampler_;

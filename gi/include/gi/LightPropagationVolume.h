@@ -265,15 +265,18 @@ private:
     std::unique_ptr<VplGather> gather_;
     // gi.gather with gi.bounces > 1: the second bounce reflected from the gathered first.
     std::unique_ptr<GatheredReflection> gatheredReflection_;
+    std::unique_ptr<GatheredReflection> thirdReflection_; // gi.bounces = 3: from the second's list
     // gi.gather with gi.occlusion: the faces its visibility marches through.
     std::unique_ptr<SurfaceVoxels> surfaceVoxels_;
     std::array<std::array<rhi::TextureHandle, 3>, VplGather::kCascades> firsts_{};
     // The VPL sets the gather sums (the sun's of each gathered cascade, then the lights'); how many.
     // With `secondBounce`, the finest cascade's second bounce's VPLs last.
-    using GatherSources = std::array<GatherSource, VplGather::kCascades + SpotLightRsms::kMaxRsms + 1>;
+    using GatherSources = std::array<GatherSource, VplGather::kCascades + SpotLightRsms::kMaxRsms + 2>;
     uint32_t gatherSources(GatherSources& sources, bool secondBounce) const;
     // The finest cascade's second bounce is gathered too (its reflection, GatheredReflection).
     bool secondGathered() const;
+    // And its third, reflected from the second's listed faces (gi.bounces = 3).
+    bool thirdGathered() const;
     // Cascade c's second bounce reflected from its gathered first into `into`'s injection volume.
     engine::WorkCounts recordGatheredReflection(const FrameRecording& f, uint32_t c, LpvVolumes& into);
     engine::WorkCounts recordSurfaceVoxels(const FrameRecording& f, uint32_t c);

@@ -47,6 +47,12 @@ public:
                 const std::array<rhi::TextureHandle, 3>* first = nullptr, bool reflected = false,
                 const std::array<rhi::TextureHandle, 3>* keepSecond = nullptr);
 
+    // One more bounce whose injection the caller has written (GatheredReflection::recordFromList):
+    // propagated, added to `result` and, with `keep`, written there too.
+    void recordFurther(rhi::CommandList& cmd, LpvVolumes& volumes, LpvPropagation& propagation,
+                       const GeometryVolume& geometry, uint32_t iterations,
+                       const std::array<rhi::TextureHandle, 3>& result,
+                       const std::array<rhi::TextureHandle, 3>* keep = nullptr);
     // The steps of one further bounce, for a caller that propagates it with other volumes:
     // reflect `source` (its cell c + `shift` lighting cell c) into `into`'s injection volume...
     void recordReflect(rhi::CommandList& cmd, LpvVolumes& into, const GeometryVolume& geometry,
