@@ -23,6 +23,7 @@
 // over pi (a disk's form factor on its axis: at most its radiosity however near).
 // Included by the generated lpv_reflect_gathered_<format>[_listed].comp (INJECT_FORMAT: the
 // injection volume's).
+#include "listed_faces.glsl"
 #include "lpv_common.glsl"
 
 struct Vpl {
@@ -136,18 +137,18 @@ void main() {
             if (blocked[f] > kLeastBlocked) mask |= 1u << f;
     uint base = 0u;
     bool listedHere = false;
-    const int phase = ((c.x + c.y) & 3) + 4 * ((c.y + c.z) & 3);
+    const int phase = facePhase(c);
     const uint room = uint(params.vpls.z);
     if (!adding) {
         if (c.x < 16 && c.y == 0 && c.z == 0) counts[16 * (1 - params.vpls.w) + c.x] = 0u;
         if (mask != 0u) base = atomicAdd(counts[16 * params.vpls.w + phase], uint(bitCount(mask)));
         // A cell whose faces pass the room is not listed (its light still propagates).
         listedHere = mask != 0u && base + uint(bitCount(mask)) <= room;
-        imageStore(faceSlots, c, uvec4(listedHere ? (mask << 26) | base : 0u));
+        imageStore(faceSlots, c, uvec4(listedHere ? packListedSlots(mask, base) : 0u));
     } else {
         const uint slots = imageLoad(faceSlots, c).x;
-        listedHere = (slots >> 26) != 0u;
-        base = slots & 0x3ffffffu;
+        listedHere = listedFaceCount(slots) != 0u;
+        base = firstListedSlot(slots);
     }
     if (mask != 0u) {
         const float cell = params.gridOrigin.w;
@@ -163,15 +164,14 @@ void main() {
                     const ivec3 q = c + ivec3(dx, dy, dz);
                     if (any(lessThan(q, ivec3(0))) || any(greaterThanEqual(q, ivec3(n)))) continue;
                     const uint slots = texelFetch(sourceSlots, q, 0).x;
-                    const uint at = uint(((q.x + q.y) & 3) + 4 * ((q.y + q.z) & 3)) * room + (slots & 0x3ffffffu);
-                    for (uint i = 0u; i < uint(bitCount(slots >> 26)); ++i)
+                    const uint at = listedAt(q, slots, room);
+                    for (uint i = 0u; i < listedFaceCount(slots); ++i)
                         receive(sourceListed[at + i], 1.0, mask, centre, e);
                 }
         const uint count = min(sourceCounts[16 * params.grid.w + phase], room);
         for (uint i = 0u; i < count; ++i) {
             Vpl v = sourceListed[uint(phase) * room + i];
-            // Its cell: the face's centre plus half a cell along its normal, into the cell.
-            const ivec3 q = ivec3(floor((v.position.xyz + 0.5 * cell * v.normal.xyz - params.gridOrigin.xyz) / cell));
+            const ivec3 q = listedFaceCell(v.position.xyz, v.normal.xyz, params.gridOrigin);
             if (any(greaterThan(abs(q - c), ivec3(1)))) receive(v, 16.0, mask, centre, e);
         }
 #else

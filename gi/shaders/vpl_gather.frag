@@ -13,6 +13,7 @@
 // cascade handed in across its border: that light is lost (docs/gi-fidelity.md measures gathering
 // the coarser cascade's VPLs outside the finer one instead: more light through the doorway's walls).
 #include "cascade_region.glsl"
+#include "listed_faces.glsl"
 #include "lpv_common.glsl"
 
 struct Vpl {
@@ -132,9 +133,8 @@ void main() {
                     ivec3 c = home + ivec3(dx, dy, dz);
                     if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, ivec3(cells)))) continue;
                     uint slots = texelFetch(faceSlots, c, 0).x;
-                    uint faces = slots >> 26;
-                    uint at = uint(((c.x + c.y) & 3) + 4 * ((c.y + c.z) & 3)) * room + (slots & 0x3ffffffu);
-                    for (uint i = 0u; i < uint(bitCount(faces)); ++i)
+                    uint at = listedAt(c, slots, room);
+                    for (uint i = 0u; i < listedFaceCount(slots); ++i)
                         near += fromVpl(bounceVpls.listed[at + i], p, n, nearest, half_);
                 }
         // The rest: texel (x, y) of each block sums the faces of the cells of one phase, whichever
@@ -144,8 +144,7 @@ void main() {
         uint count = min(bounceVpls.counts[16 * gather.vpls.y + k], room);
         for (uint i = 0u; i < count; ++i) {
             Vpl v = bounceVpls.listed[start + i];
-            // Its cell: the face's centre plus half a cell along its normal, into the cell.
-            ivec3 c = ivec3(floor((v.position.xyz + 0.5 * o.w * v.normal.xyz - o.xyz) / o.w));
+            ivec3 c = listedFaceCell(v.position.xyz, v.normal.xyz, o);
             if (any(greaterThan(abs(c - home), ivec3(1)))) e += fromVpl(v, p, n, nearest, half_);
         }
         e += near / 16.0;

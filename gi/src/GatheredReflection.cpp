@@ -54,16 +54,8 @@ GatheredReflection::~GatheredReflection() {
     device_.destroy(pointSampler_);
 }
 
-engine::WorkCounts GatheredReflection::record(rhi::CommandList& cmd, LpvVolumes& into,
-                                              const GeometryVolume& geometry, rhi::TextureHandle faces,
-                                              bool marched, const VolumeGrid& grid, uint32_t cascade,
-                                              float intensity, std::span<const GatherSource> sources) {
-    if (sources.empty()) throw std::logic_error("GatheredReflection::record: no VPLs");
-    if (fromList_) throw std::logic_error("GatheredReflection::record: made fromList");
-    const uint32_t n = grid.size;
-    const uint32_t groups = (n + 3) / 4;
-    ReflectGatheredUniforms u;
-    u.gridOrigin = glm::vec4(grid.origin, grid.cellSize);
+void GatheredReflection::bindFrame(rhi::CommandList& cmd, LpvVolumes& into, const GeometryVolume& geometry,
+                                   rhi::TextureHandle faces) {
     // This frame counts in set parity_ and clears the other one for the next: no transfer (and no
     // barrier) to reset them.
     parity_ = recorded_ ? 1u - parity_ : 0u;
@@ -75,6 +67,19 @@ engine::WorkCounts GatheredReflection::record(rhi::CommandList& cmd, LpvVolumes&
         cmd.bindStorageImage(1 + c, into.injected()[c]);
     cmd.bindTexture(7, faces, pointSampler_);
     cmd.bindTexture(8, geometry.surfelAlbedo(), pointSampler_);
+}
+
+engine::WorkCounts GatheredReflection::record(rhi::CommandList& cmd, LpvVolumes& into,
+                                              const GeometryVolume& geometry, rhi::TextureHandle faces,
+                                              bool marched, const VolumeGrid& grid, uint32_t cascade,
+                                              float intensity, std::span<const GatherSource> sources) {
+    if (sources.empty()) throw std::logic_error("GatheredReflection::record: no VPLs");
+    if (fromList_) throw std::logic_error("GatheredReflection::record: made fromList");
+    const uint32_t n = grid.size;
+    const uint32_t groups = (n + 3) / 4;
+    ReflectGatheredUniforms u;
+    u.gridOrigin = glm::vec4(grid.origin, grid.cellSize);
+    bindFrame(cmd, into, geometry, faces);
     engine::WorkCounts work;
     bool first = true;
     const uint64_t cells = uint64_t(n) * n * n;
@@ -120,22 +125,14 @@ engine::WorkCounts GatheredReflection::recordFromList(rhi::CommandList& cmd, Lpv
         throw std::logic_error("GatheredReflection::recordFromList: the source has no list of this size");
     const uint32_t n = grid.size;
     const uint32_t groups = (n + 3) / 4;
-    parity_ = recorded_ ? 1u - parity_ : 0u;
-    recorded_ = true;
     ReflectGatheredUniforms u;
     u.gridOrigin = glm::vec4(grid.origin, grid.cellSize);
     u.grid = glm::ivec4(int(n), 0, marched ? 1 : 0, int(source.parity()));
     // The listed flux holds gi.intensity already; a face counts as a disk of its area.
     u.params = glm::vec4(1.0f, grid.cellSize * grid.cellSize / glm::pi<float>(), 0.0f, 0.0f);
+    bindFrame(cmd, into, geometry, faces);
     u.vpls = glm::ivec4(0, 0, int(room_), int(parity_));
-    cmd.bindPipeline(pipeline_);
     cmd.pushUniforms(0, &u, sizeof(u));
-    cmd.bindStorageBuffer(5, list_);
-    cmd.bindStorageImage(6, faceSlots_);
-    for (uint32_t c = 0; c < 3; ++c)
-        cmd.bindStorageImage(1 + c, into.injected()[c]);
-    cmd.bindTexture(7, faces, pointSampler_);
-    cmd.bindTexture(8, geometry.surfelAlbedo(), pointSampler_);
     cmd.bindStorageBuffer(4, source.list_);
     cmd.bindTexture(9, source.faceSlots_, pointSampler_);
     cmd.dispatch(groups, groups, groups);

@@ -954,30 +954,14 @@ uint32_t LightPropagationVolume::gatherSources(GatherSources& sources, bool seco
         // Its r^2 grows by a face's area over pi (vpl_gather.frag).
         const float cell = cascades_[0].grid.cellSize;
         const uint32_t shares = 1u | (gathered > 1 && !settings_.bouncesIn(1) ? 2u : 0u);
-        sources[count++] = {gatheredReflection_->listed(),
-                            gatheredReflection_->room(),
-                            gatheredReflection_->parity(),
-                            -1,
-                            shares,
-                            cell * cell / glm::pi<float>(),
-                            facesOf(0),
-                            facesCascade(0),
-                            stampOf(0),
-                            true,
-                            gatheredReflection_->faceSlots()};
+        const auto listedBy = [&](const GatheredReflection& r) {
+            return GatherSource{
+                r.listed(), r.room(),        r.parity(), -1,   shares,       cell * cell / glm::pi<float>(),
+                facesOf(0), facesCascade(0), stampOf(0), true, r.faceSlots()};
+        };
+        sources[count++] = listedBy(*gatheredReflection_);
         // The third (gi.bounces = 3), listed the same way.
-        if (thirdGathered() && thirdReflection_->listed())
-            sources[count++] = {thirdReflection_->listed(),
-                                thirdReflection_->room(),
-                                thirdReflection_->parity(),
-                                -1,
-                                shares,
-                                cell * cell / glm::pi<float>(),
-                                facesOf(0),
-                                facesCascade(0),
-                                stampOf(0),
-                                true,
-                                thirdReflection_->faceSlots()};
+        if (thirdGathered() && thirdReflection_->listed()) sources[count++] = listedBy(*thirdReflection_);
     }
     return count;
 }

@@ -62,6 +62,11 @@ public:
     rhi::TextureHandle faceSlots() const { return faceSlots_; }
 
 private:
+    // A frame's record: flips the counters' set, binds the pipeline, the lists, the injection
+    // volume, `faces` and the surfels' albedo.
+    void bindFrame(rhi::CommandList& cmd, LpvVolumes& into, const GeometryVolume& geometry,
+                   rhi::TextureHandle faces);
+
     rhi::Device& device_;
     uint32_t room_ = 0;
     rhi::BufferHandle list_;       // 2 x 16 counters, then 16 lists of room_ faces
