@@ -105,17 +105,18 @@ uint64_t SurfaceVoxels::record(rhi::CommandList& cmd, const engine::GpuScene& sc
         cmd.bindStorageBuffer(1, scene.drawRecords());
         cmd.bindStorageImage(2, faces_[cascade]);
         multiDraw_.reserve(3 * draws);
-        for (uint32_t axis = 0; axis < 3; ++axis)
-            for (const engine::GpuDraw& d : scene.draws()) {
-                const engine::Bounds& b = d.worldBounds;
-                if (b.empty() || glm::any(glm::lessThan(b.max, box.min)) ||
-                    glm::any(glm::greaterThan(b.min, box.max)))
-                    continue;
-                // A surface within a quarter cell of the mesh marks the same faces.
-                const engine::DrawLod& lod = d.lodWithin(0.25f * grid.cellSize);
+        // Each draw that reaches the grid is culled and its level chosen once, drawn along each axis.
+        for (const engine::GpuDraw& d : scene.draws()) {
+            const engine::Bounds& b = d.worldBounds;
+            if (b.empty() || glm::any(glm::lessThan(b.max, box.min)) ||
+                glm::any(glm::greaterThan(b.min, box.max)))
+                continue;
+            // A surface within a quarter cell of the mesh marks the same faces.
+            const engine::DrawLod& lod = d.lodWithin(0.25f * grid.cellSize);
+            for (uint32_t axis = 0; axis < 3; ++axis)
                 multiDraw_.add(lod, axis * draws + d.index);
-                triangles += lod.indexCount / 3;
-            }
+            triangles += 3 * (lod.indexCount / 3);
+        }
         if (triangles > 0) multiDraw_.draw(cmd);
     }
     cmd.endRenderPass();
