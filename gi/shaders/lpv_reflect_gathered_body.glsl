@@ -27,7 +27,7 @@
 #include "lpv_common.glsl"
 
 struct Vpl {
-    vec4 position; // w: 1 when the cluster holds a lit texel
+    vec4 position; // w: > 0 lit (a cluster packs its patch there: patch_form_factor.glsl)
     vec4 normal;
     vec4 flux;
 };
@@ -181,7 +181,7 @@ void main() {
             for (int cx = first.x; cx < side; cx += 2)
                 for (int layer = 0; layer < 2; ++layer) {
                     Vpl v = vpls[2 * (cy * side + cx) + layer];
-                    if (v.position.w >= 0.5) receive(v, 4.0, mask, centre, e); // the interleave's 4
+                    if (v.position.w > 0.0) receive(v, 4.0, mask, centre, e); // the interleave's 4
                 }
 #endif
         // Irradiance (1 / pi) x the face's area is the flux received; a VPL's lobe is flux / pi

@@ -7,13 +7,17 @@
 // mid air, whose light is no surface's (the atrium's indirect light came out 9% darker at the
 // default VPL count than with a VPL per texel, and 36% off per pixel on average): such a block
 // clusters its texels nearer the light and those farther into two VPLs, each on its surface.
-// Every block has two slots (kVplsPerCluster); the second stays empty (w 0) without an edge.
+// Without an edge, a crease (a box's top and side) splits the block the same way by normal.
+// Every block has two slots (kVplsPerCluster); the second stays empty (w 0) without either.
+// Each VPL also records its patch: the rectangle on its plane its texels cover, which the
+// per-pixel gather takes for it near a receiver (patch_form_factor.glsl, vpl_gather.frag).
 #include "lpv_common.glsl"
+#include "patch_form_factor.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 struct Vpl {
-    vec4 position;  // w: 1 when the cluster holds any lit texel
+    vec4 position;  // w: its patch's half extents (patch_form_factor.glsl); 0: none lit
     vec4 normal;    // w: the share of the block's texels it holds (its share of the block's area)
     vec4 flux;      // w: RSM texels clustered
 };
@@ -29,15 +33,31 @@ layout(binding = 4, std430) writeonly buffer Vpls {
     Vpl vpls[];
 };
 
-// World position of RSM texel t at `depth` (clip depth).
-vec3 worldAt(ivec2 t, float depth) {
+// World position of the RSM's point t (texels) at `depth` (clip depth).
+vec3 worldAtPoint(vec2 t, float depth) {
     // The matrix's columns at an index the compiler cannot fold (sizes.w is 0; MUL_COLUMNS_AT):
     // read at constant offsets, lavapipe recompiled this shader on every frame the sun moved
     // (90-130 ms per cascade with a cold shader cache, against 2 ms).
     const int col = params.sizes.w;
-    vec4 clip = vec4((vec2(t) + 0.5) / float(params.sizes.x) * 2.0 - 1.0, depth, 1.0);
+    vec4 clip = vec4(t / float(params.sizes.x) * 2.0 - 1.0, depth, 1.0);
     vec4 world = MUL_COLUMNS_AT(params.invLightViewProjection, col, clip);
     return world.xyz / world.w;
+}
+
+// World position of RSM texel t at `depth` (clip depth).
+vec3 worldAt(ivec2 t, float depth) {
+    return worldAtPoint(vec2(t) + 0.5, depth);
+}
+
+// The area texel t covers on its surface (normal n) at `depth`: its footprint on the plane of
+// constant depth, carried along the texel's ray onto the surface, the cosine clamped as the
+// geometry volume's surfels' (gv_vpl_body.glsl) so grazing texels do not explode.
+float texelArea(ivec2 t, float depth, vec3 n, vec3 p) {
+    vec2 centre = vec2(t) + 0.5;
+    vec3 across = cross(worldAtPoint(centre + vec2(1.0, 0.0), depth) - p, worldAtPoint(centre + vec2(0.0, 1.0), depth) - p);
+    vec3 ray = normalize(p - worldAtPoint(centre, 0.0));
+    float a = length(across);
+    return a * abs(dot(ray, across / max(a, 1e-30))) / max(abs(dot(ray, n)), 0.25);
 }
 
 void main() {
@@ -62,25 +82,82 @@ void main() {
     float blockSide = distance(near, worldAt(first + ivec2(block, 0), nearest));
     bool edge = farthest > nearest && distance(near, worldAt(first, farthest)) > 2.0 * blockSide;
     float split = edge ? 0.5 * (nearest + farthest) : 2.0;
+    // Each VPL's plane: the normal of its brightest texel. Without an edge, a crease (a box's top
+    // and side) sends the texels turned more than 45 degrees from it to the second VPL; with one,
+    // such texels (a roof's rim by its top) add their flux but do not shape the VPL: averaged in,
+    // the VPL would face neither way and, as a patch near a receiver (vpl_gather.frag), hang off
+    // both surfaces.
+    vec3 planes[2] = vec3[2](vec3(0.0, 1.0, 0.0), vec3(0.0, 1.0, 0.0));
+    float brightest[2] = float[2](-1.0, -1.0);
+    for (int y = 0; y < block; ++y)
+        for (int x = 0; x < block; ++x) {
+            ivec2 t = first + ivec2(x, y);
+            float depth = texelFetch(rsmDepth, t, 0).r;
+            if (depth >= 1.0) continue;
+            int layer = depth > split ? 1 : 0;
+            float l = dot(texelFetch(rsmFlux, t, 0).rgb, vec3(0.2126, 0.7152, 0.0722));
+            if (l > brightest[layer]) {
+                brightest[layer] = l;
+                planes[layer] = normalize(texelFetch(rsmNormal, t, 0).xyz);
+            }
+        }
     float blockTexels = float(block * block);
     for (int layer = 0; layer < 2; ++layer) {
         vec3 position = vec3(0.0), normal = vec3(0.0), flux = vec3(0.0);
-        float weight = 0.0, texels = 0.0;
-        for (int y = 0; y < block; ++y)
-            for (int x = 0; x < block; ++x) {
-                ivec2 t = first + ivec2(x, y);
-                float depth = texelFetch(rsmDepth, t, 0).r;
-                if (depth >= 1.0 || (depth > split) != (layer == 1)) continue;
-                vec3 f = texelFetch(rsmFlux, t, 0).rgb;
-                float w = dot(f, vec3(0.2126, 0.7152, 0.0722)) + 1e-8;
-                position += w * worldAt(t, depth);
-                normal += w * texelFetch(rsmNormal, t, 0).xyz;
-                flux += f;
-                weight += w;
-                texels += 1.0;
+        float weight = 0.0, texels = 0.0, area = 0.0, shaping = 0.0;
+        vec2 patch_ = vec2(0.0);
+        for (int pass = 0; pass < 2; ++pass) {
+            // Pass 0 sums the texels; pass 1, given the VPL's centre and plane, the rectangle
+            // around the centre that holds their footprints (the patch a receiver near it sees).
+            vec3 centre = position / max(weight, 1e-30), m = normalize(normal);
+            vec3 tangent = patchTangent(m), bitangent = cross(m, tangent);
+            vec2 lo = vec2(0.0), hi = vec2(0.0); // the texels' extents on each side of the centre
+            float off = 0.0; // the farthest a texel lies off the plane
+            for (int y = 0; y < block; ++y)
+                for (int x = 0; x < block; ++x) {
+                    ivec2 t = first + ivec2(x, y);
+                    float depth = texelFetch(rsmDepth, t, 0).r;
+                    if (depth >= 1.0) continue;
+                    vec3 n = normalize(texelFetch(rsmNormal, t, 0).xyz);
+                    bool turned = dot(n, planes[edge ? (depth > split ? 1 : 0) : 0]) < 0.7071;
+                    if ((edge ? depth > split : turned) != (layer == 1)) continue;
+                    bool shapes = !edge || !turned;
+                    vec3 p = worldAt(t, depth);
+                    if (pass == 1) {
+                        if (!shapes) continue;
+                        vec2 q = vec2(dot(p - centre, tangent), dot(p - centre, bitangent));
+                        lo = max(lo, -q);
+                        hi = max(hi, q);
+                        off = max(off, abs(dot(p - centre, m)));
+                        continue;
+                    }
+                    vec3 f = texelFetch(rsmFlux, t, 0).rgb;
+                    flux += f;
+                    texels += 1.0;
+                    if (!shapes) continue;
+                    float w = dot(f, vec3(0.2126, 0.7152, 0.0722)) + 1e-8;
+                    position += w * p;
+                    normal += w * n;
+                    weight += w;
+                    area += texelArea(t, depth, n, p);
+                    shaping += 1.0;
+                }
+            if (pass == 1 && weight > 0.0) {
+                // Texels turned apart, or apart along the normal (a roof and a box's top below it
+                // on one side of a depth edge), make no plane: a point then (extents nil).
+                bool flat_ = length(normal) > 0.9 * weight && off <= 0.2 * max(max(lo.x, hi.x), max(lo.y, hi.y));
+                // Centred on the VPL, the rectangle reaches as far as the texels on its nearer
+                // side: one reaching their farther side would hang past the surface's edge, lit
+                // where a receiver beyond the edge sees it. Its sides run along the world's axes
+                // (patchTangent), a block's along the light's: for a block turned to them it holds
+                // up to twice the block's area (shrunk to the texels' area, it left a gap at the
+                // foot of a wall: docs/gi-fidelity.md).
+                patch_ = flat_ ? min(lo, hi) + 0.5 * sqrt(area / shaping) : vec2(0.0);
             }
+            if (weight <= 0.0) break;
+        }
         Vpl v;
-        v.position = weight > 0.0 ? vec4(position / weight, 1.0) : vec4(0.0);
+        v.position = weight > 0.0 ? vec4(position / weight, packPatchExtents(patch_)) : vec4(0.0);
         v.normal = vec4(length(normal) > 0.0 ? normalize(normal) : vec3(0.0, 1.0, 0.0), texels / blockTexels);
         v.flux = vec4(flux, texels); // w: the texels it clusters (the geometry volume's albedo)
         vpls[2 * (cluster.y * side + cluster.x) + layer] = v;

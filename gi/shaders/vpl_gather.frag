@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // The first bounce gathered per lookup texel from one set of VPLs (gi.gather, gi/VplGather.h):
 // irradiance E = sum of flux x cos(at the VPL) x cos(at the receiver) / (pi r^2), the reflective
-// shadow map's gather (Dachsbacher & Stamminger 2005), in the share of the lookup that the two
+// shadow map's gather (Dachsbacher & Stamminger 2005), near a cluster the form factor of the patch
+// it clusters (patch_form_factor.glsl), in the share of the lookup that the two
 // finest cascades answer for. Interleaved: texel (x, y) of each 4 x 4 block sums the VPL clusters
 // whose grid coordinates are (x, y) mod 4, times 16, so every block covers every cluster once; the
 // lookup averages each block on its surface (lpv_lookup.glsl, GATHER).
@@ -15,9 +16,10 @@
 #include "cascade_region.glsl"
 #include "listed_faces.glsl"
 #include "lpv_common.glsl"
+#include "patch_form_factor.glsl"
 
 struct Vpl {
-    vec4 position; // w: 1 when the cluster holds a lit texel
+    vec4 position; // w: a cluster's patch (patch_form_factor.glsl), a listed face's 1; 0 unlit
     vec4 normal;
     vec4 flux;
 };
@@ -86,14 +88,23 @@ vec3 fromVpl(Vpl v, vec3 p, vec3 n, float nearest, float half_) {
     vec3 d = v.position.xyz - p;
     float r2 = dot(d, d);
     vec3 dir = d * inversesqrt(max(r2, 1e-12));
-    float w = step(0.5, v.position.w) * max(dot(v.normal.xyz, -dir), 0.0) * max(dot(n, dir), 0.0);
+    float w = step(1e-30, v.position.w) * max(dot(v.normal.xyz, -dir), 0.0) * max(dot(n, dir), 0.0);
+    // A cluster near its patch (the rectangle vpl_cluster.comp measured) counts as the patch: flux
+    // / area x the patch's form factor x pi (patch_form_factor.glsl). Farther, or without a patch,
+    // a point, its r^2 clamped at `nearest` (about its area).
+    bool listed = gather.vpls.w != 0;
+    vec2 e = patchExtents(v.position.w);
+    bool patch_ = !listed && nearPatch(r2, e);
+    if (patch_) w = patchFormFactor(p, n, v.position.xyz, v.normal.xyz, e);
     // From half a cell in front of each surface, as the injection and lookup place light, so
     // neither end's own surface blocks it.
     if (w > 0.0 && gather.params.w != 0.0) w *= visibility(p + half_ * n, v.position.xyz + half_ * v.normal.xyz);
-    // A listed face (vpls.w 1) is a square of a cell's side, radiating its flux over its area: a
-    // disk of that area gives flux / (pi (r^2 + area / pi)) on its axis, at most its radiosity
-    // however near (`nearest` is area / pi). A cluster's r^2 is clamped at about its area.
-    return v.flux.rgb * (w / (gather.vpls.w != 0 ? r2 + nearest : max(r2, nearest)));
+    if (patch_) return v.flux.rgb * (w * PI / (4.0 * e.x * e.y));
+    // A listed face (vpls.w 1) is a square of a cell's side on a cell's face, where no surface
+    // need be: a disk of its area gives flux / (pi (r^2 + area / pi)) on its axis, at most its
+    // radiosity however near (`nearest` is area / pi). Its exact square's form factor lit the
+    // faces next to it more than the truth (docs/gi-fidelity.md).
+    return v.flux.rgb * (w / (listed ? r2 + nearest : max(r2, nearest)));
 }
 
 void main() {

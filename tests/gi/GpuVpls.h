@@ -1,6 +1,6 @@
-// VPLs as the GPU passes read them (std430 {vec4 position (w: valid), vec4 normal (w: its share of
-// its RSM block's area), vec4 flux}),
-// for tests that inject their own.
+// VPLs as the GPU passes read them (std430 {vec4 position (w: > 0 lit; the cluster pass packs its
+// patch there, patch_form_factor.glsl), vec4 normal (w: its share of its RSM block's area), vec4
+// flux}), for tests that inject their own (position.w 1: a point, without a patch).
 #pragma once
 
 #include "gi/LpvReference.h"
