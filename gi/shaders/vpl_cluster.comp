@@ -7,8 +7,7 @@
 // mid air, whose light is no surface's (the atrium's indirect light came out 9% darker at the
 // default VPL count than with a VPL per texel, and 36% off per pixel on average): such a block
 // clusters its texels nearer the light and those farther into two VPLs, each on its surface.
-// Without an edge, a crease (a box's top and side) splits the block the same way by normal.
-// Every block has two slots (kVplsPerCluster); the second stays empty (w 0) without either.
+// Every block has two slots (kVplsPerCluster); the second stays empty (w 0) without an edge.
 // Each VPL also records its patch: the rectangle on its plane its texels cover, which the
 // per-pixel gather takes for it near a receiver (patch_form_factor.glsl, vpl_gather.frag).
 #include "lpv_common.glsl"
@@ -82,29 +81,10 @@ void main() {
     float blockSide = distance(near, worldAt(first + ivec2(block, 0), nearest));
     bool edge = farthest > nearest && distance(near, worldAt(first, farthest)) > 2.0 * blockSide;
     float split = edge ? 0.5 * (nearest + farthest) : 2.0;
-    // Each VPL's plane: the normal of its brightest texel. Without an edge, a crease (a box's top
-    // and side) sends the texels turned more than 45 degrees from it to the second VPL; with one,
-    // such texels (a roof's rim by its top) add their flux but do not shape the VPL: averaged in,
-    // the VPL would face neither way and, as a patch near a receiver (vpl_gather.frag), hang off
-    // both surfaces.
-    vec3 planes[2] = vec3[2](vec3(0.0, 1.0, 0.0), vec3(0.0, 1.0, 0.0));
-    float brightest[2] = float[2](-1.0, -1.0);
-    for (int y = 0; y < block; ++y)
-        for (int x = 0; x < block; ++x) {
-            ivec2 t = first + ivec2(x, y);
-            float depth = texelFetch(rsmDepth, t, 0).r;
-            if (depth >= 1.0) continue;
-            int layer = depth > split ? 1 : 0;
-            float l = dot(texelFetch(rsmFlux, t, 0).rgb, vec3(0.2126, 0.7152, 0.0722));
-            if (l > brightest[layer]) {
-                brightest[layer] = l;
-                planes[layer] = normalize(texelFetch(rsmNormal, t, 0).xyz);
-            }
-        }
     float blockTexels = float(block * block);
     for (int layer = 0; layer < 2; ++layer) {
         vec3 position = vec3(0.0), normal = vec3(0.0), flux = vec3(0.0);
-        float weight = 0.0, texels = 0.0, area = 0.0, shaping = 0.0;
+        float weight = 0.0, texels = 0.0, area = 0.0;
         vec2 patch_ = vec2(0.0);
         for (int pass = 0; pass < 2; ++pass) {
             // Pass 0 sums the texels; pass 1, given the VPL's centre and plane, the rectangle
@@ -112,39 +92,37 @@ void main() {
             vec3 centre = position / max(weight, 1e-30), m = normalize(normal);
             vec3 tangent = patchTangent(m), bitangent = cross(m, tangent);
             vec2 lo = vec2(0.0), hi = vec2(0.0); // the texels' extents on each side of the centre
-            float off = 0.0; // the farthest a texel lies off the plane
+            float off = 0.0;                     // the farthest a texel lies off the plane
             for (int y = 0; y < block; ++y)
                 for (int x = 0; x < block; ++x) {
                     ivec2 t = first + ivec2(x, y);
                     float depth = texelFetch(rsmDepth, t, 0).r;
-                    if (depth >= 1.0) continue;
-                    vec3 n = normalize(texelFetch(rsmNormal, t, 0).xyz);
-                    bool turned = dot(n, planes[edge ? (depth > split ? 1 : 0) : 0]) < 0.7071;
-                    if ((edge ? depth > split : turned) != (layer == 1)) continue;
-                    bool shapes = !edge || !turned;
+                    if (depth >= 1.0 || (depth > split) != (layer == 1)) continue;
                     vec3 p = worldAt(t, depth);
                     if (pass == 1) {
-                        if (!shapes) continue;
                         vec2 q = vec2(dot(p - centre, tangent), dot(p - centre, bitangent));
                         lo = max(lo, -q);
                         hi = max(hi, q);
                         off = max(off, abs(dot(p - centre, m)));
                         continue;
                     }
+                    vec3 n = normalize(texelFetch(rsmNormal, t, 0).xyz);
                     vec3 f = texelFetch(rsmFlux, t, 0).rgb;
-                    flux += f;
-                    texels += 1.0;
-                    if (!shapes) continue;
                     float w = dot(f, vec3(0.2126, 0.7152, 0.0722)) + 1e-8;
                     position += w * p;
                     normal += w * n;
+                    flux += f;
                     weight += w;
+                    texels += 1.0;
                     area += texelArea(t, depth, n, p);
-                    shaping += 1.0;
                 }
-            if (pass == 1 && weight > 0.0) {
-                // Texels turned apart, or apart along the normal (a roof and a box's top below it
-                // on one side of a depth edge), make no plane: a point then (extents nil).
+            if (weight <= 0.0) break;
+            if (pass == 1) {
+                // Texels turned apart (a box's top and side), or apart along the normal (a roof
+                // and a box's top below it on one side of a depth edge), make no plane: a point
+                // then (extents nil). Splitting a crease in two VPLs by normal, as an edge by
+                // depth, gave the near field more but made the bounce taken from the frame
+                // before differ more from this frame's (docs/gi-fidelity.md).
                 bool flat_ = length(normal) > 0.9 * weight && off <= 0.2 * max(max(lo.x, hi.x), max(lo.y, hi.y));
                 // Centred on the VPL, the rectangle reaches as far as the texels on its nearer
                 // side: one reaching their farther side would hang past the surface's edge, lit
@@ -152,9 +130,8 @@ void main() {
                 // (patchTangent), a block's along the light's: for a block turned to them it holds
                 // up to twice the block's area (shrunk to the texels' area, it left a gap at the
                 // foot of a wall: docs/gi-fidelity.md).
-                patch_ = flat_ ? min(lo, hi) + 0.5 * sqrt(area / shaping) : vec2(0.0);
+                patch_ = flat_ ? min(lo, hi) + 0.5 * sqrt(area / texels) : vec2(0.0);
             }
-            if (weight <= 0.0) break;
         }
         Vpl v;
         v.position = weight > 0.0 ? vec4(position / weight, packPatchExtents(patch_)) : vec4(0.0);

@@ -162,12 +162,10 @@ TEST_CASE("gi: with gi.gather, the Cornell boxes lit by the sun and by a point l
 // volume's faces and gathered per pixel from them (GatheredReflection), the third reflected from
 // the second's listed faces the same way. Against references of as many bounces (128 samples a
 // pixel). The sun's box with two: the targets on the means, the relative RMSE and the ceilings
-// (measured 0.96-0.99, 0.38, 0.97), its share over 3x guarded at 4.2% (measured 3.6%; 3.2%, the
-// guard's measure, with VPLs as points near a receiver: nearly all on the front edges, which the
-// reference leaves black, docs/gi-fidelity.md). The point light's with three: the targets on the
-// relative RMSE (0.38), the ceilings (0.73) and the share over 3x (1.8%); its means (0.78-0.80;
-// 0.72-0.77 with the third bounce propagated, 0.57-0.64 with the second too) short of the 20%
-// target on red, guarded at 0.76.
+// (measured 0.92-0.95, 0.35, 0.99), its share over 3x guarded at its measure (3.2%) plus a point.
+// The point light's with three: the targets on the relative RMSE (0.39), the ceilings (0.73) and
+// the share over 3x (1.8%); its means (0.78-0.80; 0.72-0.77 with the third bounce propagated,
+// 0.57-0.64 with the second too) short of the 20% target on red, guarded at 0.76.
 TEST_CASE("gi: with gi.gather, the further bounces of the Cornell boxes against the path tracer") {
     for (const BackendUnderTest& backend : selectedBackends()) {
         CAPTURE(backend.name);
