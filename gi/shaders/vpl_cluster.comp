@@ -8,6 +8,10 @@
 // default VPL count than with a VPL per texel, and 36% off per pixel on average): such a block
 // clusters its texels nearer the light and those farther into two VPLs, each on its surface.
 // Every block has two slots (kVplsPerCluster); the second stays empty (w 0) without an edge.
+// The per-pixel gather's VPLs (options.x, binding 5) split a crease (a box's top and side) the
+// same way by normal, so each side lights its neighbours as its own surface; the volume's keep a
+// crease whole (split, they made the bounce taken from the frame before differ more from this
+// frame's: docs/gi-fidelity.md).
 // Each VPL also records its patch: the rectangle on its plane its texels cover, which the
 // per-pixel gather takes for it near a receiver (patch_form_factor.glsl, vpl_gather.frag).
 #include "lpv_common.glsl"
@@ -24,12 +28,17 @@ struct Vpl {
 layout(binding = 0, std140) uniform Params {
     mat4 invLightViewProjection;
     ivec4 sizes;  // x: RSM size, y: VPL grid side, z: block side, w: 0 (see below)
+    ivec4 options; // x: 1 writes the gather's VPLs too
 } params;
 layout(binding = 1) uniform sampler2D rsmDepth;
 layout(binding = 2) uniform sampler2D rsmNormal;
 layout(binding = 3) uniform sampler2D rsmFlux;
 layout(binding = 4, std430) writeonly buffer Vpls {
     Vpl vpls[];
+};
+// Where options.x is 1: the gather's (vpl_gather.frag); else bound to the volume's, unwritten.
+layout(binding = 5, std430) writeonly buffer GatherVpls {
+    Vpl gatherVpls[];
 };
 
 // World position of the RSM's point t (texels) at `depth` (clip depth).
@@ -59,6 +68,76 @@ float texelArea(ivec2 t, float depth, vec3 n, vec3 p) {
     return a * abs(dot(ray, across / max(a, 1e-30))) / max(abs(dot(ray, n)), 0.25);
 }
 
+// The VPL of `layer` of the block at `first`: its texels' flux, their flux-weighted position and
+// normal, and the patch they cover. Texels go to layer 1 beyond the middle depth at an edge; with
+// `creases` (the gather's VPLs), without an edge, those turned more than 45 degrees from the
+// block's plane (its brightest texel's normal, `planes[0]`) go there instead, and with an edge such
+// texels (a roof's rim by its top) add their flux but do not shape their layer's VPL: averaged in,
+// it would face neither way and, as a patch near a receiver (vpl_gather.frag), hang off both
+// surfaces.
+Vpl clustered(ivec2 first, int block, bool edge, float split, bool creases, vec3 planes[2], int layer) {
+    vec3 position = vec3(0.0), normal = vec3(0.0), flux = vec3(0.0);
+    float weight = 0.0, texels = 0.0, area = 0.0, shaping = 0.0;
+    vec2 patch_ = vec2(0.0);
+    for (int pass = 0; pass < 2; ++pass) {
+        // Pass 0 sums the texels; pass 1, given the VPL's centre and plane, the rectangle around
+        // the centre that holds their footprints (the patch a receiver near it sees).
+        vec3 centre = position / max(weight, 1e-30), m = normalize(normal);
+        vec3 tangent = patchTangent(m), bitangent = cross(m, tangent);
+        vec2 lo = vec2(0.0), hi = vec2(0.0); // the texels' extents on each side of the centre
+        float off = 0.0;                     // the farthest a texel lies off the plane
+        for (int y = 0; y < block; ++y)
+            for (int x = 0; x < block; ++x) {
+                ivec2 t = first + ivec2(x, y);
+                float depth = texelFetch(rsmDepth, t, 0).r;
+                if (depth >= 1.0) continue;
+                vec3 n = normalize(texelFetch(rsmNormal, t, 0).xyz);
+                bool far_ = depth > split;
+                bool turned = creases && dot(n, planes[far_ ? 1 : 0]) < 0.7071;
+                if ((edge || !creases ? far_ : turned) != (layer == 1)) continue;
+                bool shapes = !(edge && turned);
+                vec3 p = worldAt(t, depth);
+                if (pass == 1) {
+                    if (!shapes) continue;
+                    vec2 q = vec2(dot(p - centre, tangent), dot(p - centre, bitangent));
+                    lo = max(lo, -q);
+                    hi = max(hi, q);
+                    off = max(off, abs(dot(p - centre, m)));
+                    continue;
+                }
+                vec3 f = texelFetch(rsmFlux, t, 0).rgb;
+                flux += f;
+                texels += 1.0;
+                if (!shapes) continue;
+                float w = dot(f, vec3(0.2126, 0.7152, 0.0722)) + 1e-8;
+                position += w * p;
+                normal += w * n;
+                weight += w;
+                area += texelArea(t, depth, n, p);
+                shaping += 1.0;
+            }
+        if (weight <= 0.0) break;
+        if (pass == 1) {
+            // Texels turned apart (a box's top and side, without `creases`), or apart along the
+            // normal (a roof and a box's top below it on one side of a depth edge), make no plane:
+            // a point then (extents nil).
+            bool flat_ = length(normal) > 0.9 * weight && off <= 0.2 * max(max(lo.x, hi.x), max(lo.y, hi.y));
+            // Centred on the VPL, the rectangle reaches as far as the texels on its nearer side:
+            // one reaching their farther side would hang past the surface's edge, lit where a
+            // receiver beyond the edge sees it. Its sides run along the world's axes
+            // (patchTangent), a block's along the light's: for a block turned to them it holds up
+            // to twice the block's area (shrunk to the texels' area, it left a gap at the foot of
+            // a wall: docs/gi-fidelity.md).
+            patch_ = flat_ ? min(lo, hi) + 0.5 * sqrt(area / shaping) : vec2(0.0);
+        }
+    }
+    Vpl v;
+    v.position = weight > 0.0 ? vec4(position / weight, packPatchExtents(patch_)) : vec4(0.0);
+    v.normal = vec4(length(normal) > 0.0 ? normalize(normal) : vec3(0.0, 1.0, 0.0), texels / float(block * block));
+    v.flux = vec4(flux, texels); // w: the texels it clusters (the geometry volume's albedo)
+    return v;
+}
+
 void main() {
     ivec2 cluster = ivec2(gl_GlobalInvocationID.xy);
     int side = params.sizes.y;
@@ -81,62 +160,37 @@ void main() {
     float blockSide = distance(near, worldAt(first + ivec2(block, 0), nearest));
     bool edge = farthest > nearest && distance(near, worldAt(first, farthest)) > 2.0 * blockSide;
     float split = edge ? 0.5 * (nearest + farthest) : 2.0;
-    float blockTexels = float(block * block);
+    const int slot = 2 * (cluster.y * side + cluster.x);
+    vec3 planes[2] = vec3[2](vec3(0.0, 1.0, 0.0), vec3(0.0, 1.0, 0.0));
+    Vpl volume[2];
     for (int layer = 0; layer < 2; ++layer) {
-        vec3 position = vec3(0.0), normal = vec3(0.0), flux = vec3(0.0);
-        float weight = 0.0, texels = 0.0, area = 0.0;
-        vec2 patch_ = vec2(0.0);
-        for (int pass = 0; pass < 2; ++pass) {
-            // Pass 0 sums the texels; pass 1, given the VPL's centre and plane, the rectangle
-            // around the centre that holds their footprints (the patch a receiver near it sees).
-            vec3 centre = position / max(weight, 1e-30), m = normalize(normal);
-            vec3 tangent = patchTangent(m), bitangent = cross(m, tangent);
-            vec2 lo = vec2(0.0), hi = vec2(0.0); // the texels' extents on each side of the centre
-            float off = 0.0;                     // the farthest a texel lies off the plane
-            for (int y = 0; y < block; ++y)
-                for (int x = 0; x < block; ++x) {
-                    ivec2 t = first + ivec2(x, y);
-                    float depth = texelFetch(rsmDepth, t, 0).r;
-                    if (depth >= 1.0 || (depth > split) != (layer == 1)) continue;
-                    vec3 p = worldAt(t, depth);
-                    if (pass == 1) {
-                        vec2 q = vec2(dot(p - centre, tangent), dot(p - centre, bitangent));
-                        lo = max(lo, -q);
-                        hi = max(hi, q);
-                        off = max(off, abs(dot(p - centre, m)));
-                        continue;
-                    }
-                    vec3 n = normalize(texelFetch(rsmNormal, t, 0).xyz);
-                    vec3 f = texelFetch(rsmFlux, t, 0).rgb;
-                    float w = dot(f, vec3(0.2126, 0.7152, 0.0722)) + 1e-8;
-                    position += w * p;
-                    normal += w * n;
-                    flux += f;
-                    weight += w;
-                    texels += 1.0;
-                    area += texelArea(t, depth, n, p);
-                }
-            if (weight <= 0.0) break;
-            if (pass == 1) {
-                // Texels turned apart (a box's top and side), or apart along the normal (a roof
-                // and a box's top below it on one side of a depth edge), make no plane: a point
-                // then (extents nil). Splitting a crease in two VPLs by normal, as an edge by
-                // depth, gave the near field more but made the bounce taken from the frame
-                // before differ more from this frame's (docs/gi-fidelity.md).
-                bool flat_ = length(normal) > 0.9 * weight && off <= 0.2 * max(max(lo.x, hi.x), max(lo.y, hi.y));
-                // Centred on the VPL, the rectangle reaches as far as the texels on its nearer
-                // side: one reaching their farther side would hang past the surface's edge, lit
-                // where a receiver beyond the edge sees it. Its sides run along the world's axes
-                // (patchTangent), a block's along the light's: for a block turned to them it holds
-                // up to twice the block's area (shrunk to the texels' area, it left a gap at the
-                // foot of a wall: docs/gi-fidelity.md).
-                patch_ = flat_ ? min(lo, hi) + 0.5 * sqrt(area / texels) : vec2(0.0);
+        volume[layer] = clustered(first, block, edge, split, false, planes, layer);
+        vpls[slot + layer] = volume[layer];
+    }
+    if (params.options.x == 0) return;
+    // The gather's: each side of an edge's plane is the normal of its brightest texel. A block
+    // with no texel turned from its plane clusters as the volume's.
+    float brightest[2] = float[2](-1.0, -1.0);
+    for (int y = 0; y < block; ++y)
+        for (int x = 0; x < block; ++x) {
+            ivec2 t = first + ivec2(x, y);
+            float depth = texelFetch(rsmDepth, t, 0).r;
+            if (depth >= 1.0) continue;
+            int layer = depth > split ? 1 : 0;
+            float l = dot(texelFetch(rsmFlux, t, 0).rgb, vec3(0.2126, 0.7152, 0.0722));
+            if (l > brightest[layer]) {
+                brightest[layer] = l;
+                planes[layer] = normalize(texelFetch(rsmNormal, t, 0).xyz);
             }
         }
-        Vpl v;
-        v.position = weight > 0.0 ? vec4(position / weight, packPatchExtents(patch_)) : vec4(0.0);
-        v.normal = vec4(length(normal) > 0.0 ? normalize(normal) : vec3(0.0, 1.0, 0.0), texels / blockTexels);
-        v.flux = vec4(flux, texels); // w: the texels it clusters (the geometry volume's albedo)
-        vpls[2 * (cluster.y * side + cluster.x) + layer] = v;
-    }
+    bool creased = false;
+    for (int y = 0; y < block; ++y)
+        for (int x = 0; x < block; ++x) {
+            ivec2 t = first + ivec2(x, y);
+            float depth = texelFetch(rsmDepth, t, 0).r;
+            if (depth < 1.0 && dot(normalize(texelFetch(rsmNormal, t, 0).xyz), planes[depth > split ? 1 : 0]) < 0.7071)
+                creased = true;
+        }
+    for (int layer = 0; layer < 2; ++layer)
+        gatherVpls[slot + layer] = creased ? clustered(first, block, edge, split, true, planes, layer) : volume[layer];
 }

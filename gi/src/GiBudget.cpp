@@ -100,6 +100,10 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
             out.push_back(
                 {"first bounce kept for gi.gather, cascade " + std::to_string(c) + " (3 SH textures)",
                  "gi.lpv", 3 * cells * shBytes});
+        // The gather's own VPLs of those cascades' sun (creases split: VplClustering).
+        for (uint32_t c = 0; c < std::min(s.cascades, 2u); ++c)
+            out.push_back(
+                {"gather vpl buffer, cascade " + std::to_string(c), "gi.vpl", uint64_t(s.vplSlots()) * 48});
         // Its visibility's faces: the scene's surfaces on the gathered cascades' cells.
         if (s.occlusion)
             out.push_back({"surface faces of the gathered cascades (gi.gather)", "gi.lpv",

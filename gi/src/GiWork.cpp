@@ -46,6 +46,17 @@ WorkCounts vplClusterWork(const LpvSettings& s) {
     return w;
 }
 
+WorkCounts gatherVplWork(const LpvSettings& s) {
+    const uint64_t texels = uint64_t(s.rsmSize) * s.rsmSize;
+    WorkCounts w;
+    // Two more scans of each block (each side's plane, then whether a texel turns from it) and
+    // the slots; a block over a crease clusters again (a share of the blocks, not counted).
+    w.texelsRead = texels * 5;
+    w.aluOps = texels * 10;
+    w.bytesMoved = texels * (4 + 8 + 8) + uint64_t(s.vplSlots()) * 48;
+    return w;
+}
+
 WorkCounts injectWork(const LpvSettings& s, uint64_t extraVpls, VolumeDraw draw) {
     const uint64_t injectBytes = s.shFormat == ShFormat::Rgba32f ? 16 : 8;
     // Every slot is drawn (an empty one is parked outside the volume).

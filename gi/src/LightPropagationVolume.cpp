@@ -153,8 +153,13 @@ void LightPropagationVolume::makeGather(const LpvSettings& s) {
     else if (s.occlusion)
         log::warn("gi: gi.gather on " + device_.caps().deviceName +
                   ", which cannot store from fragment shaders: its light goes through walls (no occlusion)");
-    for (uint32_t c = 0; c < std::min(s.cascades, VplGather::kCascades); ++c)
+    for (uint32_t c = 0; c < std::min(s.cascades, VplGather::kCascades); ++c) {
         firsts_[c] = volumes_->createResult("lpv first bounce, cascade " + std::to_string(c));
+        gatherVpls_[c] = device_.createBuffer({uint64_t(s.vplSlots()) * 48, rhi::kBufferStorage,
+                                               rhi::MemoryAccess::GpuOnly,
+                                               "gather vpls, cascade " + std::to_string(c), "gi.vpl"});
+    }
+    gatherVplsValid_ = 0;
 }
 
 void LightPropagationVolume::releaseGather() {
@@ -167,6 +172,11 @@ void LightPropagationVolume::releaseGather() {
             if (t) device_.destroy(t);
             t = {};
         }
+    for (rhi::BufferHandle& b : gatherVpls_) {
+        if (b) device_.destroy(b);
+        b = {};
+    }
+    gatherVplsValid_ = 0;
 }
 
 void LightPropagationVolume::replaceUpdateResources(const LpvSettings& s) {
@@ -632,13 +642,17 @@ engine::WorkCounts LightPropagationVolume::recordVpls(const FrameRecording& f, u
     Cascade& cascade = cascades_[c];
     const uint32_t side = settings_.vplGridSide();
     const ReflectiveShadowMap& rsm = rsmOf(c);
-    vplClustering_.record(f.cmd, rsm, side, cascade.vpls);
+    const rhi::BufferHandle gatherVpls = c < VplGather::kCascades ? gatherVpls_[c] : rhi::BufferHandle{};
+    vplClustering_.record(f.cmd, rsm, side, cascade.vpls, gatherVpls);
+    if (gatherVpls) gatherVplsValid_ |= 1u << c;
     // What the volume half needs of the light these VPLs carry.
     const float texelsPerVpl = float(rsm.size() / side) * float(rsm.size() / side);
     cascade.lightDirection = f.sunDirection;
     cascade.vplArea = rsm.texelArea() * texelsPerVpl;
     cascade.whiteTexelFlux = frame_.sunRadiance * rsm.texelArea();
-    return vplClusterWork(settings_);
+    engine::WorkCounts work = vplClusterWork(settings_);
+    if (gatherVpls) work += gatherVplWork(settings_);
+    return work;
 }
 
 GeometrySources LightPropagationVolume::occlusionSources(const FrameRecording& f, uint32_t c,
@@ -906,7 +920,7 @@ void LightPropagationVolume::keepFirstBounces(rhi::CommandList& cmd, uint32_t pr
     if (count > 0) cmd.copyTextures(std::span(copies.data(), count)); // one barrier for all
 }
 
-uint32_t LightPropagationVolume::gatherSources(GatherSources& sources, bool secondBounce) const {
+uint32_t LightPropagationVolume::gatherSources(GatherSources& sources, bool forPixels) const {
     const uint32_t gathered = std::min(cascadeCount(), VplGather::kCascades);
     // The sun's VPLs of each gathered cascade in its share; the spot and point lights' in the share of
     // every gathered cascade they are injected into (recordInjection).
@@ -922,8 +936,17 @@ uint32_t LightPropagationVolume::gatherSources(GatherSources& sources, bool seco
     };
     for (uint32_t c = 0; c < gathered; ++c) {
         const float cell = cascades_[c].grid.cellSize;
-        sources[count++] = {cascades_[c].vpls,   settings_.vplSlots(), settings_.vplGridSide(), int32_t(c), 0,
-                            0.25f * cell * cell, facesOf(c),           facesCascade(c),         stampOf(c)};
+        const bool split = forPixels && (gatherVplsValid_ & (1u << c)) != 0;
+        const rhi::BufferHandle vpls = split ? gatherVpls_[c] : cascades_[c].vpls;
+        sources[count++] = {vpls,
+                            settings_.vplSlots(),
+                            settings_.vplGridSide(),
+                            int32_t(c),
+                            0,
+                            0.25f * cell * cell,
+                            facesOf(c),
+                            facesCascade(c),
+                            stampOf(c)};
     }
     const uint32_t suns = count;
     const float finest = cascades_[0].grid.cellSize;
@@ -950,7 +973,7 @@ uint32_t LightPropagationVolume::gatherSources(GatherSources& sources, bool seco
     // The finest cascade's second bounce (GatheredReflection), in its share and in the next
     // cascade's where that has no bounces of its own: world-space light, and near the finest
     // cascade's border (a room's walls) the next one answers most of the lookup.
-    if (secondBounce && secondGathered() && gatheredReflection_->listed()) {
+    if (forPixels && secondGathered() && gatheredReflection_->listed()) {
         // Its r^2 grows by a face's area over pi (vpl_gather.frag).
         const float cell = cascades_[0].grid.cellSize;
         const uint32_t shares = 1u | (gathered > 1 && !settings_.bouncesIn(1) ? 2u : 0u);

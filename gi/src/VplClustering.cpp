@@ -13,6 +13,7 @@ namespace {
 struct ClusterUniforms {
     glm::mat4 invLightViewProjection;
     glm::ivec4 sizes;
+    glm::ivec4 options;
 };
 
 } // namespace
@@ -29,16 +30,18 @@ VplClustering::~VplClustering() {
 }
 
 void VplClustering::record(rhi::CommandList& cmd, const ReflectiveShadowMap& rsm, uint32_t side,
-                           rhi::BufferHandle vpls) {
+                           rhi::BufferHandle vpls, rhi::BufferHandle gatherVpls) {
     ClusterUniforms u;
     u.invLightViewProjection = glm::inverse(rsm.lightViewProjection());
     u.sizes = glm::ivec4(int(rsm.size()), int(side), int(rsm.size() / side), 0);
+    u.options = glm::ivec4(gatherVpls ? 1 : 0, 0, 0, 0);
     cmd.bindPipeline(pipeline_);
     cmd.pushUniforms(0, &u, sizeof(u));
     cmd.bindTexture(1, rsm.depth(), pointSampler_);
     cmd.bindTexture(2, rsm.normal(), pointSampler_);
     cmd.bindTexture(3, rsm.flux(), pointSampler_);
     cmd.bindStorageBuffer(4, vpls);
+    cmd.bindStorageBuffer(5, gatherVpls ? gatherVpls : vpls); // unwritten without the gather's
     cmd.dispatch((side + 7) / 8, (side + 7) / 8, 1);
 }
 

@@ -1,5 +1,6 @@
 // Where the GI's inputs sit, on each backend: VPLs on the surfaces the light sees (a block of RSM
-// texels across a depth edge clusters into one VPL per surface, not one in mid air), the camera's
+// texels across a depth edge clusters into one VPL per surface, not one in mid air; the gather's
+// split a crease the same way), the camera's
 // geometry-volume coverage steady when the camera moves by a fraction of a cell, a coarse
 // cascade's camera areas adding up to the surface the camera sees, and the atrium's
 // indirect light at the default VPL count close to one VPL per RSM texel.
@@ -79,7 +80,83 @@ engine::Scene tableScene() {
     return scene;
 }
 
+// A floor and a 2 m wall along z whose face (x 0) looks +x, for a sun from the upper right: its
+// RSM sees the floor and the wall's face and top, and blocks along the wall's foot span both.
+engine::Scene creaseScene() {
+    engine::Scene scene;
+    scene.name = "crease";
+    scene.materials = {{"white", {0.8f, 0.8f, 0.8f, 1.0f}}};
+    engine::MeshBuilder b(scene);
+    b.begin("floor", 0);
+    b.box({-10.0f, -0.1f, -10.0f}, {10.0f, 0.0f, 10.0f});
+    b.finish();
+    b.begin("wall", 0);
+    b.box({-0.1f, 0.0f, -10.0f}, {0.0f, 2.0f, 10.0f});
+    b.finish();
+    engine::Light sun;
+    sun.type = engine::LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(-0.7f, -1.0f, 0.2f));
+    sun.intensity = 10.0f;
+    scene.lights.push_back(sun);
+    engine::Camera camera;
+    camera.position = {2.5f, 1.5f, 2.5f};
+    camera.forward = glm::normalize(glm::vec3(0.0f, 0.5f, 0.0f) - camera.position);
+    scene.camera = camera;
+    scene.updateBounds();
+    return scene;
+}
+
 } // namespace
+
+TEST_CASE("gi: the gather's VPLs split a block over a crease into a VPL on each surface") {
+    // The volume's VPL of a block over the wall's foot faces between the floor and the wall; as a
+    // patch near a receiver it would hang off both, so the pixels' gather takes one on each.
+    const engine::Scene scene = creaseScene();
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            std::vector<GpuVpl> volume, gathered;
+            oneFrame(*device, scene, {"gi.enabled=true", "gi.cascades=1", "gi.cell_size=0.2", "gi.gather=on"},
+                     glm::vec3(0.0f), glm::vec3(0.0f),
+                     [&](const engine::Renderer&, const gi::LightPropagationVolume& lpv) {
+                         volume.resize(lpv.settings().vplSlots());
+                         gathered.resize(volume.size());
+                         device->readBuffer(lpv.vplBuffer(), 0, volume.data(),
+                                            volume.size() * sizeof(GpuVpl));
+                         REQUIRE(lpv.gatherVplBuffer());
+                         device->readBuffer(lpv.gatherVplBuffer(), 0, gathered.data(),
+                                            gathered.size() * sizeof(GpuVpl));
+                     });
+            // On the floor (y 0) or the wall's top (y 2) facing up, or on the wall's face (x 0) facing
+            // +x, give or take a millimetre and a degree.
+            const auto onSurface = [](const GpuVpl& v) {
+                const glm::vec3 n = glm::vec3(v.normal), p = glm::vec3(v.position);
+                if (n.y > 0.9998f) return std::fabs(p.y) < 1e-3f || std::fabs(p.y - 2.0f) < 1e-3f;
+                return n.x > 0.9998f && std::fabs(p.x) < 1e-3f;
+            };
+            uint32_t turned = 0, litGathered = 0, offGathered = 0;
+            glm::dvec3 volumeFlux(0.0), gatheredFlux(0.0);
+            for (size_t i = 0; i < volume.size(); ++i) {
+                if (volume[i].position.w > 0.0f) {
+                    volumeFlux += glm::dvec3(volume[i].flux);
+                    if (!onSurface(volume[i])) ++turned;
+                }
+                if (gathered[i].position.w > 0.0f) {
+                    ++litGathered;
+                    gatheredFlux += glm::dvec3(gathered[i].flux);
+                    if (!onSurface(gathered[i])) ++offGathered;
+                }
+            }
+            MESSAGE(backend.name << ": " << turned << " of the volume's VPLs between the floor and the wall, "
+                                 << offGathered << " of the gather's " << litGathered);
+            CHECK(turned > 0); // the foot of the wall crosses blocks
+            CHECK(offGathered == 0);
+            for (int c = 0; c < 3; ++c)
+                CHECK(gatheredFlux[c] == doctest::Approx(volumeFlux[c]).epsilon(1e-4));
+            device.expectSilent();
+        }
+    }
+}
 
 TEST_CASE("gi: a block of RSM texels across a depth edge clusters into a VPL on each surface") {
     const engine::Scene scene = tableScene();

@@ -137,6 +137,8 @@ public:
     const PointLightInjection* pointLights() const { return pointLights_.get(); }
     const SpotLightRsms* spotLightRsms() const { return spotRsms_.get(); }
     rhi::BufferHandle vplBuffer() const { return vpls_; }
+    // The finest cascade's VPLs for the pixels' gather (creases split); none without gi.gather.
+    rhi::BufferHandle gatherVplBuffer() const { return gatherVpls_[0]; }
 
 private:
     // How the volume passes (GeometryVolume, LpvInjection) draw their points on this device.
@@ -269,10 +271,17 @@ private:
     // gi.gather with gi.occlusion: the faces its visibility marches through.
     std::unique_ptr<SurfaceVoxels> surfaceVoxels_;
     std::array<std::array<rhi::TextureHandle, 3>, VplGather::kCascades> firsts_{};
+    // The gather's VPLs of the sun in the gathered cascades (VplClustering's `gatherVpls`), and
+    // which hold this cascade's (bit c; until then the gather takes the volume's).
+    std::array<rhi::BufferHandle, VplGather::kCascades> gatherVpls_{};
+    uint32_t gatherVplsValid_ = 0;
     // The VPL sets the gather sums (the sun's of each gathered cascade, then the lights'); how many.
-    // With `secondBounce`, the finest cascade's second bounce's VPLs last.
+    // `forPixels`: for the pixels' gather (else the second bounce's reflection, which takes the
+    // volume's VPLs: the sun's with creases split gave it more light on faces the truth leaves
+    // black), the sun's VPLs with creases split where made, and the finest cascade's second
+    // bounce's VPLs last.
     using GatherSources = std::array<GatherSource, VplGather::kCascades + SpotLightRsms::kMaxRsms + 2>;
-    uint32_t gatherSources(GatherSources& sources, bool secondBounce) const;
+    uint32_t gatherSources(GatherSources& sources, bool forPixels) const;
     // The finest cascade's second bounce is gathered too (its reflection, GatheredReflection).
     bool secondGathered() const;
     // And its third, reflected from the second's listed faces (gi.bounces = 3).

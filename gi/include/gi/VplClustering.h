@@ -22,7 +22,10 @@ public:
     // Clusters what `rsm` last recorded into `side` x `side` blocks (`side` divides rsm.size()),
     // kVplsPerCluster slots each, in `vpls`: std430 {vec4 position (w: valid), vec4 normal, vec4 flux}.
     // Its unprojection holds for the sun's orthographic map and a light's perspective one alike.
-    void record(rhi::CommandList& cmd, const ReflectiveShadowMap& rsm, uint32_t side, rhi::BufferHandle vpls);
+    // With `gatherVpls` (as large), also the per-pixel gather's VPLs (VplGather), whose blocks over
+    // a crease split by normal: each side lights what lies next to it as its own surface does.
+    void record(rhi::CommandList& cmd, const ReflectiveShadowMap& rsm, uint32_t side, rhi::BufferHandle vpls,
+                rhi::BufferHandle gatherVpls = {});
 
 private:
     rhi::Device& device_;
