@@ -68,14 +68,63 @@ float texelArea(ivec2 t, float depth, vec3 n, vec3 p) {
     return a * abs(dot(ray, across / max(a, 1e-30))) / max(abs(dot(ray, n)), 0.25);
 }
 
+// Whether a texel (normal n at p) lies on `plane` (xyz its normal, w its offset): turned less than
+// 45 degrees from it, and at most `apart` off it.
+bool onPlane(vec4 plane, vec3 n, vec3 p, float apart) {
+    return dot(n, plane.xyz) >= 0.7071 && abs(dot(plane.xyz, p) - plane.w) <= apart;
+}
+
+// Whether a texel belongs to `layer`: beyond the middle depth (layer 1) or before it at an edge;
+// for the gather's VPLs (`creases`) without an edge, turned from the first layer's plane or not.
+bool inLayer(int layer, float depth, vec3 n, bool edge, float split, bool creases, vec4 plane0) {
+    bool second = edge || !creases ? depth > split : dot(n, plane0.xyz) < 0.7071;
+    return second == (layer == 1);
+}
+
+// The plane of `layer` of the gather's VPLs: its brightest texel's, or where its texels facing
+// that way but more than `apart` off it hold more flux than those on it (a roof over a box's top),
+// the brightest of those's. Without an edge, layer 0 chooses among all the block's texels (the
+// others turn from its plane: layer 1). `mixed`: set where a texel lies off its layer's plane.
+vec4 planeOf(ivec2 first, int block, bool edge, float split, vec4 plane0, int layer, float apart, inout bool mixed) {
+    vec4 plane = vec4(0.0, 1.0, 0.0, 0.0), other = plane;
+    float brightest = -1.0, on = 0.0, brightestOff = -1.0, onOther = 0.0;
+    for (int pass = 0; pass < 3; ++pass) {
+        for (int y = 0; y < block; ++y)
+            for (int x = 0; x < block; ++x) {
+                ivec2 t = first + ivec2(x, y);
+                float depth = texelFetch(rsmDepth, t, 0).r;
+                if (depth >= 1.0) continue;
+                vec3 n = normalize(texelFetch(rsmNormal, t, 0).xyz);
+                if (!(layer == 0 && !edge) && !inLayer(layer, depth, n, edge, split, true, plane0)) continue;
+                vec3 p = worldAt(t, depth);
+                float l = dot(texelFetch(rsmFlux, t, 0).rgb, vec3(0.2126, 0.7152, 0.0722));
+                if (pass == 0 && l > brightest) {
+                    brightest = l;
+                    plane = vec4(n, dot(n, p));
+                } else if (pass == 1 && onPlane(plane, n, p, apart)) {
+                    on += l;
+                } else if (pass == 1) {
+                    mixed = true;
+                    if (dot(n, plane.xyz) >= 0.7071 && l > brightestOff) {
+                        brightestOff = l;
+                        other = vec4(n, dot(n, p));
+                    }
+                } else if (pass == 2 && onPlane(other, n, p, apart)) {
+                    onOther += l;
+                }
+            }
+        if ((pass == 0 && brightest < 0.0) || (pass == 1 && brightestOff < 0.0)) break;
+    }
+    return onOther > on ? other : plane;
+}
+
 // The VPL of `layer` of the block at `first`: its texels' flux, their flux-weighted position and
-// normal, and the patch they cover. Texels go to layer 1 beyond the middle depth at an edge; with
-// `creases` (the gather's VPLs), without an edge, those turned more than 45 degrees from the
-// block's plane (its brightest texel's normal, `planes[0]`) go there instead, and with an edge such
-// texels (a roof's rim by its top) add their flux but do not shape their layer's VPL: averaged in,
-// it would face neither way and, as a patch near a receiver (vpl_gather.frag), hang off both
-// surfaces.
-Vpl clustered(ivec2 first, int block, bool edge, float split, bool creases, vec3 planes[2], int layer) {
+// normal, and the patch they cover (inLayer). With `creases` (the gather's VPLs), only the texels
+// on their layer's plane (`planes`, planeOf) shape it; the others (a roof's rim by its top, a
+// box's top below a roof on one side of an edge) add their flux: averaged in, the VPL would face
+// neither way, or hang in mid air between the two, where a receiver next to it (a ceiling over
+// the box) takes its light as arriving from in front.
+Vpl clustered(ivec2 first, int block, bool edge, float split, bool creases, vec4 planes[2], float apart, int layer) {
     vec3 position = vec3(0.0), normal = vec3(0.0), flux = vec3(0.0);
     float weight = 0.0, texels = 0.0, area = 0.0, shaping = 0.0;
     vec2 patch_ = vec2(0.0);
@@ -91,12 +140,11 @@ Vpl clustered(ivec2 first, int block, bool edge, float split, bool creases, vec3
                 ivec2 t = first + ivec2(x, y);
                 float depth = texelFetch(rsmDepth, t, 0).r;
                 if (depth >= 1.0) continue;
-                vec3 n = normalize(texelFetch(rsmNormal, t, 0).xyz);
-                bool far_ = depth > split;
-                bool turned = creases && dot(n, planes[far_ ? 1 : 0]) < 0.7071;
-                if ((edge || !creases ? far_ : turned) != (layer == 1)) continue;
-                bool shapes = !(edge && turned);
+                // The volume's VPLs fetch a texel's normal only where they sum it.
+                vec3 n = creases ? normalize(texelFetch(rsmNormal, t, 0).xyz) : vec3(0.0);
+                if (!inLayer(layer, depth, n, edge, split, creases, planes[0])) continue;
                 vec3 p = worldAt(t, depth);
+                bool shapes = !creases || onPlane(planes[layer], n, p, apart);
                 if (pass == 1) {
                     if (!shapes) continue;
                     vec2 q = vec2(dot(p - centre, tangent), dot(p - centre, bitangent));
@@ -105,6 +153,7 @@ Vpl clustered(ivec2 first, int block, bool edge, float split, bool creases, vec3
                     off = max(off, abs(dot(p - centre, m)));
                     continue;
                 }
+                if (!creases) n = normalize(texelFetch(rsmNormal, t, 0).xyz);
                 vec3 f = texelFetch(rsmFlux, t, 0).rgb;
                 flux += f;
                 texels += 1.0;
@@ -161,36 +210,20 @@ void main() {
     bool edge = farthest > nearest && distance(near, worldAt(first, farthest)) > 2.0 * blockSide;
     float split = edge ? 0.5 * (nearest + farthest) : 2.0;
     const int slot = 2 * (cluster.y * side + cluster.x);
-    vec3 planes[2] = vec3[2](vec3(0.0, 1.0, 0.0), vec3(0.0, 1.0, 0.0));
+    vec4 planes[2] = vec4[2](vec4(0.0, 1.0, 0.0, 0.0), vec4(0.0, 1.0, 0.0, 0.0));
+    // Off a surface's plane by more than a quarter of the block's side: another surface.
+    const float apart = 0.25 * blockSide;
     Vpl volume[2];
     for (int layer = 0; layer < 2; ++layer) {
-        volume[layer] = clustered(first, block, edge, split, false, planes, layer);
+        volume[layer] = clustered(first, block, edge, split, false, planes, apart, layer);
         vpls[slot + layer] = volume[layer];
     }
     if (params.options.x == 0) return;
-    // The gather's: each side of an edge's plane is the normal of its brightest texel. A block
-    // with no texel turned from its plane clusters as the volume's.
-    float brightest[2] = float[2](-1.0, -1.0);
-    for (int y = 0; y < block; ++y)
-        for (int x = 0; x < block; ++x) {
-            ivec2 t = first + ivec2(x, y);
-            float depth = texelFetch(rsmDepth, t, 0).r;
-            if (depth >= 1.0) continue;
-            int layer = depth > split ? 1 : 0;
-            float l = dot(texelFetch(rsmFlux, t, 0).rgb, vec3(0.2126, 0.7152, 0.0722));
-            if (l > brightest[layer]) {
-                brightest[layer] = l;
-                planes[layer] = normalize(texelFetch(rsmNormal, t, 0).xyz);
-            }
-        }
-    bool creased = false;
-    for (int y = 0; y < block; ++y)
-        for (int x = 0; x < block; ++x) {
-            ivec2 t = first + ivec2(x, y);
-            float depth = texelFetch(rsmDepth, t, 0).r;
-            if (depth < 1.0 && dot(normalize(texelFetch(rsmNormal, t, 0).xyz), planes[depth > split ? 1 : 0]) < 0.7071)
-                creased = true;
-        }
+    // The gather's. A block whose texels all lie on their layer's plane clusters as the volume's.
+    bool mixed = false;
+    planes[0] = planeOf(first, block, edge, split, planes[0], 0, apart, mixed);
+    planes[1] = planeOf(first, block, edge, split, planes[0], 1, apart, mixed);
     for (int layer = 0; layer < 2; ++layer)
-        gatherVpls[slot + layer] = creased ? clustered(first, block, edge, split, true, planes, layer) : volume[layer];
+        gatherVpls[slot + layer] =
+            mixed ? clustered(first, block, edge, split, true, planes, apart, layer) : volume[layer];
 }

@@ -36,6 +36,7 @@ layout(binding = 0, std140) uniform Gather {
                         // each one's room, y their counters
     ivec4 pixels;       // x: resolution divisor, yz: G-buffer size, w: 0 (MUL_COLUMNS_AT)
     uvec4 faces;        // x: the stamp of cascade vpls.z's surfaces (gi/SurfaceVoxels.h)
+    mat4 lightViewProjection; // the RSM's the VPLs were clustered from; zero: none
 } gather;
 layout(binding = 1, std430) readonly buffer Vpls { Vpl vpls[]; };
 // The second bounce's VPLs, where vpls.w is 1 (lpv_reflect_gathered_body.glsl): 16 lists of room
@@ -160,11 +161,29 @@ void main() {
         }
         e += near / 16.0;
     } else {
+        // The clusters over the texel's own point of the light's map and next to it, each texel
+        // all of them: the near field's light comes from a few, and where its 4 x 4 block lies
+        // partly on another surface (a crease), the texels that would sum them in their phase are
+        // left out of the block's average (lpv_lookup.glsl) and the pixel got next to nothing.
         int side = gather.vpls.y;
+        vec4 light = MUL_COLUMNS_AT(gather.lightViewProjection, gather.pixels.w, vec4(p, 1.0));
+        ivec2 own = ivec2(-8);
+        if (light.w > 0.0) own = ivec2(floor((light.xy / light.w * 0.5 + 0.5) * float(side)));
+        vec3 near = vec3(0.0);
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                ivec2 c = own + ivec2(dx, dy);
+                if (any(lessThan(c, ivec2(0))) || any(greaterThanEqual(c, ivec2(side)))) continue;
+                for (int layer = 0; layer < 2; ++layer)
+                    near += fromVpl(vpls[2 * (c.y * side + c.x) + layer], p, n, nearest, half_);
+            }
         for (int cy = phase.y; cy < side; cy += 4)
-            for (int cx = phase.x; cx < side; cx += 4)
+            for (int cx = phase.x; cx < side; cx += 4) {
+                if (all(lessThanEqual(abs(ivec2(cx, cy) - own), ivec2(1)))) continue;
                 for (int layer = 0; layer < 2; ++layer)
                     e += fromVpl(vpls[2 * (cy * side + cx) + layer], p, n, nearest, half_);
+            }
+        e += near / 16.0;
     }
     outIrradiance = vec4(e * (share * gather.params.x * 16.0 / PI), 0.0);
 }

@@ -648,6 +648,7 @@ engine::WorkCounts LightPropagationVolume::recordVpls(const FrameRecording& f, u
     // What the volume half needs of the light these VPLs carry.
     const float texelsPerVpl = float(rsm.size() / side) * float(rsm.size() / side);
     cascade.lightDirection = f.sunDirection;
+    cascade.lightViewProjection = rsm.lightViewProjection();
     cascade.vplArea = rsm.texelArea() * texelsPerVpl;
     cascade.whiteTexelFlux = frame_.sunRadiance * rsm.texelArea();
     engine::WorkCounts work = vplClusterWork(settings_);
@@ -946,7 +947,10 @@ uint32_t LightPropagationVolume::gatherSources(GatherSources& sources, bool forP
                             0.25f * cell * cell,
                             facesOf(c),
                             facesCascade(c),
-                            stampOf(c)};
+                            stampOf(c),
+                            false,
+                            {},
+                            cascades_[c].lightViewProjection};
     }
     const uint32_t suns = count;
     const float finest = cascades_[0].grid.cellSize;
@@ -966,7 +970,10 @@ uint32_t LightPropagationVolume::gatherSources(GatherSources& sources, bool forP
                                     0.25f * finest * finest,
                                     facesOf(gathered - 1),
                                     facesCascade(gathered - 1),
-                                    stampOf(gathered - 1)};
+                                    stampOf(gathered - 1),
+                                    false,
+                                    {},
+                                    reaching[k].viewProjection};
             sources[i].cascades |= 1u << c;
         }
     }

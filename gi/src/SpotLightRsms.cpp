@@ -92,12 +92,12 @@ void SpotLightRsms::select(std::span<const engine::Light> lights, const VolumeGr
         const engine::Light& light = lights[selection_[k]];
         const float far = farthestCorner(light.position, reach);
         for (uint32_t f = 0; f < (k < count_ ? 1u : kCubeFaces); ++f, ++rsmCount_) {
-            sources_[rsmCount_] = {vpls_[rsmCount_], spotLightVplSlots(settings_),
-                                   glm::vec4(light.position, 1.0f)};
             reach_[rsmCount_] = analyticLight(light, 1.0f);
             // As record() fits it.
             const SpotRsmFit fit = k < count_ ? fitSpotRsm(light, far) : fitCubeFace(light, f, far);
             frusta_[rsmCount_] = fit.viewProjection;
+            sources_[rsmCount_] = {vpls_[rsmCount_], spotLightVplSlots(settings_),
+                                   glm::vec4(light.position, 1.0f), fit.viewProjection};
             // A VPL's block of texels: (size / side)^2 texels of (2 tan / size)^2 sr each on the axis.
             const float block = 2.0f * fit.tanHalfAngle / float(spotLightVplSide(settings_));
             surfels_[rsmCount_] = {vpls_[rsmCount_], spotLightVplSlots(settings_), light.position, fit.axis,

@@ -20,6 +20,7 @@ struct GatherUniforms {
     glm::ivec4 vpls;
     glm::ivec4 pixels;
     glm::uvec4 faces;
+    glm::mat4 lightViewProjection;
 };
 
 } // namespace
@@ -101,6 +102,7 @@ void VplGather::record(rhi::CommandList& cmd, const engine::CameraMatrices& came
         u.params = glm::vec4(s.listed ? 1.0f : intensity, blendBand, s.nearest, marched ? 1.0f : 0.0f);
         u.vpls = glm::ivec4(int(s.slots), int(s.side), int(s.facesCascade), s.listed ? 1 : 0);
         u.faces = glm::uvec4(s.facesStamp, 0u, 0u, 0u);
+        u.lightViewProjection = s.listed ? glm::mat4(0.0f) : s.lightViewProjection;
         cmd.pushUniforms(0, &u, sizeof(u));
         // The shader declares both views; the one it does not read is bound to the same buffer.
         cmd.bindStorageBuffer(1, s.vpls);

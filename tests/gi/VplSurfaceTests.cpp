@@ -80,8 +80,10 @@ engine::Scene tableScene() {
     return scene;
 }
 
-// A floor and a 2 m wall along z whose face (x 0) looks +x, for a sun from the upper right: its
-// RSM sees the floor and the wall's face and top, and blocks along the wall's foot span both.
+// A floor and a 2 m wall along z whose face (x 0) looks +x, with a 15 cm shelf along it 10 cm
+// below its top, for a sun from above and the right: its RSM sees the floor, the wall's face and
+// top and the shelf; blocks along the wall's foot span the floor and the wall, blocks along its top
+// the top and the shelf (two surfaces facing up, 10 cm apart).
 engine::Scene creaseScene() {
     engine::Scene scene;
     scene.name = "crease";
@@ -92,10 +94,11 @@ engine::Scene creaseScene() {
     b.finish();
     b.begin("wall", 0);
     b.box({-0.1f, 0.0f, -10.0f}, {0.0f, 2.0f, 10.0f});
+    b.box({0.0f, 1.85f, -10.0f}, {0.15f, 1.9f, 10.0f});
     b.finish();
     engine::Light sun;
     sun.type = engine::LightType::Directional;
-    sun.direction = glm::normalize(glm::vec3(-0.7f, -1.0f, 0.2f));
+    sun.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, 0.1f));
     sun.intensity = 10.0f;
     scene.lights.push_back(sun);
     engine::Camera camera;
@@ -109,8 +112,10 @@ engine::Scene creaseScene() {
 } // namespace
 
 TEST_CASE("gi: the gather's VPLs split a block over a crease into a VPL on each surface") {
-    // The volume's VPL of a block over the wall's foot faces between the floor and the wall; as a
-    // patch near a receiver it would hang off both, so the pixels' gather takes one on each.
+    // The volume's VPL of a block over the wall's foot faces between the floor and the wall, and one
+    // over the wall's top and the shelf hangs between the two; near a receiver either would light
+    // it from where no surface is, so the pixels' gather takes one on each (the shelf's light
+    // moves to the top where the top holds more).
     const engine::Scene scene = creaseScene();
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
@@ -127,12 +132,14 @@ TEST_CASE("gi: the gather's VPLs split a block over a crease into a VPL on each 
                          device->readBuffer(lpv.gatherVplBuffer(), 0, gathered.data(),
                                             gathered.size() * sizeof(GpuVpl));
                      });
-            // On the floor (y 0) or the wall's top (y 2) facing up, or on the wall's face (x 0) facing
-            // +x, give or take a millimetre and a degree.
+            // On the floor (y 0), the shelf (y 1.9) or the wall's top (y 2) facing up, or on the wall's
+            // or the shelf's face (x 0, 0.15) facing +x, give or take a millimetre and a degree.
             const auto onSurface = [](const GpuVpl& v) {
                 const glm::vec3 n = glm::vec3(v.normal), p = glm::vec3(v.position);
-                if (n.y > 0.9998f) return std::fabs(p.y) < 1e-3f || std::fabs(p.y - 2.0f) < 1e-3f;
-                return n.x > 0.9998f && std::fabs(p.x) < 1e-3f;
+                if (n.y > 0.9998f)
+                    return std::fabs(p.y) < 1e-3f || std::fabs(p.y - 1.9f) < 1e-3f ||
+                           std::fabs(p.y - 2.0f) < 1e-3f;
+                return n.x > 0.9998f && (std::fabs(p.x) < 1e-3f || std::fabs(p.x - 0.15f) < 1e-3f);
             };
             uint32_t turned = 0, litGathered = 0, offGathered = 0;
             glm::dvec3 volumeFlux(0.0), gatheredFlux(0.0);
@@ -147,9 +154,9 @@ TEST_CASE("gi: the gather's VPLs split a block over a crease into a VPL on each 
                     if (!onSurface(gathered[i])) ++offGathered;
                 }
             }
-            MESSAGE(backend.name << ": " << turned << " of the volume's VPLs between the floor and the wall, "
+            MESSAGE(backend.name << ": " << turned << " of the volume's VPLs off the surfaces, "
                                  << offGathered << " of the gather's " << litGathered);
-            CHECK(turned > 0); // the foot of the wall crosses blocks
+            CHECK(turned > 0); // the foot and the top of the wall cross blocks
             CHECK(offGathered == 0);
             for (int c = 0; c < 3; ++c)
                 CHECK(gatheredFlux[c] == doctest::Approx(volumeFlux[c]).epsilon(1e-4));

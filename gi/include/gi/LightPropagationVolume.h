@@ -221,6 +221,7 @@ private:
         VolumeGrid lit;
         rhi::BufferHandle vpls;
         glm::vec3 lightDirection{0.0f, -1.0f, 0.0f};
+        glm::mat4 lightViewProjection{0.0f}; // its RSM's when its VPLs were clustered
         float vplArea = 0.0f;
         glm::vec3 whiteTexelFlux{0.0f};
     };

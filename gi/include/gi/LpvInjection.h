@@ -9,6 +9,7 @@
 #include "gi/LpvVolumes.h"
 #include "rhi/Device.h"
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -25,6 +26,9 @@ struct VplSource {
     // w 0: xyz is the direction a distant light travels (the sun); w 1: xyz is the position of a
     // light at a point (a spot or point light), each VPL's direction then runs from it.
     glm::vec4 light{0.0f, -1.0f, 0.0f, 0.0f};
+    // The view-projection of the RSM they were clustered from, for the gather (GatherSource);
+    // zero: not given.
+    glm::mat4 viewProjection{0.0f};
 };
 
 class LpvInjection {

@@ -18,6 +18,8 @@
 #include "gi/LpvReference.h"
 #include "rhi/Device.h"
 
+#include <glm/mat4x4.hpp>
+
 #include <cstdint>
 #include <span>
 
@@ -44,6 +46,9 @@ struct GatherSource {
     // `slots`, counted in counter set `side`; their flux holds gi.intensity already.
     bool listed = false;
     rhi::TextureHandle faceSlots; // listed: per cell its faces and their slots (r32ui)
+    // The view-projection of the RSM the VPLs were clustered from: a texel sums the clusters over
+    // its own point of that map and next to it whole (vpl_gather.frag); zero: none.
+    glm::mat4 lightViewProjection{0.0f};
 };
 
 class VplGather {
