@@ -9,9 +9,10 @@
 // clusters its texels nearer the light and those farther into two VPLs, each on its surface.
 // Every block has two slots (kVplsPerCluster); the second stays empty (w 0) without an edge.
 // The per-pixel gather's VPLs (options.x, binding 5) split a crease (a box's top and side) the
-// same way by normal, so each side lights its neighbours as its own surface; the volume's keep a
-// crease whole (split, they made the bounce taken from the frame before differ more from this
-// frame's: docs/gi-fidelity.md).
+// same way by normal, so each side lights its neighbours as its own surface, and keep to one
+// plane a side (planeOf: a roof and a box's top below it made a VPL in mid air); the volume's
+// keep a crease whole (split, they made the bounce taken from the frame before differ more from
+// this frame's: docs/gi-fidelity.md).
 // Each VPL also records its patch: the rectangle on its plane its texels cover, which the
 // per-pixel gather takes for it near a receiver (patch_form_factor.glsl, vpl_gather.frag).
 #include "lpv_common.glsl"
