@@ -49,10 +49,12 @@ WorkCounts vplClusterWork(const LpvSettings& s) {
 WorkCounts gatherVplWork(const LpvSettings& s) {
     const uint64_t texels = uint64_t(s.rsmSize) * s.rsmSize;
     WorkCounts w;
-    // Two more scans of each block (each side's plane, then whether a texel turns from it) and
-    // the slots; a block over a crease clusters again (a share of the blocks, not counted).
-    w.texelsRead = texels * 5;
-    w.aluOps = texels * 10;
+    // Per side of an edge up to three scans of the block (planeOf in vpl_cluster.comp: its
+    // brightest texel, the flux on and off that plane, the flux on the other candidate), each
+    // reading a texel's depth, normal and flux and unprojecting it, and the slots; a block whose
+    // texels leave their plane clusters again (a share of the blocks, not counted).
+    w.texelsRead = texels * 2 * 3 * 3;
+    w.aluOps = texels * 2 * 3 * 30;
     w.bytesMoved = texels * (4 + 8 + 8) + uint64_t(s.vplSlots()) * 48;
     return w;
 }
