@@ -3,8 +3,10 @@
 // run to run whatever order the invocations run in. The surfels: FROM_CAMERA the finest cascade's
 // camera samples (their G-buffer albedo), then FROM_VPLS the sun's VPLs (their flux over a white
 // texel's), in one dispatch (a dispatch and its barrier cost llvmpipe more than these few thousand
-// invocations do). A spot's or point light's surfels add none: their flux holds the light's cone
-// and falloff.
+// invocations do). FROM_POINT, one dispatch per spot or point light RSM: its VPLs' flux over what
+// a white block reflects there (the light's intensity, cone and range window times the block's
+// solid angle, as rsm_spot.frag lit it): without them a surface that only such a light and no
+// camera sees reflected nothing in the further bounces (docs/gi-fidelity.md).
 //
 // 8 bytes a cell, as the RGBA16F sums this replaces (the console preset has no room for more):
 // two R32UI texels, (2 g.x, g.y, g.z) red | green << 16 and (2 g.x + 1, g.y, g.z) count | blue << 16
@@ -79,11 +81,26 @@ AlbedoSurfel surfel(int index) {
     a.albedo = vec3(0.0);
 #else
     Vpl v = vpls[min(index, gv.grid.z - 1)];
+#ifdef FROM_POINT
+    // The cluster's flux over a white block's of its share of texels, lit as rsm_spot.frag lights
+    // it: intensity x cone x range window x the block's solid angle x cos^3 off the axis.
+    vec3 toSurfel = v.position.xyz - gv.lightPosition.xyz;
+    float d2 = max(dot(toSurfel, toSurfel), 1e-8);
+    float cosAxis = max(dot(toSurfel * inversesqrt(d2), gv.lightAxis.xyz), 0.0);
+    float q = d2 * gv.lightAxis.w;
+    float lit = smoothstep(gv.lightDirection.x, gv.lightDirection.y, cosAxis) * clamp(1.0 - q * q, 0.0, 1.0);
+    float solidAngle = gv.lightPosition.w * v.normal.w * cosAxis * cosAxis * cosAxis;
+    vec3 white = gv.whiteTexelFlux.rgb * (lit * solidAngle);
+    // Where the light hardly reaches, the ratio says nothing of the surface.
+    bool lightReaches = lit > 1e-3 && solidAngle > 0.0 && max(max(white.r, white.g), white.b) > 0.0;
+#else
     // The cluster's flux over what as many white texels would reflect.
-    vec3 white = max(v.flux.w * gv.whiteTexelFlux.rgb, vec3(1e-20));
-    a.albedo = clamp(v.flux.rgb / white, 0.0, 1.0);
+    vec3 white = v.flux.w * gv.whiteTexelFlux.rgb;
+    bool lightReaches = true;
+#endif
+    a.albedo = clamp(v.flux.rgb / max(white, vec3(1e-20)), 0.0, 1.0);
     a.cell = surfelCell(v.position.xyz);
-    a.valid = index < gv.grid.z && v.position.w > 0.0 && insideVolume(a.cell);
+    a.valid = index < gv.grid.z && v.position.w > 0.0 && lightReaches && insideVolume(a.cell);
 #endif
     return a;
 }

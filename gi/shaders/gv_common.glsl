@@ -15,13 +15,15 @@
 
 layout(binding = 0, std140) uniform GeometryInject {
     vec4 gridOrigin;   // xyz: corner of LPV cell 0 (= centre of GV cell 0); w: cell size
-    vec4 lightDirection; // xyz: where the light travels; w: RSM area per VPL (m^2, across the light)
+    vec4 lightDirection; // xyz: where the light travels; w: RSM area per VPL (m^2, across the light);
+                         // FROM_POINT's albedo sums: xy the cone's smoothstep edges
     mat4 invViewProjection; // camera surfels: clip -> world
     vec4 camera;       // xyz: camera position
     ivec4 grid;        // x: GV cells per axis, y: slice being drawn (not LAYERED), z: VPL count, w: samples per row
     vec4 whiteTexelFlux; // rgb: the flux an RSM texel of albedo 1 reflects
     // FROM_POINT (the surfels of a spot or point light's RSM): xyz the light's position, w the solid
-    // angle of a VPL's texel block on the RSM's axis (sr); and the axis.
+    // angle of a VPL's texel block on the RSM's axis (sr); and the axis, w 1 / range^2 (0: none).
+    // Its albedo sums take the light's radiant intensity as whiteTexelFlux.
     vec4 lightPosition;
     vec4 lightAxis;
     // The albedo sums (gv_albedo_sums_body.glsl): y the stride between the surfels taken (more

@@ -92,13 +92,13 @@ GeometryVolume::GeometryVolume(rhi::Device& device, uint32_t lpvSize, bool keepA
     gapsPipeline_ = device.createPipeline(ComputePipelineDesc{&shaders::gv_gaps_comp, "gv gaps"});
     facesPipeline_ = device.createPipeline(ComputePipelineDesc{&shaders::gv_faces_coverage_comp, "gv faces"});
     if (keepAlbedo) {
-        const ShaderBinary* albedo[2][3] = {
+        const ShaderBinary* albedo[2][4] = {
             {&shaders::gv_albedo_count_camera_comp, &shaders::gv_albedo_count_vpls_comp,
-             &shaders::gv_albedo_count_camera_vpls_comp},
+             &shaders::gv_albedo_count_camera_vpls_comp, &shaders::gv_albedo_count_point_comp},
             {&shaders::gv_albedo_add_camera_comp, &shaders::gv_albedo_add_vpls_comp,
-             &shaders::gv_albedo_add_camera_vpls_comp}};
+             &shaders::gv_albedo_add_camera_vpls_comp, &shaders::gv_albedo_add_point_comp}};
         for (int pass = 0; pass < 2; ++pass)
-            for (int from = 0; from < 3; ++from)
+            for (int from = 0; from < 4; ++from)
                 albedoPipelines_[pass][from] =
                     device.createPipeline(ComputePipelineDesc{albedo[pass][from], "gv albedo sums"});
         facesAlbedoPipeline_ =
@@ -295,28 +295,49 @@ void GeometryVolume::recordTogether(rhi::CommandList& cmd, std::span<const Build
 bool GeometryVolume::addAlbedoSums(rhi::CommandList& cmd, const InjectUniforms& base,
                                    const GeometrySources& src, uint32_t cameraSamples) {
     const uint32_t vpls = src.vpls ? src.vplCount : 0;
-    const uint32_t surfels = cameraSamples + vpls;
+    uint32_t surfels = cameraSamples + vpls;
+    for (const PointLightSurfels& light : src.pointLights)
+        surfels += light.vpls ? light.count : 0;
     if (surfels == 0) return false;
     cmd.clearTexture(albedoSums_, {0, 0, 0, 0});
     // Where every surfel could land in one cell and count past kMaxAlbedoSurfels, take every
     // stride-th (the mean stays a mean).
     const uint32_t stride = (surfels + kMaxAlbedoSurfels - 1) / kMaxAlbedoSurfels;
+    const auto groups = [&](uint32_t n) { return ((n + stride - 1) / stride + 63) / 64; };
     InjectUniforms u = base;
     u.grid.z = int(vpls);
     const int from = cameraSamples == 0 ? 1 : vpls == 0 ? 0 : 2;
     u.albedoSums = glm::ivec4(0, int(stride), int(cameraSamples), 0);
     for (int pass = 0; pass < 2; ++pass) {
-        // Pass 0 counts each cell's surfels, pass 1 adds their albedo.
-        cmd.bindPipeline(albedoPipelines_[pass][from]);
-        cmd.pushUniforms(0, &u, sizeof(u));
-        if (vpls > 0) cmd.bindStorageBuffer(1, src.vpls);
-        if (cameraSamples > 0) {
-            cmd.bindTexture(2, src.depth, pointSampler_);
-            cmd.bindTexture(3, src.normal, pointSampler_);
-            cmd.bindTexture(5, src.albedo ? src.albedo : src.normal, pointSampler_);
+        // Pass 0 counts each cell's surfels, pass 1 adds their albedo: every count is in before
+        // the first albedo is added.
+        if (cameraSamples + vpls > 0) {
+            cmd.bindPipeline(albedoPipelines_[pass][from]);
+            cmd.pushUniforms(0, &u, sizeof(u));
+            if (vpls > 0) cmd.bindStorageBuffer(1, src.vpls);
+            if (cameraSamples > 0) {
+                cmd.bindTexture(2, src.depth, pointSampler_);
+                cmd.bindTexture(3, src.normal, pointSampler_);
+                cmd.bindTexture(5, src.albedo ? src.albedo : src.normal, pointSampler_);
+            }
+            cmd.bindStorageImage(4, albedoSums_);
+            cmd.dispatch(groups(cameraSamples + vpls));
         }
-        cmd.bindStorageImage(4, albedoSums_);
-        cmd.dispatch(((surfels + stride - 1) / stride + 63) / 64);
+        for (const PointLightSurfels& light : src.pointLights) {
+            if (!light.vpls || light.count == 0) continue;
+            InjectUniforms lu = u;
+            lu.grid.z = int(light.count);
+            lu.albedoSums.z = 0;
+            lu.lightDirection = glm::vec4(light.cosOuter, light.cosInner, 0.0f, 0.0f);
+            lu.whiteTexelFlux = glm::vec4(light.intensity, 0.0f);
+            lu.lightPosition = glm::vec4(light.position, light.vplSolidAngle);
+            lu.lightAxis = glm::vec4(light.axis, light.invRangeSquared);
+            cmd.bindPipeline(albedoPipelines_[pass][3]);
+            cmd.pushUniforms(0, &lu, sizeof(lu));
+            cmd.bindStorageBuffer(1, light.vpls);
+            cmd.bindStorageImage(4, albedoSums_);
+            cmd.dispatch(groups(light.count));
+        }
     }
     return true;
 }

@@ -160,7 +160,6 @@ TEST_CASE("gi: the surfels of a spot or point light's RSM block like the sun's (
             s.shFormat = gi::ShFormat::Rgba32f;
             const rhi::BufferHandle light = upload(*device, vpls), surfels = upload(*device, wall);
             WallRun run;
-            float albedoWeight = 0.0f;
             {
                 gi::GeometryVolume geometry(*device, kCells, true);
                 const gi::PointLightSurfels point{surfels,
@@ -171,10 +170,6 @@ TEST_CASE("gi: the surfels of a spot or point light's RSM block like the sun's (
                 gi::GeometrySources src;
                 src.pointLights = std::span(&point, 1);
                 run = runWall(*device, s, geometry, light, uint32_t(vpls.size()), sunLight, src);
-                // Coverage only: the light's flux holds its falloff, so these surfels give no albedo.
-                const Image albedo = readImage(*device, geometry.surfelAlbedo());
-                for (const glm::vec4& t : albedo.texels)
-                    albedoWeight = std::max(albedoWeight, t.w);
             }
             CHECK(run.faces.at(4, 5, 5).x == doctest::Approx(1.0f));
             MESSAGE(backend.name << ": light in the room without occlusion " << run.open
@@ -184,7 +179,6 @@ TEST_CASE("gi: the surfels of a spot or point light's RSM block like the sun's (
             REQUIRE(run.open > 0.0f);
             CHECK(run.wallCoverage > 0.9f);
             CHECK(run.walled <= 0.10f * run.open);
-            CHECK(albedoWeight == 0.0f);
             device->destroy(light);
             device->destroy(surfels);
             device.expectSilent();

@@ -5,9 +5,13 @@
 #include "gi/GeometryVolume.h"
 
 #include <doctest/doctest.h>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <span>
 #include <vector>
 
 using namespace lpv;
@@ -84,6 +88,88 @@ TEST_CASE("gi: a cell's surfel albedo is the mean of its surfels', however many 
                 CHECK(worst <= 0.01f);
                 device->destroy(buffer);
             }
+            device.expectSilent();
+        }
+    }
+}
+
+TEST_CASE("gi: a spot light's surfels give their cells the albedo its RSM lit them with") {
+    // A surface only a spot light sees (no camera, no sun) reflects in the further bounces with the
+    // albedo its VPLs' flux holds: their flux over what a white block reflects there, the light's
+    // intensity x cone x range window x the block's solid angle x cos^3 off the axis
+    // (rsm_spot.frag). Without it such a surface had no albedo and reflected nothing.
+    gi::PointLightSurfels light;
+    light.position = glm::vec3(kCell, 3.0f * kCell, kCell);
+    light.axis = glm::vec3(0.0f, -1.0f, 0.0f);
+    light.vplSolidAngle = 0.02f;
+    light.intensity = glm::vec3(40.0f, 20.0f, 10.0f);
+    light.cosOuter = std::cos(0.5f);
+    light.cosInner = std::cos(0.2f);
+    light.invRangeSquared = 1.0f / 25.0f;
+    // One VPL on the axis at GV cell (1, 1, 1), one off it at (2, 1, 1), half of its block's
+    // texels, where the cone falls off; and one outside the cone in that cell too, which says
+    // nothing of the surface (counted, it would halve the cell's albedo).
+    const glm::vec3 onAxis(kCell, kCell, kCell), offAxis(2.0f * kCell, kCell, kCell),
+        outside(2.4f * kCell, kCell, 1.4f * kCell);
+    const auto white = [&](glm::vec3 p, float share) {
+        const glm::vec3 d = p - light.position;
+        const float d2 = glm::dot(d, d);
+        const float cosAxis = glm::dot(glm::normalize(d), light.axis);
+        const float t =
+            glm::clamp((cosAxis - light.cosOuter) / (light.cosInner - light.cosOuter), 0.0f, 1.0f);
+        const float q = d2 * light.invRangeSquared;
+        return light.intensity * (t * t * (3.0f - 2.0f * t)) * (1.0f - q * q) * light.vplSolidAngle * share *
+               cosAxis * cosAxis * cosAxis;
+    };
+    REQUIRE(glm::dot(glm::normalize(offAxis - light.position), light.axis) < std::cos(0.2f));
+    REQUIRE(glm::dot(glm::normalize(outside - light.position), light.axis) < light.cosOuter);
+    const std::vector<GpuVpl> vpls = {
+        {glm::vec4(onAxis, 1.0f), {0.0f, 1.0f, 0.0f, 1.0f}, glm::vec4(kAlbedoA * white(onAxis, 1.0f), 16.0f)},
+        {glm::vec4(offAxis, 1.0f),
+         {0.0f, 1.0f, 0.0f, 0.5f},
+         glm::vec4(kAlbedoB * white(offAxis, 0.5f), 8.0f)},
+        {glm::vec4(outside, 1.0f), {0.0f, 1.0f, 0.0f, 1.0f}, glm::vec4(0.0f, 0.0f, 0.0f, 16.0f)}};
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            gi::GeometryVolume geometry(*device, kCells, true);
+            const rhi::BufferHandle buffer = device->createBuffer(
+                {vpls.size() * sizeof(GpuVpl), rhi::kBufferStorage | rhi::kBufferTransfer,
+                 rhi::MemoryAccess::GpuOnly, "test vpls", "test"},
+                vpls.data());
+            light.vpls = buffer;
+            light.count = uint32_t(vpls.size());
+            gi::GeometrySources src;
+            src.pointLights = std::span(&light, 1);
+            rhi::CommandList& cmd = device->beginFrame();
+            geometry.record(cmd, {{0.0f, 0.0f, 0.0f}, kCell, kCells}, src);
+            device->endFrame();
+            device->waitIdle();
+            const Image albedo = readImage(*device, geometry.surfelAlbedo());
+            // GV cell (1, 1, 1) is the corner of LPV cells 0..1, (2, 1, 1) of cells 1..2 along x.
+            float worst = 0.0f;
+            uint32_t wrongCells = 0;
+            for (uint32_t z = 0; z < kCells; ++z)
+                for (uint32_t y = 0; y < kCells; ++y)
+                    for (uint32_t x = 0; x < kCells; ++x) {
+                        const glm::vec4 t = albedo.at(x, y, z);
+                        const bool a = x < 2 && y < 2 && z < 2, b = x >= 1 && x < 3 && y < 2 && z < 2;
+                        if (!a && !b) {
+                            wrongCells += t == glm::vec4(0.0f) ? 0 : 1;
+                            continue;
+                        }
+                        const glm::vec3 expected = a && b ? 0.5f * (kAlbedoA + kAlbedoB)
+                                                   : a    ? kAlbedoA
+                                                          : kAlbedoB;
+                        for (int c = 0; c < 3; ++c)
+                            worst = std::max(worst, std::abs(t[c] - expected[c]));
+                    }
+            MESSAGE(backend.name << ": largest albedo error " << worst << ", cell (0, 0, 0) "
+                                 << describe(albedo.at(0, 0, 0)) << ", (2, 0, 0) "
+                                 << describe(albedo.at(2, 0, 0)));
+            CHECK(wrongCells == 0);
+            CHECK(worst <= 0.01f);
+            device->destroy(buffer);
             device.expectSilent();
         }
     }
