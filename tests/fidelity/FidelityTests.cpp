@@ -162,10 +162,10 @@ TEST_CASE("gi: with gi.gather, the Cornell boxes lit by the sun and by a point l
 // volume's faces and gathered per pixel from them (GatheredReflection), the third reflected from
 // the second's listed faces the same way. Against references of as many bounces (128 samples a
 // pixel). The sun's box with two: the targets on the means, the relative RMSE and the ceilings
-// (measured 0.92-0.95, 0.35, 0.99), its share over 3x guarded at its measure (3.2%) plus a point.
-// The point light's with three: the targets on the relative RMSE (0.39), the ceilings (0.73) and
-// the share over 3x (1.8%); its means (0.78-0.80; 0.72-0.77 with the third bounce propagated,
-// 0.57-0.64 with the second too) short of the 20% target on red, guarded at 0.76.
+// (measured 0.94-0.97, 0.32, 0.97), its share over 3x guarded at its measure (3.2%) plus a point.
+// The point light's with three: every target (means 0.84-0.85, relative RMSE 0.33, ceilings 0.79,
+// over 3x 1.8%); its means were 0.78-0.80 while the surfaces only its light sees (the tall
+// block's top) had no albedo and reflected nothing (docs/gi-fidelity.md).
 TEST_CASE("gi: with gi.gather, the further bounces of the Cornell boxes against the path tracer") {
     for (const BackendUnderTest& backend : selectedBackends()) {
         CAPTURE(backend.name);
@@ -184,7 +184,7 @@ TEST_CASE("gi: with gi.gather, the further bounces of the Cornell boxes against 
         const bench::FidelityFigures point = measure(backend, cornellPointThreeBounces(), "cornell-point",
                                                      {"gi.gather=on", "gi.bounces=3"}, 1);
         for (int c = 0; c < 3; ++c)
-            CHECK(point.meanRatio[c] >= 0.76f);
+            CHECK(std::abs(point.meanRatio[c] - 1.0f) <= 0.2f);
         CHECK(point.relativeRmse <= 0.45f);
         CHECK(std::abs(point.orientation.ceilings - 1.0f) <= 0.35f);
         CHECK(point.shareOver3x <= 0.02f);
