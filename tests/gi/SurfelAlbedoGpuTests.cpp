@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -40,6 +41,39 @@ std::vector<GpuVpl> crowd(uint32_t count) {
     return v;
 }
 
+// Builds `geometry` from `src` in one frame and reads back its surfel albedo.
+Image surfelAlbedo(rhi::Device& device, gi::GeometryVolume& geometry, const gi::GeometrySources& src) {
+    rhi::CommandList& cmd = device.beginFrame();
+    geometry.record(cmd, {{0.0f, 0.0f, 0.0f}, kCell, kCells}, src);
+    device.endFrame();
+    device.waitIdle();
+    return readImage(device, geometry.surfelAlbedo());
+}
+
+struct AlbedoErrors {
+    float worst = 0.0f;      // the largest error of a channel in a cell with surfels
+    uint32_t wrongCells = 0; // cells with surfels but not their full weight, or without but not empty
+};
+
+// Each LPV cell's albedo against expected(x, y, z): its surfels' mean, or none where it has none.
+template <typename Expected> AlbedoErrors albedoErrors(const Image& albedo, Expected&& expected) {
+    AlbedoErrors e;
+    for (uint32_t z = 0; z < kCells; ++z)
+        for (uint32_t y = 0; y < kCells; ++y)
+            for (uint32_t x = 0; x < kCells; ++x) {
+                const glm::vec4 t = albedo.at(x, y, z);
+                const std::optional<glm::vec3> mean = expected(x, y, z);
+                if (!mean) {
+                    e.wrongCells += t == glm::vec4(0.0f) ? 0 : 1;
+                    continue;
+                }
+                for (int c = 0; c < 3; ++c)
+                    e.worst = std::max(e.worst, std::abs(t[c] - (*mean)[c]));
+                e.wrongCells += t.w == 1.0f ? 0 : 1;
+            }
+    return e;
+}
+
 } // namespace
 
 TEST_CASE("gi: a cell's surfel albedo is the mean of its surfels', however many crowd into it") {
@@ -61,31 +95,16 @@ TEST_CASE("gi: a cell's surfel albedo is the mean of its surfels', however many 
                 src.vplCount = count;
                 src.vplArea = 0.01f;
                 src.whiteTexelFlux = glm::vec3(1.0f);
-                rhi::CommandList& cmd = device->beginFrame();
-                geometry.record(cmd, {{0.0f, 0.0f, 0.0f}, kCell, kCells}, src);
-                device->endFrame();
-                device->waitIdle();
-                const Image albedo = readImage(*device, geometry.surfelAlbedo());
+                const Image albedo = surfelAlbedo(*device, geometry, src);
                 // Every LPV cell with the crowded corner, and none other, has the mean; 0.01 is
                 // the dither's error over so many surfels and the RGBA8 volume's rounding.
-                float worst = 0.0f;
-                uint32_t wrongCells = 0;
-                for (uint32_t z = 0; z < kCells; ++z)
-                    for (uint32_t y = 0; y < kCells; ++y)
-                        for (uint32_t x = 0; x < kCells; ++x) {
-                            const glm::vec4 t = albedo.at(x, y, z);
-                            if (x < 2 && y < 2 && z < 2) {
-                                for (int c = 0; c < 3; ++c)
-                                    worst = std::max(worst, std::abs(t[c] - mean[c]));
-                                wrongCells += t.w == 1.0f ? 0 : 1;
-                            } else {
-                                wrongCells += t == glm::vec4(0.0f) ? 0 : 1;
-                            }
-                        }
+                const AlbedoErrors e = albedoErrors(albedo, [&](uint32_t x, uint32_t y, uint32_t z) {
+                    return x < 2 && y < 2 && z < 2 ? std::optional(mean) : std::nullopt;
+                });
                 MESSAGE(backend.name << ": " << count << " surfels in a cell: largest error of the mean "
-                                     << worst << ", corner cell " << describe(albedo.at(0, 0, 0)));
-                CHECK(wrongCells == 0);
-                CHECK(worst <= 0.01f);
+                                     << e.worst << ", corner cell " << describe(albedo.at(0, 0, 0)));
+                CHECK(e.wrongCells == 0);
+                CHECK(e.worst <= 0.01f);
                 device->destroy(buffer);
             }
             device.expectSilent();
@@ -141,34 +160,18 @@ TEST_CASE("gi: a spot light's surfels give their cells the albedo its RSM lit th
             light.count = uint32_t(vpls.size());
             gi::GeometrySources src;
             src.pointLights = std::span(&light, 1);
-            rhi::CommandList& cmd = device->beginFrame();
-            geometry.record(cmd, {{0.0f, 0.0f, 0.0f}, kCell, kCells}, src);
-            device->endFrame();
-            device->waitIdle();
-            const Image albedo = readImage(*device, geometry.surfelAlbedo());
+            const Image albedo = surfelAlbedo(*device, geometry, src);
             // GV cell (1, 1, 1) is the corner of LPV cells 0..1, (2, 1, 1) of cells 1..2 along x.
-            float worst = 0.0f;
-            uint32_t wrongCells = 0;
-            for (uint32_t z = 0; z < kCells; ++z)
-                for (uint32_t y = 0; y < kCells; ++y)
-                    for (uint32_t x = 0; x < kCells; ++x) {
-                        const glm::vec4 t = albedo.at(x, y, z);
-                        const bool a = x < 2 && y < 2 && z < 2, b = x >= 1 && x < 3 && y < 2 && z < 2;
-                        if (!a && !b) {
-                            wrongCells += t == glm::vec4(0.0f) ? 0 : 1;
-                            continue;
-                        }
-                        const glm::vec3 expected = a && b ? 0.5f * (kAlbedoA + kAlbedoB)
-                                                   : a    ? kAlbedoA
-                                                          : kAlbedoB;
-                        for (int c = 0; c < 3; ++c)
-                            worst = std::max(worst, std::abs(t[c] - expected[c]));
-                    }
-            MESSAGE(backend.name << ": largest albedo error " << worst << ", cell (0, 0, 0) "
+            const AlbedoErrors e = albedoErrors(albedo, [&](uint32_t x, uint32_t y, uint32_t z) {
+                const bool a = x < 2 && y < 2 && z < 2, b = x >= 1 && x < 3 && y < 2 && z < 2;
+                if (!a && !b) return std::optional<glm::vec3>();
+                return std::optional(a && b ? 0.5f * (kAlbedoA + kAlbedoB) : a ? kAlbedoA : kAlbedoB);
+            });
+            MESSAGE(backend.name << ": largest albedo error " << e.worst << ", cell (0, 0, 0) "
                                  << describe(albedo.at(0, 0, 0)) << ", (2, 0, 0) "
                                  << describe(albedo.at(2, 0, 0)));
-            CHECK(wrongCells == 0);
-            CHECK(worst <= 0.01f);
+            CHECK(e.wrongCells == 0);
+            CHECK(e.worst <= 0.01f);
             device->destroy(buffer);
             device.expectSilent();
         }
