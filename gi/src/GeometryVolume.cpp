@@ -328,10 +328,12 @@ bool GeometryVolume::addAlbedoSums(rhi::CommandList& cmd, const InjectUniforms& 
             InjectUniforms lu = u;
             lu.grid.z = int(light.count);
             lu.albedoSums.z = 0;
-            lu.lightDirection = glm::vec4(light.cosOuter, light.cosInner, 0.0f, 0.0f);
-            lu.whiteTexelFlux = glm::vec4(light.intensity, 0.0f);
+            // The cone's cosines (a point light's lets every direction through), the intensity
+            // and 1 / range^2, as the RSM was lit (gv_common.glsl).
+            lu.lightDirection = glm::vec4(light.light.intensityCos.w, light.light.spotCos.w, 0.0f, 0.0f);
+            lu.whiteTexelFlux = glm::vec4(glm::vec3(light.light.intensityCos), 0.0f);
             lu.lightPosition = glm::vec4(light.position, light.vplSolidAngle);
-            lu.lightAxis = glm::vec4(light.axis, light.invRangeSquared);
+            lu.lightAxis = glm::vec4(light.axis, light.light.positionInvRange2.w);
             cmd.bindPipeline(albedoPipelines_[pass][3]);
             cmd.pushUniforms(0, &lu, sizeof(lu));
             cmd.bindStorageBuffer(1, light.vpls);

@@ -5,7 +5,6 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
-#include <cmath>
 #include <string>
 
 namespace lpv::gi {
@@ -101,16 +100,9 @@ void SpotLightRsms::select(std::span<const engine::Light> lights, const VolumeGr
                                    glm::vec4(light.position, 1.0f), fit.viewProjection};
             // A VPL's block of texels: (size / side)^2 texels of (2 tan / size)^2 sr each on the axis.
             const float block = 2.0f * fit.tanHalfAngle / float(spotLightVplSide(settings_));
-            PointLightSurfels& surfels = surfels_[rsmCount_];
-            surfels = {vpls_[rsmCount_], spotLightVplSlots(settings_), light.position, fit.axis,
-                       block * block};
-            // As ReflectiveShadowMap::recordSpot() and recordCubeFace() light the RSM.
-            surfels.intensity = light.color * light.intensity;
-            if (k < count_) {
-                surfels.cosOuter = std::cos(light.outerConeAngle);
-                surfels.cosInner = std::max(std::cos(light.innerConeAngle), surfels.cosOuter + 1e-4f);
-            }
-            surfels.invRangeSquared = light.range > 0.0f ? 1.0f / (light.range * light.range) : 0.0f;
+            surfels_[rsmCount_] = {vpls_[rsmCount_], spotLightVplSlots(settings_),
+                                   light.position,   fit.axis,
+                                   block * block,    reach_[rsmCount_]};
         }
     }
 }

@@ -117,14 +117,21 @@ TEST_CASE("gi: a spot light's surfels give their cells the albedo its RSM lit th
     // albedo its VPLs' flux holds: their flux over what a white block reflects there, the light's
     // intensity x cone x range window x the block's solid angle x cos^3 off the axis
     // (rsm_spot.frag). Without it such a surface had no albedo and reflected nothing.
+    engine::Light spot;
+    spot.type = engine::LightType::Spot;
+    spot.position = glm::vec3(kCell, 3.0f * kCell, kCell);
+    spot.color = glm::vec3(1.0f, 0.5f, 0.25f);
+    spot.intensity = 40.0f;
+    spot.range = 5.0f;
+    spot.innerConeAngle = 0.2f;
+    spot.outerConeAngle = 0.5f;
     gi::PointLightSurfels light;
-    light.position = glm::vec3(kCell, 3.0f * kCell, kCell);
-    light.axis = glm::vec3(0.0f, -1.0f, 0.0f);
+    light.position = spot.position;
+    light.axis = spot.direction;
     light.vplSolidAngle = 0.02f;
-    light.intensity = glm::vec3(40.0f, 20.0f, 10.0f);
-    light.cosOuter = std::cos(0.5f);
-    light.cosInner = std::cos(0.2f);
-    light.invRangeSquared = 1.0f / 25.0f;
+    light.light = gi::analyticLight(spot, 1.0f);
+    const glm::vec3 intensity = spot.color * spot.intensity;
+    const float cosOuter = std::cos(spot.outerConeAngle), cosInner = std::cos(spot.innerConeAngle);
     // One VPL on the axis at GV cell (1, 1, 1), one off it at (2, 1, 1), half of its block's
     // texels, where the cone falls off; and one outside the cone in that cell too, which says
     // nothing of the surface (counted, it would halve the cell's albedo).
@@ -134,14 +141,13 @@ TEST_CASE("gi: a spot light's surfels give their cells the albedo its RSM lit th
         const glm::vec3 d = p - light.position;
         const float d2 = glm::dot(d, d);
         const float cosAxis = glm::dot(glm::normalize(d), light.axis);
-        const float t =
-            glm::clamp((cosAxis - light.cosOuter) / (light.cosInner - light.cosOuter), 0.0f, 1.0f);
-        const float q = d2 * light.invRangeSquared;
-        return light.intensity * (t * t * (3.0f - 2.0f * t)) * (1.0f - q * q) * light.vplSolidAngle * share *
+        const float t = glm::clamp((cosAxis - cosOuter) / (cosInner - cosOuter), 0.0f, 1.0f);
+        const float q = d2 / (spot.range * spot.range);
+        return intensity * (t * t * (3.0f - 2.0f * t)) * (1.0f - q * q) * light.vplSolidAngle * share *
                cosAxis * cosAxis * cosAxis;
     };
-    REQUIRE(glm::dot(glm::normalize(offAxis - light.position), light.axis) < std::cos(0.2f));
-    REQUIRE(glm::dot(glm::normalize(outside - light.position), light.axis) < light.cosOuter);
+    REQUIRE(glm::dot(glm::normalize(offAxis - light.position), light.axis) < cosInner);
+    REQUIRE(glm::dot(glm::normalize(outside - light.position), light.axis) < cosOuter);
     const std::vector<GpuVpl> vpls = {
         {glm::vec4(onAxis, 1.0f), {0.0f, 1.0f, 0.0f, 1.0f}, glm::vec4(kAlbedoA * white(onAxis, 1.0f), 16.0f)},
         {glm::vec4(offAxis, 1.0f),

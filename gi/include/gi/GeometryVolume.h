@@ -6,6 +6,7 @@
 // Kaplanyan & Dachsbacher 2010). See gv_common.glsl for what a cell holds.
 #pragma once
 
+#include "gi/AnalyticLight.h"
 #include "gi/LpvReference.h"
 #include "rhi/Device.h"
 
@@ -19,17 +20,14 @@ namespace lpv::gi {
 // The surfels of a spot's or point light's (perspective) RSM: its VPLs, and what gives a VPL its
 // area: the light's position, the RSM's axis and a VPL's texel block's solid angle on that axis;
 // and what gives it its albedo (its flux over what a white block would reflect): the light's
-// radiant intensity, cone and range, as the RSM lit it (rsm_spot.frag).
+// intensity, cone (about the RSM's axis) and range, as the RSM lit it (rsm_spot.frag).
 struct PointLightSurfels {
     rhi::BufferHandle vpls;
     uint32_t count = 0;
     glm::vec3 position{0.0f};
     glm::vec3 axis{0.0f, -1.0f, 0.0f};
     float vplSolidAngle = 0.0f; // sr
-    glm::vec3 intensity{0.0f};  // W/sr per channel: colour x intensity
-    // The cone's smoothstep edges on the cosine off the axis (a cube face's: all of it lit).
-    float cosOuter = -1.0f, cosInner = -1.0f + 1e-4f;
-    float invRangeSquared = 0.0f; // 0: no range window
+    AnalyticLight light{};      // unscaled (gi.intensity 1); dark: the surfels give no albedo
 };
 
 struct GeometrySources {
