@@ -102,7 +102,9 @@ void receive(Vpl v, float weight, uint mask, vec3 centre, inout vec3 e[6]) {
         // half a cell, would read its own VPLs' light as arriving.
         if (w <= 0.0 || dot(front - face, toward) >= 0.0) continue;
         if (visible < 0.0)
-            visible = params.grid.z != 0 ? faceVisibility(params.gridOrigin, params.grid.x, centre, front) : 1.0;
+            visible = params.grid.z != 0 ? faceVisibility(params.gridOrigin, params.grid.x, centre,
+                                                           v.position.xyz + kSurfaceLift * cell * v.normal.xyz)
+                                         : 1.0;
 #ifdef LISTED_SOURCE
         const float r2Counted = r2 + params.params.y;
 #else

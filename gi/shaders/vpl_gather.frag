@@ -79,13 +79,14 @@ vec2 sharesAt(vec3 p) {
     return vec2(w[0], gather.grid.y > 1 ? (1.0 - w[0]) * w[1] : 0.0);
 }
 
-float visibility(vec3 a, vec3 b) {
-    return faceVisibility(gather.gridOrigin[gather.vpls.z], gather.grid.x, a, b);
+// Whether the surface point b (normal nb) sees the surface point a (normal na).
+float visibility(vec3 a, vec3 na, vec3 b, vec3 nb) {
+    return surfaceVisibility(gather.gridOrigin[gather.vpls.z], gather.grid.x, a, na, b, nb);
 }
 
 // What VPL v sends the surface at p with normal n: flux x cos x cos / r^2 (pi and the interleave's 16
 // are applied once in main).
-vec3 fromVpl(Vpl v, vec3 p, vec3 n, float nearest, float half_) {
+vec3 fromVpl(Vpl v, vec3 p, vec3 n, float nearest) {
     vec3 d = v.position.xyz - p;
     float r2 = dot(d, d);
     vec3 dir = d * inversesqrt(max(r2, 1e-12));
@@ -97,9 +98,7 @@ vec3 fromVpl(Vpl v, vec3 p, vec3 n, float nearest, float half_) {
     vec2 e = patchExtents(v.position.w);
     bool patch_ = !listed && nearPatch(r2, e);
     if (patch_) w = patchFormFactor(p, n, v.position.xyz, v.normal.xyz, e);
-    // From half a cell in front of each surface, as the injection and lookup place light, so
-    // neither end's own surface blocks it.
-    if (w > 0.0 && gather.params.w != 0.0) w *= visibility(p + half_ * n, v.position.xyz + half_ * v.normal.xyz);
+    if (w > 0.0 && gather.params.w != 0.0) w *= visibility(p, n, v.position.xyz, v.normal.xyz);
     if (patch_) return v.flux.rgb * (w * PI / (4.0 * e.x * e.y));
     // A listed face (vpls.w 1) is a square of a cell's side on a cell's face, where no surface
     // need be: a disk of its area gives flux / (pi (r^2 + area / pi)) on its axis, at most its
@@ -147,7 +146,7 @@ void main() {
                     uint slots = texelFetch(faceSlots, c, 0).x;
                     uint at = listedAt(c, slots, room);
                     for (uint i = 0u; i < listedFaceCount(slots); ++i)
-                        near += fromVpl(bounceVpls.listed[at + i], p, n, nearest, half_);
+                        near += fromVpl(bounceVpls.listed[at + i], p, n, nearest);
                 }
         // The rest: texel (x, y) of each block sums the faces of the cells of one phase, whichever
         // order they were listed in.
@@ -157,7 +156,7 @@ void main() {
         for (uint i = 0u; i < count; ++i) {
             Vpl v = bounceVpls.listed[start + i];
             ivec3 c = listedFaceCell(v.position.xyz, v.normal.xyz, o);
-            if (any(greaterThan(abs(c - home), ivec3(1)))) e += fromVpl(v, p, n, nearest, half_);
+            if (any(greaterThan(abs(c - home), ivec3(1)))) e += fromVpl(v, p, n, nearest);
         }
         e += near / 16.0;
     } else {
@@ -175,13 +174,13 @@ void main() {
                 ivec2 c = own + ivec2(dx, dy);
                 if (any(lessThan(c, ivec2(0))) || any(greaterThanEqual(c, ivec2(side)))) continue;
                 for (int layer = 0; layer < 2; ++layer)
-                    near += fromVpl(vpls[2 * (c.y * side + c.x) + layer], p, n, nearest, half_);
+                    near += fromVpl(vpls[2 * (c.y * side + c.x) + layer], p, n, nearest);
             }
         for (int cy = phase.y; cy < side; cy += 4)
             for (int cx = phase.x; cx < side; cx += 4) {
                 if (all(lessThanEqual(abs(ivec2(cx, cy) - own), ivec2(1)))) continue;
                 for (int layer = 0; layer < 2; ++layer)
-                    e += fromVpl(vpls[2 * (cy * side + cx) + layer], p, n, nearest, half_);
+                    e += fromVpl(vpls[2 * (cy * side + cx) + layer], p, n, nearest);
             }
         e += near / 16.0;
     }

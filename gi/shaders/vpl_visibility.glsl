@@ -24,3 +24,17 @@ float faceVisibility(vec4 origin, int n, vec3 a, vec3 b) {
     }
     return 1.0;
 }
+
+// How far in front of its surface a march between two surfaces starts, in cells: more than half.
+// A surface marks the face nearest to it (surface_voxels.frag), at most half a cell away on either
+// side; one lying on a cell's centre (a ceiling at 5.5 m in 0.2 m cells: levels put surfaces at
+// round heights) ties between the face behind it and the one half a cell in front, where a march
+// starting exactly half a cell out then began, blocked or not by the last bit of its position.
+const float kSurfaceLift = 0.51;
+
+// Whether the surface point b (normal nb) sees the surface point a (normal na), each lifted off
+// its surface past its own face.
+float surfaceVisibility(vec4 origin, int n, vec3 a, vec3 na, vec3 b, vec3 nb) {
+    const float lift = kSurfaceLift * origin.w;
+    return faceVisibility(origin, n, a + lift * na, b + lift * nb);
+}
