@@ -8,11 +8,9 @@
 // whose grid coordinates are (x, y) mod 4, times 16, so every block covers every cluster once; the
 // lookup averages each block on its surface (lpv_lookup.glsl, GATHER).
 //
-// Which VPLs light which share: the sun's VPLs of cascade c in cascade c's share; a spot or point
-// light's, injected into each cascade they reach, in those cascades' shares. A cascade's
-// propagated first bounce, which the lookup takes out, also holds the light the next coarser
-// cascade handed in across its border: that light is lost (docs/gi-fidelity.md measures gathering
-// the coarser cascade's VPLs outside the finer one instead: more light through the doorway's walls).
+// Which VPLs light which share: the sun's, in the two cascades' shares together, from the finest
+// cascade whose box holds them (main); a spot or point light's, injected into each cascade they
+// reach, in those cascades' shares.
 #include "cascade_region.glsl"
 #include "listed_faces.glsl"
 #include "lpv_common.glsl"
@@ -84,9 +82,12 @@ float visibility(vec3 a, vec3 na, vec3 b, vec3 nb) {
     return surfaceVisibility(gather.gridOrigin[gather.vpls.z], gather.grid.x, a, na, b, nb);
 }
 
-// What VPL v sends the surface at p with normal n: flux x cos x cos / r^2 (pi and the interleave's 16
-// are applied once in main).
-vec3 fromVpl(Vpl v, vec3 p, vec3 n, float nearest) {
+// What VPL v sends the surface at p with normal n, in its share of the lookup: `shares` x where it
+// lies in the finest cascade's box, y beyond (main). Flux x cos x cos / r^2 (pi and the
+// interleave's 16 are applied once in main).
+vec3 fromVpl(Vpl v, vec3 p, vec3 n, float nearest, vec2 shares) {
+    float share = inVolume(0, v.position.xyz) ? shares.x : shares.y;
+    if (share <= 0.0) return vec3(0.0);
     vec3 d = v.position.xyz - p;
     float r2 = dot(d, d);
     vec3 dir = d * inversesqrt(max(r2, 1e-12));
@@ -99,12 +100,12 @@ vec3 fromVpl(Vpl v, vec3 p, vec3 n, float nearest) {
     bool patch_ = !listed && nearPatch(r2, e);
     if (patch_) w = patchFormFactor(p, n, v.position.xyz, v.normal.xyz, e);
     if (w > 0.0 && gather.params.w != 0.0) w *= visibility(p, n, v.position.xyz, v.normal.xyz);
-    if (patch_) return v.flux.rgb * (w * PI / (4.0 * e.x * e.y));
+    if (patch_) return v.flux.rgb * (share * w * PI / (4.0 * e.x * e.y));
     // A listed face (vpls.w 1) is a square of a cell's side on a cell's face, where no surface
     // need be: a disk of its area gives flux / (pi (r^2 + area / pi)) on its axis, at most its
     // radiosity however near (`nearest` is area / pi). Its exact square's form factor lit the
     // faces next to it more than the truth (docs/gi-fidelity.md).
-    return v.flux.rgb * (w / (listed ? r2 + nearest : max(r2, nearest)));
+    return v.flux.rgb * (share * w / (listed ? r2 + nearest : max(r2, nearest)));
 }
 
 void main() {
@@ -122,7 +123,19 @@ void main() {
     int k = gather.grid.z;
     float share = k == 0 ? shares.x : (k == 1 ? shares.y : 0.0);
     if (k < 0) share = ((gather.grid.w & 1) != 0 ? shares.x : 0.0) + ((gather.grid.w & 2) != 0 ? shares.y : 0.0);
-    if (share <= 0.0) return;
+    vec2 shareInOut = vec2(share);
+    // The sun's VPLs, where the next cascade is gathered too: each surface's light comes once, from
+    // the finest cascade whose box holds it, in both cascades' shares of a receiver in the finest.
+    // The finest's VPLs beyond its box (its light's map reaches past it) would be marched through
+    // faces that end at the box, open beyond, and let the sunlit ground through the doorway's walls;
+    // the next's within it have 4 times the area and faces twice the size.
+    if (gather.vpls.w == 0 && k >= 0 && k < 2 && gather.grid.y > 1) {
+        const bool inFinest = shares.x > 0.0;
+        const float both = shares.x + shares.y;
+        if (k == 0) shareInOut = vec2(inFinest ? both : 0.0, 0.0);
+        else shareInOut = inFinest ? vec2(0.0, both) : vec2(shares.y);
+    }
+    if (max(shareInOut.x, shareInOut.y) <= 0.0) return;
 
     // A VPL stands for its cluster's patch: nearer than about its size, 1 / r^2 would count the
     // patch's light as a point's and blow up next to it.
@@ -146,7 +159,7 @@ void main() {
                     uint slots = texelFetch(faceSlots, c, 0).x;
                     uint at = listedAt(c, slots, room);
                     for (uint i = 0u; i < listedFaceCount(slots); ++i)
-                        near += fromVpl(bounceVpls.listed[at + i], p, n, nearest);
+                        near += fromVpl(bounceVpls.listed[at + i], p, n, nearest, shareInOut);
                 }
         // The rest: texel (x, y) of each block sums the faces of the cells of one phase, whichever
         // order they were listed in.
@@ -156,7 +169,7 @@ void main() {
         for (uint i = 0u; i < count; ++i) {
             Vpl v = bounceVpls.listed[start + i];
             ivec3 c = listedFaceCell(v.position.xyz, v.normal.xyz, o);
-            if (any(greaterThan(abs(c - home), ivec3(1)))) e += fromVpl(v, p, n, nearest);
+            if (any(greaterThan(abs(c - home), ivec3(1)))) e += fromVpl(v, p, n, nearest, shareInOut);
         }
         e += near / 16.0;
     } else {
@@ -174,15 +187,15 @@ void main() {
                 ivec2 c = own + ivec2(dx, dy);
                 if (any(lessThan(c, ivec2(0))) || any(greaterThanEqual(c, ivec2(side)))) continue;
                 for (int layer = 0; layer < 2; ++layer)
-                    near += fromVpl(vpls[2 * (c.y * side + c.x) + layer], p, n, nearest);
+                    near += fromVpl(vpls[2 * (c.y * side + c.x) + layer], p, n, nearest, shareInOut);
             }
         for (int cy = phase.y; cy < side; cy += 4)
             for (int cx = phase.x; cx < side; cx += 4) {
                 if (all(lessThanEqual(abs(ivec2(cx, cy) - own), ivec2(1)))) continue;
                 for (int layer = 0; layer < 2; ++layer)
-                    e += fromVpl(vpls[2 * (cy * side + cx) + layer], p, n, nearest);
+                    e += fromVpl(vpls[2 * (cy * side + cx) + layer], p, n, nearest, shareInOut);
             }
         e += near / 16.0;
     }
-    outIrradiance = vec4(e * (share * gather.params.x * 16.0 / PI), 0.0);
+    outIrradiance = vec4(e * (gather.params.x * 16.0 / PI), 0.0);
 }
