@@ -15,11 +15,16 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
 namespace {
+
+const std::map<std::string, lpv::reference::RayScene::Surfaces> kSurfaceModels{
+    {"gltf", lpv::reference::RayScene::Surfaces::Gltf},
+    {"lambertian", lpv::reference::RayScene::Surfaces::Lambertian}};
 
 constexpr const char* kPhysics = R"(What it computes (linear radiance per pixel, RGB float):
   indirect  diffuse-indirect radiance, what render.debug_view=indirect shows: albedo x indirect
@@ -27,9 +32,13 @@ constexpr const char* kPhysics = R"(What it computes (linear radiance per pixel,
   direct    direct diffuse radiance: albedo x direct irradiance / pi
   combined  their sum
 Physics:
-  Surfaces are Lambertian, albedo = glTF base colour factor x base colour texture (sRGB decoded,
-  bilinear, repeat) x (1 - metallic) (metals have no diffuse part, as in the engine). Emission and
-  specular are off; the sky is black. Geometry is two-sided; instance transforms apply (normals by
+  Surfaces are glTF's metallic-roughness model as the engine shows its diffuse part: a Lambertian
+  base, albedo = glTF base colour factor x base colour texture (sRGB decoded, bilinear, repeat) x
+  (1 - metallic) (metals have no diffuse part), under a specular layer that leaves the base
+  1 - F(v.h) of the light (fresnel_mix: Schlick's F, F0 = mix(0.04, base colour, metallic), h the
+  half vector of the directions the light arrives and leaves along), at every bounce and at the
+  visible surface (--surfaces lambertian: the base alone). The layer's own reflection, and
+  emission, are off; the sky is black. Geometry is two-sided; instance transforms apply (normals by
   the inverse transpose); the shading normal is the interpolated vertex normal.
   Directional light (the first one, the engine's sun): intensity x color is the irradiance E (lux)
   on a surface facing it; a lit surface leaves albedo x E x max(cos, 0) / pi.
@@ -105,6 +114,11 @@ int main(int argc, char** argv) {
                    "Diffuse bounces in the indirect (1: light -> A -> visible)")
         ->capture_default_str()
         ->check(CLI::Range(1u, 3u));
+    app.add_option("--surfaces", settings.surfaces,
+                   "gltf: a Lambertian base under glTF's specular layer, as the engine shows it; lambertian: "
+                   "the base alone (no layer)")
+        ->transform(CLI::CheckedTransformer(kSurfaceModels, CLI::ignore_case))
+        ->capture_default_str();
     app.add_option("--seed", settings.seed, "Random seed")->capture_default_str();
     app.add_option("--threads", settings.threads, "Threads (0: all cores)")->capture_default_str();
     app.add_option("--camera-pos", cameraPos, "Camera position x,y,z (default: the scene's camera)");

@@ -1,7 +1,9 @@
 // The estimator: at the visible surface x0, direct = albedo / pi x E_direct(x0); the indirect
 // irradiance is sampled with cosine-weighted directions (pdf cos / pi, so each path's weight is the
 // product of the albedos met), with next-event estimation (DirectLighting) at every later vertex:
-// E_indirect ~ sum over k = 1..bounces of (albedo_1 x ... x albedo_k) E_direct(x_k).
+// E_indirect ~ sum over k = 1..bounces of (albedo_1 x ... x albedo_k) E_direct(x_k). On glTF's
+// layered surfaces each vertex also takes the share its diffuse base reflects from the direction
+// the light arrives along toward the one it leaves along (SurfacePoint::diffuseShare).
 // A medium adds, per camera ray, distances drawn in proportion to sigma_t x transmittance, so each
 // carries the weight albedo x (1 - T(surface)) times the light scattered there: the sun's, shadowed,
 // times the phase function, and the radiance of the surface met by a phase-sampled ray.
@@ -31,13 +33,14 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 
-// One path's estimate of the indirect irradiance at p (cosine-weighted, so no cosine or pdf
-// factors remain: pi x albedo / pi per vertex).
+// One path's estimate of the indirect irradiance at p that its diffuse base reflects toward
+// `toViewer` (cosine-weighted, so no cosine or pdf factors remain: pi x albedo / pi per vertex).
 // `first` is the first bounce's pair of uniforms (stratified by the caller).
 glm::vec3 indirectSample(const RayScene& scene, const DirectLighting& lights, const SurfacePoint& p,
-                         uint32_t bounces, glm::vec2 first, Random& random) {
+                         glm::vec3 toViewer, uint32_t bounces, glm::vec2 first, Random& random) {
     glm::vec3 sum(0.0f), weight(1.0f);
     SurfacePoint at = p;
+    glm::vec3 out = toViewer;
     for (uint32_t k = 0; k < bounces; ++k) {
         const glm::vec2 u = k == 0 ? first : glm::vec2(random.uniform(), random.uniform());
         const glm::vec3 dir = cosineDirection(at.normal, u.x, u.y);
@@ -45,10 +48,11 @@ glm::vec3 indirectSample(const RayScene& scene, const DirectLighting& lights, co
         if (glm::dot(dir, at.geometricNormal) <= 0.0f) break;
         const std::optional<SurfacePoint> next = scene.intersect(scene.rayOrigin(at, dir), dir);
         if (!next) break; // black sky
-        weight *= next->albedo;
+        weight *= at.diffuseShare(dir, out) * next->albedo;
         if (weight.x <= 0.0f && weight.y <= 0.0f && weight.z <= 0.0f) break;
-        sum += weight * lights.irradiance(*next, scene);
+        sum += weight * lights.irradiance(*next, scene, -dir);
         at = *next;
+        out = -dir;
     }
     return sum;
 }
@@ -140,10 +144,10 @@ InScatter inScatter(const RayScene& scene, const DirectLighting& lights, const s
         const glm::vec3 incident = sampleHenyeyGreenstein(-direction, medium.anisotropy, cell.x, cell.y);
         const std::optional<SurfacePoint> q = scene.intersect(x, -incident);
         if (!q) continue;
-        glm::vec3 e = lights.irradiance(*q, scene);
+        glm::vec3 e = lights.irradiance(*q, scene, incident);
         if (bounces > 1) {
             const float v1 = random.uniform(), v2 = random.uniform();
-            e += indirectSample(scene, lights, *q, bounces - 1, {v1, v2}, random);
+            e += indirectSample(scene, lights, *q, incident, bounces - 1, {v1, v2}, random);
         }
         sum.indirect += q->albedo / kPi * e;
     }
@@ -165,11 +169,11 @@ Ray cameraRay(const glm::mat4& invViewProjection, float x, float y, uint32_t wid
 } // namespace
 
 glm::vec3 indirectIrradiance(const RayScene& scene, const DirectLighting& lights, const SurfacePoint& p,
-                             uint32_t bounces, uint32_t samples, uint64_t seed) {
+                             glm::vec3 toViewer, uint32_t bounces, uint32_t samples, uint64_t seed) {
     Random random(seed, 0);
     glm::vec3 sum(0.0f);
     for (uint32_t s = 0; s < samples; ++s)
-        sum += indirectSample(scene, lights, p, bounces, stratified(s, samples, random), random);
+        sum += indirectSample(scene, lights, p, toViewer, bounces, stratified(s, samples, random), random);
     return samples ? sum / float(samples) : sum;
 }
 
@@ -242,13 +246,13 @@ TracedImage trace(const RayScene& scene, const DirectLighting& lights, const eng
                     glm::vec3 surface(0.0f);
                     if (p) {
                         const glm::vec3 diffuse = p->albedo / kPi;
-                        const glm::vec3 d = diffuse * lights.irradiance(*p, scene);
+                        const glm::vec3 d = diffuse * lights.irradiance(*p, scene, -ray.direction);
                         direct += d;
                         surface = d;
                         const glm::vec2 first = stratified(s, spp, random);
                         if (bounces > 0) {
-                            const glm::vec3 b =
-                                diffuse * indirectSample(scene, lights, *p, bounces, first, random);
+                            const glm::vec3 b = diffuse * indirectSample(scene, lights, *p, -ray.direction,
+                                                                         bounces, first, random);
                             indirect += b;
                             surface += b;
                         }
@@ -306,7 +310,7 @@ TracedImage trace(const RayScene& scene, const DirectLighting& lights, const eng
 }
 
 TracedImage trace(const engine::Scene& scene, const engine::Camera& camera, const TraceSettings& settings) {
-    const RayScene rays(scene);
+    const RayScene rays(scene, settings.surfaces);
     const SceneLights lights(scene);
     return trace(rays, lights, camera, settings);
 }

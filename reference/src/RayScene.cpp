@@ -5,6 +5,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
@@ -78,6 +79,7 @@ struct RayScene::Impl {
     std::vector<Geometry> geometries; // by Embree geometry id
     std::vector<LinearTexture> textures;
     float offsetScale = 1e-5f; // ray offsets relative to the scene's extent
+    bool layered = true;       // Surfaces::Gltf
 
     void check(const char* what) const {
         const RTCError e = rtcGetDeviceError(device);
@@ -91,9 +93,10 @@ struct RayScene::Impl {
     }
 };
 
-RayScene::RayScene(const engine::Scene& scene) : impl_(std::make_unique<Impl>()) {
+RayScene::RayScene(const engine::Scene& scene, Surfaces surfaces) : impl_(std::make_unique<Impl>()) {
     Impl& m = *impl_;
     m.scene = &scene;
+    m.layered = surfaces == Surfaces::Gltf;
     m.device = rtcNewDevice(nullptr);
     if (!m.device) throw std::runtime_error("Embree: cannot create a device");
     m.rtcScene = rtcNewScene(m.device);
@@ -208,6 +211,8 @@ std::optional<SurfacePoint> RayScene::intersect(glm::vec3 origin, glm::vec3 dire
         g.material < scene.materials.size() ? &scene.materials[g.material] : nullptr;
     if (!material) {
         s.albedo = glm::vec3(1.0f);
+        s.layered = m.layered;
+        s.f0 = m.layered ? glm::vec3(0.04f) : glm::vec3(0.0f);
         return s;
     }
     const glm::vec2 uv = w * a.uv + u * b.uv + v * c.uv;
@@ -221,8 +226,22 @@ std::optional<SurfacePoint> RayScene::intersect(glm::vec3 origin, glm::vec3 dire
     float metallic = material->metallic;
     // glTF: metallic in B of the (linear) metallic-roughness map, as the engine's G-buffer reads it.
     if (const LinearTexture* t = textured(material->metallicRoughnessTexture)) metallic *= t->sample(uv).b;
-    s.albedo = base * (1.0f - std::clamp(metallic, 0.0f, 1.0f));
+    metallic = std::clamp(metallic, 0.0f, 1.0f);
+    s.albedo = base * (1.0f - metallic);
+    // The engine's lighting pass: F0 = mix(4%, base colour, metallic).
+    s.layered = m.layered;
+    s.f0 = m.layered ? glm::mix(glm::vec3(0.04f), base, metallic) : glm::vec3(0.0f);
     return s;
+}
+
+glm::vec3 SurfacePoint::diffuseShare(glm::vec3 toLight, glm::vec3 toViewer) const {
+    if (!layered) return glm::vec3(1.0f);
+    const glm::vec3 sum = toLight + toViewer;
+    const float length = glm::length(sum);
+    // Opposite directions have no half vector; toward them v.h goes to 0 and F to 1.
+    const float vh = length > 1e-6f ? std::max(glm::dot(toViewer, sum / length), 0.0f) : 0.0f;
+    const float weight = std::pow(1.0f - vh, 5.0f);
+    return glm::vec3(1.0f) - (f0 + (glm::vec3(1.0f) - f0) * weight);
 }
 
 const engine::Bounds& RayScene::bounds() const {

@@ -1,5 +1,5 @@
 // The engine's lights as direct irradiance: lighting_body.glsl's sun term and punctualArrival(),
-// with shadow rays where the engine has shadow maps.
+// with shadow rays where the engine has shadow maps, and what the diffuse base keeps of each.
 #include "reference/DirectLighting.h"
 
 #include <glm/geometric.hpp>
@@ -40,14 +40,14 @@ std::optional<Sun> SceneLights::sun() const {
     return Sun{sunDirection_, sunIrradiance_};
 }
 
-glm::vec3 SceneLights::irradiance(const SurfacePoint& p, const RayScene& scene) const {
+glm::vec3 SceneLights::irradiance(const SurfacePoint& p, const RayScene& scene, glm::vec3 toViewer) const {
     glm::vec3 e(0.0f);
     if (hasSun_) {
         const glm::vec3 toLight = -sunDirection_;
         const float cosine = glm::dot(p.normal, toLight);
         // A light behind the geometric surface cannot reach this side, whatever the shading normal.
         if (cosine > 0.0f && glm::dot(p.geometricNormal, toLight) > 0.0f && !scene.occluded(p, toLight))
-            e += sunIrradiance_ * cosine;
+            e += sunIrradiance_ * cosine * p.diffuseShare(toLight, toViewer);
     }
     for (const Punctual& l : punctual_) {
         const glm::vec3 toLight = l.position - p.position;
@@ -63,7 +63,7 @@ glm::vec3 SceneLights::irradiance(const SurfacePoint& p, const RayScene& scene) 
         }
         if (l.spot) attenuation *= smoothstep(l.cosOuter, l.cosInner, glm::dot(-dir, l.direction));
         if (attenuation <= 0.0f || scene.occluded(p, dir, d)) continue;
-        e += l.intensity * attenuation * cosine;
+        e += l.intensity * attenuation * cosine * p.diffuseShare(dir, toViewer);
     }
     return e;
 }

@@ -3,10 +3,9 @@
 // 128x128, the finest cascade sized to the room, default iterations; the reference is traced here
 // (lpv_reference, 1 bounce, 512 samples a pixel: its own noise is about 5% relative RMSE).
 //
-// What it asserts today: the mean indirect light per channel within 20% of the reference (a target
-// met), and the other figures no worse than they were measured when this test was written (a
-// regression guard: relative RMSE, the ceiling's mean and the share of pixels over 3x are far from
-// the targets, docs/gi-fidelity.md says why). Tighten the guard as the GI gets closer.
+// The propagation alone (gi.gather off, as the console profiles and the CPU rasterizers run it) is
+// far from the targets (docs/gi-fidelity.md says why): its figures are guarded, no worse than
+// measured. Tighten the guard as the GI gets closer.
 //
 // With gi.gather, the room lit through its door (bench/scenes/doorway.gltf) too: the light its
 // walls let through shows in its means.
@@ -34,9 +33,15 @@ using namespace lpv::test;
 
 namespace {
 
-// Measured when the test was written (vulkan and gl-egl alike: 1.344 and 11.98%), plus 4%.
-constexpr float kGuardRelativeRmse = 1.40f;
-constexpr float kGuardShareOver3x = 0.125f;
+// The propagation alone, measured (vulkan and gl-egl alike) against the reference with glTF's
+// specular layer over its surfaces (RayScene::Surfaces::Gltf): means 1.06/1.15/1.22, relative RMSE
+// 1.502, 12.67% over 3x; guarded at 0.26 off 1, the RMSE plus 4% and the share plus half a point
+// (as when the test was written). Against the Lambertian
+// reference the test was written with, the same images gave 0.97/1.05/1.12 (the blue then within
+// the 20% target), 1.344 and 11.98%: the engine did not change, its yardstick did.
+constexpr float kGuardMeanOff = 0.26f;
+constexpr float kGuardRelativeRmse = 1.56f;
+constexpr float kGuardShareOver3x = 0.132f;
 // With gi.gather, measured (vulkan and gl-egl alike) plus a point (6.2% and 4.2% with VPLs as
 // points near a receiver).
 constexpr float kGatherGuardSunOver3x = 0.019f;   // 0.9%
@@ -78,11 +83,11 @@ const Traced& doorway() {
 // bounce propagates with the cascades), the point light's with three (the bounces after the
 // propagation).
 const Traced& cornellSunTwoBounces() {
-    static const Traced traced = traceScene("cornell-sun.gltf", 2, 128);
+    static const Traced traced = traceScene("cornell-sun.gltf", 2, 1024);
     return traced;
 }
 const Traced& cornellPointThreeBounces() {
-    static const Traced traced = traceScene("cornell-point.gltf", 3, 128);
+    static const Traced traced = traceScene("cornell-point.gltf", 3, 1024);
     return traced;
 }
 
@@ -131,10 +136,9 @@ TEST_CASE("gi: the Cornell box lit through its front, against the path tracer") 
     for (const BackendUnderTest& backend : selectedBackends()) {
         CAPTURE(backend.name);
         const bench::FidelityFigures f = measure(backend, cornellSun(), "cornell-sun", {});
-        // The target: every channel's mean within 20%.
+        // The guard: no worse than measured (README, "How close to the truth").
         for (int c = 0; c < 3; ++c)
-            CHECK(std::abs(f.meanRatio[c] - 1.0f) <= 0.2f);
-        // The guard: no worse than measured at this test's writing (README, "How close to the truth").
+            CHECK(std::abs(f.meanRatio[c] - 1.0f) <= kGuardMeanOff);
         CHECK(f.relativeRmse <= kGuardRelativeRmse);
         CHECK(f.shareOver3x <= kGuardShareOver3x);
         CHECK(f.pixels > 128u * 128u / 2u);
@@ -168,12 +172,14 @@ TEST_CASE("gi: with gi.gather, the Cornell boxes lit by the sun and by a point l
 
 // gi.gather with further bounces: the second is reflected from the first gathered at the geometry
 // volume's faces and gathered per pixel from them (GatheredReflection), the third reflected from
-// the second's listed faces the same way. Against references of as many bounces (128 samples a
-// pixel). The sun's box with two: the targets on the means, the relative RMSE and the ceilings
-// (measured 0.94-0.97, 0.32, 0.97), its share over 3x guarded at its measure (3.2%) plus a point.
-// The point light's with three: every target (means 0.84-0.85, relative RMSE 0.33, ceilings 0.79,
-// over 3x 1.8%); its means were 0.78-0.80 while the surfaces only its light sees (the tall
-// block's top) had no albedo and reflected nothing (docs/gi-fidelity.md).
+// the second's listed faces the same way. Against references of as many bounces (1024 samples a
+// pixel: at 128 the reference's noise alone made the point light's relative RMSE 0.28 and put 2.0%
+// of its pixels over 3x, against 0.17 and 1.7% at 1024). The sun's box with two: the targets on
+// the means, the relative RMSE and the ceilings (measured 1.04-1.07, 0.29, 1.06), its share over 3x
+// guarded at its measure (2.8%) plus a point. The point light's with three: every target (means
+// 0.95-0.96, relative RMSE 0.17, ceilings 0.90, over 3x 1.7%); its means were 0.78-0.80 (against
+// the Lambertian reference) while the surfaces only its light sees (the tall block's top) had no
+// albedo and reflected nothing (docs/gi-fidelity.md).
 TEST_CASE("gi: with gi.gather, the further bounces of the Cornell boxes against the path tracer") {
     for (const BackendUnderTest& backend : selectedBackends()) {
         CAPTURE(backend.name);
@@ -183,7 +189,7 @@ TEST_CASE("gi: with gi.gather, the further bounces of the Cornell boxes against 
             CHECK(std::abs(sun.meanRatio[c] - 1.0f) <= 0.2f);
         CHECK(std::abs(sun.orientation.ceilings - 1.0f) <= 0.35f);
         CHECK(sun.relativeRmse <= 0.45f);
-        CHECK(sun.shareOver3x <= 0.042f);
+        CHECK(sun.shareOver3x <= 0.038f);
         CHECK(sun.pixels > 128u * 128u / 2u);
 
         // One frame: its figures are those of two to the last decimal (a still scene's cascades and
@@ -204,9 +210,10 @@ TEST_CASE("gi: with gi.gather, the further bounces of the Cornell boxes against 
 // the blend band, where the next cascade answers most of the lookup): each surface's light comes
 // from the finest cascade whose box holds it, and the sunlit ground beyond that box from the next
 // cascade, marched through its faces, which hold the walls. Measured (vulkan and gl-egl alike):
-// means 0.95-0.98, relative RMSE 0.79 (guarded at that plus 4%); while the finest cascade's VPLs
-// beyond its box were marched through faces that end at the box, open beyond, the ground lit the
-// room through its walls: 1.15-1.18 and 0.93 (docs/gi-fidelity.md).
+// means 1.04-1.07, relative RMSE 0.828 (guarded at 0.83, set at 0.79 plus 4% against the
+// Lambertian reference, where the means were 0.95-0.98); while the finest cascade's VPLs beyond
+// its box were marched through faces that end at the box, open beyond, the ground lit the room
+// through its walls: 1.15-1.18 and 0.93 against the Lambertian reference (docs/gi-fidelity.md).
 TEST_CASE("gi: with gi.gather, the room lit through its door against the path tracer") {
     for (const BackendUnderTest& backend : selectedBackends()) {
         CAPTURE(backend.name);

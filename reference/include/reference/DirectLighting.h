@@ -24,8 +24,10 @@ class DirectLighting {
 public:
     virtual ~DirectLighting() = default;
     // Irradiance (W/m^2 per channel, cosine included) arriving directly at `p` on the side its
-    // normal faces; shadow rays through `scene`. Called from many threads at once.
-    virtual glm::vec3 irradiance(const SurfacePoint& p, const RayScene& scene) const = 0;
+    // normal faces, each light's times the share p's diffuse base reflects toward `toViewer` (unit,
+    // away from the surface: SurfacePoint::diffuseShare); shadow rays through `scene`. Called from
+    // many threads at once.
+    virtual glm::vec3 irradiance(const SurfacePoint& p, const RayScene& scene, glm::vec3 toViewer) const = 0;
     // The sun whose single scattering a medium adds, if any.
     virtual std::optional<Sun> sun() const { return std::nullopt; }
 };
@@ -40,7 +42,7 @@ public:
 class SceneLights : public DirectLighting {
 public:
     explicit SceneLights(const engine::Scene& scene);
-    glm::vec3 irradiance(const SurfacePoint& p, const RayScene& scene) const override;
+    glm::vec3 irradiance(const SurfacePoint& p, const RayScene& scene, glm::vec3 toViewer) const override;
     std::optional<Sun> sun() const override;
 
 private:

@@ -1,7 +1,8 @@
 // The path-traced ground truth the GI is measured against (issue 44): per pixel, for the engine's
 // camera, the diffuse-indirect radiance (what render.debug_view=indirect shows), the direct diffuse
-// radiance and their sum, plus the visible surface's position and normal. Lambertian surfaces, black
-// sky, no emission or specular; next-event estimation at every vertex, cosine-weighted bounces.
+// radiance and their sum, plus the visible surface's position and normal. glTF's surfaces as the
+// engine shows their diffuse part (RayScene.h), black sky, no emission or specular light;
+// next-event estimation at every vertex, cosine-weighted bounces.
 // With a medium (issue 48, fog): the light it scatters toward the camera, single scattering of the
 // sun and of the surfaces' light, and the transmittance to the visible surface.
 #pragma once
@@ -30,6 +31,8 @@ struct TraceSettings {
     // It changes no other image: surfaces are lit, and their light travels, as if it were absent.
     Medium medium;
     uint32_t mediumSamples = 4; // distance samples along each camera sample's ray
+    // The surfaces' model where trace() builds the RayScene itself (RayScene::Surfaces).
+    RayScene::Surfaces surfaces = RayScene::Surfaces::Gltf;
 };
 
 // Row 0 at the top, as the engine's images; linear radiance (RGB). position, normal and hit are
@@ -52,9 +55,10 @@ TracedImage trace(const RayScene& scene, const DirectLighting& lights, const eng
                   const TraceSettings& settings);
 
 // The mean indirect irradiance at `p` (light that bounced 1..bounces times before arriving) over
-// `samples` cosine-weighted paths: what trace() multiplies by albedo / pi for a visible surface.
+// `samples` cosine-weighted paths, each times the share p's diffuse base reflects toward `toViewer`
+// (SurfacePoint::diffuseShare): what trace() multiplies by albedo / pi for a visible surface.
 glm::vec3 indirectIrradiance(const RayScene& scene, const DirectLighting& lights, const SurfacePoint& p,
-                             uint32_t bounces, uint32_t samples, uint64_t seed);
+                             glm::vec3 toViewer, uint32_t bounces, uint32_t samples, uint64_t seed);
 
 // The medium along one ray, as a pixel of trace() sees it: radiance scattered toward `origin`, the
 // transmittance from the first surface (or where a missing ray ends) and the distance to it.

@@ -1,6 +1,8 @@
 // An engine::Scene as the path tracer sees it: every instance's triangles in world space in one
-// Embree 3 BVH, with each triangle's Lambertian albedo (base colour factor x texture x (1 - metallic),
-// as the engine's lighting pass takes the diffuse part) found at the hit point.
+// Embree 3 BVH, with each triangle's material found at the hit point: glTF's metallic-roughness
+// model as the engine's lighting pass shows its diffuse part, a Lambertian base (base colour factor x
+// texture x (1 - metallic)) under a specular layer that keeps 1 - F of the light (fresnel_mix); the
+// layer's own reflection is left out, as the reference leaves out specular light.
 #pragma once
 
 #include "engine/scene/Scene.h"
@@ -20,14 +22,27 @@ struct SurfacePoint {
     glm::vec3 normal{0.0f, 1.0f, 0.0f};          // shading: the interpolated vertex normal
     glm::vec3 geometricNormal{0.0f, 1.0f, 0.0f}; // the triangle's; rays leave offset along it
     glm::vec3 albedo{0.0f};                      // linear diffuse reflectance
-    uint32_t instance = 0;                       // index into Scene::instances
+    // glTF's specular layer over the base: its reflectance at normal incidence (4% for a
+    // dielectric, the base colour for a metal). None on a plain Lambertian surface.
+    bool layered = false;
+    glm::vec3 f0{0.0f};
+    uint32_t instance = 0; // index into Scene::instances
+
+    // The share of the light arriving from `toLight` that the base reflects toward `toViewer` (unit
+    // vectors, away from the surface): 1 - F(toViewer . h), Schlick's F at the half vector h, as
+    // glTF's fresnel_mix and the engine's lighting pass (responseTo) have it; 1 without a layer.
+    glm::vec3 diffuseShare(glm::vec3 toLight, glm::vec3 toViewer) const;
 };
 
 class RayScene {
 public:
+    // The surfaces' model: glTF's (a specular layer over a Lambertian base), or plain Lambertian
+    // surfaces of the same albedo (closed forms assume them).
+    enum class Surfaces { Gltf, Lambertian };
+
     // Builds the BVH (Embree's robust mode; triangles are two-sided). Throws std::runtime_error if
     // Embree fails.
-    explicit RayScene(const engine::Scene& scene);
+    explicit RayScene(const engine::Scene& scene, Surfaces surfaces = Surfaces::Gltf);
     ~RayScene();
     RayScene(const RayScene&) = delete;
     RayScene& operator=(const RayScene&) = delete;
