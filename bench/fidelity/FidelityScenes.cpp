@@ -6,7 +6,7 @@ namespace lpv::bench {
 std::vector<FidelityScene> fidelityScenes(const std::string& sceneDir) {
     return {
         // The built-in box: the sun through a square opening in the ceiling onto the floor.
-        {"cornell", "cornell", {"gi.cell_size=0.2"}, 256, 256, true},
+        {"cornell", "cornell", {"gi.cell_size=0.2"}, 256, 256, true, 4},
         // The standard Cornell box, open at the front, the sun entering through it onto the floor.
         {"cornell-sun", sceneDir + "/cornell-sun.gltf", {"gi.cell_size=0.2"}, 256, 256, true},
         // The same box lit by a point light under its ceiling; the light gets an RSM of its own so

@@ -17,6 +17,10 @@ struct FidelityScene {
     std::vector<std::string> settings; // gi.* assignments for this scene, before the caller's --set
     uint32_t width = 256, height = 256;
     bool targets = false; // a Cornell-type scene: the fidelity targets apply (else figures only)
+    // The reference's samples per pixel are this times the benchmark's: the built-in box's bounced
+    // light all comes from one small sunlit patch, and at the others' count its noise would be
+    // half its relative RMSE (docs/gi-fidelity.md).
+    uint32_t sampleFactor = 1;
 };
 
 // Every scene, glTF paths under `sceneDir` (bench/scenes in the source tree).

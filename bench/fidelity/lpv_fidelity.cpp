@@ -11,6 +11,7 @@
 // side by side. --fog-spp 0 leaves it out.
 //
 //   lpv_fidelity [--backends=vulkan,gl-egl] [--scenes=cornell,...] [--spp=N] [--bounces=1..3]
+//                [--surfaces=gltf|lambertian]
 //                [--fog-spp=N] [--fog-density=D] [--fog-anisotropy=G] [--out=DIR] [--set key=value ...]
 #include "../BenchBackends.h"
 #include "../BenchCommandLine.h"
@@ -33,6 +34,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -91,12 +93,12 @@ engine::Config sceneConfig(const FidelityScene& fs, uint32_t bounces,
 
 // The fog, its sun part and its indirect part against the reference's, per backend.
 void compareFog(const FidelityScene& fs, const FidelityFog& fog, const std::vector<BenchBackend>& backends,
-                uint32_t spp, uint32_t bounces, int frames, const engine::Config& config,
+                const reference::TraceSettings& traced, int frames, const engine::Config& config,
                 const std::string& outDir) {
     const engine::Scene scene = engine::loadScene(fs.source);
     const engine::Camera camera = scene.camera.value_or(engine::Camera{});
-    reference::TraceSettings ts;
-    ts.width = fog.width, ts.height = fog.height, ts.samplesPerPixel = spp, ts.bounces = bounces;
+    reference::TraceSettings ts = traced;
+    ts.width = fog.width, ts.height = fog.height;
     ts.medium = fog.medium;
     const uint64_t t0 = platforms::nowNanoseconds();
     const reference::TracedImage ref = reference::trace(scene, camera, ts);
@@ -106,8 +108,9 @@ void compareFog(const FidelityScene& fs, const FidelityFog& fog, const std::vect
         "\n## Fog in %s against the path tracer (%ux%u, %u spp, %u bounce%s)\n\ndensity %.3g/m, albedo "
         "%.2g/%.2g/%.2g, g %.2g, height falloff %.3g; fog.steps %u, fog.resolution=full; sun part: "
         "gi.enabled=false, indirect part: the difference\n\n",
-        fs.name.c_str(), fog.width, fog.height, spp, bounces, bounces > 1 ? "s" : "", m.density, m.albedo.r,
-        m.albedo.g, m.albedo.b, m.anisotropy, m.heightFalloff, gi::lpvSettingsFrom(config).fog.steps);
+        fs.name.c_str(), fog.width, fog.height, ts.samplesPerPixel, ts.bounces, ts.bounces > 1 ? "s" : "",
+        m.density, m.albedo.r, m.albedo.g, m.albedo.b, m.anisotropy, m.heightFalloff,
+        gi::lpvSettingsFrom(config).fog.steps);
     std::printf("| part | backend | mean ratio r/g/b | rel. RMSE | after scale (x) | reference mean |\n"
                 "|---|---|---|---|---|---|\n");
     for (const BenchBackend& b : backends) {
@@ -150,14 +153,24 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember(fidelitySceneNames()))
         ->capture_default_str();
     uint32_t spp = 256, bounces = 1;
+    reference::RayScene::Surfaces surfaces = reference::RayScene::Surfaces::Gltf;
     int frames = 3;
-    app.add_option("--spp", spp, "Reference samples per pixel")
+    app.add_option("--spp", spp, "Reference samples per pixel (the built-in cornell's: 4 times as many)")
         ->check(CLI::Range(1, 1 << 20))
         ->capture_default_str();
     app.add_option("--bounces", bounces,
                    "Diffuse bounces in the reference's indirect light (the engine runs with gi.bounces set "
                    "to the same)")
         ->check(CLI::Range(1, 3))
+        ->capture_default_str();
+    app.add_option("--surfaces", surfaces,
+                   "The reference's surfaces: gltf (a Lambertian base under glTF's specular layer, as the "
+                   "engine shows it) or lambertian (the base alone)")
+        ->transform(CLI::CheckedTransformer(
+            std::map<std::string, reference::RayScene::Surfaces>{
+                {"gltf", reference::RayScene::Surfaces::Gltf},
+                {"lambertian", reference::RayScene::Surfaces::Lambertian}},
+            CLI::ignore_case))
         ->capture_default_str();
     app.add_option("--frames", frames, "Engine frames before the read-back")->check(CLI::Range(1, 100));
     FidelityFog fog = fidelityFog();
@@ -184,8 +197,9 @@ int main(int argc, char** argv) {
 
     const std::vector<FidelityScene> all = fidelityScenes(LPV_FIDELITY_SCENES);
     int failures = 0;
-    std::printf("## GI fidelity against the path tracer (%u bounce%s, %u spp)\n\n", bounces,
-                bounces > 1 ? "s" : "", spp);
+    std::printf("## GI fidelity against the path tracer (%u bounce%s, %u spp%s)\n\n", bounces,
+                bounces > 1 ? "s" : "", spp,
+                surfaces == reference::RayScene::Surfaces::Lambertian ? ", Lambertian surfaces" : "");
     for (const std::string& s : assignments)
         std::printf("--set %s\n", s.c_str());
     std::printf(
@@ -197,7 +211,9 @@ int main(int argc, char** argv) {
             const engine::Scene scene = engine::loadScene(fs.source);
             const engine::Camera camera = scene.camera.value_or(engine::Camera{});
             reference::TraceSettings ts;
-            ts.width = fs.width, ts.height = fs.height, ts.samplesPerPixel = spp, ts.bounces = bounces;
+            ts.width = fs.width, ts.height = fs.height, ts.samplesPerPixel = spp * fs.sampleFactor;
+            ts.bounces = bounces;
+            ts.surfaces = surfaces;
             const uint64_t t0 = platforms::nowNanoseconds();
             const reference::TracedImage ref = reference::trace(scene, camera, ts);
             const double traceMs = double(platforms::nowNanoseconds() - t0) / 1e6;
@@ -223,7 +239,8 @@ int main(int argc, char** argv) {
                                         engineImage);
                 }
             }
-            std::fprintf(stderr, "%s: reference traced in %.1f s\n", fs.name.c_str(), traceMs / 1000.0);
+            std::fprintf(stderr, "%s: reference traced in %.1f s (%u spp)\n", fs.name.c_str(),
+                         traceMs / 1000.0, ts.samplesPerPixel);
         } catch (const std::exception& e) {
             std::printf("| %s | failed: %s |\n", fs.name.c_str(), e.what());
             ++failures;
@@ -234,8 +251,9 @@ int main(int argc, char** argv) {
             std::find(names.begin(), names.end(), fs.name) == names.end())
             continue;
         try {
-            compareFog(fs, fog, backends, fogSpp, bounces, frames, sceneConfig(fs, bounces, assignments),
-                       outDir);
+            reference::TraceSettings ts;
+            ts.samplesPerPixel = fogSpp, ts.bounces = bounces, ts.surfaces = surfaces;
+            compareFog(fs, fog, backends, ts, frames, sceneConfig(fs, bounces, assignments), outDir);
         } catch (const std::exception& e) {
             std::printf("| fog | failed: %s |\n", e.what());
             ++failures;
