@@ -86,7 +86,8 @@ float visibility(vec3 a, vec3 na, vec3 b, vec3 nb) {
 // lies in the finest cascade's box, y beyond (main). Flux x cos x cos / r^2 (pi and the
 // interleave's 16 are applied once in main).
 vec3 fromVpl(Vpl v, vec3 p, vec3 n, float nearest, vec2 shares) {
-    float share = inVolume(0, v.position.xyz) ? shares.x : shares.y;
+    // Equal shares (a light's VPLs, the listed faces): no box to test on the hottest loop.
+    float share = shares.x == shares.y ? shares.x : (inVolume(0, v.position.xyz) ? shares.x : shares.y);
     if (share <= 0.0) return vec3(0.0);
     vec3 d = v.position.xyz - p;
     float r2 = dot(d, d);
