@@ -15,16 +15,11 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
-#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
 namespace {
-
-const std::map<std::string, lpv::reference::RayScene::Surfaces> kSurfaceModels{
-    {"gltf", lpv::reference::RayScene::Surfaces::Gltf},
-    {"lambertian", lpv::reference::RayScene::Surfaces::Lambertian}};
 
 constexpr const char* kPhysics = R"(What it computes (linear radiance per pixel, RGB float):
   indirect  diffuse-indirect radiance, what render.debug_view=indirect shows: albedo x indirect
@@ -114,10 +109,11 @@ int main(int argc, char** argv) {
                    "Diffuse bounces in the indirect (1: light -> A -> visible)")
         ->capture_default_str()
         ->check(CLI::Range(1u, 3u));
-    app.add_option("--surfaces", settings.surfaces,
+    std::string surfaces = "gltf";
+    app.add_option("--surfaces", surfaces,
                    "gltf: a Lambertian base under glTF's specular layer, as the engine shows it; lambertian: "
                    "the base alone (no layer)")
-        ->transform(CLI::CheckedTransformer(kSurfaceModels, CLI::ignore_case))
+        ->check(CLI::IsMember({"gltf", "lambertian"}))
         ->capture_default_str();
     app.add_option("--seed", settings.seed, "Random seed")->capture_default_str();
     app.add_option("--threads", settings.threads, "Threads (0: all cores)")->capture_default_str();
@@ -155,6 +151,8 @@ int main(int argc, char** argv) {
     app.add_flag("--fog-attenuate-sun", fog.attenuateSunlight,
                  "Attenuate the sun's light by the fog on its way to the scattering points");
     CLI11_PARSE(app, argc, argv);
+    settings.surfaces = surfaces == "lambertian" ? lpv::reference::RayScene::Surfaces::Lambertian
+                                                 : lpv::reference::RayScene::Surfaces::Gltf;
 
     try {
         const engine::Scene scene = engine::loadScene(scenePath);

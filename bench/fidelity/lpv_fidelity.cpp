@@ -34,7 +34,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -163,14 +162,11 @@ int main(int argc, char** argv) {
                    "to the same)")
         ->check(CLI::Range(1, 3))
         ->capture_default_str();
-    app.add_option("--surfaces", surfaces,
+    std::string surfaceModel = "gltf";
+    app.add_option("--surfaces", surfaceModel,
                    "The reference's surfaces: gltf (a Lambertian base under glTF's specular layer, as the "
                    "engine shows it) or lambertian (the base alone)")
-        ->transform(CLI::CheckedTransformer(
-            std::map<std::string, reference::RayScene::Surfaces>{
-                {"gltf", reference::RayScene::Surfaces::Gltf},
-                {"lambertian", reference::RayScene::Surfaces::Lambertian}},
-            CLI::ignore_case))
+        ->check(CLI::IsMember({"gltf", "lambertian"}))
         ->capture_default_str();
     app.add_option("--frames", frames, "Engine frames before the read-back")->check(CLI::Range(1, 100));
     FidelityFog fog = fidelityFog();
@@ -193,6 +189,7 @@ int main(int argc, char** argv) {
     app.add_option("--set", assignments,
                    "A setting for every scene, after the scene's own: --set gi.iterations=16");
     if (const std::optional<int> exit = parseCommandLine(app, argc, argv)) return *exit;
+    if (surfaceModel == "lambertian") surfaces = reference::RayScene::Surfaces::Lambertian;
     if (!outDir.empty()) platforms::Platform::createDirectories(outDir);
 
     const std::vector<FidelityScene> all = fidelityScenes(LPV_FIDELITY_SCENES);
