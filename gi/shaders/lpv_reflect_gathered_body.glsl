@@ -39,7 +39,8 @@ layout(binding = 0, std140) uniform ReflectGathered {
     ivec4 grid;      // x: cells per axis, y: 1 adds to the injection volume and the list, z: 1 marched,
                      // w: LISTED_SOURCE, the source list's counters (0 or 1)
     vec4 params;     // x: gi.intensity (1 for a listed source, whose flux holds it), y: the nearest
-                     // a VPL counts (m^2 of r^2; LISTED_SOURCE: added to r^2)
+                     // a VPL counts (m^2 of r^2; LISTED_SOURCE: added to r^2), z: a face's share
+                     // per area sample (0: no areas), w: the areas' stamp
     ivec4 vpls;      // x: slots, y: the cluster grid's side (2 slots a cluster), z: each phase's
                      // room, w: the counters this frame (0 or 1)
 } params;
@@ -70,6 +71,12 @@ layout(binding = 5, std430) buffer BounceVpls {
 };
 layout(binding = 7) uniform sampler3D faceTransmittance; // xyz: the cell's -x, -y, -z faces
 layout(binding = 8) uniform sampler3D surfelAlbedo;      // rgb: mean albedo of the cell's surfels
+// The surfaces' samples on each face, (3 x + axis, y, z) the lower face along axis of cell (x, y,
+// z), in the low 12 bits under the stamp of the pass that counted them (SurfaceVoxels::areas()):
+// a face reflects at most the share of it a surface covers. The
+// geometry volume's blocked share spreads a surface's rim over the faces of the cells around
+// its corner, and the faces beyond the rim, where no surface is, reflected what reached them.
+layout(binding = 10) uniform usampler3D surfaceAreas;
 // The march goes through the same faces (the first less than half open blocks), not through the
 // scene's surfaces as the pixels' gather does (gi/SurfaceVoxels.h): a reflecting cell is one the
 // geometry volume puts in front of a surface, and the surfaces' faces, a rounding of their own,
@@ -77,6 +84,26 @@ layout(binding = 8) uniform sampler3D surfelAlbedo;      // rgb: mean albedo of 
 // three-bounce means 3-6% lower, docs/gi-fidelity.md).
 bool faceBlocked(ivec3 c, int axis) { return texelFetch(faceTransmittance, c, 0)[axis] < 0.5; }
 #include "vpl_visibility.glsl"
+
+// The share of face f of cell c (-x -y -z +x +y +z) that a surface covers: the most of the
+// faces within one of it along its axis. The geometry volume rounds a surface to a face along
+// the axis as its surfels fall, and a surface near a cell's centre falls on both faces around it
+// (the camera's marks keep the larger |n|): which one holds its area is the volume's to say, how
+// much of the face's plane it covers the areas'. 1 beyond the volume.
+float coveredShare(ivec3 c, int f) {
+    const int axis = f % 3, n = params.grid.x;
+    ivec3 q = c;
+    if (f >= 3) q[axis] += 1;
+    if (q[axis] >= n) return 1.0;
+    uint samples = 0u;
+    for (int k = max(q[axis] - 1, 0); k <= min(q[axis] + 1, n - 1); ++k) {
+        ivec3 r = q;
+        r[axis] = k;
+        const uint area = texelFetch(surfaceAreas, ivec3(3 * r.x + axis, r.y, r.z), 0).x;
+        if ((area >> 12) == uint(params.params.w)) samples = max(samples, area & 0xfffu);
+    }
+    return float(samples) * params.params.z;
+}
 
 // Below this blocked share a face reflects nothing (the slivers at a surface's rim).
 const float kLeastBlocked = 0.02;
@@ -135,8 +162,10 @@ void main() {
     const vec3 albedo = texelFetch(surfelAlbedo, c, 0).rgb;
     uint mask = 0u;
     if (max(max(albedo.r, albedo.g), albedo.b) > 0.0)
-        for (int f = 0; f < 6; ++f)
+        for (int f = 0; f < 6; ++f) {
+            if (params.params.z > 0.0) blocked[f] = min(blocked[f], coveredShare(c, f));
             if (blocked[f] > kLeastBlocked) mask |= 1u << f;
+        }
     uint base = 0u;
     bool listedHere = false;
     const int phase = facePhase(c);

@@ -1,23 +1,40 @@
 #version 450
 // Marks the face a surface crosses between two cell centres along the axis drawn along
 // (gi/SurfaceVoxels.h): the lower face of the cell above, at the surface's position rounded.
+// Each cell column is k x k pixels (k = grid.z, odd): the middle one, on the column's centre
+// line, marks the face; every one adds 1 to the face's area, in k^2ths of a face.
 layout(location = 0) in vec3 vCell;
 layout(location = 1) flat in uint vAxis;
 
 layout(binding = 0, std140) uniform Voxelize {
     vec4 gridOrigin; // xyz: corner of cell 0, w: cell size
-    uvec4 grid;      // x: cells a side, y: the stamp
+    uvec4 grid;      // x: cells a side, y: the stamp, z: pixels a column's side
 } voxelize;
 layout(binding = 2, r32ui) uniform writeonly uimage3D faces;
+// The stamp above the low 12 bits, the samples in them (SurfaceVoxels::areas()).
+layout(binding = 3, r32ui) uniform uimage3D areas;
 
 layout(location = 0) out vec4 outUnused; // the pass's target is never read
 
+const uint kCountBits = 12u;
+// Room left under the count's top for the fragments that add while one reads it.
+const uint kMostSamples = (1u << kCountBits) - 256u;
+
 void main() {
     outUnused = vec4(0.0);
-    const int n = int(voxelize.grid.x), axis = int(vAxis);
+    const int n = int(voxelize.grid.x), axis = int(vAxis), k = int(voxelize.grid.z);
     ivec3 c = ivec3(floor(vCell));
     c[axis] = int(floor(vCell[axis] + 0.5));
     // A face on the grid's upper boundary is no cell's lower face: beyond the volume is open.
     if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, ivec3(n)))) return;
-    imageStore(faces, ivec3(3 * c.x + axis, c.y, c.z), uvec4(voxelize.grid.y));
+    const ivec3 texel = ivec3(3 * c.x + axis, c.y, c.z);
+    // Pixel k i + k / 2 is column i's middle (a flipped y keeps it so: k n - 1 - (k i + k / 2)).
+    const ivec2 within = ivec2(gl_FragCoord.xy) % k;
+    if (all(equal(within, ivec2(k / 2)))) imageStore(faces, texel, uvec4(voxelize.grid.y));
+    // A face last counted by an earlier pass starts from 0 (its stamp is lower): the first of
+    // this pass's samples to get there raises it to this stamp with no count, and every sample
+    // adds after its own raise. No clear, and so no barrier, before the pass.
+    const uint stamped = voxelize.grid.y << kCountBits;
+    const uint before = max(imageAtomicMax(areas, texel, stamped), stamped);
+    if ((before & ((1u << kCountBits) - 1u)) < kMostSamples) imageAtomicAdd(areas, texel, 1u);
 }

@@ -1,12 +1,12 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // The scene along one axis onto a cascade's cells (gi/SurfaceVoxels.h): each cell column (u, v)
-// is a pixel, so a fragment lies on the column's centre line.
+// is k x k pixels (k odd), the middle one on the column's centre line.
 layout(location = 0) in vec3 inPosition;
 
 layout(binding = 0, std140) uniform Voxelize {
     vec4 gridOrigin; // xyz: corner of cell 0, w: cell size
-    uvec4 grid;      // x: cells a side, y: the stamp
+    uvec4 grid;      // x: cells a side, y: the stamp, z: pixels a column's side
 } voxelize;
 #include "draw_uniforms.glsl"
 // Multi-drawn: the draw's index, and in bits 30-31 the axis it is drawn along.

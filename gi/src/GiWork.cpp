@@ -5,6 +5,7 @@
 #include "gi/GeometryVolume.h"
 #include "gi/LpvVolumes.h"
 #include "gi/SpotLightRsms.h"
+#include "gi/SurfaceVoxels.h"
 #include "rhi/Format.h"
 
 namespace lpv::gi {
@@ -24,14 +25,18 @@ WorkCounts rsmWork(const LpvSettings& s, uint64_t triangles) {
 }
 
 WorkCounts surfaceVoxelsWork(const LpvSettings& s, uint64_t triangles) {
-    // An estimate: the surfaces of a room cross each cell column about twice per axis.
-    const uint64_t fragments = uint64_t(3) * 2 * s.gridSize * s.gridSize;
+    // An estimate: the surfaces of a room cross each cell column about twice per axis, each time
+    // in k^2 samples (SurfaceVoxels::kSamplesPerSide), each adding to its face's area; and the
+    // areas' clear.
+    const uint64_t k = SurfaceVoxels::kSamplesPerSide;
+    const uint64_t fragments = uint64_t(3) * 2 * s.gridSize * s.gridSize * k * k;
+    const uint64_t faces = uint64_t(3) * s.gridSize * s.gridSize * s.gridSize;
     WorkCounts w;
     w.primitives = triangles * 3;
     w.pixelsShaded = fragments;
-    w.texelsWritten = fragments;
+    w.texelsWritten = fragments + faces;
     w.aluOps = triangles * 3 * 40 + fragments * 10;
-    w.bytesMoved = fragments * 4;
+    w.bytesMoved = fragments * 4 + faces * 4;
     return w;
 }
 

@@ -795,10 +795,8 @@ engine::WorkCounts LightPropagationVolume::recordBounces(const FrameRecording& f
                      settings_.iterations, cascades_[c].result, c == 0 ? bounces_->first() : nullptr,
                      gathered, gathered ? &firsts_[0] : nullptr);
     if (third) {
-        const uint32_t slot = std::min(c, geometry_->faceSlots() - 1);
-        work += thirdReflection_->recordFromList(
-            f.cmd, volumesOf(c), *geometry_, geometry_->faceTransmittance(slot),
-            (facesValid_ & (1u << slot)) != 0, cascades_[c].grid, *gatheredReflection_);
+        work += thirdReflection_->recordFromList(f.cmd, volumesOf(c), *geometry_, reflectingFaces(c),
+                                                 cascades_[c].grid, *gatheredReflection_);
         bounces_->recordFurther(f.cmd, volumesOf(c), *propagation_, *geometry_, settings_.iterations,
                                 cascades_[c].result, &firsts_[0]);
     }
@@ -810,10 +808,20 @@ engine::WorkCounts LightPropagationVolume::recordGatheredReflection(const FrameR
                                                                     LpvVolumes& into) {
     GatherSources sources;
     const uint32_t count = gatherSources(sources, false);
-    const uint32_t slot = std::min(c, geometry_->faceSlots() - 1);
-    return gatheredReflection_->record(f.cmd, into, *geometry_, geometry_->faceTransmittance(slot),
-                                       (facesValid_ & (1u << slot)) != 0, cascades_[c].grid, c,
+    return gatheredReflection_->record(f.cmd, into, *geometry_, reflectingFaces(c), cascades_[c].grid, c,
                                        settings_.intensity, std::span(sources.data(), count));
+}
+
+ReflectingFaces LightPropagationVolume::reflectingFaces(uint32_t c) const {
+    const uint32_t slot = std::min(c, geometry_->faceSlots() - 1);
+    ReflectingFaces faces{geometry_->faceTransmittance(slot), (facesValid_ & (1u << slot)) != 0};
+    // The surfaces' areas where the cascade's were drawn (recordVolumeHalf) where it is now.
+    if (surfaceVoxels_ && c < SurfaceVoxels::kCascades && surfaceVoxels_->stamp(c) != 0) {
+        faces.areas = surfaceVoxels_->areas(c);
+        faces.areaStamp = surfaceVoxels_->stamp(c);
+        faces.areaSamples = SurfaceVoxels::kSamplesPerSide * SurfaceVoxels::kSamplesPerSide;
+    }
+    return faces;
 }
 
 engine::WorkCounts LightPropagationVolume::recordSurfaceVoxels(const FrameRecording& f, uint32_t c) {

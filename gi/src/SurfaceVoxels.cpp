@@ -16,7 +16,7 @@ namespace {
 // std140 block `Voxelize` of surface_voxels.vert/.frag.
 struct VoxelizeUniforms {
     glm::vec4 gridOrigin; // xyz: corner of cell 0, w: cell size
-    glm::uvec4 grid;      // x: cells a side, y: the stamp
+    glm::uvec4 grid;      // x: cells a side, y: the stamp, z: pixels a column's side
 };
 
 constexpr uint32_t kAxisShift = 30; // a draw index's axis bits (surface_voxels.vert)
@@ -33,7 +33,12 @@ SurfaceVoxels::SurfaceVoxels(rhi::Device& device, uint32_t gridSize)
         faces_[c] = device.createTexture({TextureKind::Tex3D, Format::R32UI, 3 * gridSize, gridSize, gridSize,
                                           1, kTextureStorage | kTextureTransfer, name, "gi.lpv"});
         device.uploadTexture(faces_[c], 0, zeros.data(), zeros.size() * sizeof(uint32_t));
-        targets_[c] = device.createTexture({TextureKind::Tex2D, Format::RGBA8Unorm, gridSize, gridSize, 1, 1,
+        areas_[c] = device.createTexture({TextureKind::Tex3D, Format::R32UI, 3 * gridSize, gridSize, gridSize,
+                                          1, kTextureStorage | kTextureSampled | kTextureTransfer,
+                                          "surface areas, cascade " + std::to_string(c), "gi.lpv"});
+        device.uploadTexture(areas_[c], 0, zeros.data(), zeros.size() * sizeof(uint32_t));
+        const uint32_t side = kSamplesPerSide * gridSize;
+        targets_[c] = device.createTexture({TextureKind::Tex2D, Format::RGBA8Unorm, side, side, 1, 1,
                                             kTextureColorTarget, name + " target", "gi.lpv"});
     }
     GraphicsPipelineDesc d;
@@ -51,6 +56,7 @@ SurfaceVoxels::~SurfaceVoxels() {
     device_.waitIdle();
     for (uint32_t c = 0; c < kCascades; ++c) {
         device_.destroy(faces_[c]);
+        device_.destroy(areas_[c]);
         device_.destroy(targets_[c]);
     }
     if (axisDraws_) device_.destroy(axisDraws_);
@@ -58,7 +64,8 @@ SurfaceVoxels::~SurfaceVoxels() {
 }
 
 uint64_t SurfaceVoxels::bytes(uint32_t gridSize) {
-    return kCascades * (uint64_t(3) * gridSize * gridSize * gridSize * 4 + uint64_t(gridSize) * gridSize * 4);
+    const uint64_t side = uint64_t(kSamplesPerSide) * gridSize;
+    return kCascades * (2 * uint64_t(3) * gridSize * gridSize * gridSize * 4 + side * side * 4);
 }
 
 uint64_t SurfaceVoxels::record(rhi::CommandList& cmd, const engine::GpuScene& scene, const VolumeGrid& grid,
@@ -83,7 +90,16 @@ uint64_t SurfaceVoxels::record(rhi::CommandList& cmd, const engine::GpuScene& sc
                                  stream.data());
         axisDrawsFor_ = draws;
     }
-    lastStamp_ = lastStamp_ == ~0u ? 1u : lastStamp_ + 1u; // 0 stays no pass's
+    // 0 stays no pass's; the areas keep the stamp above their count.
+    if (lastStamp_ + 1u >= (1u << (32u - kAreaCountBits))) {
+        for (uint32_t c = 0; c < kCascades; ++c) {
+            cmd.clearTexture(faces_[c], {0, 0, 0, 0});
+            cmd.clearTexture(areas_[c], {0, 0, 0, 0});
+            stamps_[c] = 0;
+        }
+        lastStamp_ = 0;
+    }
+    ++lastStamp_;
     stamps_[cascade] = lastStamp_;
     engine::Bounds box;
     box.add(grid.origin);
@@ -97,13 +113,14 @@ uint64_t SurfaceVoxels::record(rhi::CommandList& cmd, const engine::GpuScene& sc
     if (draws > 0) {
         cmd.bindPipeline(pipeline_);
         const VoxelizeUniforms u{glm::vec4(grid.origin, grid.cellSize),
-                                 glm::uvec4(grid.size, lastStamp_, 0u, 0u)};
+                                 glm::uvec4(grid.size, lastStamp_, kSamplesPerSide, 0u)};
         cmd.pushUniforms(0, &u, sizeof(u));
         cmd.bindVertexBuffer(0, scene.vertices());
         cmd.bindVertexBuffer(engine::kDrawIndexSlot, axisDraws_);
         cmd.bindIndexBuffer(scene.indices(), IndexType::Uint32);
         cmd.bindStorageBuffer(1, scene.drawRecords());
         cmd.bindStorageImage(2, faces_[cascade]);
+        cmd.bindStorageImage(3, areas_[cascade]);
         multiDraw_.reserve(3 * draws);
         // Each draw that reaches the grid is culled and its level chosen once, drawn along each axis.
         for (const engine::GpuDraw& d : scene.draws()) {

@@ -174,11 +174,12 @@ TEST_CASE("gi: with gi.gather, the Cornell boxes lit by the sun and by a point l
 // volume's faces and gathered per pixel from them (GatheredReflection), the third reflected from
 // the second's listed faces the same way. Against references of as many bounces (1024 samples a
 // pixel: at 128 the reference's noise alone made the point light's relative RMSE 0.28 and put 2.0%
-// of its pixels over 3x, against 0.17 and 1.7% at 1024). The sun's box with two: the targets on
-// the means, the relative RMSE and the ceilings (measured 1.04-1.07, 0.29, 1.06), its share over 3x
-// guarded at its measure (2.8%) plus a point. The point light's with three: every target (means
-// 0.95-0.96, relative RMSE 0.17, ceilings 0.90, over 3x 1.7%); its means were 0.78-0.80 (against
-// the Lambertian reference) while the surfaces only its light sees (the tall block's top) had no
+// of its pixels over 3x, against 0.17 and 1.7% at 1024). Both boxes, every target. The sun's with
+// two: measured 0.98-1.01, relative RMSE 0.25, ceilings 1.05, 0.3% over 3x; 2.8% over 3x while a
+// face reflected by the geometry volume's blocked share alone, which spreads a surface's rim to
+// the faces beyond it (the box's front edges, black in the truth, took their light). The point
+// light's with three: 0.92-0.93, 0.18, 0.87, 0.04%; its means were 0.78-0.80 (against the
+// Lambertian reference) while the surfaces only its light sees (the tall block's top) had no
 // albedo and reflected nothing (docs/gi-fidelity.md).
 TEST_CASE("gi: with gi.gather, the further bounces of the Cornell boxes against the path tracer") {
     for (const BackendUnderTest& backend : selectedBackends()) {
@@ -189,7 +190,7 @@ TEST_CASE("gi: with gi.gather, the further bounces of the Cornell boxes against 
             CHECK(std::abs(sun.meanRatio[c] - 1.0f) <= 0.2f);
         CHECK(std::abs(sun.orientation.ceilings - 1.0f) <= 0.35f);
         CHECK(sun.relativeRmse <= 0.45f);
-        CHECK(sun.shareOver3x <= 0.038f);
+        CHECK(sun.shareOver3x <= 0.02f);
         CHECK(sun.pixels > 128u * 128u / 2u);
 
         // One frame: its figures are those of two to the last decimal (a still scene's cascades and

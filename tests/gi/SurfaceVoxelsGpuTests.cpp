@@ -4,17 +4,19 @@
 // sees, and the floor slab) is blocked, at every angle: the faces along all three axes close the
 // staircase a rotated box makes of the cells. Between two surfaces, the march the gather runs
 // (its shader) sees past each surface's own face, where a surface lies on cells' centres too. On
-// each backend.
+// each backend. Each face also adds up the area its surfaces cover (areas()), sample by sample.
 #include "../support/TestDevice.h"
 #include "TestShaders.h"
 #include "engine/render/GpuScene.h"
 #include "engine/scene/BuiltinScenes.h"
+#include "engine/scene/MeshBuilder.h"
 #include "gi/SurfaceVoxels.h"
 
 #include <doctest/doctest.h>
 #include <glm/common.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <utility>
@@ -216,6 +218,104 @@ TEST_CASE("gi: a march between two surfaces sees past each one's own face") {
             device->destroy(pipeline);
             device->destroy(buffer);
             device.expectSilent();
+        }
+    }
+}
+
+// Two rectangles off the cells' sides, one facing up and one facing +x: each face holds the
+// number of its column's 3 x 3 samples the rectangle covers (an area to a ninth of a face, its
+// rim's faces partly covered), and no other face anything; the middle sample alone marks a face
+// blocked, as a column's centre line did before the areas.
+TEST_CASE("gi: each face adds up the samples of the surfaces that cross it") {
+    constexpr uint32_t k = gi::SurfaceVoxels::kSamplesPerSide;
+    static_assert(k == 3);
+    const gi::VolumeGrid grid{{-4.0f, -4.0f, -4.0f}, 0.25f, 32};
+    struct Rectangle {
+        int axis;         // the one it faces along
+        float at;         // its position along it (m)
+        glm::vec2 lo, hi; // its extent along the two others, in axis order (m)
+    };
+    // The floor at y 0.1 (cells 16.4: face 16) over x -1.3..2.2, z -0.9..1.7; the wall at x 0.6
+    // (18.4: face 18) over y 0.3..1.8, z -2.2..-1.1.
+    const std::array<Rectangle, 2> rectangles{
+        {{1, 0.1f, {-1.3f, -0.9f}, {2.2f, 1.7f}}, {0, 0.6f, {0.3f, -2.2f}, {1.8f, -1.1f}}}};
+    engine::Scene scene;
+    scene.name = "two rectangles";
+    scene.materials = {{"white", {0.8f, 0.8f, 0.8f, 1.0f}}};
+    engine::MeshBuilder builder(scene);
+    builder.begin("floor", 0);
+    builder.quad({-1.3f, 0.1f, 1.7f}, {3.5f, 0.0f, 0.0f}, {0.0f, 0.0f, -2.6f}); // faces +y
+    builder.finish();
+    builder.begin("wall", 0);
+    builder.quad({0.6f, 0.3f, -1.1f}, {0.0f, 0.0f, -1.1f}, {0.0f, 1.5f, 0.0f}); // faces +x
+    builder.finish();
+    scene.updateBounds();
+
+    // Per face texel (3 x + axis, y, z): the samples covered, and whether the middle one is.
+    const size_t n = grid.size;
+    std::vector<uint32_t> expected(3 * n * n * n, 0u);
+    std::vector<uint8_t> middle(expected.size(), 0u);
+    const auto toCells = [&](float m, int axis) { return (m - grid.origin[axis]) / grid.cellSize; };
+    for (const Rectangle& r : rectangles) {
+        const int u = r.axis == 0 ? 1 : 0, v = r.axis == 2 ? 1 : 2;
+        const int face = int(std::floor(toCells(r.at, r.axis) + 0.5f));
+        for (size_t i = 0; i < n; ++i)
+            for (size_t j = 0; j < n; ++j) {
+                uint32_t covered = 0;
+                bool centre = false;
+                for (uint32_t a = 0; a < k; ++a)
+                    for (uint32_t b = 0; b < k; ++b) {
+                        const float su = float(i) + (float(a) + 0.5f) / float(k);
+                        const float sv = float(j) + (float(b) + 0.5f) / float(k);
+                        const bool in = su > toCells(r.lo.x, u) && su < toCells(r.hi.x, u) &&
+                                        sv > toCells(r.lo.y, v) && sv < toCells(r.hi.y, v);
+                        covered += in;
+                        centre = centre || (in && a == k / 2 && b == k / 2);
+                    }
+                glm::ivec3 c(0);
+                c[r.axis] = face;
+                c[u] = int(i);
+                c[v] = int(j);
+                const size_t at = (size_t(c.z) * n + size_t(c.y)) * 3 * n + 3 * size_t(c.x) + size_t(r.axis);
+                expected[at] += covered;
+                middle[at] = middle[at] || centre;
+            }
+    }
+    uint32_t partial = 0, whole = 0;
+    for (uint32_t e : expected) {
+        partial += e > 0 && e < k * k;
+        whole += e == k * k;
+    }
+    REQUIRE(partial > 20);
+    REQUIRE(whole > 100);
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            const engine::GpuScene gpu(*device, scene);
+            gi::SurfaceVoxels voxels(*device, grid.size);
+            // Twice: the second pass counts from nothing (no clear between).
+            for (int pass = 0; pass < 2; ++pass) {
+                rhi::CommandList& cmd = device->beginFrame();
+                voxels.record(cmd, gpu, grid, 0);
+                device->endFrame();
+            }
+            device->waitIdle();
+            std::vector<uint32_t> areas(expected.size()), faces(expected.size());
+            device->readTexture(voxels.areas(0), 0, areas.data(), areas.size() * sizeof(uint32_t));
+            device->readTexture(voxels.faces(0), 0, faces.data(), faces.size() * sizeof(uint32_t));
+            device.expectSilent();
+            size_t wrongAreas = 0, wrongMarks = 0;
+            constexpr uint32_t bits = gi::SurfaceVoxels::kAreaCountBits;
+            for (size_t t = 0; t < expected.size(); ++t) {
+                const uint32_t samples =
+                    areas[t] >> bits == voxels.stamp(0) ? areas[t] & ((1u << bits) - 1u) : 0u;
+                wrongAreas += samples != expected[t];
+                wrongMarks += (faces[t] == voxels.stamp(0)) != (middle[t] != 0);
+            }
+            MESSAGE(backend.name << ": " << whole << " faces whole, " << partial << " in part; " << wrongAreas
+                                 << " areas and " << wrongMarks << " marks wrong");
+            CHECK(wrongAreas == 0);
+            CHECK(wrongMarks == 0);
         }
     }
 }

@@ -21,6 +21,16 @@ namespace lpv::gi {
 class GeometryVolume;
 class LpvVolumes;
 
+// The faces that reflect: the geometry volume's, by their blocked share (marched through where
+// `marched`), each at most the share a surface covers where `areas` is given (SurfaceVoxels::areas()).
+struct ReflectingFaces {
+    rhi::TextureHandle transmittance; // GeometryVolume::faceTransmittance()
+    bool marched = false;
+    rhi::TextureHandle areas; // none: the blocked share alone
+    uint32_t areaStamp = 0;   // SurfaceVoxels::stamp() of the areas
+    uint32_t areaSamples = 0; // of `areas` to a face's whole area
+};
+
 class GatheredReflection {
 public:
     // For volumes of `gridSize` cells a side; `fromList`: recordFromList() rather than record().
@@ -40,16 +50,16 @@ public:
 
     // Writes `into`'s injection volume (grid `grid`) with what the faces `faces` (and the surfels'
     // albedo of `geometry`) reflect of the light of `sources`: those whose sun VPLs are of cascade
-    // `cascade`, or that are injected into it. Marched through `faces` where `marched`.
+    // `cascade`, or that are injected into it.
     // The work it records (for the profiler and the console prediction).
     engine::WorkCounts record(rhi::CommandList& cmd, LpvVolumes& into, const GeometryVolume& geometry,
-                              rhi::TextureHandle faces, bool marched, const VolumeGrid& grid,
-                              uint32_t cascade, float intensity, std::span<const GatherSource> sources);
+                              const ReflectingFaces& faces, const VolumeGrid& grid, uint32_t cascade,
+                              float intensity, std::span<const GatherSource> sources);
 
     // The same from the faces `source` listed in its last record() (the next bounce), in one
     // dispatch. `source` must have recorded this frame.
     engine::WorkCounts recordFromList(rhi::CommandList& cmd, LpvVolumes& into, const GeometryVolume& geometry,
-                                      rhi::TextureHandle faces, bool marched, const VolumeGrid& grid,
+                                      const ReflectingFaces& faces, const VolumeGrid& grid,
                                       const GatheredReflection& source);
 
     // The reflecting faces of the last record() as VPLs of the second bounce, for the per-pixel
@@ -65,12 +75,13 @@ private:
     // A frame's record: flips the counters' set, binds the pipeline, the lists, the injection
     // volume, `faces` and the surfels' albedo.
     void bindFrame(rhi::CommandList& cmd, LpvVolumes& into, const GeometryVolume& geometry,
-                   rhi::TextureHandle faces);
+                   const ReflectingFaces& faces);
 
     rhi::Device& device_;
     uint32_t room_ = 0;
     rhi::BufferHandle list_;       // 2 x 16 counters, then 16 lists of room_ faces
     rhi::TextureHandle faceSlots_; // r32ui per cell: its first face's slot in list_
+    rhi::TextureHandle noAreas_;   // r32ui, 1 texel: bound where ReflectingFaces has no areas
     bool recorded_ = false;
     bool fromList_ = false;
     uint32_t parity_ = 0;

@@ -290,6 +290,8 @@ private:
     // Cascade c's second bounce reflected from its gathered first into `into`'s injection volume.
     engine::WorkCounts recordGatheredReflection(const FrameRecording& f, uint32_t c, LpvVolumes& into);
     engine::WorkCounts recordSurfaceVoxels(const FrameRecording& f, uint32_t c);
+    // The faces cascade c's further bounces reflect from (GatheredReflection).
+    ReflectingFaces reflectingFaces(uint32_t c) const;
     const std::array<rhi::TextureHandle, 3>& firstBounce(uint32_t c) const;
     bool gathers(LpvSettings::Gather mode);
     void makeGather(const LpvSettings& settings);

@@ -10,7 +10,15 @@
 // as blocked. Along all three axes, a surface at an angle to the cells also closes the risers of
 // its staircase, which a segment crossing it diagonally would slip through. A face holds the
 // stamp of the pass that marked it, so no clear precedes a pass: a face is blocked where it holds
-// the cascade's last stamp (stamp()). The three axes are one multi-draw (each draw's axis in its
+// the cascade's last stamp (stamp()). When the stamps run out (a million passes) every face is
+// cleared once and they start again.
+//
+// Each column is drawn as kSamplesPerSide^2 samples, the middle one on its centre line (the one
+// that marks), and every sample adds to its face's area (areas()): how much of the face a surface
+// covers, which the second bounce's reflection takes as a face's reflecting share. The geometry
+// volume's coverage, centred on the cells' corners, spreads a surface's rim over the faces of
+// every cell around the corner, and those beyond the rim, where no surface is, reflected the
+// light that reached them (docs/gi-fidelity.md). The three axes are one multi-draw (each draw's axis in its
 // instance's draw index): two draws storing to one image would be a hazard to the RHI, a barrier
 // between them; each cascade has its own faces and target for the same reason.
 #pragma once
@@ -32,6 +40,8 @@ class SurfaceVoxels {
 public:
     // The cascades, finest first, whose faces it keeps (VplGather::kCascades).
     static constexpr uint32_t kCascades = 2;
+    // Samples along each side of a cell column; odd, so that the middle one is on its centre line.
+    static constexpr uint32_t kSamplesPerSide = 3;
 
     // For cascades of `gridSize` cells a side.
     SurfaceVoxels(rhi::Device& device, uint32_t gridSize);
@@ -54,12 +64,19 @@ public:
     rhi::TextureHandle faces(uint32_t cascade) const { return faces_.at(cascade); }
     // The stamp of cascade c's last record(); 0 before the first (no face is blocked).
     uint32_t stamp(uint32_t cascade) const { return stamps_.at(cascade); }
+    // Cascade c's face areas, r32ui, laid out as faces(): above the low kAreaCountBits the stamp
+    // of the pass that last counted the face, in them the samples of the surfaces that cross it,
+    // kSamplesPerSide^2 to a face's area (more where surfaces overlap). A face holding another
+    // stamp than stamp(c) has none. Stamps run below 2^(32 - kAreaCountBits).
+    static constexpr uint32_t kAreaCountBits = 12;
+    rhi::TextureHandle areas(uint32_t cascade) const { return areas_.at(cascade); }
 
 private:
     rhi::Device& device_;
     uint32_t gridSize_;
     std::array<rhi::TextureHandle, kCascades> faces_;
-    std::array<rhi::TextureHandle, kCascades> targets_; // the passes' colour targets, n x n: never written
+    std::array<rhi::TextureHandle, kCascades> areas_;
+    std::array<rhi::TextureHandle, kCascades> targets_; // the passes' colour targets, never written
     // Per draw d and axis a, at a x draws + d: d | a << 30 (the draw index stream's format).
     rhi::BufferHandle axisDraws_;
     uint32_t axisDrawsFor_ = 0; // draws
