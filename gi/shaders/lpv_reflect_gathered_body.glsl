@@ -163,7 +163,7 @@ void main() {
     uint mask = 0u;
     if (max(max(albedo.r, albedo.g), albedo.b) > 0.0)
         for (int f = 0; f < 6; ++f) {
-            if (params.params.z > 0.0) blocked[f] = min(blocked[f], coveredShare(c, f));
+            if (params.params.z > 0.0 && blocked[f] > kLeastBlocked) blocked[f] = min(blocked[f], coveredShare(c, f));
             if (blocked[f] > kLeastBlocked) mask |= 1u << f;
         }
     uint base = 0u;

@@ -23,8 +23,11 @@ constexpr uint32_t kAxisShift = 30; // a draw index's axis bits (surface_voxels.
 
 } // namespace
 
-SurfaceVoxels::SurfaceVoxels(rhi::Device& device, uint32_t gridSize)
-    : device_(device), gridSize_(gridSize), multiDraw_(device, "surface voxels", "render.draw_commands") {
+SurfaceVoxels::SurfaceVoxels(rhi::Device& device, uint32_t gridSize, uint32_t stampLimit)
+    : device_(device), gridSize_(gridSize), multiDraw_(device, "surface voxels", "render.draw_commands"),
+      stampLimit_(stampLimit) {
+    if (stampLimit < 2 || stampLimit > kStampLimit)
+        throw std::invalid_argument("SurfaceVoxels: stamp limit out of range");
     using namespace rhi;
     // Stamp 0 is no pass's: every face starts open.
     const std::vector<uint32_t> zeros(size_t(3) * gridSize * gridSize * gridSize, 0u);
@@ -91,7 +94,7 @@ uint64_t SurfaceVoxels::record(rhi::CommandList& cmd, const engine::GpuScene& sc
         axisDrawsFor_ = draws;
     }
     // 0 stays no pass's; the areas keep the stamp above their count.
-    if (lastStamp_ + 1u >= (1u << (32u - kAreaCountBits))) {
+    if (lastStamp_ + 1u >= stampLimit_) {
         for (uint32_t c = 0; c < kCascades; ++c) {
             cmd.clearTexture(faces_[c], {0, 0, 0, 0});
             cmd.clearTexture(areas_[c], {0, 0, 0, 0});

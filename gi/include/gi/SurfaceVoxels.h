@@ -43,8 +43,13 @@ public:
     // Samples along each side of a cell column; odd, so that the middle one is on its centre line.
     static constexpr uint32_t kSamplesPerSide = 3;
 
-    // For cascades of `gridSize` cells a side.
-    SurfaceVoxels(rhi::Device& device, uint32_t gridSize);
+    // The bits of an area's count under its stamp (areas()); the stamps run below kStampLimit.
+    static constexpr uint32_t kAreaCountBits = 12;
+    static constexpr uint32_t kStampLimit = 1u << (32 - kAreaCountBits);
+
+    // For cascades of `gridSize` cells a side; `stampLimit` (at most kStampLimit) lower for a
+    // test of the stamps' wrap.
+    SurfaceVoxels(rhi::Device& device, uint32_t gridSize, uint32_t stampLimit = kStampLimit);
     ~SurfaceVoxels();
     SurfaceVoxels(const SurfaceVoxels&) = delete;
     SurfaceVoxels& operator=(const SurfaceVoxels&) = delete;
@@ -67,8 +72,7 @@ public:
     // Cascade c's face areas, r32ui, laid out as faces(): above the low kAreaCountBits the stamp
     // of the pass that last counted the face, in them the samples of the surfaces that cross it,
     // kSamplesPerSide^2 to a face's area (more where surfaces overlap). A face holding another
-    // stamp than stamp(c) has none. Stamps run below 2^(32 - kAreaCountBits).
-    static constexpr uint32_t kAreaCountBits = 12;
+    // stamp than stamp(c) has none.
     rhi::TextureHandle areas(uint32_t cascade) const { return areas_.at(cascade); }
 
 private:
@@ -84,6 +88,7 @@ private:
     engine::MultiDraw multiDraw_;
     std::array<uint32_t, kCascades> stamps_{};
     uint32_t lastStamp_ = 0;
+    uint32_t stampLimit_ = kStampLimit;
 };
 
 } // namespace lpv::gi
