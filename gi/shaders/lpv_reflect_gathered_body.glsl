@@ -73,9 +73,9 @@ layout(binding = 7) uniform sampler3D faceTransmittance; // xyz: the cell's -x, 
 layout(binding = 8) uniform sampler3D surfelAlbedo;      // rgb: mean albedo of the cell's surfels
 // The surfaces' samples on each face, (3 x + axis, y, z) the lower face along axis of cell (x, y,
 // z), in the low 12 bits under the stamp of the pass that counted them (SurfaceVoxels::areas()):
-// a face reflects at most the share of it a surface covers. The
-// geometry volume's blocked share spreads a surface's rim over the faces of the cells around
-// its corner, and the faces beyond the rim, where no surface is, reflected what reached them.
+// a face reflects at most the share of it a surface covers. The geometry volume's blocked share
+// spreads a surface's rim over the faces of the cells around its corner, and the faces beyond the
+// rim, where no surface is, reflected what reached them.
 layout(binding = 10) uniform usampler3D surfaceAreas;
 // The march goes through the same faces (the first less than half open blocks), not through the
 // scene's surfaces as the pixels' gather does (gi/SurfaceVoxels.h): a reflecting cell is one the
@@ -163,7 +163,8 @@ void main() {
     uint mask = 0u;
     if (max(max(albedo.r, albedo.g), albedo.b) > 0.0)
         for (int f = 0; f < 6; ++f) {
-            if (params.params.z > 0.0 && blocked[f] > kLeastBlocked) blocked[f] = min(blocked[f], coveredShare(c, f));
+            if (params.params.z > 0.0 && blocked[f] > kLeastBlocked)
+                blocked[f] = min(blocked[f], coveredShare(c, f));
             if (blocked[f] > kLeastBlocked) mask |= 1u << f;
         }
     uint base = 0u;

@@ -13,14 +13,16 @@
 // the cascade's last stamp (stamp()). When the stamps run out (a million passes) every face is
 // cleared once and they start again.
 //
+// The three axes are one multi-draw (each draw's axis in its instance's draw index): two draws
+// storing to one image would be a hazard to the RHI, a barrier between them; each cascade has its
+// own faces and target for the same reason.
+//
 // Each column is drawn as kSamplesPerSide^2 samples, the middle one on its centre line (the one
 // that marks), and every sample adds to its face's area (areas()): how much of the face a surface
-// covers, which the second bounce's reflection takes as a face's reflecting share. The geometry
-// volume's coverage, centred on the cells' corners, spreads a surface's rim over the faces of
-// every cell around the corner, and those beyond the rim, where no surface is, reflected the
-// light that reached them (docs/gi-fidelity.md). The three axes are one multi-draw (each draw's axis in its
-// instance's draw index): two draws storing to one image would be a hazard to the RHI, a barrier
-// between them; each cascade has its own faces and target for the same reason.
+// covers, which the further bounces' reflection takes as a face's reflecting share at most. The
+// geometry volume's coverage, centred on the cells' corners, spreads a surface's rim over the
+// faces of every cell around the corner, and those beyond the rim, where no surface is,
+// reflected the light that reached them (docs/gi-fidelity.md).
 #pragma once
 
 #include "engine/render/MultiDraw.h"
