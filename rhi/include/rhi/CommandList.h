@@ -121,7 +121,8 @@ struct CommandCounts {
 // One texture copied onto another of the same kind, format and size (CommandList::copyTextures).
 struct TextureCopy {
     TextureHandle src, dst;
-    static constexpr size_t kMaxCopies = 8;
+    // Room for an SH volume's three textures in each of four cascades.
+    static constexpr size_t kMaxCopies = 12;
 };
 
 class CommandList {
