@@ -123,22 +123,28 @@ vec3 keptInside(int c, vec3 q, vec3 p) {
 }
 
 #ifdef GATHER
-// gi.gather (gi/VplGather.h): the two finest cascades' propagated first bounce, kept apart
-// (bindings 21-26), which the lookup takes out of their light, and the VPL gather that replaces
-// it (binding 27), interleaved over 4 x 4 texels.
+// gi.gather (gi/VplGather.h): the three finest cascades' propagated first bounce, kept apart
+// (bindings 21-29), which the lookup takes out of their light, and the VPL gather that replaces
+// it (binding 30), interleaved over 4 x 4 texels.
+#include "gathered_cascades.glsl"
 layout(binding = 21) uniform sampler3D first0r;
 layout(binding = 22) uniform sampler3D first0g;
 layout(binding = 23) uniform sampler3D first0b;
 layout(binding = 24) uniform sampler3D first1r;
 layout(binding = 25) uniform sampler3D first1g;
 layout(binding = 26) uniform sampler3D first1b;
-layout(binding = 27) uniform sampler2D gatheredLight;
+layout(binding = 27) uniform sampler3D first2r;
+layout(binding = 28) uniform sampler3D first2g;
+layout(binding = 29) uniform sampler3D first2b;
+layout(binding = 30) uniform sampler2D gatheredLight;
 
-// Cascade c's (a constant, 0 or 1) first bounce at uvw against `lobe`, as radiance.
+// Cascade c's (a constant, below GATHERED_CASCADES) first bounce at uvw against `lobe`, as
+// radiance.
 vec3 firstBounceAt(int c, vec3 uvw, vec4 lobe) {
     if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) return vec3(0.0);
-    vec3 e = c == 0 ? projectVolumes(first0r, first0g, first0b, uvw, lobe, encodeRangeOf(0))
-                    : projectVolumes(first1r, first1g, first1b, uvw, lobe, encodeRangeOf(1));
+    vec3 e = c == 0   ? projectVolumes(first0r, first0g, first0b, uvw, lobe, encodeRangeOf(0))
+             : c == 1 ? projectVolumes(first1r, first1g, first1b, uvw, lobe, encodeRangeOf(1))
+                      : projectVolumes(first2r, first2g, first2b, uvw, lobe, encodeRangeOf(2));
     return max(e, vec3(0.0)) / (lookup.gridOrigin[c].w * lookup.gridOrigin[c].w);
 }
 
@@ -196,9 +202,9 @@ CascadeSample surfaceLight(int c, vec3 p, vec3 n, LookupLobes lobes) {
         front.glossy *= damping;
     }
 #ifdef GATHER
-    // The first bounce leaves the two finest cascades' irradiance (damped as the rest was); the
+    // The first bounce leaves the gathered cascades' irradiance (damped as the rest was); the
     // gather brings it back (main). The glossy term keeps the volume's.
-    if (c < 2) {
+    if (c < GATHERED_CASCADES) {
         vec3 first = firstBounceAt(c, uvwIn(c, q), lobes.irradiance);
         front.irradiance = max(front.irradiance - damping * first, vec3(0.0));
     }

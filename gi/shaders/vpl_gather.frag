@@ -3,15 +3,16 @@
 // The first bounce gathered per lookup texel from one set of VPLs (gi.gather, gi/VplGather.h):
 // irradiance E = sum of flux x cos(at the VPL) x cos(at the receiver) / (pi r^2), the reflective
 // shadow map's gather (Dachsbacher & Stamminger 2005), near a cluster the form factor of the patch
-// it clusters (patch_form_factor.glsl), in the share of the lookup that the two
-// finest cascades answer for. Interleaved: texel (x, y) of each 4 x 4 block sums the VPL clusters
+// it clusters (patch_form_factor.glsl), in the share of the lookup that the gathered
+// cascades answer for. Interleaved: texel (x, y) of each 4 x 4 block sums the VPL clusters
 // whose grid coordinates are (x, y) mod 4, times 16, so every block covers every cluster once; the
 // lookup averages each block on its surface (lpv_lookup.glsl, GATHER).
 //
-// Which VPLs light which share: the sun's, in the two cascades' shares together, from the finest
-// cascade whose box holds them (main); a spot or point light's, injected into each cascade they
-// reach, in those cascades' shares.
+// Which VPLs light which share: the sun's, in the gathered cascades' shares together, from the
+// finest cascade whose box holds them (main); a spot or point light's, injected into each cascade
+// they reach, in those cascades' shares.
 #include "cascade_region.glsl"
+#include "gathered_cascades.glsl"
 #include "listed_faces.glsl"
 #include "lpv_common.glsl"
 #include "patch_form_factor.glsl"
@@ -22,9 +23,10 @@ struct Vpl {
     vec4 flux;
 };
 
+
 layout(binding = 0, std140) uniform Gather {
     mat4 invViewProjection;
-    vec4 gridOrigin[2]; // the two finest cascades: xyz corner of cell 0, w cell size
+    vec4 gridOrigin[GATHERED_CASCADES]; // the finest cascades: xyz corner of cell 0, w cell size
     ivec4 grid;         // x: cells per axis, y: cascades in all, z: the sun's VPLs of cascade z,
                         // or -1: a light's, in the shares of cascades w (bit c)
     vec4 params;        // x: gi.intensity, y: blend band, z: the nearest a VPL counts (m^2 of r^2),
@@ -65,30 +67,41 @@ bool inVolume(int c, vec3 p) {
     return all(greaterThanEqual(uvw, vec3(0.0))) && all(lessThanEqual(uvw, vec3(1.0)));
 }
 
-// The two finest cascades' shares of the lookup's answer at p, as lpv_lookup.glsl blends them:
-// the finest takes its blend weight, the next what that leaves of its own (all of it when it is
-// the coarsest); 0 outside.
-vec2 sharesAt(vec3 p) {
-    float w[2];
-    for (int k = 0; k < 2; ++k) {
+// The gathered cascades' shares of the lookup's answer at p, as lpv_lookup.glsl blends them: each
+// takes its blend weight of what the finer ones leave (all of it when it is the coarsest); 0
+// outside, and for a cascade that does not exist.
+float[GATHERED_CASCADES] sharesAt(vec3 p) {
+    float shares[GATHERED_CASCADES];
+    float left = 1.0;
+    for (int k = 0; k < GATHERED_CASCADES; ++k) {
         float inside = cascadeInsideness(gather.gridOrigin[k], gather.grid.x, gather.params.y, p);
-        w[k] = k + 1 >= gather.grid.y ? (inVolume(k, p) ? 1.0 : 0.0) : smoothstep(0.0, 1.0, clamp(inside, 0.0, 1.0));
+        float w = k + 1 >= gather.grid.y ? (inVolume(k, p) ? 1.0 : 0.0) : smoothstep(0.0, 1.0, clamp(inside, 0.0, 1.0));
+        shares[k] = k < gather.grid.y ? left * w : 0.0;
+        left *= 1.0 - w;
     }
-    return vec2(w[0], gather.grid.y > 1 ? (1.0 - w[0]) * w[1] : 0.0);
+    return shares;
 }
+
+// Which of a set's VPLs light a texel, and in what share: those in the box of cascade `within`
+// (-1: any) and not in the box of cascade `beyond` (-1: none).
+struct Window {
+    float share;
+    int within;
+    int beyond;
+};
 
 // Whether the surface point b (normal nb) sees the surface point a (normal na).
 float visibility(vec3 a, vec3 na, vec3 b, vec3 nb) {
     return surfaceVisibility(gather.gridOrigin[gather.vpls.z], gather.grid.x, a, na, b, nb);
 }
 
-// What VPL v sends the surface at p with normal n, in its share of the lookup: `shares` x where it
-// lies in the finest cascade's box, y beyond (main). Flux x cos x cos / r^2 (pi and the
-// interleave's 16 are applied once in main).
-vec3 fromVpl(Vpl v, vec3 p, vec3 n, float nearest, vec2 shares) {
-    // Equal shares (a light's VPLs, the listed faces): no box to test on the hottest loop.
-    float share = shares.x == shares.y ? shares.x : (inVolume(0, v.position.xyz) ? shares.x : shares.y);
-    if (share <= 0.0) return vec3(0.0);
+// What VPL v sends the surface at p with normal n, in its share of the lookup where the window
+// takes it (main). Flux x cos x cos / r^2 (pi and the interleave's 16 are applied once in main).
+vec3 fromVpl(Vpl v, vec3 p, vec3 n, float nearest, Window window) {
+    // Without boxes (a light's VPLs, the listed faces), no test on the hottest loop.
+    if (window.within >= 0 && !inVolume(window.within, v.position.xyz)) return vec3(0.0);
+    if (window.beyond >= 0 && inVolume(window.beyond, v.position.xyz)) return vec3(0.0);
+    float share = window.share;
     vec3 d = v.position.xyz - p;
     float r2 = dot(d, d);
     vec3 dir = d * inversesqrt(max(r2, 1e-12));
@@ -120,23 +133,29 @@ void main() {
     vec3 p = world.xyz / world.w;
     vec3 n = normalize(texelFetch(normalTexture, source, 0).xyz);
 
-    vec2 shares = sharesAt(p);
+    float shares[GATHERED_CASCADES] = sharesAt(p);
     int k = gather.grid.z;
-    float share = k == 0 ? shares.x : (k == 1 ? shares.y : 0.0);
-    if (k < 0) share = ((gather.grid.w & 1) != 0 ? shares.x : 0.0) + ((gather.grid.w & 2) != 0 ? shares.y : 0.0);
-    vec2 shareInOut = vec2(share);
-    // The sun's VPLs, where the next cascade is gathered too: each surface's light comes once, from
-    // the finest cascade whose box holds it, in both cascades' shares of a receiver in the finest.
-    // The finest's VPLs beyond its box (its light's map reaches past it) would be marched through
-    // faces that end at the box, open beyond, and let the sunlit ground through the doorway's walls;
-    // the next's within it have 4 times the area and faces twice the size.
-    if (gather.vpls.w == 0 && k >= 0 && k < 2 && gather.grid.y > 1) {
-        const bool inFinest = shares.x > 0.0;
-        const float both = shares.x + shares.y;
-        if (k == 0) shareInOut = vec2(inFinest ? both : 0.0, 0.0);
-        else shareInOut = inFinest ? vec2(0.0, both) : vec2(shares.y);
+    Window window = Window(0.0, -1, -1);
+    if (k < 0) {
+        for (int c = 0; c < GATHERED_CASCADES; ++c)
+            if ((gather.grid.w & (1 << c)) != 0) window.share += shares[c];
+    } else if (gather.vpls.w == 0) {
+        // The sun's VPLs of cascade k: each surface's light comes once, from the finest cascade
+        // whose box holds it, in all the gathered cascades' shares of a receiver in the finest
+        // cascade that holds the receiver (`home`). A cascade's VPLs beyond its box (its light's
+        // map reaches past it) would be marched through faces that end at the box, open beyond,
+        // and let the sunlit ground through the doorway's walls; the next's within it have 4
+        // times the area and faces twice the size. The coarsest gathered takes all of its own.
+        int home = GATHERED_CASCADES;
+        float all_ = 0.0;
+        for (int c = GATHERED_CASCADES - 1; c >= 0; --c) {
+            if (shares[c] > 0.0) home = c;
+            all_ += shares[c];
+        }
+        int last = min(gather.grid.y, GATHERED_CASCADES) - 1;
+        if (k >= home && k <= last) window = Window(all_, k < last ? k : -1, k > home ? k - 1 : -1);
     }
-    if (max(shareInOut.x, shareInOut.y) <= 0.0) return;
+    if (window.share <= 0.0) return;
 
     // A VPL stands for its cluster's patch: nearer than about its size, 1 / r^2 would count the
     // patch's light as a point's and blow up next to it.
@@ -160,7 +179,7 @@ void main() {
                     uint slots = texelFetch(faceSlots, c, 0).x;
                     uint at = listedAt(c, slots, room);
                     for (uint i = 0u; i < listedFaceCount(slots); ++i)
-                        near += fromVpl(bounceVpls.listed[at + i], p, n, nearest, shareInOut);
+                        near += fromVpl(bounceVpls.listed[at + i], p, n, nearest, window);
                 }
         // The rest: texel (x, y) of each block sums the faces of the cells of one phase, whichever
         // order they were listed in.
@@ -170,7 +189,7 @@ void main() {
         for (uint i = 0u; i < count; ++i) {
             Vpl v = bounceVpls.listed[start + i];
             ivec3 c = listedFaceCell(v.position.xyz, v.normal.xyz, o);
-            if (any(greaterThan(abs(c - home), ivec3(1)))) e += fromVpl(v, p, n, nearest, shareInOut);
+            if (any(greaterThan(abs(c - home), ivec3(1)))) e += fromVpl(v, p, n, nearest, window);
         }
         e += near / 16.0;
     } else {
@@ -188,13 +207,13 @@ void main() {
                 ivec2 c = own + ivec2(dx, dy);
                 if (any(lessThan(c, ivec2(0))) || any(greaterThanEqual(c, ivec2(side)))) continue;
                 for (int layer = 0; layer < 2; ++layer)
-                    near += fromVpl(vpls[2 * (c.y * side + c.x) + layer], p, n, nearest, shareInOut);
+                    near += fromVpl(vpls[2 * (c.y * side + c.x) + layer], p, n, nearest, window);
             }
         for (int cy = phase.y; cy < side; cy += 4)
             for (int cx = phase.x; cx < side; cx += 4) {
                 if (all(lessThanEqual(abs(ivec2(cx, cy) - own), ivec2(1)))) continue;
                 for (int layer = 0; layer < 2; ++layer)
-                    e += fromVpl(vpls[2 * (cy * side + cx) + layer], p, n, nearest, shareInOut);
+                    e += fromVpl(vpls[2 * (cy * side + cx) + layer], p, n, nearest, window);
             }
         e += near / 16.0;
     }

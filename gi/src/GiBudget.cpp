@@ -3,6 +3,7 @@
 
 #include "gi/GatheredReflection.h"
 #include "gi/SurfaceVoxels.h"
+#include "gi/VplGather.h"
 
 #include "gi/LpvVolumes.h"
 #include "gi/PointLightInjection.h"
@@ -93,15 +94,15 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
             out.push_back({"first bounce, finest cascade (3 SH textures)", "gi.lpv", 3 * cells * shBytes});
         }
     }
-    // gi.gather: the two finest cascades' first bounce kept apart for the lookup to take out (the
+    // gi.gather: the gathered cascades' first bounce kept apart for the lookup to take out (the
     // gather's target is screen-sized, counted with the lookup's targets in render.lighting).
     if (s.gather) {
-        for (uint32_t c = 0; c < std::min(s.cascades, 2u); ++c)
+        for (uint32_t c = 0; c < std::min(s.cascades, VplGather::kCascades); ++c)
             out.push_back(
                 {"first bounce kept for gi.gather, cascade " + std::to_string(c) + " (3 SH textures)",
                  "gi.lpv", 3 * cells * shBytes});
         // The gather's own VPLs of those cascades' sun (creases split: VplClustering).
-        for (uint32_t c = 0; c < std::min(s.cascades, 2u); ++c)
+        for (uint32_t c = 0; c < std::min(s.cascades, VplGather::kCascades); ++c)
             out.push_back(
                 {"gather vpl buffer, cascade " + std::to_string(c), "gi.vpl", uint64_t(s.vplSlots()) * 48});
         // Its visibility's faces: the scene's surfaces on the gathered cascades' cells.

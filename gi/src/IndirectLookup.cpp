@@ -96,10 +96,11 @@ void IndirectLookup::enableGather() {
     }
     if (!classPipelines_[0][0]) return;
     d.debugName = "lpv lookup, one cascade class, gathered";
-    const rhi::ShaderBinary* shadersOf[2][2] = {
+    const rhi::ShaderBinary* shadersOf[VplGather::kCascades][2] = {
         {&shaders::lpv_lookup_class0_gather_frag, &shaders::lpv_lookup_class0_blend_gather_frag},
-        {&shaders::lpv_lookup_class1_gather_frag, &shaders::lpv_lookup_class1_blend_gather_frag}};
-    for (uint32_t c = 0; c < 2; ++c)
+        {&shaders::lpv_lookup_class1_gather_frag, &shaders::lpv_lookup_class1_blend_gather_frag},
+        {&shaders::lpv_lookup_class2_gather_frag, &shaders::lpv_lookup_class2_blend_gather_frag}};
+    for (uint32_t c = 0; c < VplGather::kCascades; ++c)
         for (uint32_t band = 0; band < 2; ++band) {
             d.fragment = shadersOf[c][band];
             CascadeClasses::configureLookupDraw(d, c, band != 0);
@@ -168,11 +169,11 @@ void IndirectLookup::record(rhi::CommandList& cmd, const engine::CameraMatrices&
         for (uint32_t c = 0; c < 4; ++c)
             cmd.bindTexture(17 + c, cascade(c).faces ? cascade(c).faces : volumes[0][0], pointSampler_);
         if (gather) {
-            for (uint32_t c = 0; c < 2; ++c)
+            for (uint32_t c = 0; c < VplGather::kCascades; ++c)
                 for (uint32_t ch = 0; ch < 3; ++ch)
                     cmd.bindTexture(21 + 3 * c + ch, gather->first[std::min(c, count - 1)][ch],
                                     linearSampler_);
-            cmd.bindTexture(27, gather->gathered, pointSampler_);
+            cmd.bindTexture(kGatherTextureBindings - 1, gather->gathered, pointSampler_);
         }
     };
     if (!classes) {
@@ -183,8 +184,8 @@ void IndirectLookup::record(rhi::CommandList& cmd, const engine::CameraMatrices&
         for (uint32_t c = 0; c < count; ++c) {
             for (const bool blend : {false, true}) {
                 if (blend && c + 1 == count) continue; // the coarsest has no band
-                cmd.bindPipeline(gather && c < 2 ? gatherClassPipelines_[c][blend ? 1 : 0]
-                                                 : classPipelines_[c][blend ? 1 : 0]);
+                cmd.bindPipeline(gather && c < VplGather::kCascades ? gatherClassPipelines_[c][blend ? 1 : 0]
+                                                                    : classPipelines_[c][blend ? 1 : 0]);
                 bindInputs();
                 cmd.draw(3);
             }

@@ -141,6 +141,7 @@ void LightPropagationVolume::remake(const LpvSettings& s) {
 
 // gi.gather's pass and the first bounces it keeps apart; made with the volumes, or when adapt turns
 // the gather back on.
+static_assert(SurfaceVoxels::kCascades == VplGather::kCascades, "the gather marches its cascades' faces");
 void LightPropagationVolume::makeGather(const LpvSettings& s) {
     lookup_.enableGather();
     gather_ = std::make_unique<VplGather>(device_);
@@ -962,6 +963,10 @@ uint32_t LightPropagationVolume::gatherSources(GatherSources& sources, bool forP
     }
     const uint32_t suns = count;
     const float finest = cascades_[0].grid.cellSize;
+    // A light's VPLs are marched through the second cascade's faces in every share: a room's lights
+    // reach past the finest box (the room) and rarely past the next, whose faces are half the size
+    // of the third's.
+    const uint32_t lightFaces = std::min(gathered, 2u) - 1;
     for (uint32_t c = 0; c < gathered; ++c) {
         std::array<VplSource, SpotLightRsms::kMaxRsms> reaching;
         const uint32_t n = spotRsms_->sourcesReaching(cascades_[c].grid, reaching);
@@ -976,22 +981,24 @@ uint32_t LightPropagationVolume::gatherSources(GatherSources& sources, bool forP
                                     -1,
                                     0,
                                     0.25f * finest * finest,
-                                    facesOf(gathered - 1),
-                                    facesCascade(gathered - 1),
-                                    stampOf(gathered - 1),
+                                    facesOf(lightFaces),
+                                    facesCascade(lightFaces),
+                                    stampOf(lightFaces),
                                     false,
                                     {},
                                     reaching[k].viewProjection};
             sources[i].cascades |= 1u << c;
         }
     }
-    // The finest cascade's second bounce (GatheredReflection), in its share and in the next
-    // cascade's where that has no bounces of its own: world-space light, and near the finest
-    // cascade's border (a room's walls) the next one answers most of the lookup.
+    // The finest cascade's second bounce (GatheredReflection), in its share and in the coarser
+    // gathered cascades' where they have no bounces of their own: world-space light, and near the
+    // finest cascade's border (a room's walls) the next one answers most of the lookup.
     if (forPixels && secondGathered() && gatheredReflection_->listed()) {
         // Its r^2 grows by a face's area over pi (vpl_gather.frag).
         const float cell = cascades_[0].grid.cellSize;
-        const uint32_t shares = 1u | (gathered > 1 && !settings_.bouncesIn(1) ? 2u : 0u);
+        uint32_t shares = 1u;
+        for (uint32_t c = 1; c < gathered; ++c)
+            if (!settings_.bouncesIn(c)) shares |= 1u << c;
         const auto listedBy = [&](const GatheredReflection& r) {
             return GatherSource{
                 r.listed(), r.room(),        r.parity(), -1,   shares,       cell * cell / glm::pi<float>(),

@@ -14,7 +14,7 @@ namespace {
 // std140 block `Gather` of vpl_gather.frag.
 struct GatherUniforms {
     glm::mat4 invViewProjection;
-    glm::vec4 gridOrigin[2];
+    glm::vec4 gridOrigin[VplGather::kCascades];
     glm::ivec4 grid;
     glm::vec4 params;
     glm::ivec4 vpls;

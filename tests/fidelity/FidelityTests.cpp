@@ -7,8 +7,8 @@
 // far from the targets (docs/gi-fidelity.md says why): its figures are guarded, no worse than
 // measured. Tighten the guard as the GI gets closer.
 //
-// With gi.gather, the room lit through its door (bench/scenes/doorway.gltf) too: the light its
-// walls let through shows in its means.
+// With gi.gather, the room lit through its door (bench/scenes/doorway.gltf) too, against the same
+// targets: its ground seen through the door lies in the coarsest cascade.
 //
 // And the fog (issue 48) in the same box and view, its sun part alone (gi.enabled=false: the sun
 // through its shadow map), against the reference's fogSun at 32 samples a pixel (the sun part is
@@ -73,9 +73,11 @@ const Traced& cornellPoint() {
     static const Traced traced = traceScene("cornell-point.gltf");
     return traced;
 }
-// The closed room lit through its door from the sunlit ground outside.
+// The closed room lit through its door from the sunlit ground outside, 1024 samples a pixel: at
+// 512 the engine's relative RMSE against it read 0.430, against 0.416 at 1024 (the reference's
+// noise, about 0.15 of it in quadrature at 512).
 const Traced& doorway() {
-    static const Traced traced = traceScene("doorway.gltf");
+    static const Traced traced = traceScene("doorway.gltf", 1, 1024);
     return traced;
 }
 
@@ -209,19 +211,23 @@ TEST_CASE("gi: with gi.gather, the further bounces of the Cornell boxes against 
 
 // gi.gather in the room lit through its door, the finest cascade sized to the room (its walls in
 // the blend band, where the next cascade answers most of the lookup): each surface's light comes
-// from the finest cascade whose box holds it, and the sunlit ground beyond that box from the next
-// cascade, marched through its faces, which hold the walls. Measured (vulkan and gl-egl alike):
-// means 1.04-1.07, relative RMSE 0.828 (guarded at 0.83, set at 0.79 plus 4% against the
-// Lambertian reference, where the means were 0.95-0.98); while the finest cascade's VPLs beyond
-// its box were marched through faces that end at the box, open beyond, the ground lit the room
-// through its walls: 1.15-1.18 and 0.93 against the Lambertian reference (docs/gi-fidelity.md).
+// from the finest cascade whose box holds it, and the sunlit ground beyond that box from the
+// coarser cascades, marched through their faces, which hold the walls. Every target of issue 44,
+// the means within 10%. Measured (vulkan and gl-egl alike): means 1.05, relative RMSE 0.416,
+// ceilings 1.07, 1.3% over 3x. While the coarsest cascade
+// was not gathered, the sunlit ground it answers for, seen through the door, lit itself (its
+// propagated first bounce, injected and read half a cell above it): relative RMSE 0.828, guarded
+// at 0.83; and while the finest cascade's VPLs beyond its box were marched through faces that end
+// at the box, open beyond, the ground lit the room through its walls (docs/gi-fidelity.md).
 TEST_CASE("gi: with gi.gather, the room lit through its door against the path tracer") {
     for (const BackendUnderTest& backend : selectedBackends()) {
         CAPTURE(backend.name);
         const bench::FidelityFigures f = measure(backend, doorway(), "doorway", {"gi.gather=on"});
         for (int c = 0; c < 3; ++c)
             CHECK(std::abs(f.meanRatio[c] - 1.0f) <= 0.1f);
-        CHECK(f.relativeRmse <= 0.83f);
+        CHECK(f.relativeRmse <= 0.45f);
+        CHECK(std::abs(f.orientation.ceilings - 1.0f) <= 0.35f);
+        CHECK(f.shareOver3x <= 0.02f);
         CHECK(f.pixels > 128u * 128u / 2u);
     }
 }

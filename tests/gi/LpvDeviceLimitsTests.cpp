@@ -45,7 +45,8 @@ TEST_CASE("gi: gi.gather on a device with too few fragment texture bindings is r
     const gi::GiConfigResult refused = lpv.update(s, gi::GiFrameInputs{}, nullptr);
     CHECK_FALSE(refused.accepted);
     CHECK(refused.setting == "gi.gather");
-    CHECK(refused.reason.find("allows 27") != std::string::npos);
+    CHECK(refused.reason.find("allows " + std::to_string(gi::IndirectLookup::kGatherTextureBindings - 1)) !=
+          std::string::npos);
     // auto leaves it off there.
     s.gatherMode = gi::LpvSettings::Gather::Auto;
     CHECK(lpv.update(s, gi::GiFrameInputs{}, nullptr).accepted);

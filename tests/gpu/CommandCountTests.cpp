@@ -122,7 +122,9 @@ Pinned pinnedFor(rhi::BackendKind kind) {
         // two finest cascades (SurfaceVoxels): one multi-draw each for the three axes, with its
         // cascade's own faces and target, beside the chain: 2 indexed draws, no barrier more.
         // With layouts per use (a GPU without unified layouts) each render pass moves its
-        // targets: 40 barriers, GI chain 32.
+        // targets: 40 barriers, GI chain 32. The third cascade gathered too (VplGather::kCascades):
+        // one more draw for its sun's VPLs and one more multi-draw of its faces, no barrier more
+        // (41 with layouts per use, the third faces' target moved; GI chain 33).
         return {{50, 109, 38, 24, 24},
                 {50, 105, 27, 19, 19},
                 "gi/cascade0/inject",
@@ -130,10 +132,10 @@ Pinned pinnedFor(rhi::BackendKind kind) {
                 {36, 0, 0, 9, 9},
                 {50, 109, 38, 72, 68},
                 {50, 105, 27, 65, 62},
-                {23, 105, 40, 25, 24},
-                {23, 101, 29, 20, 19},
+                {23, 106, 41, 25, 24},
+                {23, 102, 30, 20, 19},
                 {9, 0, 0, 9, 9},
-                std::pair{rhi::CommandCounts{50, 112, 40, 40, 38}, rhi::CommandCounts{50, 108, 29, 33, 32}}};
+                std::pair{rhi::CommandCounts{50, 113, 41, 41, 39}, rhi::CommandCounts{50, 109, 30, 34, 33}}};
     // GL: a command pays one glMemoryBarrier, with the bits it needs, only where it touches what
     // earlier shaders stored to (or stores to what they read) since a barrier covered it
     // (GlHazards.h); GL orders framebuffer writes, clears and copies with later commands itself.
@@ -142,10 +144,11 @@ Pinned pinnedFor(rhi::BackendKind kind) {
     // chain 47 -> 28 -> 20 -> 18 -> 16). The conservative rule: glMemoryBarrier(GL_ALL_BARRIER_BITS)
     // after every dispatch, render pass and transfer (84, 72 since the injection's and the
     // coverage's clears are their passes'). The multi-draws as on Vulkan; gi.gather's copy needs
-    // no glMemoryBarrier of its own, nor do its surfaces' faces (2 indexed draws).
+    // no glMemoryBarrier of its own, nor do its surfaces' faces (3 indexed draws, one a gathered
+    // cascade) or its draws (one per set of VPLs).
     return {{50, 19, 38, 17, 17}, {50, 15, 27, 16, 16}, "render.gbuffer",     {0, 0, 10, 0, 0},
-            {36, 0, 0, 9, 9},     {50, 19, 38, 72, 68}, {50, 15, 27, 65, 62}, {23, 15, 40, 17, 17},
-            {23, 11, 29, 16, 16}, {9, 0, 0, 9, 9},      std::nullopt};
+            {36, 0, 0, 9, 9},     {50, 19, 38, 72, 68}, {50, 15, 27, 65, 62}, {23, 16, 41, 17, 17},
+            {23, 12, 30, 16, 16}, {9, 0, 0, 9, 9},      std::nullopt};
 }
 
 } // namespace

@@ -102,9 +102,11 @@ const engine::EnumSetting<LpvSettings::Gather> kGather{
     "gi.gather",
     LpvSettings::Gather::Auto,
     {{LpvSettings::Gather::Auto, "auto"}, {LpvSettings::Gather::On, "on"}, {LpvSettings::Gather::Off, "off"}},
-    "The first bounce in the two finest cascades gathered per pixel from their VPLs (interleaved over 4 x 4 "
-    "pixels) instead of read from the propagated volume, which keeps the further bounces, glossy and fog; "
-    "with gi.occlusion a VPL does not light what the geometry volume's faces hide from it; with "
+    "The first bounce in the three finest cascades (all of the default three) gathered per pixel from their "
+    "VPLs (interleaved over 4 x 4 pixels) instead of read from the propagated volume, which keeps the "
+    "further "
+    "bounces, glossy and fog; with gi.occlusion a VPL does not light what the scene's surfaces hide from it; "
+    "with "
     "gi.bounces > 1 the second bounce too, reflected off the geometry volume's faces from the gathered "
     "first. auto: on a GPU, off on a CPU rasterizer (lavapipe, llvmpipe: seconds a frame) and on the "
     "console profiles (their modelled GPUs)"};

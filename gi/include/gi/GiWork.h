@@ -16,7 +16,7 @@ enum class VolumeDraw : uint8_t { Layered, PerSlice };
 // `triangles`: those drawn into the RSM (ReflectiveShadowMap::record culls to the light's view).
 engine::WorkCounts rsmWork(const LpvSettings& s, uint64_t triangles);
 engine::WorkCounts vplClusterWork(const LpvSettings& s);
-// What the same pass adds where it also writes the gather's VPLs (gi.gather's two finest cascades).
+// What the same pass adds where it also writes the gather's VPLs (gi.gather's cascades).
 engine::WorkCounts gatherVplWork(const LpvSettings& s);
 // The scene's surfaces onto a cascade's faces (SurfaceVoxels): `triangles` drawn along each of the
 // three axes, a fragment per cell column a triangle crosses.

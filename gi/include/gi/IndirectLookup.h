@@ -10,6 +10,7 @@
 #include "engine/render/IndirectLighting.h"
 #include "gi/CascadeClasses.h"
 #include "gi/LpvReference.h"
+#include "gi/VplGather.h"
 #include "rhi/Device.h"
 
 #include <array>
@@ -44,11 +45,11 @@ struct LookupOptions {
     uint32_t divisor = 1;
 };
 
-// gi.gather (gi/VplGather.h): the two finest cascades' first bounce kept apart from their light
+// gi.gather (gi/VplGather.h): the gathered cascades' first bounce kept apart from their light
 // (each 3 SH textures like the light; a cascade that does not exist binds another's, unread) and
 // the gathered light that replaces it.
 struct LookupGather {
-    std::array<std::array<rhi::TextureHandle, 3>, 2> first{};
+    std::array<std::array<rhi::TextureHandle, 3>, VplGather::kCascades> first{};
     rhi::TextureHandle gathered;
 };
 
@@ -76,8 +77,9 @@ public:
     // Makes the lookups that take a gather (once; before a record() with one). Throws rhi::Error
     // where the device binds fewer fragment textures than kGatherTextureBindings.
     void enableGather();
-    // What a lookup with a gather binds: up to its highest texture binding (27) plus one.
-    static constexpr uint32_t kGatherTextureBindings = 28;
+    // What a lookup with a gather binds: the first bounces from 21, 3 a gathered cascade, then the
+    // gather (lpv_lookup.glsl).
+    static constexpr uint32_t kGatherTextureBindings = 21 + 3 * VplGather::kCascades + 1;
 
 private:
     rhi::Device& device_;
@@ -86,10 +88,10 @@ private:
     // By cascade and [interior, blend band], for a class draw (CascadeClasses::wanted only); the
     // coarsest cascade has no band.
     std::array<std::array<rhi::GraphicsPipelineHandle, 2>, 4> classPipelines_{};
-    // The same with a gather (enableGather): by cascade count - 1, and for the classes of the two
-    // finest cascades (the coarser classes take none).
+    // The same with a gather (enableGather): by cascade count - 1, and for the classes of the
+    // gathered cascades (a coarser class takes none).
     std::array<rhi::GraphicsPipelineHandle, 4> gatherPipelines_{};
-    std::array<std::array<rhi::GraphicsPipelineHandle, 2>, 2> gatherClassPipelines_{};
+    std::array<std::array<rhi::GraphicsPipelineHandle, 2>, VplGather::kCascades> gatherClassPipelines_{};
     rhi::SamplerHandle pointSampler_, linearSampler_;
 };
 

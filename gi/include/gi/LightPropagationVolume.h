@@ -263,7 +263,7 @@ private:
     std::unique_ptr<LpvPropagation> propagation_;                   // in volumes_, made with them
     std::unique_ptr<MultipleBounces> bounces_;                      // gi.bounces > 1
     std::unique_ptr<PointLightInjection> pointLights_;
-    // gi.gather: the pass, and the first bounce of the two finest cascades kept apart (cascade 0's
+    // gi.gather: the pass, and the first bounce of the gathered cascades kept apart (cascade 0's
     // is MultipleBounces::first() where that exists).
     std::unique_ptr<VplGather> gather_;
     // gi.gather with gi.bounces > 1: the second bounce reflected from the gathered first.

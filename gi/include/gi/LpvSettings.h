@@ -64,7 +64,7 @@ struct LpvSettings {
     bool glossy = true; // glossy reflections marched through the volume
     // Surfaces this rough or rougher get no glossy march (lpv_glossy.glsl's glossyFade).
     float glossyMaxRoughness = 1.0f;
-    // The two finest cascades' first bounce gathered per pixel from their VPLs (gi/VplGather.h)
+    // The finest cascades' first bounce gathered per pixel from their VPLs (gi/VplGather.h)
     // instead of read from the propagated volume: gi.gather as configured, and whether it runs,
     // which LightPropagationVolume decides for Auto from its device and platform (gathers()).
     enum class Gather : uint8_t { Auto, On, Off };

@@ -41,7 +41,7 @@ namespace lpv::gi {
 class SurfaceVoxels {
 public:
     // The cascades, finest first, whose faces it keeps (VplGather::kCascades).
-    static constexpr uint32_t kCascades = 2;
+    static constexpr uint32_t kCascades = 3;
     // Samples along each side of a cell column; odd, so that the middle one is on its centre line.
     static constexpr uint32_t kSamplesPerSide = 3;
 

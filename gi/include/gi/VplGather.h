@@ -53,8 +53,12 @@ struct GatherSource {
 
 class VplGather {
 public:
-    // The cascades, finest first, whose share of the lookup is gathered.
-    static constexpr uint32_t kCascades = 2;
+    // The cascades, finest first, whose share of the lookup is gathered: all of gi.cascades' default
+    // 3. A cascade beyond them keeps its propagated first bounce, which reads a sunlit ground's
+    // own light back above it; a fourth would take the lookup past the 32 fragment textures a GL
+    // device may bind (IndirectLookup::kGatherTextureBindings). The shaders' is
+    // gathered_cascades.glsl's.
+    static constexpr uint32_t kCascades = 3;
 
     explicit VplGather(rhi::Device& device);
     ~VplGather();
