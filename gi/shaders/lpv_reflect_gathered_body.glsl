@@ -24,6 +24,7 @@
 // Included by the generated lpv_reflect_gathered_<format>[_listed].comp (INJECT_FORMAT: the
 // injection volume's).
 #include "listed_faces.glsl"
+#include "surface_areas.glsl"
 #include "lpv_common.glsl"
 
 struct Vpl {
@@ -100,7 +101,7 @@ float coveredShare(ivec3 c, int f) {
         ivec3 r = q;
         r[axis] = k;
         const uint area = texelFetch(surfaceAreas, ivec3(3 * r.x + axis, r.y, r.z), 0).x;
-        if ((area >> 12) == uint(params.params.w)) samples = max(samples, area & 0xfffu);
+        if ((area >> kAreaCountBits) == uint(params.params.w)) samples = max(samples, area & kAreaCountMask);
     }
     return float(samples) * params.params.z;
 }

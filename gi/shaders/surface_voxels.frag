@@ -1,8 +1,11 @@
 #version 450
+#extension GL_GOOGLE_include_directive : require
 // Marks the face a surface crosses between two cell centres along the axis drawn along
 // (gi/SurfaceVoxels.h): the lower face of the cell above, at the surface's position rounded.
 // Each cell column is k x k pixels (k = grid.z, odd): the middle one, on the column's centre
 // line, marks the face; every one adds 1 to the face's area, in k^2ths of a face.
+#include "surface_areas.glsl"
+
 layout(location = 0) in vec3 vCell;
 layout(location = 1) flat in uint vAxis;
 
@@ -11,14 +14,13 @@ layout(binding = 0, std140) uniform Voxelize {
     uvec4 grid;      // x: cells a side, y: the stamp, z: pixels a column's side
 } voxelize;
 layout(binding = 2, r32ui) uniform writeonly uimage3D faces;
-// The stamp above the low 12 bits, the samples in them (SurfaceVoxels::areas()).
+// The stamp above the low kAreaCountBits, the samples in them (SurfaceVoxels::areas()).
 layout(binding = 3, r32ui) uniform uimage3D areas;
 
 layout(location = 0) out vec4 outUnused; // the pass's target is never read
 
-const uint kCountBits = 12u;
 // Room left under the count's top for the fragments that add while one reads it.
-const uint kMostSamples = (1u << kCountBits) - 256u;
+const uint kMostSamples = (1u << kAreaCountBits) - 256u;
 
 void main() {
     outUnused = vec4(0.0);
@@ -34,7 +36,7 @@ void main() {
     // A face last counted by an earlier pass starts from 0 (its stamp is lower): the first of
     // this pass's samples to get there raises it to this stamp with no count, and every sample
     // adds after its own raise. No clear, and so no barrier, before the pass.
-    const uint stamped = voxelize.grid.y << kCountBits;
+    const uint stamped = voxelize.grid.y << kAreaCountBits;
     const uint before = max(imageAtomicMax(areas, texel, stamped), stamped);
-    if ((before & ((1u << kCountBits) - 1u)) < kMostSamples) imageAtomicAdd(areas, texel, 1u);
+    if ((before & kAreaCountMask) < kMostSamples) imageAtomicAdd(areas, texel, 1u);
 }

@@ -45,7 +45,8 @@ public:
     // Samples along each side of a cell column; odd, so that the middle one is on its centre line.
     static constexpr uint32_t kSamplesPerSide = 3;
 
-    // The bits of an area's count under its stamp (areas()); the stamps run below kStampLimit.
+    // The bits of an area's count under its stamp (areas()); the stamps run below kStampLimit. The
+    // shaders' is surface_areas.glsl's (the areas' test decodes their counts with this one).
     static constexpr uint32_t kAreaCountBits = 12;
     static constexpr uint32_t kStampLimit = 1u << (32 - kAreaCountBits);
 
