@@ -37,6 +37,7 @@ layout(binding = 0, std140) uniform Gather {
     ivec4 pixels;       // x: resolution divisor, yz: G-buffer size, w: 0 (MUL_COLUMNS_AT)
     uvec4 faces;        // x: the stamp of cascade vpls.z's surfaces (gi/SurfaceVoxels.h)
     mat4 lightViewProjection; // the RSM's the VPLs were clustered from; zero: none
+    ivec4 windows;      // x: 1 the sun's VPLs listed by window (binding 7), y: a list's room
 } gather;
 layout(binding = 1, std430) readonly buffer Vpls { Vpl vpls[]; };
 // The second bounce's VPLs, where vpls.w is 1 (lpv_reflect_gathered_body.glsl): 16 lists of room
@@ -48,6 +49,12 @@ layout(binding = 5, std430) readonly buffer BounceVpls {
 // Where vpls.w is 1: per cell of cascade vpls.z its listed faces (bits 26-31) and the slot of the
 // first in its phase's list (lpv_reflect_gathered_body.glsl).
 layout(binding = 6) uniform usampler3D faceSlots;
+// Where windows.x is 1: the sun's lit VPLs each window takes, listed per phase in the grid's order
+// (vpl_windows.comp): counts[16 window + phase], the list at slots[(16 window + phase) room].
+layout(binding = 7, std430) readonly buffer Windows {
+    uint counts[32];
+    uint slots[];
+} windows;
 layout(binding = 2) uniform sampler2D depthTexture;
 layout(binding = 3) uniform sampler2D normalTexture;
 // Where params.w is 1: the faces the scene's surfaces cross, of cascade vpls.z, at texels
@@ -136,6 +143,7 @@ void main() {
     float shares[GATHERED_CASCADES] = sharesAt(p);
     int k = gather.grid.z;
     Window window = Window(0.0, -1, -1);
+    int home = GATHERED_CASCADES;
     if (k < 0) {
         for (int c = 0; c < GATHERED_CASCADES; ++c)
             if ((gather.grid.w & (1 << c)) != 0) window.share += shares[c];
@@ -146,7 +154,6 @@ void main() {
         // map reaches past it) would be marched through faces that end at the box, open beyond,
         // and let the sunlit ground through the doorway's walls; the next's within it have 4
         // times the area and faces twice the size. The coarsest gathered takes all of its own.
-        int home = GATHERED_CASCADES;
         float all_ = 0.0;
         for (int c = GATHERED_CASCADES - 1; c >= 0; --c) {
             if (shares[c] > 0.0) home = c;
@@ -209,12 +216,25 @@ void main() {
                 for (int layer = 0; layer < 2; ++layer)
                     near += fromVpl(vpls[2 * (c.y * side + c.x) + layer], p, n, nearest, window);
             }
-        for (int cy = phase.y; cy < side; cy += 4)
-            for (int cx = phase.x; cx < side; cx += 4) {
-                if (all(lessThanEqual(abs(ivec2(cx, cy) - own), ivec2(1)))) continue;
-                for (int layer = 0; layer < 2; ++layer)
-                    e += fromVpl(vpls[2 * (cy * side + cx) + layer], p, n, nearest, window);
+        if (gather.windows.x != 0) {
+            // The lit VPLs of the texel's window (vpl_windows.comp), in the grid's order.
+            int list = 16 * (k > home ? 1 : 0) + phase.x + 4 * phase.y;
+            uint start = uint(list * gather.windows.y);
+            uint count = windows.counts[list];
+            for (uint i = 0u; i < count; ++i) {
+                uint slot = windows.slots[start + i];
+                int cluster = int(slot >> 1);
+                if (all(lessThanEqual(abs(ivec2(cluster % side, cluster / side) - own), ivec2(1)))) continue;
+                e += fromVpl(vpls[slot], p, n, nearest, window);
             }
+        } else {
+            for (int cy = phase.y; cy < side; cy += 4)
+                for (int cx = phase.x; cx < side; cx += 4) {
+                    if (all(lessThanEqual(abs(ivec2(cx, cy) - own), ivec2(1)))) continue;
+                    for (int layer = 0; layer < 2; ++layer)
+                        e += fromVpl(vpls[2 * (cy * side + cx) + layer], p, n, nearest, window);
+                }
+        }
         e += near / 16.0;
     }
     outIrradiance = vec4(e * (gather.params.x * 16.0 / PI), 0.0);

@@ -4,6 +4,7 @@
 #include "gi/GatheredReflection.h"
 #include "gi/SurfaceVoxels.h"
 #include "gi/VplGather.h"
+#include "gi/VplWindows.h"
 
 #include "gi/LpvVolumes.h"
 #include "gi/PointLightInjection.h"
@@ -105,6 +106,10 @@ std::vector<GiResource> giResources(const LpvSettings& s) {
         for (uint32_t c = 0; c < std::min(s.cascades, VplGather::kCascades); ++c)
             out.push_back(
                 {"gather vpl buffer, cascade " + std::to_string(c), "gi.vpl", uint64_t(s.vplSlots()) * 48});
+        // Which of them each texel's window takes (VplWindows).
+        for (uint32_t c = 0; c < std::min(s.cascades, VplGather::kCascades); ++c)
+            out.push_back({"gather vpl windows, cascade " + std::to_string(c), "gi.vpl",
+                           VplWindows::bytes(s.vplGridSide())});
         // Its visibility's faces: the scene's surfaces on the gathered cascades' cells.
         if (s.occlusion)
             out.push_back({"surface faces of the gathered cascades (gi.gather)", "gi.lpv",

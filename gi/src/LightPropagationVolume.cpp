@@ -159,6 +159,9 @@ void LightPropagationVolume::makeGather(const LpvSettings& s) {
         gatherVpls_[c] = device_.createBuffer({uint64_t(s.vplSlots()) * 48, rhi::kBufferStorage,
                                                rhi::MemoryAccess::GpuOnly,
                                                "gather vpls, cascade " + std::to_string(c), "gi.vpl"});
+        gatherWindows_[c] = device_.createBuffer(
+            {VplWindows::bytes(s.vplGridSide()), rhi::kBufferStorage, rhi::MemoryAccess::GpuOnly,
+             "gather vpl windows, cascade " + std::to_string(c), "gi.vpl"});
     }
     gatherVplsValid_ = 0;
 }
@@ -173,10 +176,11 @@ void LightPropagationVolume::releaseGather() {
             if (t) device_.destroy(t);
             t = {};
         }
-    for (rhi::BufferHandle& b : gatherVpls_) {
-        if (b) device_.destroy(b);
-        b = {};
-    }
+    for (auto* buffers : {&gatherVpls_, &gatherWindows_})
+        for (rhi::BufferHandle& b : *buffers) {
+            if (b) device_.destroy(b);
+            b = {};
+        }
     gatherVplsValid_ = 0;
 }
 
@@ -959,7 +963,8 @@ uint32_t LightPropagationVolume::gatherSources(GatherSources& sources, bool forP
                             stampOf(c),
                             false,
                             {},
-                            cascades_[c].lightViewProjection};
+                            cascades_[c].lightViewProjection,
+                            split ? gatherWindows_[c] : rhi::BufferHandle{}};
     }
     const uint32_t suns = count;
     const float finest = cascades_[0].grid.cellSize;
@@ -1022,11 +1027,18 @@ engine::WorkCounts LightPropagationVolume::recordGather(const FrameRecording& f)
     gather_->record(f.cmd, f.camera, f.gbuffer, std::span(grids.data(), cascadeCount()), kBlendBand,
                     settings_.intensity, settings_.resolutionDivisor, std::span(sources.data(), count));
     uint64_t slots = 0;
-    for (uint32_t i = 0; i < count; ++i) // a texel reads one of the second bounce's 16 lists
+    engine::WorkCounts windows;
+    for (uint32_t i = 0; i < count; ++i) { // a texel reads one of the second bounce's 16 lists
         slots += sources[i].listed ? GatheredReflection::kPhases * sources[i].slots : sources[i].slots;
+        if (sources[i].windows) windows += vplWindowsWork(sources[i].side);
+    }
     // A segment crosses a quarter of the grid's faces on average (an estimate; the march stops at
-    // the first wall).
-    return gatherWork(pixelsOf(target), slots, count, geometry_ ? settings_.gridSize / 4 : 0);
+    // the first wall). Every slot counts, lit or not: what the sun's windows leave out of a texel's
+    // walk depends on the scene, which the model does not see.
+    engine::WorkCounts work =
+        gatherWork(pixelsOf(target), slots, count, geometry_ ? settings_.gridSize / 4 : 0);
+    work += windows;
+    return work;
 }
 
 engine::WorkCounts LightPropagationVolume::recordLookup(const FrameRecording& f) {

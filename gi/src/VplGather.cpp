@@ -21,11 +21,12 @@ struct GatherUniforms {
     glm::ivec4 pixels;
     glm::uvec4 faces;
     glm::mat4 lightViewProjection;
+    glm::ivec4 windows;
 };
 
 } // namespace
 
-VplGather::VplGather(rhi::Device& device) : device_(device) {
+VplGather::VplGather(rhi::Device& device) : device_(device), windows_(device) {
     using namespace rhi;
     GraphicsPipelineDesc d;
     d.vertex = &engine::shaders::fullscreen_vert;
@@ -86,6 +87,14 @@ void VplGather::record(rhi::CommandList& cmd, const engine::CameraMatrices& came
     }
     u.grid = glm::ivec4(int(cascades[0].size), int(cascades.size()), 0, 0);
     u.pixels = glm::ivec4(int(divisor), int(gbuffer.width), int(gbuffer.height), 0);
+    // The sun's windows where the boxes are now (the same the draws test against).
+    const size_t last = std::min<size_t>(cascades.size(), kCascades) - 1;
+    for (const GatherSource& s : sources) {
+        if (!s.vpls || !s.windows || s.listed || s.cascade < 0) continue;
+        const auto k = size_t(s.cascade);
+        windows_.record(cmd, s.vpls, s.side, k < last ? std::optional(cascades[k]) : std::nullopt,
+                        k > 0 ? std::optional(cascades[k - 1]) : std::nullopt, s.windows);
+    }
     RenderPassDesc pass;
     pass.colors[0] = {target_, 0, 0, LoadOp::Clear};
     pass.colorCount = 1;
@@ -103,10 +112,13 @@ void VplGather::record(rhi::CommandList& cmd, const engine::CameraMatrices& came
         u.vpls = glm::ivec4(int(s.slots), int(s.side), int(s.facesCascade), s.listed ? 1 : 0);
         u.faces = glm::uvec4(s.facesStamp, 0u, 0u, 0u);
         u.lightViewProjection = s.listed ? glm::mat4(0.0f) : s.lightViewProjection;
+        const bool windowed = s.windows && !s.listed && s.cascade >= 0;
+        u.windows = glm::ivec4(windowed ? 1 : 0, int(VplWindows::room(s.side)), 0, 0);
         cmd.pushUniforms(0, &u, sizeof(u));
         // The shader declares both views; the one it does not read is bound to the same buffer.
         cmd.bindStorageBuffer(1, s.vpls);
         cmd.bindStorageBuffer(5, s.vpls);
+        cmd.bindStorageBuffer(7, windowed ? s.windows : s.vpls);
         cmd.bindTexture(6, s.listed ? s.faceSlots : noFaceSlots_, pointSampler_);
         cmd.bindStorageImage(4, marched ? s.faces : noFaces_);
         cmd.draw(3);

@@ -124,7 +124,10 @@ Pinned pinnedFor(rhi::BackendKind kind) {
         // With layouts per use (a GPU without unified layouts) each render pass moves its
         // targets: 40 barriers, GI chain 32. The third cascade gathered too (VplGather::kCascades):
         // one more draw for its sun's VPLs and one more multi-draw of its faces, no barrier more
-        // (41 with layouts per use, the third faces' target moved; GI chain 33).
+        // (41 with layouts per use, the third faces' target moved; GI chain 33). The sun's VPLs
+        // listed by window before the gather's draws (VplWindows): a dispatch per gathered
+        // cascade, beside each other, and one barrier before the draws read the lists: 25 -> 26
+        // barriers, GI chain 19 -> 20 (42 and 34 with layouts per use).
         return {{50, 109, 38, 24, 24},
                 {50, 105, 27, 19, 19},
                 "gi/cascade0/inject",
@@ -132,10 +135,10 @@ Pinned pinnedFor(rhi::BackendKind kind) {
                 {36, 0, 0, 9, 9},
                 {50, 109, 38, 72, 68},
                 {50, 105, 27, 65, 62},
-                {23, 106, 41, 25, 24},
-                {23, 102, 30, 20, 19},
+                {26, 106, 41, 26, 25},
+                {26, 102, 30, 21, 20},
                 {9, 0, 0, 9, 9},
-                std::pair{rhi::CommandCounts{50, 113, 41, 41, 39}, rhi::CommandCounts{50, 109, 30, 34, 33}}};
+                std::pair{rhi::CommandCounts{53, 113, 41, 42, 40}, rhi::CommandCounts{53, 109, 30, 35, 34}}};
     // GL: a command pays one glMemoryBarrier, with the bits it needs, only where it touches what
     // earlier shaders stored to (or stores to what they read) since a barrier covered it
     // (GlHazards.h); GL orders framebuffer writes, clears and copies with later commands itself.
@@ -145,10 +148,11 @@ Pinned pinnedFor(rhi::BackendKind kind) {
     // after every dispatch, render pass and transfer (84, 72 since the injection's and the
     // coverage's clears are their passes'). The multi-draws as on Vulkan; gi.gather's copy needs
     // no glMemoryBarrier of its own, nor do its surfaces' faces (3 indexed draws, one a gathered
-    // cascade) or its draws (one per set of VPLs).
+    // cascade) or its draws (one per set of VPLs). The lists of the sun's VPLs by window
+    // (VplWindows): 3 dispatches and one glMemoryBarrier before the draws read them.
     return {{50, 19, 38, 17, 17}, {50, 15, 27, 16, 16}, "render.gbuffer",     {0, 0, 10, 0, 0},
-            {36, 0, 0, 9, 9},     {50, 19, 38, 72, 68}, {50, 15, 27, 65, 62}, {23, 16, 41, 17, 17},
-            {23, 12, 30, 16, 16}, {9, 0, 0, 9, 9},      std::nullopt};
+            {36, 0, 0, 9, 9},     {50, 19, 38, 72, 68}, {50, 15, 27, 65, 62}, {26, 16, 41, 18, 18},
+            {26, 12, 30, 17, 17}, {9, 0, 0, 9, 9},      std::nullopt};
 }
 
 } // namespace

@@ -275,6 +275,7 @@ private:
     // The gather's VPLs of the sun in the gathered cascades (VplClustering's `gatherVpls`), and
     // which hold this cascade's (bit c; until then the gather takes the volume's).
     std::array<rhi::BufferHandle, VplGather::kCascades> gatherVpls_{};
+    std::array<rhi::BufferHandle, VplGather::kCascades> gatherWindows_{}; // VplWindows' lists of them
     uint32_t gatherVplsValid_ = 0;
     // The VPL sets the gather sums (the sun's of each gathered cascade, then the lights'); how many.
     // `forPixels`: for the pixels' gather (else the second bounce's reflection, which takes the

@@ -16,6 +16,7 @@
 #include "engine/render/CameraMatrices.h"
 #include "engine/render/IndirectLighting.h"
 #include "gi/LpvReference.h"
+#include "gi/VplWindows.h"
 #include "rhi/Device.h"
 
 #include <glm/mat4x4.hpp>
@@ -49,6 +50,9 @@ struct GatherSource {
     // The view-projection of the RSM the VPLs were clustered from: a texel sums the clusters over
     // its own point of that map and next to it whole (vpl_gather.frag); zero: none.
     glm::mat4 lightViewProjection{0.0f};
+    // The sun's: where its VPLs are listed by window for the pixels (VplWindows::bytes(side));
+    // none: each texel walks the whole grid.
+    rhi::BufferHandle windows;
 };
 
 class VplGather {
@@ -69,7 +73,8 @@ public:
     // steady frame); the bytes it holds.
     uint64_t resize(uint32_t width, uint32_t height);
 
-    // Clears the target and adds each source's gathered irradiance in its cascades' share.
+    // Lists each sun source's VPLs by window (where it has `windows`), clears the target and adds
+    // each source's gathered irradiance in its cascades' share.
     // `cascades`: every cascade's grid, finest first (the shares depend on how many there are);
     // `blendBand` as the lookup's; the target's texel t is G-buffer pixel t x divisor.
     void record(rhi::CommandList& cmd, const engine::CameraMatrices& camera,
@@ -82,6 +87,7 @@ public:
 private:
     rhi::Device& device_;
     rhi::GraphicsPipelineHandle pipeline_;
+    VplWindows windows_;
     rhi::TextureHandle target_;
     rhi::TextureHandle noFaceSlots_; // bound where a draw sums no second bounce (r32ui, 1^3)
     rhi::TextureHandle noFaces_;     // bound where a draw is unmarched (r32ui storage, 1^3)
