@@ -8,7 +8,9 @@
 #include <glm/vec4.hpp>
 
 #include <algorithm>
+#include <array>
 #include <string>
+#include <tuple>
 
 namespace lpv::gi {
 namespace {
@@ -96,10 +98,12 @@ void IndirectLookup::enableGather() {
     }
     if (!classPipelines_[0][0]) return;
     d.debugName = "lpv lookup, one cascade class, gathered";
-    const rhi::ShaderBinary* shadersOf[VplGather::kCascades][2] = {
-        {&shaders::lpv_lookup_class0_gather_frag, &shaders::lpv_lookup_class0_blend_gather_frag},
-        {&shaders::lpv_lookup_class1_gather_frag, &shaders::lpv_lookup_class1_blend_gather_frag},
-        {&shaders::lpv_lookup_class2_gather_frag, &shaders::lpv_lookup_class2_blend_gather_frag}};
+    const std::array shadersOf{
+        std::array{&shaders::lpv_lookup_class0_gather_frag, &shaders::lpv_lookup_class0_blend_gather_frag},
+        std::array{&shaders::lpv_lookup_class1_gather_frag, &shaders::lpv_lookup_class1_blend_gather_frag},
+        std::array{&shaders::lpv_lookup_class2_gather_frag, &shaders::lpv_lookup_class2_blend_gather_frag}};
+    static_assert(std::tuple_size_v<decltype(shadersOf)> == VplGather::kCascades,
+                  "a gathered class variant per gathered cascade (gi/CMakeLists.txt builds them)");
     for (uint32_t c = 0; c < VplGather::kCascades; ++c)
         for (uint32_t band = 0; band < 2; ++band) {
             d.fragment = shadersOf[c][band];

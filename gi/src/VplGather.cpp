@@ -9,6 +9,11 @@
 #include <algorithm>
 
 namespace lpv::gi {
+
+// The shaders' count (gathered_cascades.glsl, read by gi/CMakeLists.txt), which also sizes the
+// gathered lookup variants CMake builds.
+static_assert(VplGather::kCascades == LPV_GATHERED_CASCADES, "gathered_cascades.glsl and kCascades differ");
+
 namespace {
 
 // std140 block `Gather` of vpl_gather.frag.
