@@ -12,6 +12,7 @@
 #include "engine/profiler/WorkCounts.h"
 #include "gi/LpvSettings.h"
 #include "gi/VplGather.h"
+#include "gi/VplWindows.h"
 #include "rhi/Device.h"
 
 #include <span>
@@ -38,7 +39,7 @@ public:
     // What it allocates for volumes of `gridSize` cells a side: the lists of faces, one per phase
     // of 16 (room for a room's six sides twice and what stands in it, 48 bytes a face, after 32
     // counters), and a 32-bit slot a cell (GiBudget plans both).
-    static constexpr uint32_t kPhases = 16;
+    static constexpr uint32_t kPhases = kGatherPhases;
     static uint32_t roomFor(uint32_t gridSize) { return gridSize * gridSize; } // a phase's
     static uint64_t listBytes(uint32_t gridSize) {
         return 2 * kPhases * 4 + uint64_t(kPhases) * roomFor(gridSize) * 48;

@@ -18,10 +18,14 @@
 
 namespace lpv::gi {
 
+// The per-pixel gather's 4 x 4 interleave (vpl_gather.frag): texel phase (x, y) sums the lists of
+// phase x + 4 y, the sun's VPLs by window here and the listed faces (GatheredReflection).
+inline constexpr uint32_t kGatherPhases = 16;
+
 class VplWindows {
 public:
     static constexpr uint32_t kWindows = 2;
-    static constexpr uint32_t kPhases = 16; // the gather's 4 x 4 interleave
+    static constexpr uint32_t kPhases = kGatherPhases;
 
     // The slots one phase's list may hold, of a cluster grid `side` across (two slots a cluster).
     static uint32_t room(uint32_t side) { return 2 * ((side + 3) / 4) * ((side + 3) / 4); }
