@@ -302,14 +302,18 @@ void LightPropagationVolume::setScene(const engine::Scene& scene) {
 
 float LightPropagationVolume::autoCellSize(uint32_t gridSize, glm::vec3 camera,
                                            const engine::Bounds& sceneBounds) {
-    float extent = openSpace_.empty() ? 0.0f : openSpace_.extentAround(camera);
+    float extent = 0.0f;
+    if (!openSpace_.empty()) {
+        const glm::vec3 room = openSpace_.roomAround(camera).size();
+        extent = std::max(std::max(room.x, room.y), room.z);
+    }
     if (!(extent > 0.0f)) {
         const glm::vec3 side = sceneBounds.size();
         extent = std::max(std::max(side.x, side.y), side.z);
     }
     if (!(extent > 0.0f)) return autoCellSize_ > 0.0f ? autoCellSize_ : 0.25f;
     // gridSize - 4 cells across the room: two cells' margin on either side for the lookup's filter
-    // and the camera's offset.
+    // (the cascades are placed over the room, prepare()).
     float cell = std::clamp(extent / float(gridSize - 4), 0.01f, 100.0f);
     // In eighths of an octave, kept until the room changes by more than one: a camera walking
     // through a room does not rescale the volume, and the light with it, every few steps.
@@ -318,7 +322,7 @@ float LightPropagationVolume::autoCellSize(uint32_t gridSize, glm::vec3 camera,
     autoCellSize_ = cell;
     char line[160];
     std::snprintf(line, sizeof line,
-                  "gi: gi.cell_size = auto: %.3f m cells, the open space around the camera %.1f m across",
+                  "gi: gi.cell_size = auto: %.3f m cells, the room around the camera %.1f m across",
                   double(cell), double(extent));
     log::info(line);
     return cell;
@@ -360,7 +364,15 @@ GiConfigResult LightPropagationVolume::prepare(const LpvSettings& configured, co
         schedulerBefore_ = scheduler_;
         scheduleBefore_ = schedule_;
     }
-    if (s.cellSizeAuto) s.cellSize = autoCellSize(s.gridSize, camera.position, inputs.sceneBounds);
+    // gi.cell_size = auto sizes the finest cascade to the room the camera stands in, and the
+    // cascades are then placed over that room, not ahead of the camera: placed ahead, the room's
+    // far wall fell outside the finest cascade, and its surfaces took their first bounce from the
+    // next cascade's coarser VPLs (docs/gi-fidelity.md).
+    engine::Bounds placementBounds = inputs.sceneBounds;
+    if (s.cellSizeAuto) {
+        s.cellSize = autoCellSize(s.gridSize, camera.position, inputs.sceneBounds);
+        if (!openSpace_.empty()) placementBounds = openSpace_.roomAround(camera.position);
+    }
     s.gather = gathers(s.gatherMode); // the load the scheduler starts from has it as resolved
     lightUpdates_ = volumeUpdates_ = ~0u;
     if (configured.enabled) {
@@ -431,10 +443,10 @@ GiConfigResult LightPropagationVolume::prepare(const LpvSettings& configured, co
     analyticLights_ = analyticLights;
     LpvSettings level = s;
     for (Cascade& c : cascades_) {
-        c.placement = placeVolume(level, camera.position, camera.forward, inputs.sceneBounds);
+        c.placement = placeVolume(level, camera.position, camera.forward, placementBounds);
         level.cellSize *= 2.0f;
     }
-    grid_ = cascades_.empty() ? placeVolume(s, camera.position, camera.forward, inputs.sceneBounds)
+    grid_ = cascades_.empty() ? placeVolume(s, camera.position, camera.forward, placementBounds)
                               : cascades_[0].placement;
     // Under adapt, a frame that must make cascades its schedule leaves for later (the first frame,
     // or one after the volumes were remade: none has a result yet) does all of them at once; it

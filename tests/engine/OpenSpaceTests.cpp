@@ -1,35 +1,14 @@
 // The open space around a point (engine/scene/OpenSpace.h), which gi.cell_size = auto sizes the
 // finest cascade to: a closed room, a room seen from outside, the open ground.
+#include "../support/RoomOnGround.h"
+
 #include "engine/scene/BuiltinScenes.h"
-#include "engine/scene/MeshBuilder.h"
 #include "engine/scene/OpenSpace.h"
 
 #include <doctest/doctest.h>
 
 using namespace lpv;
-
-namespace {
-
-// A closed room 6 x 3 x 4 m inside, walls 0.2 m, on a ground 40 m across.
-engine::Scene roomOnGround() {
-    engine::Scene scene;
-    scene.materials = {{"white", {0.7f, 0.7f, 0.7f, 1.0f}}};
-    engine::MeshBuilder b(scene);
-    b.begin("ground", 0);
-    b.box({-20.0f, -0.2f, -20.0f}, {20.0f, 0.0f, 20.0f});
-    b.finish();
-    b.begin("room", 0);
-    b.box({-3.2f, 3.0f, -2.2f}, {3.2f, 3.2f, 2.2f}); // ceiling
-    b.box({-3.2f, 0.0f, -2.2f}, {-3.0f, 3.0f, 2.2f});
-    b.box({3.0f, 0.0f, -2.2f}, {3.2f, 3.0f, 2.2f});
-    b.box({-3.0f, 0.0f, -2.2f}, {3.0f, 3.0f, -2.0f});
-    b.box({-3.0f, 0.0f, 2.0f}, {3.0f, 3.0f, 2.2f});
-    b.finish();
-    scene.updateBounds();
-    return scene;
-}
-
-} // namespace
+using lpv::test::roomOnGround;
 
 TEST_CASE("engine: the open space around a point is its room's, or the scene's in the open") {
     const engine::Scene scene = roomOnGround();
@@ -48,4 +27,23 @@ TEST_CASE("engine: the open space around a point is its room's, or the scene's i
     CHECK(engine::OpenSpace(cornell).extentAround(cornell.camera->position) ==
           doctest::Approx(5.7f).epsilon(0.01));
     CHECK(engine::OpenSpace(engine::Scene{}).extentAround({0.0f, 0.0f, 0.0f}) == 0.0f);
+}
+
+TEST_CASE("engine: the room around a point holds its surfaces, to within a voxel beyond them") {
+    const engine::Scene scene = roomOnGround();
+    const engine::OpenSpace space(scene);
+    const float voxel = 40.0f / 64.0f;
+    // The free span stops at the first occupied voxel's near side, short of the walls by up to a
+    // voxel; the room reaches that voxel's far side, past the walls' inner faces.
+    const engine::Bounds room = space.roomAround({1.0f, 1.5f, 0.5f});
+    const glm::vec3 inner[2] = {{-3.0f, 0.0f, -2.0f}, {3.0f, 3.0f, 2.0f}};
+    for (int a = 0; a < 3; ++a) {
+        CHECK(room.min[a] <= inner[0][a]);
+        CHECK(room.min[a] >= inner[0][a] - voxel);
+        CHECK(room.max[a] >= inner[1][a]);
+        CHECK(room.max[a] <= inner[1][a] + voxel);
+    }
+    // Outside the scene's bounds: the bounds; an empty scene: an empty box.
+    CHECK(space.roomAround({0.0f, 50.0f, 0.0f}).size().x == doctest::Approx(40.0f));
+    CHECK(engine::OpenSpace(engine::Scene{}).roomAround({0.0f, 0.0f, 0.0f}).empty());
 }

@@ -3,6 +3,7 @@
 // between cascades is continuous across a cascade's border, and a coarse cascade updated in two
 // halves on two frames (the budget scheduler's split) holds what a whole update gives.
 #include "../render/CornellFrame.h"
+#include "../support/RoomOnGround.h"
 #include "../support/TestDevice.h"
 
 #include "engine/config/Config.h"
@@ -444,6 +445,47 @@ TEST_CASE("gi: together, the finest cascade's bounce taken from the frame before
             // What differs is the light's and the camera's sampling of the moved volume; a bounce
             // left where it was computed, or moved the wrong way, differs by more (docs/tests.md).
             CHECK(worst <= 0.035f * peak);
+            device.expectSilent();
+        }
+    }
+}
+
+// gi.cell_size = auto sizes the finest cascade to the room the camera stands in and places the
+// cascades over it. A camera in the middle of a room, looking at a wall, on a ground 40 m across
+// (the room measured in voxels of 0.625 m): the cascades used to be centred ahead of the camera,
+// the wall behind it outside the finest cascade, and the room taken as its free span, short of
+// its walls by up to a voxel on each side.
+TEST_CASE("gi: gi.cell_size = auto places the cascades over the room the camera stands in") {
+    engine::Scene scene = roomOnGround();
+    scene.camera = engine::Camera{};
+    scene.camera->position = {0.0f, 1.5f, 0.0f};
+    scene.camera->forward = {1.0f, 0.0f, 0.0f};
+    const glm::vec3 inner[2] = {{-3.0f, 0.0f, -2.0f}, {3.0f, 3.0f, 2.0f}};
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            engine::Config config;
+            for (const char* setting : {"gi.enabled=true", "gi.cell_size=auto", "render.ssao=false"})
+                config.applyOverride(setting, "test");
+            engine::Renderer renderer(*device, 64, 48);
+            renderer.setScene(scene);
+            gi::LightPropagationVolume lpv(*device, platforms::loadPlatformProfile("pc"));
+            lpv.setScene(scene);
+            const engine::CameraMatrices matrices = engine::cameraMatrices(*scene.camera, 64.0f / 48.0f);
+            REQUIRE(gi::updateFromConfig(lpv, config, renderer, matrices).accepted);
+            rhi::CommandList& cmd = device->beginFrame();
+            renderer.render(cmd, matrices, config, nullptr, &lpv);
+            device->endFrame();
+            device->waitIdle();
+            for (uint32_t c = 0; c < 3; ++c) {
+                const gi::VolumeGrid& grid = lpv.cascadeGrid(c);
+                INFO("cascade " << c << ": cells of " << grid.cellSize << " m from " << grid.origin.x << ", "
+                                << grid.origin.y << ", " << grid.origin.z);
+                for (int a = 0; a < 3; ++a) {
+                    CHECK(grid.origin[a] <= inner[0][a]);
+                    CHECK(grid.origin[a] + grid.cellSize * float(grid.size) >= inner[1][a]);
+                }
+            }
             device.expectSilent();
         }
     }

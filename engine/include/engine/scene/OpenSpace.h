@@ -23,9 +23,17 @@ public:
     // voxel `p` lies in does not count, so a camera against a wall still sees its room). The
     // scene's largest side when `p` lies outside its bounds; 0 for an empty scene.
     float extentAround(glm::vec3 p) const;
+    // The room `p` stands in as a box that holds its surfaces: the free span along each axis out
+    // to the far side of the first occupied voxel, in which the surface that ends the span lies
+    // (a voxel is the scene's largest side / resolution: half a metre on a 30 m ground). The
+    // scene's bounds where `p` lies outside them; empty for an empty scene.
+    Bounds roomAround(glm::vec3 p) const;
     bool empty() const { return occupied_.empty(); }
 
 private:
+    // The span through `p` along each axis, to the first occupied voxel's near side, or (`holding`)
+    // its far side.
+    Bounds spanAround(glm::vec3 p, bool holding) const;
     bool occupiedAt(glm::ivec3 v) const;
     void mark(glm::vec3 p);
 
