@@ -9,15 +9,10 @@ std::vector<FidelityScene> fidelityScenes(const std::string& sceneDir) {
         {"cornell", "cornell", {"gi.cell_size=0.2"}, 256, 256, true, 4},
         // The standard Cornell box, open at the front, the sun entering through it onto the floor.
         {"cornell-sun", sceneDir + "/cornell-sun.gltf", {"gi.cell_size=0.2"}, 256, 256, true},
-        // The same box lit by a point light under its ceiling; the light gets an RSM of its own so
-        // that the volume carries its bounce only (it is lit per pixel, as the reference's direct
-        // light is left out of its indirect pass).
-        {"cornell-point",
-         sceneDir + "/cornell-point.gltf",
-         {"gi.cell_size=0.2", "gi.point_light_rsms=1"},
-         256,
-         256,
-         true},
+        // The same box lit by a point light under its ceiling; at the default gi.point_light_rsms
+        // (1) the light gets a cube RSM of its own, so the volume carries its bounce only (it is lit
+        // per pixel, as the reference's direct light is left out of its indirect pass).
+        {"cornell-point", sceneDir + "/cornell-point.gltf", {"gi.cell_size=0.2"}, 256, 256, true},
         // A closed room lit through a door from the sunlit ground outside: light leaking through
         // walls shows here.
         {"doorway", sceneDir + "/doorway.gltf", {"gi.cell_size=0.2"}, 256, 256, false},

@@ -147,7 +147,8 @@ TEST_CASE("steady state: rgba8 volumes that clip, read back and reported, alloca
     }
 }
 
-TEST_CASE("steady state: the lights hall with analytic lights and a spot light RSM allocates nothing") {
+TEST_CASE(
+    "steady state: the lights hall with analytic lights and spot and point light RSMs allocates nothing") {
     const engine::Scene hall = engine::buildLightHall();
     for (const auto& backend : test::selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
@@ -181,9 +182,23 @@ TEST_CASE("steady state: the lights hall with analytic lights and a spot light R
                 REQUIRE(shadow != scopes.end());
                 CHECK(shadow->work.primitives > 0);
             };
-            const uint64_t n = steadyStateAllocations(backend, hall, 0.25f, check);
+            // Every point light analytic here; the default's cube RSM for the brightest is below.
+            const uint64_t n = steadyStateAllocations(backend, hall, 0.25f, check, {"gi.point_light_rsms=0"});
             MESSAGE(backend.name << ": " << n << " allocations in 4 steady-state frames");
             CHECK(n == 0);
+            // At the defaults the brightest point light also gets a cube RSM (gi.point_light_rsms=1),
+            // drawn with the spot's as gi/lightrsm: six more RSMs, still nothing allocated.
+            const auto cube = [&](const engine::FrameProfiler& p, const gi::LightPropagationVolume& lpv) {
+                REQUIRE(lpv.pointLights());
+                CHECK(lpv.pointLights()->lights().size() == 145);
+                const auto& scopes = p.scopes();
+                CHECK(std::any_of(scopes.begin(), scopes.end(),
+                                  [](const engine::ScopeInfo& s) { return s.path == "gi/lightrsm"; }));
+            };
+            const uint64_t withCube = steadyStateAllocations(backend, hall, 0.25f, cube);
+            MESSAGE(backend.name << ": " << withCube
+                                 << " allocations in 4 steady-state frames with a cube RSM");
+            CHECK(withCube == 0);
         }
     }
 }

@@ -200,10 +200,11 @@ TEST_CASE("gi: many coloured lights light the indirect term in their colour, and
             CHECK(nearBlue.b > 2.0f * nearBlue.r);
             CHECK(nearBlue.b > 2.0f * nearBlue.g);
 
-            // No sun, no analytic lights and no spot light RSMs: no indirect light anywhere.
+            // No sun, no analytic lights and no spot or point light RSMs: no indirect light anywhere.
             std::vector<std::string> off = indirect;
             off.push_back("gi.analytic_lights=false");
             off.push_back("gi.light_rsms=0");
+            off.push_back("gi.point_light_rsms=0");
             const CornellFrame dark = renderSceneFrame(*device, hall, off, kNoSun);
             CHECK(brightest(dark.hdr) == 0.0f);
             device.expectSilent();
@@ -321,8 +322,10 @@ TEST_CASE("gi: turning analytic lights on or off takes effect in every cascade a
 
 TEST_CASE("gi: lights the volume carries are not lit a second time per pixel") {
     const engine::Scene hall = engine::buildLightHall();
-    // Every light analytic (a spot with its own RSM is lit per pixel: SpotLightRsmGpuTests.cpp).
-    const std::vector<std::string> base = {"gi.enabled=true", "render.ssao=false", "gi.light_rsms=0"};
+    // Every light analytic (a spot or point light with its own RSM is lit per pixel:
+    // SpotLightRsmGpuTests.cpp).
+    const std::vector<std::string> base = {"gi.enabled=true", "render.ssao=false", "gi.light_rsms=0",
+                                           "gi.point_light_rsms=0"};
     const auto with = [&](std::initializer_list<const char*> extra) {
         std::vector<std::string> v = base;
         v.insert(v.end(), extra.begin(), extra.end());

@@ -545,6 +545,7 @@ TEST_CASE("gi: configurations that do not fit are refused with a clear message")
     // The CryEngine 3 console setup (one cascade, the sun's RSM alone) fits.
     s.cascades = 1;
     s.lightRsms = 0;
+    s.pointLightRsms = 0;
     s.gridSize = 32;
     s.rsmSize = 128;
     s.vplCount = 1024;

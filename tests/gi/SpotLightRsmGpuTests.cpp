@@ -432,7 +432,8 @@ TEST_CASE("gi: a point light with its own cube RSM bleeds the colour it hits; an
             TestDevice device(backend);
             const CornellFrame rsm =
                 renderSceneFrame(*device, scene, indirectView({"gi.point_light_rsms=1"}), kNoSun);
-            const CornellFrame analytic = renderSceneFrame(*device, scene, indirectView(), kNoSun);
+            const CornellFrame analytic =
+                renderSceneFrame(*device, scene, indirectView({"gi.point_light_rsms=0"}), kNoSun);
             uint32_t x = 0, y = 0;
             REQUIRE(rsm.pixelOf(kFloorByRedWall, x, y));
             const glm::vec4 bounce = rsm.hdr.at(x, y), white = analytic.hdr.at(x, y);

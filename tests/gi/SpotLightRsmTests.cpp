@@ -115,6 +115,7 @@ TEST_CASE("spot rsm: the lights that matter most to the volume are chosen, in a 
 TEST_CASE("spot rsm: the GI budget counts every spot light's RSM and VPLs") {
     LpvSettings s;
     s.lightRsms = 0;
+    s.pointLightRsms = 0;
     const uint64_t none = giBytes(giResources(s));
     s.lightRsms = 2;
     const auto resources = giResources(s);
@@ -206,6 +207,7 @@ TEST_CASE("point rsm: a point light's six cube faces tile the sphere") {
 TEST_CASE("point rsm: the GI budget counts a point light's six RSMs and VPL buffers") {
     LpvSettings s;
     s.lightRsms = 0;
+    s.pointLightRsms = 0;
     const uint64_t none = giBytes(giResources(s));
     s.pointLightRsms = 2;
     const uint64_t perFace =

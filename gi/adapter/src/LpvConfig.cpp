@@ -121,7 +121,7 @@ const engine::IntSetting kLightRsms{"gi.light_rsms", 1, 0, 4,
                                     "Spot lights (the brightest reaching the volume) with their own RSM: "
                                     "bounce light in the colour they hit"};
 const engine::IntSetting kPointLightRsms{
-    "gi.point_light_rsms", 0, 0, 2,
+    "gi.point_light_rsms", 1, 0, 2,
     "Point lights (the brightest reaching the volume) with a cube RSM of their own, six gi.rsm_size faces: "
     "bounce light in the colour they hit"};
 const engine::EnumSetting<uint32_t> kResolution{

@@ -81,7 +81,7 @@ struct LpvSettings {
     // Spot lights with a reflective shadow map of their own (SpotLightRsms).
     uint32_t lightRsms = 1;
     // Point lights with a cube RSM of their own (six faces, SpotLightRsms).
-    uint32_t pointLightRsms = 0;
+    uint32_t pointLightRsms = 1;
     // Per axis, 1/resolutionDivisor of the frame's pixels get a lookup and a glossy march; the
     // lighting pass rebuilds the rest (engine::IndirectLighting::resolutionDivisor).
     uint32_t resolutionDivisor = 2;
