@@ -49,33 +49,23 @@ bool OpenSpace::occupiedAt(glm::ivec3 v) const {
     return occupied_[(size_t(v.z) * size_.y + v.y) * size_.x + v.x] != 0;
 }
 
-float OpenSpace::extentAround(glm::vec3 p) const {
-    const glm::vec3 sides = spanAround(p, false).size();
-    return std::max(std::max(sides.x, sides.y), sides.z);
-}
-
 Bounds OpenSpace::roomAround(glm::vec3 p) const {
-    return spanAround(p, true);
-}
-
-Bounds OpenSpace::spanAround(glm::vec3 p, bool holding) const {
     if (occupied_.empty()) return Bounds{};
     for (int a = 0; a < 3; ++a)
         if (p[a] < bounds_.min[a] || p[a] > bounds_.max[a]) return bounds_;
     const glm::ivec3 start =
         glm::clamp(glm::ivec3(glm::floor((p - bounds_.min) / voxel_)), glm::ivec3(0), size_ - 1);
     Bounds span = bounds_;
-    const int beyond = holding ? 1 : 0;
     for (int a = 0; a < 3; ++a) {
-        // The first occupied voxel beyond the start on each side, or the bounds.
+        // The far side of the first occupied voxel beyond the start on each side, or the bounds.
         for (glm::ivec3 v = start; --v[a] >= 0;)
             if (occupiedAt(v)) {
-                span.min[a] = bounds_.min[a] + float(v[a] + 1 - beyond) * voxel_;
+                span.min[a] = bounds_.min[a] + float(v[a]) * voxel_;
                 break;
             }
         for (glm::ivec3 v = start; ++v[a] < size_[a];)
             if (occupiedAt(v)) {
-                span.max[a] = bounds_.min[a] + float(v[a] + beyond) * voxel_;
+                span.max[a] = bounds_.min[a] + float(v[a] + 1) * voxel_;
                 break;
             }
     }

@@ -18,22 +18,16 @@ public:
     // Voxels of the scene's largest side / `resolution`; every triangle marks the voxels it crosses.
     explicit OpenSpace(const Scene& scene, uint32_t resolution = 64);
 
-    // The largest, over the three axes, of the free span through `p`: from the first occupied voxel
-    // on one side to the first on the other, or to the scene's bounds where the way is open (the
-    // voxel `p` lies in does not count, so a camera against a wall still sees its room). The
-    // scene's largest side when `p` lies outside its bounds; 0 for an empty scene.
-    float extentAround(glm::vec3 p) const;
-    // The room `p` stands in as a box that holds its surfaces: the free span along each axis out
-    // to the far side of the first occupied voxel, in which the surface that ends the span lies
-    // (a voxel is the scene's largest side / resolution: half a metre on a 30 m ground). The
-    // scene's bounds where `p` lies outside them; empty for an empty scene.
+    // The room `p` stands in, as a box that holds its surfaces: along each axis the free span
+    // through `p`, out to the far side of the first occupied voxel on either side (in which the
+    // surface that ends the span lies; a voxel is the scene's largest side / resolution: half a
+    // metre on a 30 m ground), or to the scene's bounds where the way is open. The voxel `p` lies
+    // in does not count, so a camera against a wall still sees its room. The scene's bounds where
+    // `p` lies outside them; empty for an empty scene.
     Bounds roomAround(glm::vec3 p) const;
     bool empty() const { return occupied_.empty(); }
 
 private:
-    // The span through `p` along each axis, to the first occupied voxel's near side, or (`holding`)
-    // its far side.
-    Bounds spanAround(glm::vec3 p, bool holding) const;
     bool occupiedAt(glm::ivec3 v) const;
     void mark(glm::vec3 p);
 
