@@ -300,17 +300,8 @@ void LightPropagationVolume::setScene(const engine::Scene& scene) {
     autoCellSize_ = 0.0f;
 }
 
-float LightPropagationVolume::autoCellSize(uint32_t gridSize, glm::vec3 camera,
-                                           const engine::Bounds& sceneBounds) {
-    float extent = 0.0f;
-    if (!openSpace_.empty()) {
-        const glm::vec3 room = openSpace_.roomAround(camera).size();
-        extent = std::max(std::max(room.x, room.y), room.z);
-    }
-    if (!(extent > 0.0f)) {
-        const glm::vec3 side = sceneBounds.size();
-        extent = std::max(std::max(side.x, side.y), side.z);
-    }
+float LightPropagationVolume::autoCellSize(uint32_t gridSize, const engine::Bounds& room) {
+    const float extent = room.largestSide();
     if (!(extent > 0.0f)) return autoCellSize_ > 0.0f ? autoCellSize_ : 0.25f;
     // gridSize - 4 cells across the room: two cells' margin on either side for the lookup's filter
     // (the cascades are placed over the room, prepare()).
@@ -370,8 +361,8 @@ GiConfigResult LightPropagationVolume::prepare(const LpvSettings& configured, co
     // next cascade's coarser VPLs (docs/gi-fidelity.md).
     engine::Bounds placementBounds = inputs.sceneBounds;
     if (s.cellSizeAuto) {
-        s.cellSize = autoCellSize(s.gridSize, camera.position, inputs.sceneBounds);
         if (!openSpace_.empty()) placementBounds = openSpace_.roomAround(camera.position);
+        s.cellSize = autoCellSize(s.gridSize, placementBounds);
     }
     s.gather = gathers(s.gatherMode); // the load the scheduler starts from has it as resolved
     lightUpdates_ = volumeUpdates_ = ~0u;

@@ -7,42 +7,31 @@
 
 #include <doctest/doctest.h>
 
-#include <algorithm>
-
 using namespace lpv;
 using lpv::test::roomOnGround;
-
-namespace {
-
-float largestSide(const engine::Bounds& b) {
-    const glm::vec3 s = b.size();
-    return std::max(std::max(s.x, s.y), s.z);
-}
-
-} // namespace
 
 TEST_CASE("engine: the room around a point is its room, or the scene in the open") {
     const engine::Scene scene = roomOnGround();
     const engine::OpenSpace space(scene);
     const float voxel = 40.0f / 64.0f;
     // Inside, the room's longest side (6 m), and at most a voxel more beyond each wall.
-    const float inside = largestSide(space.roomAround({1.0f, 1.5f, 0.5f}));
+    const float inside = space.roomAround({1.0f, 1.5f, 0.5f}).largestSide();
     CHECK(inside >= 6.0f);
     CHECK(inside <= 6.0f + 2.0f * voxel);
     // Against a wall, still the room: the voxel the point lies in does not count (where it holds
     // the wall, the room reaches one voxel further on that side, 6.875 m here).
-    const float againstWall = largestSide(space.roomAround({2.9f, 1.5f, 0.0f}));
+    const float againstWall = space.roomAround({2.9f, 1.5f, 0.0f}).largestSide();
     CHECK(againstWall >= 6.0f);
     CHECK(againstWall <= 6.0f + 2.0f * voxel);
     // Outdoors, above the ground beside the room: the scene's 40 m.
-    CHECK(largestSide(space.roomAround({10.0f, 1.5f, 10.0f})) >= 38.0f);
+    CHECK(space.roomAround({10.0f, 1.5f, 10.0f}).largestSide() >= 38.0f);
     // Outside the scene's bounds: its largest side.
-    CHECK(largestSide(space.roomAround({0.0f, 50.0f, 0.0f})) == doctest::Approx(40.0f));
+    CHECK(space.roomAround({0.0f, 50.0f, 0.0f}).largestSide() == doctest::Approx(40.0f));
     // The built-in Cornell box from its camera, outside the box: the box, 5.7 m across.
     const engine::Scene cornell = engine::buildCornellBox();
-    CHECK(largestSide(engine::OpenSpace(cornell).roomAround(cornell.camera->position)) ==
+    CHECK(engine::OpenSpace(cornell).roomAround(cornell.camera->position).largestSide() ==
           doctest::Approx(5.7f).epsilon(0.01));
-    CHECK(largestSide(engine::OpenSpace(engine::Scene{}).roomAround({0.0f, 0.0f, 0.0f})) == 0.0f);
+    CHECK(engine::OpenSpace(engine::Scene{}).roomAround({0.0f, 0.0f, 0.0f}).largestSide() == 0.0f);
 }
 
 TEST_CASE("engine: the room around a point holds its surfaces, to within a voxel beyond them") {

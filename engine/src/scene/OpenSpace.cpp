@@ -13,7 +13,7 @@ OpenSpace::OpenSpace(const Scene& scene, uint32_t resolution) {
     if (scene.bounds.empty()) return;
     bounds_ = scene.bounds;
     const glm::vec3 extent = bounds_.size();
-    voxel_ = std::max(std::max(extent.x, extent.y), extent.z) / float(resolution);
+    voxel_ = bounds_.largestSide() / float(resolution);
     if (!(voxel_ > 0.0f)) return;
     size_ = glm::max(glm::ivec3(glm::ceil(extent / voxel_)), glm::ivec3(1));
     occupied_.assign(size_t(size_.x) * size_.y * size_.z, 0);

@@ -245,7 +245,9 @@ private:
     // gi.cell_size = auto: the open space around the camera, and the cell size last chosen from it.
     engine::OpenSpace openSpace_;
     float autoCellSize_ = 0.0f;
-    float autoCellSize(uint32_t gridSize, glm::vec3 camera, const engine::Bounds& sceneBounds);
+    // The finest cascade's cells for gi.cell_size = auto: `room` (the scene's bounds without an
+    // open space) spanned by gridSize - 4 of them.
+    float autoCellSize(uint32_t gridSize, const engine::Bounds& room);
     GiBudgetScheduler schedulerBefore_;
     GiSchedule scheduleBefore_; // this frame leaves its further bounces to the next (update())
     GiFrameInputs frame_;       // the last update()'s

@@ -8,6 +8,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -31,6 +32,10 @@ struct Bounds {
     bool empty() const { return min.x > max.x; }
     glm::vec3 center() const { return 0.5f * (min + max); }
     glm::vec3 size() const { return empty() ? glm::vec3(0.0f) : max - min; }
+    float largestSide() const {
+        const glm::vec3 s = size();
+        return std::max(std::max(s.x, s.y), s.z);
+    }
     Bounds transformed(const glm::mat4& m) const;
     // True when the box lies wholly outside the clip volume of `viewProjection` (-w <= x, y <= w,
     // 0 <= z <= w): what it bounds cannot reach that view. Conservative: a box that straddles a
