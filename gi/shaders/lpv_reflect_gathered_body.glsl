@@ -83,7 +83,8 @@ layout(binding = 10) uniform usampler3D surfaceAreas;
 // geometry volume puts in front of a surface, and the surfaces' faces, a rounding of their own,
 // put a surface in front of a share of those cells' centres, which then received nothing (the
 // three-bounce means 3-6% lower, docs/gi-fidelity.md).
-bool faceBlocked(ivec3 c, int axis) { return texelFetch(faceTransmittance, c, 0)[axis] < 0.5; }
+// The geometry volume's faces hold no plane: a blocked face blocks every segment through it.
+bool faceBlocked(ivec3 c, int axis, vec2 span) { return texelFetch(faceTransmittance, c, 0)[axis] < 0.5; }
 #include "vpl_visibility.glsl"
 
 // The share of face f of cell c (-x -y -z +x +y +z) that a surface covers: the most of the

@@ -1,10 +1,12 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Marks the face a surface crosses between two cell centres along the axis drawn along
-// (gi/SurfaceVoxels.h): the lower face of the cell above, at the surface's position rounded.
+// (gi/SurfaceVoxels.h): the lower face of the cell above, at the surface's position rounded, with
+// where the surface lies off it (surface_faces.glsl); of surfaces crossing one face, the highest.
 // Each cell column is k x k pixels (k = grid.z, odd): the middle one, on the column's centre
 // line, marks the face; every one adds 1 to the face's area, in k^2ths of a face.
 #include "surface_areas.glsl"
+#include "surface_faces.glsl"
 
 layout(location = 0) in vec3 vCell;
 layout(location = 1) flat in uint vAxis;
@@ -13,7 +15,7 @@ layout(binding = 0, std140) uniform Voxelize {
     vec4 gridOrigin; // xyz: corner of cell 0, w: cell size
     uvec4 grid;      // x: cells a side, y: the stamp, z: pixels a column's side
 } voxelize;
-layout(binding = 2, r32ui) uniform writeonly uimage3D faces;
+layout(binding = 2, r32ui) uniform uimage3D faces;
 // The stamp above the low kAreaCountBits, the samples in them (SurfaceVoxels::areas()).
 layout(binding = 3, r32ui) uniform uimage3D areas;
 
@@ -32,7 +34,9 @@ void main() {
     const ivec3 texel = ivec3(3 * c.x + axis, c.y, c.z);
     // Pixel k i + k / 2 is column i's middle (a flipped y keeps it so: k n - 1 - (k i + k / 2)).
     const ivec2 within = ivec2(gl_FragCoord.xy) % k;
-    if (all(equal(within, ivec2(k / 2)))) imageStore(faces, texel, uvec4(voxelize.grid.y));
+    // The highest, not the last: the same word on every backend and every run.
+    if (all(equal(within, ivec2(k / 2))))
+        imageAtomicMax(faces, texel, faceWord(voxelize.grid.y, vCell[axis] - float(c[axis])));
     // A face last counted by an earlier pass starts from 0 (its stamp is lower): the first of
     // this pass's samples to get there raises it to this stamp with no count, and every sample
     // adds after its own raise. No clear, and so no barrier, before the pass.

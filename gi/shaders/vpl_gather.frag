@@ -16,6 +16,7 @@
 #include "listed_faces.glsl"
 #include "lpv_common.glsl"
 #include "patch_form_factor.glsl"
+#include "surface_faces.glsl"
 
 struct Vpl {
     vec4 position; // w: a cluster's patch (patch_form_factor.glsl), a listed face's 1; 0 unlit
@@ -58,11 +59,12 @@ layout(binding = 7, std430) readonly buffer Windows {
 layout(binding = 2) uniform sampler2D depthTexture;
 layout(binding = 3) uniform sampler2D normalTexture;
 // Where params.w is 1: the faces the scene's surfaces cross, of cascade vpls.z, at texels
-// (3 x + axis, y, z), blocked where they hold faces.x (gi/SurfaceVoxels.h). Read as a storage
-// image: a CPU rasterizer fetches an integer texture through a sampler several times slower.
+// (3 x + axis, y, z), blocked where a surface marked them with stamp faces.x and the segment
+// crosses it (gi/SurfaceVoxels.h). Read as a storage image: a CPU rasterizer fetches an integer
+// texture through a sampler several times slower.
 layout(binding = 4, r32ui) uniform readonly uimage3D surfaceFaces;
-bool faceBlocked(ivec3 c, int axis) {
-    return imageLoad(surfaceFaces, ivec3(3 * c.x + axis, c.y, c.z)).x == gather.faces.x;
+bool faceBlocked(ivec3 c, int axis, vec2 span) {
+    return surfaceCrossed(imageLoad(surfaceFaces, ivec3(3 * c.x + axis, c.y, c.z)).x, gather.faces.x, c[axis], span);
 }
 #include "vpl_visibility.glsl"
 

@@ -1,14 +1,16 @@
 // Whether b sees a through the faces of a cascade's cells: a 3D DDA over the cells of the grid
 // with corner origin.xyz, cell origin.w and n cells a side, stopped by the first blocked face. The
-// includer defines `bool faceBlocked(ivec3 cell, int axis)`: whether the lower face along `axis`
-// of `cell` (inside the grid) blocks, the scene's surfaces crossing it (gi/SurfaceVoxels.h).
-// A segment leaving the volume is open beyond it.
+// includer defines `bool faceBlocked(ivec3 cell, int axis, vec2 span)`: whether the lower face
+// along `axis` of `cell` (inside the grid) blocks a segment spanning [span.x, span.y] cells along
+// that axis, the scene's surfaces crossing it (gi/SurfaceVoxels.h, surface_faces.glsl). A segment
+// leaving the volume is open beyond it.
 float faceVisibility(vec4 origin, int n, vec3 a, vec3 b) {
     vec3 ta = (a - origin.xyz) / origin.w, tb = (b - origin.xyz) / origin.w;
     ivec3 c = ivec3(floor(ta));
     vec3 d = tb - ta;
     ivec3 st = ivec3(sign(d));
     vec3 inv = 1.0 / max(abs(d), vec3(1e-6));
+    vec3 lo = min(ta, tb), hi = max(ta, tb);
     vec3 tMax = vec3(d.x > 0.0 ? float(c.x + 1) - ta.x : ta.x - float(c.x),
                      d.y > 0.0 ? float(c.y + 1) - ta.y : ta.y - float(c.y),
                      d.z > 0.0 ? float(c.z + 1) - ta.z : ta.z - float(c.z)) * inv;
@@ -18,7 +20,7 @@ float faceVisibility(vec4 origin, int n, vec3 a, vec3 b) {
         ivec3 upper = c;
         if (st[axis] > 0) upper[axis] += 1;
         if (any(lessThan(upper, ivec3(0))) || any(greaterThanEqual(upper, ivec3(n)))) break;
-        if (faceBlocked(upper, axis)) return 0.0;
+        if (faceBlocked(upper, axis, vec2(lo[axis], hi[axis]))) return 0.0;
         c[axis] += st[axis];
         tMax[axis] += inv[axis];
     }

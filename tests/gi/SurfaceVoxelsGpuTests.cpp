@@ -3,8 +3,9 @@
 // every segment that leaves a solid (the boxes, whose tops and backs neither the camera nor the sun
 // sees, and the floor slab) is blocked, at every angle: the faces along all three axes close the
 // staircase a rotated box makes of the cells. Between two surfaces, the march the gather runs
-// (its shader) sees past each surface's own face, where a surface lies on cells' centres too. On
-// each backend. Each face also adds up the area its surfaces cover (areas()), sample by sample.
+// (its shader) sees past each surface's own face, where a surface lies on cells' centres too, and
+// from a point between a surface and the face it marks. On each backend. Each face also adds up
+// the area its surfaces cover (areas()), sample by sample, and holds where its surface lies.
 #include "../support/TestDevice.h"
 #include "TestShaders.h"
 #include "engine/render/GpuScene.h"
@@ -30,12 +31,23 @@ namespace {
 // The room (5.5 m a side, slabs 0.1 m thick) inside 32 cells of 0.2 m, off the half cells.
 const gi::VolumeGrid kGrid{{-3.23f, -0.57f, -3.19f}, 0.2f, 32};
 
+// Where the surface that marked a face word lies, in cells from the face (surface_faces.glsl).
+float planeOffset(uint32_t word) {
+    constexpr uint32_t bits = gi::SurfaceVoxels::kPlaneBits;
+    return (float(word & ((1u << bits) - 1u)) + 0.5f) / float(1u << bits) - 0.5f;
+}
+
 struct Faces {
     std::vector<uint32_t> texels; // (3 x + axis, y, z)
     uint32_t stamp = 0;
-    bool blocked(glm::ivec3 c, int axis) const {
+    // Whether the lower face along `axis` of cell c blocks a segment spanning `span` cells along it.
+    bool blocked(glm::ivec3 c, int axis, glm::vec2 span) const {
         const size_t n = kGrid.size;
-        return texels[(size_t(c.z) * n + size_t(c.y)) * 3 * n + 3 * size_t(c.x) + size_t(axis)] == stamp;
+        const uint32_t word =
+            texels[(size_t(c.z) * n + size_t(c.y)) * 3 * n + 3 * size_t(c.x) + size_t(axis)];
+        if (word >> gi::SurfaceVoxels::kPlaneBits != stamp) return false;
+        const float plane = float(c[axis]) + planeOffset(word);
+        return span.x < plane && plane < span.y;
     }
 };
 
@@ -46,6 +58,7 @@ bool visible(const Faces& faces, glm::vec3 a, glm::vec3 b) {
     glm::ivec3 c = glm::ivec3(glm::floor(ta));
     const glm::vec3 d = tb - ta;
     const glm::ivec3 st = glm::ivec3(glm::sign(d));
+    const glm::vec3 lo = glm::min(ta, tb), hi = glm::max(ta, tb);
     const glm::vec3 inv = 1.0f / glm::max(glm::abs(d), glm::vec3(1e-6f));
     glm::vec3 tMax;
     for (int k = 0; k < 3; ++k)
@@ -58,7 +71,7 @@ bool visible(const Faces& faces, glm::vec3 a, glm::vec3 b) {
         if (glm::any(glm::lessThan(upper, glm::ivec3(0))) ||
             glm::any(glm::greaterThanEqual(upper, glm::ivec3(n))))
             break;
-        if (faces.blocked(upper, axis)) return false;
+        if (faces.blocked(upper, axis, {lo[axis], hi[axis]})) return false;
         c[axis] += st[axis];
         tMax[axis] += inv[axis];
     }
@@ -141,9 +154,14 @@ TEST_CASE("gi: the surfaces' faces block what leaves a solid and nothing in open
 // surfaces from past their own faces (vpl_visibility.glsl's surfaceVisibility): started exactly
 // half a cell out, on the face in front, a share of these segments was blocked by the surfaces
 // they start from, and the built-in box's ceiling took 10% less of the sunlit floor's light.
-TEST_CASE("gi: a march between two surfaces sees past each one's own face") {
+// And in cells off them, the red wall and the floor 0.4 cell behind the faces they mark, 8 cm in
+// front of them: from the floor within 5 cm of the wall and the wall within 5 cm of the floor,
+// between each surface and the other's face, the room was out of sight (the foot of the built-in
+// box's sunlit red wall lit as the cells fell, docs/gi-fidelity.md).
+TEST_CASE("gi: a march between two surfaces sees past each one's own face and from its foot") {
     const engine::Scene scene = engine::buildBuiltinScene("cornell");
-    const gi::VolumeGrid grid{{-3.25f, -0.4f, -3.25f}, 0.2f, 32};
+    const std::array<gi::VolumeGrid, 2> grids{gi::VolumeGrid{{-3.25f, -0.4f, -3.25f}, 0.2f, 32},
+                                              gi::VolumeGrid{{-3.27f, -0.52f, -3.19f}, 0.2f, 32}};
     struct Segment {
         glm::vec4 a, na, b, nb;
     };
@@ -151,7 +169,7 @@ TEST_CASE("gi: a march between two surfaces sees past each one's own face") {
     // (3.3 m), and on the floor by the red wall, clear of the boxes; pairs that see each other.
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> across(-2.5f, 2.5f), high(3.6f, 5.3f), byWall(-2.5f, -2.0f),
-        front(1.0f, 2.5f);
+        front(1.0f, 2.5f), foot(0.005f, 0.05f), outward(-2.0f, -1.2f);
     const auto ceiling = [&] {
         glm::vec3 p{across(rng), 5.5f, across(rng)};
         while (std::fabs(p.x) < 0.75f && std::fabs(p.z) < 0.75f)
@@ -170,6 +188,17 @@ TEST_CASE("gi: a march between two surfaces sees past each one's own face") {
     const auto ceilingByWall = [&] {
         return std::pair{glm::vec4(byWall(rng), 5.5f, front(rng), 0.0f), glm::vec4(0.0f, -1.0f, 0.0f, 0.0f)};
     };
+    // The floor at the red wall's foot, the wall at the floor's edge, and the floor out from it.
+    const auto floorAtFoot = [&] {
+        return std::pair{glm::vec4(-2.75f + foot(rng), 0.0f, front(rng), 0.0f),
+                         glm::vec4(0.0f, 1.0f, 0.0f, 0.0f)};
+    };
+    const auto wallAtFoot = [&] {
+        return std::pair{glm::vec4(-2.75f, foot(rng), front(rng), 0.0f), glm::vec4(1.0f, 0.0f, 0.0f, 0.0f)};
+    };
+    const auto floorOut = [&] {
+        return std::pair{glm::vec4(outward(rng), 0.0f, front(rng), 0.0f), glm::vec4(0.0f, 1.0f, 0.0f, 0.0f)};
+    };
     std::vector<Segment> segments;
     for (int i = 0; i < 100; ++i) {
         const auto [c, nc] = ceiling();
@@ -181,42 +210,52 @@ TEST_CASE("gi: a march between two surfaces sees past each one's own face") {
         segments.push_back({k, nk, c, nc});
         segments.push_back({r, nr, k, nk});
         segments.push_back({f, nf, u, nu});
+        const auto [g, ng] = floorAtFoot();
+        const auto [w, nw] = wallAtFoot();
+        const auto [o, no] = floorOut();
+        segments.push_back({g, ng, u, nu});
+        segments.push_back({g, ng, r, nr});
+        segments.push_back({w, nw, u, nu});
+        segments.push_back({w, nw, o, no});
     }
     for (const auto& backend : selectedBackends()) {
         SUBCASE(backend.name.c_str()) {
             TestDevice device(backend);
             using namespace rhi;
             const engine::GpuScene gpu(*device, scene);
-            gi::SurfaceVoxels voxels(*device, grid.size);
-            const uint64_t bytes = segments.size() * sizeof(Segment);
-            const BufferHandle buffer = device->createBuffer(
-                {bytes, kBufferStorage | kBufferTransfer, MemoryAccess::GpuOnly, "march segments", "test"},
-                segments.data());
             const ComputePipelineHandle pipeline =
                 device->createPipeline(ComputePipelineDesc{&shaders::surface_march_comp, "surface march"});
-            CommandList& cmd = device->beginFrame();
-            voxels.record(cmd, gpu, grid, 0);
-            struct {
-                glm::vec4 origin;
-                glm::uvec4 grid;
-            } u{glm::vec4(grid.origin, grid.cellSize), glm::uvec4(grid.size, voxels.stamp(0), 0u, 0u)};
-            cmd.bindPipeline(pipeline);
-            cmd.pushUniforms(0, &u, sizeof(u));
-            cmd.bindStorageBuffer(1, buffer, 0, bytes);
-            cmd.bindStorageImage(2, voxels.faces(0));
-            cmd.dispatch(uint32_t(segments.size()));
-            device->endFrame();
-            device->waitIdle();
-            std::vector<Segment> out(segments.size());
-            device->readBuffer(buffer, 0, out.data(), bytes);
-            int open = 0;
-            for (const Segment& m : out)
-                open += m.a.w > 0.5f;
-            MESSAGE(backend.name << ": " << open << " of " << out.size()
-                                 << " segments between surfaces open");
-            CHECK(open == int(out.size()));
+            for (const gi::VolumeGrid& grid : grids) {
+                gi::SurfaceVoxels voxels(*device, grid.size);
+                const uint64_t bytes = segments.size() * sizeof(Segment);
+                const BufferHandle buffer =
+                    device->createBuffer({bytes, kBufferStorage | kBufferTransfer, MemoryAccess::GpuOnly,
+                                          "march segments", "test"},
+                                         segments.data());
+                CommandList& cmd = device->beginFrame();
+                voxels.record(cmd, gpu, grid, 0);
+                struct {
+                    glm::vec4 origin;
+                    glm::uvec4 grid;
+                } u{glm::vec4(grid.origin, grid.cellSize), glm::uvec4(grid.size, voxels.stamp(0), 0u, 0u)};
+                cmd.bindPipeline(pipeline);
+                cmd.pushUniforms(0, &u, sizeof(u));
+                cmd.bindStorageBuffer(1, buffer, 0, bytes);
+                cmd.bindStorageImage(2, voxels.faces(0));
+                cmd.dispatch(uint32_t(segments.size()));
+                device->endFrame();
+                device->waitIdle();
+                std::vector<Segment> marched(segments.size());
+                device->readBuffer(buffer, 0, marched.data(), bytes);
+                int open = 0;
+                for (const Segment& m : marched)
+                    open += m.a.w > 0.5f;
+                MESSAGE(backend.name << ", grid at " << grid.origin.x << ", " << grid.origin.y << ": " << open
+                                     << " of " << marched.size() << " segments between surfaces open");
+                CHECK(open == int(marched.size()));
+                device->destroy(buffer);
+            }
             device->destroy(pipeline);
-            device->destroy(buffer);
             device.expectSilent();
         }
     }
@@ -255,6 +294,7 @@ TEST_CASE("gi: each face adds up the samples of the surfaces that cross it") {
     const size_t n = grid.size;
     std::vector<uint32_t> expected(3 * n * n * n, 0u);
     std::vector<uint8_t> middle(expected.size(), 0u);
+    std::vector<float> planes(expected.size(), 0.0f); // where the surface lies off the face, in cells
     const auto toCells = [&](float m, int axis) { return (m - grid.origin[axis]) / grid.cellSize; };
     for (const Rectangle& r : rectangles) {
         const int u = r.axis == 0 ? 1 : 0, v = r.axis == 2 ? 1 : 2;
@@ -279,6 +319,7 @@ TEST_CASE("gi: each face adds up the samples of the surfaces that cross it") {
                 const size_t at = (size_t(c.z) * n + size_t(c.y)) * 3 * n + 3 * size_t(c.x) + size_t(r.axis);
                 expected[at] += covered;
                 middle[at] = middle[at] || centre;
+                planes[at] = toCells(r.at, r.axis) - float(face);
             }
     }
     uint32_t partial = 0, whole = 0;
@@ -308,19 +349,23 @@ TEST_CASE("gi: each face adds up the samples of the surfaces that cross it") {
                 device->readTexture(voxels.areas(0), 0, areas.data(), areas.size() * sizeof(uint32_t));
                 device->readTexture(voxels.faces(0), 0, faces.data(), faces.size() * sizeof(uint32_t));
                 device.expectSilent();
-                size_t wrongAreas = 0, wrongMarks = 0;
+                size_t wrongAreas = 0, wrongMarks = 0, wrongPlanes = 0;
                 constexpr uint32_t bits = gi::SurfaceVoxels::kAreaCountBits;
                 for (size_t t = 0; t < expected.size(); ++t) {
                     const uint32_t samples =
                         areas[t] >> bits == voxels.stamp(0) ? areas[t] & ((1u << bits) - 1u) : 0u;
                     wrongAreas += samples != expected[t];
-                    wrongMarks += (faces[t] == voxels.stamp(0)) != (middle[t] != 0);
+                    const bool marked = faces[t] >> gi::SurfaceVoxels::kPlaneBits == voxels.stamp(0);
+                    wrongMarks += marked != (middle[t] != 0);
+                    wrongPlanes += marked && std::fabs(planeOffset(faces[t]) - planes[t]) > 1e-3f;
                 }
                 MESSAGE(backend.name << ", " << passes << " passes, stamp " << voxels.stamp(0) << ": "
                                      << whole << " faces whole, " << partial << " in part; " << wrongAreas
-                                     << " areas and " << wrongMarks << " marks wrong");
+                                     << " areas, " << wrongMarks << " marks and " << wrongPlanes
+                                     << " planes wrong");
                 CHECK(wrongAreas == 0);
                 CHECK(wrongMarks == 0);
+                CHECK(wrongPlanes == 0);
             }
         }
     }

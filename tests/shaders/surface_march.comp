@@ -18,8 +18,9 @@ layout(binding = 0, std140) uniform Grid {
 layout(binding = 1, std430) buffer Segments { Segment segments[]; };
 layout(binding = 2, r32ui) uniform readonly uimage3D faces;
 
-bool faceBlocked(ivec3 c, int axis) {
-    return imageLoad(faces, ivec3(3 * c.x + axis, c.y, c.z)).x == params.grid.y;
+#include "surface_faces.glsl"
+bool faceBlocked(ivec3 c, int axis, vec2 span) {
+    return surfaceCrossed(imageLoad(faces, ivec3(3 * c.x + axis, c.y, c.z)).x, params.grid.y, c[axis], span);
 }
 #include "vpl_visibility.glsl"
 

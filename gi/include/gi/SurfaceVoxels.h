@@ -11,7 +11,10 @@
 // its staircase, which a segment crossing it diagonally would slip through. A face holds the
 // stamp of the pass that marked it, so no clear precedes a pass: a face is blocked where it holds
 // the cascade's last stamp (stamp()). When the stamps run out (a million passes) every face is
-// cleared once and they start again.
+// cleared once and they start again. A face also holds where its surface lies off it (up to half a
+// cell), and blocks only a segment that reaches the surface: a point between a surface and its
+// face (the floor at the foot of a wall whose face is in front of the wall) is on the surface's
+// side, where it saw nothing of the room through that face as the cells fell.
 //
 // The three axes are one multi-draw (each draw's axis in its instance's draw index): two draws
 // storing to one image would be a hazard to the RHI, a barrier between them; each cascade has its
@@ -48,7 +51,10 @@ public:
     // The bits of an area's count under its stamp (areas()); the stamps run below kStampLimit. The
     // shaders' is surface_areas.glsl's (the areas' test decodes their counts with this one).
     static constexpr uint32_t kAreaCountBits = 12;
-    static constexpr uint32_t kStampLimit = 1u << (32 - kAreaCountBits);
+    // The bits of a face's plane under its stamp (faces()); the shaders' is surface_faces.glsl's.
+    static constexpr uint32_t kPlaneBits = 12;
+    static constexpr uint32_t kStampLimit =
+        1u << (32 - (kAreaCountBits > kPlaneBits ? kAreaCountBits : kPlaneBits));
 
     // For cascades of `gridSize` cells a side; `stampLimit` (at most kStampLimit) lower for a
     // test of the stamps' wrap.
@@ -68,7 +74,9 @@ public:
                     uint32_t cascade);
 
     // Cascade c's faces, r32ui, (3 n) x n x n: the lower face along axis a of cell (x, y, z) at
-    // texel (3 x + a, y, z), blocked where it holds stamp(c).
+    // texel (3 x + a, y, z), blocked where it holds stamp(c) above the low kPlaneBits; in them
+    // where the surface crosses the face's column, (its offset from the face, in cells, + 1/2) x
+    // 2^kPlaneBits, the highest where several cross it.
     rhi::TextureHandle faces(uint32_t cascade) const { return faces_.at(cascade); }
     // The stamp of cascade c's last record(); 0 before the first (no face is blocked).
     uint32_t stamp(uint32_t cascade) const { return stamps_.at(cascade); }
