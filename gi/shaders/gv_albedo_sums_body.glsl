@@ -27,11 +27,7 @@
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
 #ifdef FROM_VPLS
-struct Vpl {
-    vec4 position;
-    vec4 normal; // w: its share of the block's texels
-    vec4 flux;   // w: its texel count
-};
+#include "vpl.glsl"
 layout(binding = 1, std430) readonly buffer Vpls {
     Vpl vpls[];
 };

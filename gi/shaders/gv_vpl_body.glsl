@@ -8,11 +8,7 @@
 // VPLs' albedo, for multiple bounces, is summed by compute: gv_albedo_sums_body.glsl.)
 #include "gv_common.glsl"
 
-struct Vpl {
-    vec4 position;
-    vec4 normal; // w: its share of the block's texels
-    vec4 flux;
-};
+#include "vpl.glsl"
 layout(binding = 1, std430) readonly buffer Vpls {
     Vpl vpls[];
 };

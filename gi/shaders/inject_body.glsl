@@ -4,11 +4,7 @@
 // toward the light (gi/LpvReference.cpp does the same on the CPU).
 #include "lpv_common.glsl"
 
-struct Vpl {
-    vec4 position;
-    vec4 normal;
-    vec4 flux;
-};
+#include "vpl.glsl"
 
 layout(binding = 0, std140) uniform Inject {
     vec4 gridOrigin;      // xyz: corner of cell 0; w: cell size

@@ -27,11 +27,7 @@
 #include "surface_areas.glsl"
 #include "lpv_common.glsl"
 
-struct Vpl {
-    vec4 position; // w: > 0 lit (a cluster packs its patch there: patch_form_factor.glsl)
-    vec4 normal;
-    vec4 flux;
-};
+#include "vpl.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 

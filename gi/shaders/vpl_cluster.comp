@@ -20,11 +20,7 @@
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
-struct Vpl {
-    vec4 position;  // w: its patch's half extents (patch_form_factor.glsl); 0: none lit
-    vec4 normal;    // w: the share of the block's texels it holds (its share of the block's area)
-    vec4 flux;      // w: RSM texels clustered
-};
+#include "vpl.glsl"
 
 layout(binding = 0, std140) uniform Params {
     mat4 invLightViewProjection;

@@ -18,12 +18,7 @@
 #include "patch_form_factor.glsl"
 #include "surface_faces.glsl"
 
-struct Vpl {
-    vec4 position; // w: a cluster's patch (patch_form_factor.glsl), a listed face's 1; 0 unlit
-    vec4 normal;
-    vec4 flux;
-};
-
+#include "vpl.glsl"
 
 layout(binding = 0, std140) uniform Gather {
     mat4 invViewProjection;

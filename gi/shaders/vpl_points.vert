@@ -2,11 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Debug view: every VPL as a point at its position, coloured by its normalised flux.
 #include "lpv_common.glsl"
-struct Vpl {
-    vec4 position;
-    vec4 normal;
-    vec4 flux;
-};
+#include "vpl.glsl"
 layout(binding = 0, std140) uniform Points {
     mat4 viewProjection;
 } points;

@@ -10,11 +10,7 @@
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
-struct Vpl {
-    vec4 position; // w: its patch (patch_form_factor.glsl), 0: unlit
-    vec4 normal;
-    vec4 flux;
-};
+#include "vpl.glsl"
 
 layout(binding = 0, std140) uniform Params {
     vec4 within;  // window 0 and 1: the box (xyz corner, w cell size) the VPL lies in; w 0: any

@@ -3,6 +3,7 @@
 // that reaches the room must be at most 10% of what reaches it without.
 #include "../support/Image.h"
 #include "../support/TestDevice.h"
+#include "GpuVpls.h"
 #include "gi/GeometryVolume.h"
 #include "gi/LpvInjection.h"
 #include "gi/LpvPropagation.h"
@@ -20,10 +21,6 @@ using namespace lpv;
 using namespace lpv::test;
 
 namespace {
-
-struct GpuVpl {
-    glm::vec4 position, normal, flux; // normal.w: the share of its block's area (all of it here)
-};
 
 // 16^3 cells of 0.5 m from the origin. The wall is the plane x = 4 m (between cells 7 and 8),
 // across the whole volume; the lit area is the floor strip x in 0.5 .. 3.5 m; the room is x >= 4.5 m.

@@ -2,6 +2,7 @@
 // multiple of 4, each phase's list holds exactly the lit VPLs its window takes, in the grid's
 // order (the gather sums them in it), and nothing where a window takes none.
 #include "../support/TestDevice.h"
+#include "GpuVpls.h"
 #include "gi/VplWindows.h"
 
 #include <doctest/doctest.h>
@@ -16,10 +17,6 @@ using namespace lpv;
 using namespace lpv::test;
 
 namespace {
-
-struct GpuVpl {
-    glm::vec4 position, normal, flux;
-};
 
 constexpr uint32_t kSide = 10;
 
