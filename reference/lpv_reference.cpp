@@ -109,12 +109,9 @@ int main(int argc, char** argv) {
                    "Diffuse bounces in the indirect (1: light -> A -> visible)")
         ->capture_default_str()
         ->check(CLI::Range(1u, 3u));
-    std::string surfaces = "gltf";
-    app.add_option("--surfaces", surfaces,
-                   "gltf: a Lambertian base under glTF's specular layer, as the engine shows it; lambertian: "
-                   "the base alone (no layer)")
-        ->check(CLI::IsMember({"gltf", "lambertian"}))
-        ->capture_default_str();
+    app.add_option("--surfaces", settings.surfaces, lpv::reference::RayScene::kSurfacesHelp)
+        ->transform(CLI::CheckedTransformer(lpv::reference::RayScene::surfaceNames()))
+        ->option_text("TEXT:{gltf,lambertian}=gltf");
     app.add_option("--seed", settings.seed, "Random seed")->capture_default_str();
     app.add_option("--threads", settings.threads, "Threads (0: all cores)")->capture_default_str();
     app.add_option("--camera-pos", cameraPos, "Camera position x,y,z (default: the scene's camera)");
@@ -151,8 +148,6 @@ int main(int argc, char** argv) {
     app.add_flag("--fog-attenuate-sun", fog.attenuateSunlight,
                  "Attenuate the sun's light by the fog on its way to the scattering points");
     CLI11_PARSE(app, argc, argv);
-    settings.surfaces = surfaces == "lambertian" ? lpv::reference::RayScene::Surfaces::Lambertian
-                                                 : lpv::reference::RayScene::Surfaces::Gltf;
 
     try {
         const engine::Scene scene = engine::loadScene(scenePath);

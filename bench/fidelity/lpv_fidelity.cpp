@@ -162,12 +162,9 @@ int main(int argc, char** argv) {
                    "to the same)")
         ->check(CLI::Range(1, 3))
         ->capture_default_str();
-    std::string surfaceModel = "gltf";
-    app.add_option("--surfaces", surfaceModel,
-                   "The reference's surfaces: gltf (a Lambertian base under glTF's specular layer, as the "
-                   "engine shows it) or lambertian (the base alone)")
-        ->check(CLI::IsMember({"gltf", "lambertian"}))
-        ->capture_default_str();
+    app.add_option("--surfaces", surfaces, reference::RayScene::kSurfacesHelp)
+        ->transform(CLI::CheckedTransformer(reference::RayScene::surfaceNames()))
+        ->option_text("TEXT:{gltf,lambertian}=gltf");
     app.add_option("--frames", frames, "Engine frames before the read-back")->check(CLI::Range(1, 100));
     FidelityFog fog = fidelityFog();
     uint32_t fogSpp = 256;
@@ -189,7 +186,6 @@ int main(int argc, char** argv) {
     app.add_option("--set", assignments,
                    "A setting for every scene, after the scene's own: --set gi.iterations=16");
     if (const std::optional<int> exit = parseCommandLine(app, argc, argv)) return *exit;
-    if (surfaceModel == "lambertian") surfaces = reference::RayScene::Surfaces::Lambertian;
     if (!outDir.empty()) platforms::Platform::createDirectories(outDir);
 
     const std::vector<FidelityScene> all = fidelityScenes(LPV_FIDELITY_SCENES);

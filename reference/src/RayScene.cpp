@@ -93,6 +93,12 @@ struct RayScene::Impl {
     }
 };
 
+const std::map<std::string, RayScene::Surfaces>& RayScene::surfaceNames() {
+    static const std::map<std::string, Surfaces> names{{"gltf", Surfaces::Gltf},
+                                                       {"lambertian", Surfaces::Lambertian}};
+    return names;
+}
+
 RayScene::RayScene(const engine::Scene& scene, Surfaces surfaces) : impl_(std::make_unique<Impl>()) {
     Impl& m = *impl_;
     m.scene = &scene;

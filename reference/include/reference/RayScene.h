@@ -11,8 +11,10 @@
 
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
+#include <string>
 
 namespace lpv::reference {
 
@@ -39,6 +41,11 @@ public:
     // The surfaces' model: glTF's (a specular layer over a Lambertian base), or plain Lambertian
     // surfaces of the same albedo (closed forms assume them).
     enum class Surfaces { Gltf, Lambertian };
+    // The tools' --surfaces choices (lpv_reference, lpv_fidelity), each with its model, and their help.
+    static const std::map<std::string, Surfaces>& surfaceNames();
+    static constexpr const char* kSurfacesHelp =
+        "The reference's surfaces: gltf (a Lambertian base under glTF's specular layer, as the engine shows "
+        "it) or lambertian (the base alone)";
 
     // Builds the BVH (Embree's robust mode; triangles are two-sided). Throws std::runtime_error if
     // Embree fails.
