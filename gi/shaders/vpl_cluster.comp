@@ -190,22 +190,39 @@ void main() {
     if (cluster.x >= side || cluster.y >= side) return;
     int block = params.sizes.z;
     ivec2 first = cluster * block;
-    // The block's depth range.
-    float nearest = 1.0, farthest = 0.0;
+    // The block's depth range, and the widest gap between two neighbouring texels.
+    float nearest = 1.0, farthest = 0.0, gap = 0.0;
     for (int y = 0; y < block; ++y)
         for (int x = 0; x < block; ++x) {
-            float depth = texelFetch(rsmDepth, first + ivec2(x, y), 0).r;
+            ivec2 t = first + ivec2(x, y);
+            float depth = texelFetch(rsmDepth, t, 0).r;
             if (depth >= 1.0) continue;
             nearest = min(nearest, depth);
             farthest = max(farthest, depth);
+            if (params.options.x == 0) continue; // the gather's VPLs alone split by the gaps
+            vec3 p = worldAt(t, depth);
+            for (int k = 0; k < 2; ++k) {
+                ivec2 u = t + (k == 0 ? ivec2(1, 0) : ivec2(0, 1));
+                if (u.x >= first.x + block || u.y >= first.y + block) continue;
+                float d = texelFetch(rsmDepth, u, 0).r;
+                if (d < 1.0) gap = max(gap, distance(p, worldAt(u, d)));
+            }
         }
-    // An edge: the nearest and farthest texels lie further apart along the light than twice the
-    // block's side (a slope steeper than that is one surface). Then the texels split at the middle
-    // depth; otherwise all go to the first VPL.
+    // An edge, for the volume's VPLs: the nearest and farthest texels lie further apart along the
+    // light than twice the block's side. Then the texels split at the middle depth; otherwise all
+    // go to the first VPL.
     vec3 near = worldAt(first, nearest);
     float blockSide = distance(near, worldAt(first + ivec2(block, 0), nearest));
     bool edge = farthest > nearest && distance(near, worldAt(first, farthest)) > 2.0 * blockSide;
     float split = edge ? 0.5 * (nearest + farthest) : 2.0;
+    // For the gather's: two neighbouring texels further apart than twice the block's side (a
+    // roof's rim over the floor below). A wall lit at a grazing angle spans more depth in a block
+    // than that, and taken for an edge the block over its foot put the wall's lowest texels in the
+    // floor's VPL, which lights no floor: the floor at the wall's foot lit or not as the blocks
+    // fell. The volume's keep the depth range: split by the gaps, they let more of a sunlit
+    // outside into a sealed room (docs/gi-fidelity.md).
+    bool gatherEdge = gap > 2.0 * blockSide;
+    float gatherSplit = gatherEdge ? 0.5 * (nearest + farthest) : 2.0;
     const int slot = 2 * (cluster.y * side + cluster.x);
     vec4 planes[2] = vec4[2](vec4(0.0, 1.0, 0.0, 0.0), vec4(0.0, 1.0, 0.0, 0.0));
     // Off a surface's plane by more than a quarter of the block's side: another surface.
@@ -216,11 +233,12 @@ void main() {
         vpls[slot + layer] = volume[layer];
     }
     if (params.options.x == 0) return;
-    // The gather's. A block whose texels all lie on their layer's plane clusters as the volume's.
-    bool mixed = false;
-    planes[0] = planeOf(first, block, edge, split, planes[0], 0, apart, mixed);
-    planes[1] = planeOf(first, block, edge, split, planes[0], 1, apart, mixed);
+    // The gather's. A block whose texels all lie on their layer's plane, split as the volume's,
+    // clusters as the volume's.
+    bool mixed = gatherEdge != edge;
+    planes[0] = planeOf(first, block, gatherEdge, gatherSplit, planes[0], 0, apart, mixed);
+    planes[1] = planeOf(first, block, gatherEdge, gatherSplit, planes[0], 1, apart, mixed);
     for (int layer = 0; layer < 2; ++layer)
         gatherVpls[slot + layer] =
-            mixed ? clustered(first, block, edge, split, true, planes, apart, layer) : volume[layer];
+            mixed ? clustered(first, block, gatherEdge, gatherSplit, true, planes, apart, layer) : volume[layer];
 }

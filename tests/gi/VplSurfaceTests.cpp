@@ -21,6 +21,7 @@
 #include <glm/geometric.hpp>
 #include <glm/packing.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -330,6 +331,58 @@ TEST_CASE("gi: the atrium's indirect light at the default VPL count is close to 
             // and 26%. (At 640x360 with the game's defaults: -13.5% and 38% before, -1.1% and 14% now.)
             CHECK(std::fabs(change.meanShift) < 0.08);
             CHECK(change.meanDifference < 0.4);
+            device.expectSilent();
+        }
+    }
+}
+
+TEST_CASE("gi: the floor at a sunlit wall's foot is lit all along the wall") {
+    // The truth: uniform along the wall, brighter at its foot than 30-40 cm out (the lit wall fills
+    // more of the foot's hemisphere). A block of the sun's RSM over the foot spans more depth than
+    // its side (the wall is seen at a grazing angle); taken for a depth edge, it put the wall's
+    // lowest texels in the floor's VPL, and the foot read 0.2-1.3x the floor further out, by bins
+    // of the wall as the blocks fell. Two placements of the cells (the camera moved).
+    const engine::Scene scene = creaseScene();
+    for (const auto& backend : selectedBackends()) {
+        SUBCASE(backend.name.c_str()) {
+            TestDevice device(backend);
+            for (float shift : {0.0f, 0.1f}) {
+                const CornellFrame f =
+                    renderSceneFrame(*device, scene,
+                                     {"gi.enabled=true", "gi.cell_size=0.2", "gi.gather=on",
+                                      "render.debug_view=indirect", "render.ssao=false"},
+                                     {}, 640, 480, 1, glm::vec3(shift, 0.0f, 0.7f * shift));
+                // Bins of 0.25 m along the wall (z -2..2): the floor 1-4 cm from it and 30-40 cm out.
+                constexpr int kBins = 16;
+                std::vector<double> foot(kBins, 0.0), out(kBins, 0.0);
+                std::vector<int> footCount(kBins, 0), outCount(kBins, 0);
+                for (uint32_t y = 0; y < f.height; ++y)
+                    for (uint32_t x = 0; x < f.width; ++x) {
+                        if (f.depth.at(x, y).r >= 1.0f) continue;
+                        const glm::vec3 p = f.worldAt(x, y);
+                        if (std::fabs(p.y) > 2e-3f || p.z < -2.0f || p.z >= 2.0f) continue;
+                        const int bin = int((p.z + 2.0f) / 0.25f);
+                        const double l = luminance(f.hdr.at(x, y));
+                        if (p.x > 0.01f && p.x < 0.04f) foot[bin] += l, ++footCount[bin];
+                        if (p.x > 0.3f && p.x < 0.4f) out[bin] += l, ++outCount[bin];
+                    }
+                int bins = 0, darker = 0;
+                double lowest = 1e30, highest = 0.0;
+                for (int b = 0; b < kBins; ++b) {
+                    if (footCount[b] < 4 || outCount[b] < 4) continue;
+                    ++bins;
+                    const double atFoot = foot[b] / footCount[b], further = out[b] / outCount[b];
+                    darker += atFoot <= further;
+                    lowest = std::min(lowest, atFoot);
+                    highest = std::max(highest, atFoot);
+                }
+                MESSAGE(backend.name << ", camera moved " << shift << " m: " << bins << " bins, the foot "
+                                     << lowest << " to " << highest << ", darker than further out in "
+                                     << darker);
+                CHECK(bins >= 12);
+                CHECK(darker == 0);
+                CHECK(highest < 1.5 * lowest);
+            }
             device.expectSilent();
         }
     }
