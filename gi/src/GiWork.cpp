@@ -57,9 +57,10 @@ WorkCounts gatherVplWork(const LpvSettings& s) {
     // Per side of an edge up to three scans of the block (planeOf in vpl_cluster.comp: its
     // brightest texel, the flux on and off that plane, the flux on the other candidate), each
     // reading a texel's depth, normal and flux and unprojecting it, and the slots; a block whose
-    // texels leave their plane clusters again (a share of the blocks, not counted).
-    w.texelsRead = texels * 2 * 3 * 3;
-    w.aluOps = texels * 2 * 3 * 30;
+    // texels leave their plane clusters again (a share of the blocks, not counted). Before them,
+    // the gaps to each texel's two neighbours (their depths read, three texels unprojected).
+    w.texelsRead = texels * (2 * 3 * 3 + 2);
+    w.aluOps = texels * (2 * 3 * 30 + 3 * 20);
     w.bytesMoved = texels * (4 + 8 + 8) + uint64_t(s.vplSlots()) * 48;
     return w;
 }
