@@ -63,8 +63,9 @@ Traced traceScene(const char* file, uint32_t bounces = 1, uint32_t samples = 512
     return t;
 }
 
-// Each traced once per process (each ctest entry runs one backend): the standard box lit through
-// its front, and lit by a point light under its ceiling.
+// Each traced once per process (ctest's gi.fidelity runs both backends in one, so each is traced
+// once for them): the standard box lit through its front, and lit by a point light under its
+// ceiling.
 const Traced& cornellSun() {
     static const Traced traced = traceScene("cornell-sun.gltf");
     return traced;
