@@ -14,7 +14,10 @@ shift || true
 build=${LPV_BUILD_DIR:-$root/build}
 
 "$root/scripts/install-deps.sh"
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLPV_WERROR=ON >/dev/null
+# Optimised, with line tables for backtraces (-g1): full debug information takes longer to build,
+# and a debugging session configures a build of its own.
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DLPV_WERROR=ON >/dev/null
 cmake --build "$build" --parallel "$(nproc)"
 
 case "$cmd" in
